@@ -1,0 +1,21 @@
+# Every third-party package ferret uses, found once. All come from Debian bookworm
+# (scripts/install-deps installs them).
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(yaml-cpp REQUIRED)
+find_package(fmt REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+find_package(octomap REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(URDFDOM REQUIRED IMPORTED_TARGET urdfdom)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+if(FERRET_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+endif()
+if(FERRET_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()
+
+# OctoMap's imported targets are `octomap` and `octomath` (no namespace).

@@ -1,0 +1,36 @@
+#pragma once
+// Errors with context. Every boundary that reads user input (files, command-line
+// values, requests) throws InputError naming the file, the field and what was
+// expected; the CLI prints it as one line and exits 2.
+
+#include <stdexcept>
+#include <string>
+
+namespace ferret {
+
+/// Malformed or inconsistent user input. Exit code 2 at the CLI.
+class InputError : public std::runtime_error {
+ public:
+  /// @param source   file path (or "--option", "request") the input came from
+  /// @param field    dotted path of the offending field ("sensors.camera_fov_deg");
+  ///                 empty when the whole source is at fault
+  /// @param expected what a valid value looks like ("a number > 0")
+  /// @param got      what was found, if it helps ("-3"); may be empty
+  InputError(std::string source, std::string field, std::string expected, std::string got = {});
+
+  [[nodiscard]] const std::string& source() const { return source_; }
+  [[nodiscard]] const std::string& field() const { return field_; }
+  [[nodiscard]] const std::string& expected() const { return expected_; }
+
+ private:
+  std::string source_, field_, expected_;
+};
+
+/// A check the user asked for failed (an invalid plan, an object not found).
+/// Exit code 1 at the CLI.
+class CheckFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace ferret

@@ -1,0 +1,105 @@
+#include "ferret/core/yaml_config.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace ferret::yaml {
+
+namespace internal {
+std::string describe(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "nothing";
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsSequence()) return "a list of " + std::to_string(node.size());
+  if (node.IsMap()) return "a mapping";
+  return "an unknown node";
+}
+}  // namespace internal
+
+YAML::Node load_string(const std::string& text, const std::string& source) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(source, "line " + std::to_string(e.mark.line + 1) + " column " +
+                                 std::to_string(e.mark.column + 1),
+                     "valid YAML", e.msg);
+  }
+}
+
+YAML::Node load_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path))
+    throw InputError(path.string(), "", "a readable YAML file", "cannot open");
+  std::stringstream text;
+  text << in.rdbuf();
+  return load_string(text.str(), path.string());
+}
+
+MapReader::MapReader(YAML::Node node, std::string source, std::string path)
+    : node_(std::move(node)), source_(std::move(source)), path_(std::move(path)) {
+  if (!node_.IsMap())
+    throw InputError(source_, path_.empty() ? "(document)" : path_, "a mapping of keys to values",
+                     internal::describe(node_));
+}
+
+bool MapReader::has(std::string_view key) const {
+  const YAML::Node value = node_[std::string(key)];
+  return value.IsDefined() && !value.IsNull();
+}
+
+std::string MapReader::field_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+void MapReader::fail(std::string_view key, const std::string& expected, const std::string& got) const {
+  throw InputError(source_, field_path(key), expected, got);
+}
+
+double MapReader::get_in_range(std::string_view key, double lo, double hi) const {
+  const auto value = get<double>(key);
+  if (!std::isfinite(value) || value < lo || value > hi) {
+    std::ostringstream what;
+    what << "a number in [" << lo << ", " << hi << "]";
+    fail(key, what.str(), internal::describe(node_[std::string(key)]));
+  }
+  return value;
+}
+
+double MapReader::get_in_range_or(std::string_view key, double lo, double hi, double fallback) const {
+  return has(key) ? get_in_range(key, lo, hi) : fallback;
+}
+
+MapReader MapReader::child(std::string_view key) const {
+  if (!has(key)) fail(key, "a mapping (required field missing)");
+  return MapReader(node_[std::string(key)], source_, field_path(key));
+}
+
+std::optional<MapReader> MapReader::optional_child(std::string_view key) const {
+  if (!has(key)) return std::nullopt;
+  return child(key);
+}
+
+std::vector<MapReader> MapReader::child_list(std::string_view key) const {
+  if (!has(key)) fail(key, "a list of mappings (required field missing)");
+  const YAML::Node list = node_[std::string(key)];
+  if (!list.IsSequence()) fail(key, "a list of mappings", internal::describe(list));
+  std::vector<MapReader> out;
+  for (std::size_t i = 0; i < list.size(); ++i)
+    out.emplace_back(list[i], source_, field_path(key) + "[" + std::to_string(i) + "]");
+  return out;
+}
+
+void MapReader::allow_only(std::initializer_list<std::string_view> allowed) const {
+  for (const auto& entry : node_) {
+    const auto key = entry.first.as<std::string>();
+    bool known = false;
+    for (const auto a : allowed) known = known || a == key;
+    if (!known) {
+      std::string list;
+      for (const auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      throw InputError(source_, field_path(key), "a known key (one of: " + list + ")", "unknown key");
+    }
+  }
+}
+
+}  // namespace ferret::yaml

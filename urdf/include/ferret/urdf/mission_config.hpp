@@ -1,0 +1,63 @@
+#pragma once
+// What a robot's URDF cannot say: the object-search constants, the tether and the
+// motion limits of a mission. Loaded from config/mission.yaml; every default is the
+// paper's value where the paper gives one (docs/configuration.md lists them all).
+
+#include <filesystem>
+#include <string>
+
+namespace YAML {
+class Node;
+}
+
+namespace ferret {
+
+/// Curiosity c(p) = -(p + a)^2 / (4 b) + K (paper eq. curiosity).
+struct CuriosityParams {
+  double a = -0.5;
+  double b = 0.1;
+  double K = 0.62;
+};
+
+/// Object map O and the detection model (paper sect. IV-A, pinned down in
+/// docs/object_search.md).
+struct ObjectSearchParams {
+  double lambda1 = 0.10;      ///< below: labelled free of the object
+  double lambda2 = 0.95;      ///< above: the object; found when its cell passes this
+  double eta_m = 1.0;         ///< conf = eta / d (d in metres)
+  double conf_floor = 0.55;   ///< a detection is always weak positive evidence
+  double conf_cap = 0.99;
+  double miss_likelihood = 0.4;  ///< "no object" likelihood for a cell seen at zero distance
+};
+
+/// The tether and winch geometry (paper sect. III-A).
+struct TetherParams {
+  double total_length_m = 15.0;  ///< L
+  double entry_offset_m = 1.0;   ///< l_0: winch to the hidden-space entry point
+};
+
+/// Motion limits of one robot.
+struct MotionLimits {
+  double max_velocity_mps = 2.0;
+  double max_acceleration_mps2 = 2.0;
+  double max_yaw_rate_radps = 2.0;
+};
+
+struct MissionConfig {
+  CuriosityParams curiosity;
+  ObjectSearchParams object_search;
+  TetherParams tether;
+  MotionLimits ugv_limits;
+  MotionLimits uav_limits{5.0, 2.0, 1.0};
+};
+
+/// Reads a mission YAML (sections: curiosity, object_search, tether, ugv_limits,
+/// uav_limits; every key optional, unknown keys rejected). Throws InputError naming
+/// the file and field for a wrong type, a value out of range or an unknown key.
+[[nodiscard]] MissionConfig load_mission_config(const std::filesystem::path& path);
+/// The same from a parsed node; `source` names it in errors.
+[[nodiscard]] MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string& source);
+/// YAML text that load_mission_config reads back to the same values.
+[[nodiscard]] std::string mission_config_to_yaml(const MissionConfig& config);
+
+}  // namespace ferret

@@ -1,0 +1,89 @@
+#include "ferret/urdf/mission_config.hpp"
+
+#include <limits>
+
+#include "ferret/core/yaml_config.hpp"
+
+namespace ferret {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void read_limits(const yaml::MapReader& r, MotionLimits& l) {
+  r.allow_only({"max_velocity_mps", "max_acceleration_mps2", "max_yaw_rate_radps"});
+  l.max_velocity_mps = r.get_in_range_or("max_velocity_mps", 1e-6, kInf, l.max_velocity_mps);
+  l.max_acceleration_mps2 = r.get_in_range_or("max_acceleration_mps2", 1e-6, kInf, l.max_acceleration_mps2);
+  l.max_yaw_rate_radps = r.get_in_range_or("max_yaw_rate_radps", 1e-6, kInf, l.max_yaw_rate_radps);
+}
+
+void emit_limits(YAML::Emitter& e, const char* name, const MotionLimits& l) {
+  e << YAML::Key << name << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "max_velocity_mps" << YAML::Value << l.max_velocity_mps;
+  e << YAML::Key << "max_acceleration_mps2" << YAML::Value << l.max_acceleration_mps2;
+  e << YAML::Key << "max_yaw_rate_radps" << YAML::Value << l.max_yaw_rate_radps;
+  e << YAML::EndMap;
+}
+}  // namespace
+
+MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string& source) {
+  MissionConfig c;
+  if (!node.IsDefined() || node.IsNull()) return c;  // an empty file means all defaults
+  const yaml::MapReader root(node, source);
+  root.allow_only({"curiosity", "object_search", "tether", "ugv_limits", "uav_limits"});
+  if (const auto r = root.optional_child("curiosity")) {
+    r->allow_only({"a", "b", "K"});
+    c.curiosity.a = r->get_or("a", c.curiosity.a);
+    c.curiosity.b = r->get_in_range_or("b", 1e-9, kInf, c.curiosity.b);
+    c.curiosity.K = r->get_or("K", c.curiosity.K);
+  }
+  if (const auto r = root.optional_child("object_search")) {
+    auto& o = c.object_search;
+    r->allow_only({"lambda1", "lambda2", "eta_m", "conf_floor", "conf_cap", "miss_likelihood"});
+    o.lambda1 = r->get_in_range_or("lambda1", 0.0, 0.5, o.lambda1);
+    o.lambda2 = r->get_in_range_or("lambda2", 0.5, 1.0, o.lambda2);
+    o.eta_m = r->get_in_range_or("eta_m", 1e-6, kInf, o.eta_m);
+    o.conf_floor = r->get_in_range_or("conf_floor", 0.5, 1.0, o.conf_floor);
+    o.conf_cap = r->get_in_range_or("conf_cap", 0.5, 1.0, o.conf_cap);
+    o.miss_likelihood = r->get_in_range_or("miss_likelihood", 0.0, 0.5, o.miss_likelihood);
+    if (o.conf_floor > o.conf_cap) r->fail("conf_floor", "a value <= conf_cap");
+  }
+  if (const auto r = root.optional_child("tether")) {
+    r->allow_only({"total_length_m", "entry_offset_m"});
+    c.tether.total_length_m = r->get_in_range_or("total_length_m", 1e-3, kInf, c.tether.total_length_m);
+    c.tether.entry_offset_m = r->get_in_range_or("entry_offset_m", 0.0, kInf, c.tether.entry_offset_m);
+    if (c.tether.entry_offset_m >= c.tether.total_length_m)
+      r->fail("entry_offset_m", "a value below tether.total_length_m");
+  }
+  if (const auto r = root.optional_child("ugv_limits")) read_limits(*r, c.ugv_limits);
+  if (const auto r = root.optional_child("uav_limits")) read_limits(*r, c.uav_limits);
+  return c;
+}
+
+MissionConfig load_mission_config(const std::filesystem::path& path) {
+  return mission_config_from_yaml(yaml::load_file(path), path.string());
+}
+
+std::string mission_config_to_yaml(const MissionConfig& c) {
+  YAML::Emitter e;
+  e << YAML::BeginMap;
+  e << YAML::Key << "curiosity" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "a" << YAML::Value << c.curiosity.a;
+  e << YAML::Key << "b" << YAML::Value << c.curiosity.b;
+  e << YAML::Key << "K" << YAML::Value << c.curiosity.K << YAML::EndMap;
+  const auto& o = c.object_search;
+  e << YAML::Key << "object_search" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "lambda1" << YAML::Value << o.lambda1;
+  e << YAML::Key << "lambda2" << YAML::Value << o.lambda2;
+  e << YAML::Key << "eta_m" << YAML::Value << o.eta_m;
+  e << YAML::Key << "conf_floor" << YAML::Value << o.conf_floor;
+  e << YAML::Key << "conf_cap" << YAML::Value << o.conf_cap;
+  e << YAML::Key << "miss_likelihood" << YAML::Value << o.miss_likelihood << YAML::EndMap;
+  e << YAML::Key << "tether" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "total_length_m" << YAML::Value << c.tether.total_length_m;
+  e << YAML::Key << "entry_offset_m" << YAML::Value << c.tether.entry_offset_m << YAML::EndMap;
+  emit_limits(e, "ugv_limits", c.ugv_limits);
+  emit_limits(e, "uav_limits", c.uav_limits);
+  e << YAML::EndMap;
+  return std::string(e.c_str()) + "\n";
+}
+
+}  // namespace ferret
