@@ -6,6 +6,11 @@ function(ferret_module name)
   cmake_parse_arguments(M "" "" "PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
   set(target ferret_${name})
+  if(NOT sources)
+    # A module whose first sources have not landed yet still links as a library.
+    set(sources ${CMAKE_CURRENT_BINARY_DIR}/ferret_${name}_empty.cpp)
+    file(WRITE ${sources} "// ferret_${name} has no sources yet\n")
+  endif()
   add_library(${target} ${sources})
   add_library(ferret::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME ferret_${name}
