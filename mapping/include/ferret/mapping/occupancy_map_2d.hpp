@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "ferret/core/grid.hpp"
@@ -17,11 +18,25 @@ struct OccupancyMap2D {
   GridGeometry geometry;
   std::vector<CellState> cells;  ///< geometry.size() entries, index = j * width + i
 
+  /// A map of the given geometry with every cell set to `fill`.
+  [[nodiscard]] static OccupancyMap2D filled(const GridGeometry& geometry, CellState fill);
+
   [[nodiscard]] CellState at(Cell c) const { return cells[geometry.index(c)]; }
+  [[nodiscard]] CellState& at(Cell c) { return cells[geometry.index(c)]; }
   [[nodiscard]] bool is_free(Cell c) const { return geometry.contains(c) && at(c) == CellState::kFree; }
+  /// State of the cell holding a world point; kUnknown outside the grid.
+  [[nodiscard]] CellState state_at(double x_m, double y_m) const {
+    const Cell c = geometry.cell_at(x_m, y_m);
+    return geometry.contains(c) ? at(c) : CellState::kUnknown;
+  }
+  /// Number of cells in `state`.
+  [[nodiscard]] std::size_t count(CellState state) const;
 };
 
-/// Thresholds of a map_server YAML (defaults are map_server's).
+/// Same geometry (exactly) and the same cell states.
+[[nodiscard]] bool operator==(const OccupancyMap2D& a, const OccupancyMap2D& b);
+
+/// The keys of a map_server YAML (defaults are map_server's).
 struct MapServerMeta {
   std::filesystem::path image;  ///< PGM/PNG path, relative to the YAML
   double resolution_m = 0.05;
@@ -29,15 +44,41 @@ struct MapServerMeta {
   bool negate = false;
   double occupied_thresh = 0.65;
   double free_thresh = 0.196;
+  std::string mode = "trinary";  ///< only "trinary" is supported (cells are three-state)
 };
 
-/// Loads a map_server YAML and its image. Throws InputError naming the file and
-/// field for anything malformed (missing keys, bad thresholds, truncated PGM, a
-/// non-zero origin yaw, which map_server also does not support).
+/// Reads and checks the keys of a map_server YAML without loading the image.
+/// Throws InputError naming the file and field (unknown keys included).
+[[nodiscard]] MapServerMeta load_map_server_meta(const std::filesystem::path& yaml_path);
+
+/// Loads a map_server YAML and its image (binary P5 or ASCII P2 PGM, 8 or 16 bit,
+/// or anything OpenCV reads, e.g. PNG). A pixel's occupancy is
+/// (255 - v) / 255 with v its grey value scaled to 0..255 (colour channels averaged,
+/// alpha ignored), or v / 255 when `negate`; occupancy > occupied_thresh is
+/// occupied, < free_thresh free, anything between unknown. The top image row is
+/// the map's top (largest y). Throws InputError naming the file and field for
+/// anything malformed (missing keys, bad thresholds, truncated PGM, a non-zero
+/// origin yaw, which map_server also does not honour, a mode other than trinary).
 [[nodiscard]] OccupancyMap2D load_map_server(const std::filesystem::path& yaml_path);
 
 /// Writes `<stem>.yaml` and `<stem>.pgm` (trinary: 0 occupied, 254 free, 205
-/// unknown) atomically. `yaml_path` must end in .yaml.
+/// unknown; thresholds 0.65/0.196, negate 0) atomically, the PGM first so a
+/// YAML never names a missing image. `yaml_path` must end in .yaml.
 void save_map_server(const OccupancyMap2D& map, const std::filesystem::path& yaml_path);
+
+/// A greyscale image: rows top to bottom, `width * height` 8-bit values.
+struct GreyImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> pixels;  ///< index = row * width + column, row 0 at the top
+};
+
+/// Reads a binary (P5) or ASCII (P2) PGM, scaling samples to 0..255 when maxval is
+/// not 255. Throws InputError naming the file and the header field or the pixel
+/// data for a wrong magic, a malformed header, or fewer samples than width*height.
+[[nodiscard]] GreyImage read_pgm(const std::filesystem::path& path);
+
+/// Writes a binary PGM (P5, maxval 255) atomically.
+void write_pgm(const GreyImage& image, const std::filesystem::path& path);
 
 }  // namespace ferret

@@ -1,0 +1,192 @@
+#include "ferret/mapping/occupancy_map_2d.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "ferret/core/error.hpp"
+#include "support/cli_runner.hpp"
+
+namespace ferret {
+namespace {
+using ::testing::HasSubstr;
+using test::TempDir;
+
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string yaml_for(const std::string& image, const std::string& extra = "") {
+  return "image: " + image + "\nresolution: 0.5\norigin: [-1.0, 2.0, 0.0]\n" + extra;
+}
+
+// Expects an InputError whose message names `source_part` and `field`.
+template <class F>
+void expect_input_error(F&& f, const std::string& source_part, const std::string& field) {
+  try {
+    f();
+    FAIL() << "expected InputError for field " << field;
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.source(), HasSubstr(source_part));
+    EXPECT_EQ(e.field(), field) << e.what();
+  }
+}
+
+TEST(OccupancyMap2D, ThresholdsAndRowOrderFollowMapServer) {
+  TempDir dir;
+  // 3 x 2 image, top row first: values chosen around the default thresholds.
+  // occupancy = (255 - v) / 255: 0 -> 1.0 occupied, 254 -> 0.004 free,
+  // 205 -> 0.196078 unknown (just above free_thresh 0.196), 89 -> 0.651 occupied,
+  // 90 -> 0.647 unknown, 205 + 1 = 206 -> 0.192 free.
+  write_bytes(dir / "m.pgm", std::string("P5\n# a comment\n3 2\n255\n") +
+                                 std::string{'\x00', '\xfe', '\xcd', '\x59', '\x5a', '\xce'});
+  write_bytes(dir / "m.yaml", yaml_for("m.pgm"));
+  const OccupancyMap2D map = load_map_server(dir / "m.yaml");
+  ASSERT_EQ(map.geometry.width, 3);
+  ASSERT_EQ(map.geometry.height, 2);
+  EXPECT_DOUBLE_EQ(map.geometry.origin_x_m, -1.0);
+  EXPECT_DOUBLE_EQ(map.geometry.origin_y_m, 2.0);
+  EXPECT_DOUBLE_EQ(map.geometry.resolution_m, 0.5);
+  // The top image row is j = 1.
+  EXPECT_EQ(map.at({0, 1}), CellState::kOccupied);
+  EXPECT_EQ(map.at({1, 1}), CellState::kFree);
+  EXPECT_EQ(map.at({2, 1}), CellState::kUnknown);
+  EXPECT_EQ(map.at({0, 0}), CellState::kOccupied);
+  EXPECT_EQ(map.at({1, 0}), CellState::kUnknown);
+  EXPECT_EQ(map.at({2, 0}), CellState::kFree);
+  // World lookup: (-1 + 0.25, 2 + 0.75) is cell (0, 1).
+  EXPECT_EQ(map.state_at(-0.75, 2.75), CellState::kOccupied);
+  EXPECT_EQ(map.state_at(-1.01, 2.75), CellState::kUnknown);
+}
+
+TEST(OccupancyMap2D, NegateInvertsOccupancy) {
+  TempDir dir;
+  write_bytes(dir / "m.pgm", std::string("P5 2 1 255 ") + std::string{'\x00', '\xff'});
+  write_bytes(dir / "m.yaml", yaml_for("m.pgm", "negate: 1\n"));
+  const OccupancyMap2D map = load_map_server(dir / "m.yaml");
+  // With negate, occupancy = v / 255: black is free, white occupied.
+  EXPECT_EQ(map.at({0, 0}), CellState::kFree);
+  EXPECT_EQ(map.at({1, 0}), CellState::kOccupied);
+}
+
+TEST(OccupancyMap2D, CustomThresholds) {
+  TempDir dir;
+  // v = 128 -> occupancy 0.498.
+  write_bytes(dir / "m.pgm", "P2\n1 1\n255\n128\n");
+  write_bytes(dir / "a.yaml", yaml_for("m.pgm", "occupied_thresh: 0.4\nfree_thresh: 0.1\n"));
+  write_bytes(dir / "b.yaml", yaml_for("m.pgm", "occupied_thresh: 0.9\nfree_thresh: 0.5\n"));
+  write_bytes(dir / "c.yaml", yaml_for("m.pgm", "occupied_thresh: 0.9\nfree_thresh: 0.3\n"));
+  EXPECT_EQ(load_map_server(dir / "a.yaml").at({0, 0}), CellState::kOccupied);
+  EXPECT_EQ(load_map_server(dir / "b.yaml").at({0, 0}), CellState::kFree);
+  EXPECT_EQ(load_map_server(dir / "c.yaml").at({0, 0}), CellState::kUnknown);
+}
+
+TEST(OccupancyMap2D, AsciiAndSixteenBitPgmScaleToBytes) {
+  TempDir dir;
+  // maxval 15: 0 -> black (occupied), 15 -> white (free).
+  write_bytes(dir / "a.pgm", "P2\n2 1\n15\n0 15\n");
+  const GreyImage a = read_pgm(dir / "a.pgm");
+  EXPECT_EQ(a.pixels, (std::vector<std::uint8_t>{0, 255}));
+  // 16-bit big-endian: 0x8000 of 65535 -> round(32768 * 255 / 65535) = 128.
+  write_bytes(dir / "b.pgm", std::string("P5\n1 1\n65535\n") + std::string{'\x80', '\x00'});
+  EXPECT_EQ(read_pgm(dir / "b.pgm").pixels, (std::vector<std::uint8_t>{128}));
+}
+
+TEST(OccupancyMap2D, SaveLoadRoundTrip) {
+  TempDir dir;
+  GridGeometry g{-3.125, 7.3, 0.05, 7, 5};
+  OccupancyMap2D map = OccupancyMap2D::filled(g, CellState::kUnknown);
+  for (std::size_t k = 0; k < map.cells.size(); ++k) map.cells[k] = static_cast<CellState>(k * 7 % 3);
+  save_map_server(map, dir / "out.yaml");
+  EXPECT_TRUE(std::filesystem::exists(dir / "out.pgm"));
+  const OccupancyMap2D back = load_map_server(dir / "out.yaml");
+  EXPECT_TRUE(back == map);
+  EXPECT_EQ(back.count(CellState::kFree), map.count(CellState::kFree));
+  EXPECT_EQ(dir.count(), 2u);  // no temporaries left behind
+}
+
+TEST(OccupancyMap2D, SaveRejectsNonYamlPath) {
+  TempDir dir;
+  const auto map = OccupancyMap2D::filled(GridGeometry{0, 0, 1, 1, 1}, CellState::kFree);
+  EXPECT_THROW(save_map_server(map, dir / "out.txt"), InputError);
+  EXPECT_EQ(dir.count(), 0u);
+}
+
+TEST(OccupancyMap2D, TruncatedPgmPixelData) {
+  TempDir dir;
+  write_bytes(dir / "m.pgm", std::string("P5\n4 4\n255\n") + std::string(15, '\xfe'));
+  write_bytes(dir / "m.yaml", yaml_for("m.pgm"));
+  try {
+    (void)load_map_server(dir / "m.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.source(), HasSubstr("m.pgm"));
+    EXPECT_EQ(e.field(), "pixels");
+    EXPECT_THAT(e.what(), HasSubstr("16 samples"));
+    EXPECT_THAT(e.what(), HasSubstr("only 15 bytes"));
+  }
+}
+
+TEST(OccupancyMap2D, TruncatedAndBrokenPgmHeaders) {
+  TempDir dir;
+  const std::string p = dir / "m.pgm";
+  write_bytes(p, "P5\n4");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "header.height");
+  write_bytes(p, "P5\n4 4\n");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "header.maxval");
+  write_bytes(p, "P5\n4 4\n255");  // no separator before (absent) pixels
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "header.maxval");
+  write_bytes(p, "P5\n0 4\n255\n");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "header.width");
+  write_bytes(p, "P5\n4 x\n255\n");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "header.height");
+  write_bytes(p, "P5\n4 4\n70000\n");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "header.maxval");
+  // A header asking for ~10^12 pixels is refused before any allocation.
+  write_bytes(p, "P5\n1000000 1000000\n255\n");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "header.height");
+  write_bytes(p, "P6\n1 1\n255\nabc");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "magic");
+  write_bytes(p, "");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "magic");
+  write_bytes(p, "P2\n2 2\n255\n1 2 3");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "pixels");
+  write_bytes(p, "P2\n2 1\n10\n1 11");
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "pixels[1]");
+  write_bytes(p, std::string("P5\n1 1\n10\n") + '\x0b');
+  expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "pixels[0]");
+}
+
+TEST(OccupancyMap2D, BadYamlFieldsNameTheField) {
+  TempDir dir;
+  write_bytes(dir / "m.pgm", "P2 1 1 255 0");
+  const std::string y = dir / "m.yaml";
+  auto check = [&](const std::string& text, const std::string& field) {
+    write_bytes(y, text);
+    expect_input_error([&] { (void)load_map_server(y); }, "m.yaml", field);
+  };
+  check(yaml_for("missing.pgm"), "image");
+  check("resolution: 0.5\norigin: [0, 0, 0]\n", "image");
+  check(yaml_for("m.pgm", "mode: scale\n"), "mode");
+  check(yaml_for("m.pgm", "mode: raw\n"), "mode");
+  check(yaml_for("m.pgm", "negate: 2\n"), "negate");
+  check(yaml_for("m.pgm", "occupied_thresh: 1.5\n"), "occupied_thresh");
+  check(yaml_for("m.pgm", "occupied_thresh: 0.3\nfree_thresh: 0.5\n"), "free_thresh");
+  check(yaml_for("m.pgm", "colour: red\n"), "colour");
+  check("image: m.pgm\nresolution: -0.1\norigin: [0, 0, 0]\n", "resolution");
+  check("image: m.pgm\nresolution: fine\norigin: [0, 0, 0]\n", "resolution");
+  check("image: m.pgm\nresolution: 0.1\norigin: [0, 0]\n", "origin");
+  check("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0.5]\n", "origin[2]");
+}
+
+TEST(OccupancyMap2D, CorruptPngIsInputError) {
+  TempDir dir;
+  write_bytes(dir / "m.png", "\x89PNG\r\n\x1a\nnot really");
+  write_bytes(dir / "m.yaml", yaml_for("m.png"));
+  EXPECT_THROW((void)load_map_server(dir / "m.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace ferret
