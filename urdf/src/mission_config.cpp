@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "ferret/core/yaml_config.hpp"
+#include "yaml_emit.hpp"
 
 namespace ferret {
 namespace {
@@ -17,9 +18,9 @@ void read_limits(const yaml::MapReader& r, MotionLimits& l) {
 
 void emit_limits(YAML::Emitter& e, const char* name, const MotionLimits& l) {
   e << YAML::Key << name << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "max_velocity_mps" << YAML::Value << l.max_velocity_mps;
-  e << YAML::Key << "max_acceleration_mps2" << YAML::Value << l.max_acceleration_mps2;
-  e << YAML::Key << "max_yaw_rate_radps" << YAML::Value << l.max_yaw_rate_radps;
+  e << YAML::Key << "max_velocity_mps" << YAML::Value << internal::yaml_number(l.max_velocity_mps);
+  e << YAML::Key << "max_acceleration_mps2" << YAML::Value << internal::yaml_number(l.max_acceleration_mps2);
+  e << YAML::Key << "max_yaw_rate_radps" << YAML::Value << internal::yaml_number(l.max_yaw_rate_radps);
   e << YAML::EndMap;
 }
 }  // namespace
@@ -66,20 +67,20 @@ std::string mission_config_to_yaml(const MissionConfig& c) {
   YAML::Emitter e;
   e << YAML::BeginMap;
   e << YAML::Key << "curiosity" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "a" << YAML::Value << c.curiosity.a;
-  e << YAML::Key << "b" << YAML::Value << c.curiosity.b;
-  e << YAML::Key << "K" << YAML::Value << c.curiosity.K << YAML::EndMap;
+  e << YAML::Key << "a" << YAML::Value << internal::yaml_number(c.curiosity.a);
+  e << YAML::Key << "b" << YAML::Value << internal::yaml_number(c.curiosity.b);
+  e << YAML::Key << "K" << YAML::Value << internal::yaml_number(c.curiosity.K) << YAML::EndMap;
   const auto& o = c.object_search;
   e << YAML::Key << "object_search" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "lambda1" << YAML::Value << o.lambda1;
-  e << YAML::Key << "lambda2" << YAML::Value << o.lambda2;
-  e << YAML::Key << "eta_m" << YAML::Value << o.eta_m;
-  e << YAML::Key << "conf_floor" << YAML::Value << o.conf_floor;
-  e << YAML::Key << "conf_cap" << YAML::Value << o.conf_cap;
-  e << YAML::Key << "miss_likelihood" << YAML::Value << o.miss_likelihood << YAML::EndMap;
+  e << YAML::Key << "lambda1" << YAML::Value << internal::yaml_number(o.lambda1);
+  e << YAML::Key << "lambda2" << YAML::Value << internal::yaml_number(o.lambda2);
+  e << YAML::Key << "eta_m" << YAML::Value << internal::yaml_number(o.eta_m);
+  e << YAML::Key << "conf_floor" << YAML::Value << internal::yaml_number(o.conf_floor);
+  e << YAML::Key << "conf_cap" << YAML::Value << internal::yaml_number(o.conf_cap);
+  e << YAML::Key << "miss_likelihood" << YAML::Value << internal::yaml_number(o.miss_likelihood) << YAML::EndMap;
   e << YAML::Key << "tether" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "total_length_m" << YAML::Value << c.tether.total_length_m;
-  e << YAML::Key << "entry_offset_m" << YAML::Value << c.tether.entry_offset_m << YAML::EndMap;
+  e << YAML::Key << "total_length_m" << YAML::Value << internal::yaml_number(c.tether.total_length_m);
+  e << YAML::Key << "entry_offset_m" << YAML::Value << internal::yaml_number(c.tether.entry_offset_m) << YAML::EndMap;
   emit_limits(e, "ugv_limits", c.ugv_limits);
   emit_limits(e, "uav_limits", c.uav_limits);
   e << YAML::EndMap;

@@ -1,0 +1,676 @@
+// URDF + mission YAML -> RobotDescription.
+//
+// Three passes over one document:
+//  1. TinyXML (the XML library urdfdom itself is built on) checks what urdfdom
+//     accepts silently or reports only on the console: shape sizes <= 0, mesh
+//     collision geometry, joints naming missing links. Errors carry file:line.
+//  2. urdfdom builds the kinematic tree and the collision geometry; its console
+//     messages are captured (console_bridge) and folded into one InputError.
+//  3. TinyXML reads the sensors, both urdfdom's <sensor> elements and Gazebo's
+//     <gazebo reference=...><sensor> blocks, which urdfdom ignores. urdfdom 3.0's own
+//     sensor parser is not used: it drops every <ray> sensor (parseRay returns false)
+//     and has no range for rays.
+
+#include <console_bridge/console.h>
+#include <tinyxml.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "ferret/core/error.hpp"
+#include "ferret/urdf/robot_description.hpp"
+
+namespace ferret {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// Where an element sits, for errors: "file:line".
+class XmlSource {
+ public:
+  explicit XmlSource(std::string source) : source_(std::move(source)) {}
+  [[nodiscard]] std::string at(const TiXmlNode* node) const {
+    return node != nullptr ? source_ + ":" + std::to_string(node->Row()) : source_;
+  }
+  [[noreturn]] void fail(const TiXmlNode* node, const std::string& field, const std::string& expected,
+                         const std::string& got = {}) const {
+    throw InputError(at(node), field, expected, got);
+  }
+  [[nodiscard]] const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+};
+
+std::string quoted(const char* text) { return text == nullptr ? "nothing" : "'" + std::string(text) + "'"; }
+
+/// Whitespace-separated finite numbers; nullopt when any token is not one.
+std::optional<std::vector<double>> parse_numbers(const char* text) {
+  if (text == nullptr) return std::nullopt;
+  std::vector<double> out;
+  const char* p = text;
+  for (;;) {
+    while (*p != '\0' && std::isspace(static_cast<unsigned char>(*p))) ++p;
+    if (*p == '\0') break;
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(p, &end);
+    if (end == p || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
+    if (*end != '\0' && !std::isspace(static_cast<unsigned char>(*end))) return std::nullopt;
+    out.push_back(v);
+    p = end;
+  }
+  return out;
+}
+
+std::optional<double> parse_number(const char* text) {
+  auto values = parse_numbers(text);
+  if (!values || values->size() != 1) return std::nullopt;
+  return values->front();
+}
+
+std::string attr_or_empty(const TiXmlElement* e, const char* name) {
+  const char* v = e->Attribute(name);
+  return v == nullptr ? std::string() : std::string(v);
+}
+
+Pose3 pose_from_xyz_rpy(const std::vector<double>& xyz, const std::vector<double>& rpy) {
+  // URDF and SDF: fixed-axis roll about x, then pitch about y, then yaw about z.
+  Pose3 X = Pose3::Identity();
+  X.translation() = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+  X.linear() = (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return X;
+}
+
+/// <origin xyz=".." rpy=".."/>, both optional.
+Pose3 read_origin(const XmlSource& src, const TiXmlElement* origin, const std::string& field) {
+  if (origin == nullptr) return Pose3::Identity();
+  std::vector<double> xyz{0, 0, 0}, rpy{0, 0, 0};
+  for (const char* key : {"xyz", "rpy"}) {
+    const char* text = origin->Attribute(key);
+    if (text == nullptr) continue;
+    auto values = parse_numbers(text);
+    if (!values || values->size() != 3)
+      src.fail(origin, field + "@" + key, "three numbers", quoted(text));
+    (std::string(key) == "xyz" ? xyz : rpy) = *values;
+  }
+  return pose_from_xyz_rpy(xyz, rpy);
+}
+
+/// A positive size attribute of a collision primitive.
+void check_positive(const XmlSource& src, const TiXmlElement* e, const char* key, const std::string& field,
+                    std::size_t count) {
+  const char* text = e->Attribute(key);
+  auto values = parse_numbers(text);
+  bool ok = values && values->size() == count;
+  if (ok)
+    for (const double v : *values) ok = ok && v > 0.0;
+  if (!ok) {
+    const std::string what = count == 1 ? "a number > 0 (metres)" : std::to_string(count) + " numbers > 0 (metres)";
+    src.fail(e, field + "@" + key, what, text == nullptr ? "nothing" : quoted(text));
+  }
+}
+
+// ---------------------------------------------------------------- pass 1: structure
+
+void check_structure(const XmlSource& src, const TiXmlElement* robot) {
+  std::set<std::string> links;
+  for (const TiXmlElement* link = robot->FirstChildElement("link"); link != nullptr;
+       link = link->NextSiblingElement("link")) {
+    const std::string name = attr_or_empty(link, "name");
+    if (name.empty()) src.fail(link, "link@name", "a link name");
+    if (!links.insert(name).second) src.fail(link, "link[" + name + "]", "a unique link name", "a duplicate");
+    int index = 0;
+    for (const TiXmlElement* col = link->FirstChildElement("collision"); col != nullptr;
+         col = col->NextSiblingElement("collision"), ++index) {
+      const std::string field = "link[" + name + "]/collision[" + std::to_string(index) + "]";
+      (void)read_origin(src, col->FirstChildElement("origin"), field + "/origin");
+      const TiXmlElement* geometry = col->FirstChildElement("geometry");
+      const TiXmlElement* shape = geometry != nullptr ? geometry->FirstChildElement() : nullptr;
+      if (shape == nullptr) src.fail(col, field + "/geometry", "a <geometry> with a box, cylinder or sphere");
+      const std::string type = shape->Value();
+      const std::string shape_field = field + "/geometry/" + type;
+      if (type == "box") {
+        check_positive(src, shape, "size", shape_field, 3);
+      } else if (type == "cylinder") {
+        check_positive(src, shape, "radius", shape_field, 1);
+        check_positive(src, shape, "length", shape_field, 1);
+      } else if (type == "sphere") {
+        check_positive(src, shape, "radius", shape_field, 1);
+      } else {
+        src.fail(shape, field + "/geometry",
+                 "a box, cylinder or sphere (planning needs primitive collision shapes)", "<" + type + ">");
+      }
+    }
+  }
+  if (links.empty()) src.fail(robot, "robot", "at least one <link>");
+
+  for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint != nullptr;
+       joint = joint->NextSiblingElement("joint")) {
+    const std::string name = attr_or_empty(joint, "name");
+    if (name.empty()) src.fail(joint, "joint@name", "a joint name");
+    const std::string field = "joint[" + name + "]";
+    (void)read_origin(src, joint->FirstChildElement("origin"), field + "/origin");
+    for (const char* role : {"parent", "child"}) {
+      const TiXmlElement* e = joint->FirstChildElement(role);
+      const std::string link = e != nullptr ? attr_or_empty(e, "link") : std::string();
+      if (link.empty())
+        src.fail(e != nullptr ? e : joint, field + "/" + role + "@link", "the name of a link");
+      if (links.count(link) == 0)
+        src.fail(e, field + "/" + role + "@link", "the name of a <link> in this file", "'" + link + "'");
+    }
+  }
+}
+
+// ---------------------------------------------------------------- pass 2: urdfdom
+
+/// Collects console_bridge messages instead of printing them.
+class CapturingOutput : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char* /*filename*/,
+           int /*line*/) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages.push_back(text);
+  }
+  std::vector<std::string> messages;
+};
+
+std::mutex& console_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const XmlSource& src, const std::string& xml) {
+  CapturingOutput output;
+  urdf::ModelInterfaceSharedPtr model;
+  std::string exception;
+  {
+    // console_bridge's handler is process-wide: one parse at a time swaps it.
+    const std::lock_guard lock(console_mutex());
+    console_bridge::useOutputHandler(&output);
+    try {
+      model = urdf::parseURDF(xml);
+    } catch (const std::exception& e) {
+      exception = e.what();
+    }
+    console_bridge::restorePreviousOutputHandler();
+  }
+  if (model) return model;
+  std::string why = !exception.empty() ? exception : output.messages.empty() ? "" : output.messages.front();
+  for (char& c : why)
+    if (c == '\n' || c == '\r') c = ' ';
+  throw InputError(src.source(), "robot", "a URDF that urdfdom accepts",
+                   why.empty() ? "urdfdom rejected it" : "urdfdom: " + why);
+}
+
+Pose3 to_pose(const urdf::Pose& p) {
+  Pose3 X = Pose3::Identity();
+  X.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  X.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
+                   .normalized()
+                   .toRotationMatrix();
+  return X;
+}
+
+/// X_BL of every link at zero joint positions, walking the tree from the root.
+void place_links(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& link, const Pose3& X_BL,
+                 std::map<std::string, Pose3>& X_B) {
+  X_B[link->name] = X_BL;
+  for (const auto& joint : link->child_joints) {
+    const auto child = model.getLink(joint->child_link_name);
+    if (child) place_links(model, child, X_BL * to_pose(joint->parent_to_joint_origin_transform), X_B);
+  }
+}
+
+// ---------------------------------------------------------------- pass 3: sensors
+
+/// One value of a sensor, with where it was read (for errors and conflicts).
+struct SensorValue {
+  double value = 0.0;
+  std::string at;     ///< file:line
+  std::string field;  ///< element path
+};
+
+/// A sensor as declared in one or two places (urdfdom <sensor>, Gazebo block).
+struct SensorSpec {
+  enum class Kind { kCamera, kDepth, kRay, kOther };
+  std::string name;
+  std::string link;
+  Kind kind = Kind::kOther;
+  std::string at, field;  ///< the first declaration
+  std::optional<Pose3> X_LS;
+  std::string pose_at, pose_field;
+  std::map<std::string, SensorValue> values;  ///< keys: see value_names()
+  bool from_urdf = false, from_gazebo = false;
+};
+
+/// Human names of the sensor values, with where each can come from.
+const std::map<std::string, std::string>& value_names() {
+  static const std::map<std::string, std::string> names{
+      {"hfov", "horizontal fov (<image hfov> or Gazebo <camera><horizontal_fov>)"},
+      {"width", "image width (<image width> or Gazebo <image><width>)"},
+      {"height", "image height (<image height> or Gazebo <image><height>)"},
+      {"near", "clip near (<image near> or Gazebo <clip><near>)"},
+      {"far", "clip far (<image far> or Gazebo <clip><far>)"},
+      {"samples", "horizontal samples (<horizontal samples> or Gazebo <scan><horizontal><samples>)"},
+      {"min_angle", "horizontal min_angle"},
+      {"max_angle", "horizontal max_angle"},
+      {"range_min", "range min (<ray><range min> or Gazebo <ray><range><min>)"},
+      {"range_max", "range max (<ray><range max> or Gazebo <ray><range><max>)"},
+      {"update_rate", "update rate"},
+  };
+  return names;
+}
+
+void set_value(const XmlSource& src, SensorSpec& s, const std::string& key, const TiXmlElement* e,
+               const char* text, const std::string& field) {
+  const auto v = parse_number(text);
+  if (!v) src.fail(e, field, "a number", quoted(text));
+  s.values[key] = SensorValue{*v, src.at(e), field};
+}
+
+void attr_value(const XmlSource& src, SensorSpec& s, const std::string& key, const TiXmlElement* e,
+                const char* attr, const std::string& field) {
+  if (e == nullptr) return;
+  if (const char* text = e->Attribute(attr)) set_value(src, s, key, e, text, field + "@" + attr);
+}
+
+/// Gazebo style: the number is the element's text, <parent><child>1.0</child></parent>.
+void text_value(const XmlSource& src, SensorSpec& s, const std::string& key, const TiXmlElement* parent,
+                const char* child, const std::string& field) {
+  if (parent == nullptr) return;
+  const TiXmlElement* e = parent->FirstChildElement(child);
+  if (e == nullptr) return;
+  set_value(src, s, key, e, e->GetText() != nullptr ? e->GetText() : "", field + "/" + child);
+}
+
+/// urdfdom's sensor format (ROS wiki urdf/XML/sensor):
+///   <sensor name="cam" update_rate="30"> <parent link="L"/> <origin .../>
+///     <camera><image width=".." height=".." hfov=".." near=".." far=".."/></camera>
+///     or <ray><horizontal samples=".." min_angle=".." max_angle=".."/><range min max/></ray>
+///   </sensor>
+/// urdfdom 3.0's parser wants the parent as attribute parent_link_name: both are read.
+SensorSpec read_urdf_sensor(const XmlSource& src, const TiXmlElement* e) {
+  SensorSpec s;
+  s.name = attr_or_empty(e, "name");
+  if (s.name.empty()) src.fail(e, "sensor@name", "a sensor name");
+  s.at = src.at(e);
+  s.field = "sensor[" + s.name + "]";
+  s.from_urdf = true;
+  s.link = attr_or_empty(e, "parent_link_name");
+  if (const TiXmlElement* parent = e->FirstChildElement("parent")) s.link = attr_or_empty(parent, "link");
+  if (s.link.empty()) src.fail(e, s.field + "/parent@link", "the link the sensor is attached to");
+  if (const TiXmlElement* origin = e->FirstChildElement("origin")) {
+    s.X_LS = read_origin(src, origin, s.field + "/origin");
+    s.pose_at = src.at(origin);
+    s.pose_field = s.field + "/origin";
+  }
+  attr_value(src, s, "update_rate", e, "update_rate", s.field);
+  if (const TiXmlElement* camera = e->FirstChildElement("camera")) {
+    s.kind = SensorSpec::Kind::kCamera;
+    const TiXmlElement* image = camera->FirstChildElement("image");
+    if (image == nullptr) src.fail(camera, s.field + "/camera/image", "an <image> element");
+    const std::string f = s.field + "/camera/image";
+    for (const char* key : {"hfov", "width", "height", "near", "far"}) attr_value(src, s, key, image, key, f);
+  } else if (const TiXmlElement* ray = e->FirstChildElement("ray")) {
+    s.kind = SensorSpec::Kind::kRay;
+    const TiXmlElement* h = ray->FirstChildElement("horizontal");
+    const std::string f = s.field + "/ray/horizontal";
+    for (const char* key : {"samples", "min_angle", "max_angle"}) attr_value(src, s, key, h, key, f);
+    const TiXmlElement* range = ray->FirstChildElement("range");
+    attr_value(src, s, "range_min", range, "min", s.field + "/ray/range");
+    attr_value(src, s, "range_max", range, "max", s.field + "/ray/range");
+  } else {
+    src.fail(e, s.field, "a <camera> or <ray> element");
+  }
+  return s;
+}
+
+SensorSpec::Kind gazebo_kind(const std::string& type) {
+  if (type == "camera" || type == "wideanglecamera" || type == "multicamera") return SensorSpec::Kind::kCamera;
+  if (type == "depth" || type == "depth_camera" || type == "rgbd_camera" || type == "rgbd")
+    return SensorSpec::Kind::kDepth;
+  if (type == "ray" || type == "gpu_ray" || type == "lidar" || type == "gpu_lidar") return SensorSpec::Kind::kRay;
+  return SensorSpec::Kind::kOther;
+}
+
+/// Gazebo style: <gazebo reference="L"><sensor type="camera|depth|ray" name="..">.
+SensorSpec read_gazebo_sensor(const XmlSource& src, const TiXmlElement* e, const std::string& link) {
+  SensorSpec s;
+  s.name = attr_or_empty(e, "name");
+  const std::string type = attr_or_empty(e, "type");
+  s.field = "gazebo[" + link + "]/sensor[" + s.name + "]";
+  if (s.name.empty()) src.fail(e, "gazebo[" + link + "]/sensor@name", "a sensor name");
+  if (type.empty()) src.fail(e, s.field + "@type", "a sensor type (camera, depth, ray, imu, ...)");
+  s.at = src.at(e);
+  s.link = link;
+  s.from_gazebo = true;
+  s.kind = gazebo_kind(type);
+  if (const TiXmlElement* pose = e->FirstChildElement("pose")) {
+    auto values = parse_numbers(pose->GetText() != nullptr ? pose->GetText() : "");
+    if (!values || values->size() != 6)
+      src.fail(pose, s.field + "/pose", "six numbers: x y z roll pitch yaw", quoted(pose->GetText()));
+    s.X_LS = pose_from_xyz_rpy({(*values)[0], (*values)[1], (*values)[2]}, {(*values)[3], (*values)[4], (*values)[5]});
+    s.pose_at = src.at(pose);
+    s.pose_field = s.field + "/pose";
+  }
+  text_value(src, s, "update_rate", e, "update_rate", s.field);
+  if (s.kind == SensorSpec::Kind::kCamera || s.kind == SensorSpec::Kind::kDepth) {
+    const TiXmlElement* camera = e->FirstChildElement("camera");
+    if (camera == nullptr) src.fail(e, s.field + "/camera", "a <camera> element");
+    const std::string f = s.field + "/camera";
+    text_value(src, s, "hfov", camera, "horizontal_fov", f);
+    const TiXmlElement* image = camera->FirstChildElement("image");
+    text_value(src, s, "width", image, "width", f + "/image");
+    text_value(src, s, "height", image, "height", f + "/image");
+    const TiXmlElement* clip = camera->FirstChildElement("clip");
+    text_value(src, s, "near", clip, "near", f + "/clip");
+    text_value(src, s, "far", clip, "far", f + "/clip");
+  } else if (s.kind == SensorSpec::Kind::kRay) {
+    const char* tag = e->FirstChildElement("ray") != nullptr ? "ray" : "lidar";
+    const TiXmlElement* ray = e->FirstChildElement(tag);
+    if (ray == nullptr) src.fail(e, s.field + "/ray", "a <ray> element");
+    const std::string f = s.field + "/" + tag;
+    const TiXmlElement* scan = ray->FirstChildElement("scan");
+    const TiXmlElement* h = scan != nullptr ? scan->FirstChildElement("horizontal") : nullptr;
+    text_value(src, s, "samples", h, "samples", f + "/scan/horizontal");
+    text_value(src, s, "min_angle", h, "min_angle", f + "/scan/horizontal");
+    text_value(src, s, "max_angle", h, "max_angle", f + "/scan/horizontal");
+    const TiXmlElement* range = ray->FirstChildElement("range");
+    text_value(src, s, "range_min", range, "min", f + "/range");
+    text_value(src, s, "range_max", range, "max", f + "/range");
+  }
+  return s;
+}
+
+bool same_value(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(a)); }
+
+/// A sensor declared both as urdfdom <sensor> and in a Gazebo block: one sensor, as
+/// long as the two agree wherever both say something.
+void merge_into(SensorSpec& into, const SensorSpec& from) {
+  auto conflict = [&](const std::string& at, const std::string& field, const std::string& what,
+                      const std::string& other_at) {
+    throw InputError(at, field, what + " as declared at " + other_at, "a conflicting value");
+  };
+  if (into.link != from.link)
+    conflict(from.at, from.field, "the same link ('" + into.link + "')", into.at);
+  const bool into_camera = into.kind == SensorSpec::Kind::kCamera || into.kind == SensorSpec::Kind::kDepth;
+  const bool from_camera = from.kind == SensorSpec::Kind::kCamera || from.kind == SensorSpec::Kind::kDepth;
+  if (into_camera != from_camera || (into.kind == SensorSpec::Kind::kRay) != (from.kind == SensorSpec::Kind::kRay))
+    conflict(from.at, from.field + "@type", "the same sensor type", into.at);
+  if (from.kind == SensorSpec::Kind::kDepth) into.kind = SensorSpec::Kind::kDepth;  // only Gazebo knows depth
+  if (from.X_LS) {
+    if (into.X_LS && !into.X_LS->isApprox(*from.X_LS, 1e-9))
+      conflict(from.pose_at, from.pose_field, "the same pose", into.pose_at);
+    into.X_LS = from.X_LS;
+  }
+  for (const auto& [key, v] : from.values) {
+    const auto it = into.values.find(key);
+    if (it != into.values.end() && !same_value(it->second.value, v.value))
+      conflict(v.at, v.field, "the value " + std::to_string(it->second.value), it->second.at + " (" + it->second.field + ")");
+    into.values[key] = v;
+  }
+}
+
+/// A required value checked against a predicate; errors point at the value's own
+/// element, or at the sensor when the value is missing.
+double need(const SensorSpec& s, const std::string& key, bool (*ok)(double), const std::string& expected) {
+  const auto it = s.values.find(key);
+  if (it == s.values.end())
+    throw InputError(s.at, s.field + ": " + value_names().at(key), expected + " (required)", "nothing");
+  if (!ok(it->second.value))
+    throw InputError(it->second.at, it->second.field, expected, "'" + std::to_string(it->second.value) + "'");
+  return it->second.value;
+}
+
+double optional_rate(const SensorSpec& s) {
+  const auto it = s.values.find("update_rate");
+  if (it == s.values.end()) return 0.0;
+  if (!(it->second.value > 0.0)) throw InputError(it->second.at, it->second.field, "a rate > 0 (Hz)");
+  return it->second.value;
+}
+
+bool is_count(double v) { return v >= 1.0 && v <= 1e6 && std::floor(v) == v; }
+
+CameraSensor make_camera(const SensorSpec& s, const Pose3& X_BS) {
+  CameraSensor c;
+  c.name = s.name;
+  c.link = s.link;
+  c.X_BS = X_BS;
+  c.depth = s.kind == SensorSpec::Kind::kDepth;
+  c.horizontal_fov_rad =
+      need(s, "hfov", [](double v) { return v > 0.0 && v < kPi; }, "a horizontal fov in (0, pi) radians");
+  c.image_width_px = static_cast<int>(need(s, "width", is_count, "an image width >= 1 (pixels)"));
+  c.image_height_px = static_cast<int>(need(s, "height", is_count, "an image height >= 1 (pixels)"));
+  c.range_min_m = need(s, "near", [](double v) { return v >= 0.0; }, "a clip near >= 0 (metres)");
+  const auto far = s.values.find("far");
+  c.range_max_m = need(s, "far", [](double v) { return v > 0.0; }, "a clip far > 0 (metres)");
+  if (c.range_max_m <= c.range_min_m)
+    throw InputError(far->second.at, far->second.field, "a clip far > clip near (" + std::to_string(c.range_min_m) + " m)",
+                     "'" + std::to_string(c.range_max_m) + "'");
+  // Square pixels: tan(v/2) / tan(h/2) = height / width.
+  c.vertical_fov_rad = 2.0 * std::atan(std::tan(c.horizontal_fov_rad / 2.0) * c.image_height_px / c.image_width_px);
+  c.update_rate_hz = optional_rate(s);
+  return c;
+}
+
+RangeSensor make_range_sensor(const SensorSpec& s, const Pose3& X_BS) {
+  RangeSensor r;
+  r.name = s.name;
+  r.link = s.link;
+  r.X_BS = X_BS;
+  auto angle_ok = [](double v) { return v >= -kPi && v <= kPi; };
+  r.samples = static_cast<int>(need(s, "samples", is_count, "a number of samples >= 1"));
+  r.min_angle_rad = need(s, "min_angle", angle_ok, "an angle in [-pi, pi] radians");
+  r.max_angle_rad = need(s, "max_angle", angle_ok, "an angle in [-pi, pi] radians");
+  const auto& max_angle = s.values.at("max_angle");
+  if (r.max_angle_rad < r.min_angle_rad || (r.samples > 1 && r.max_angle_rad == r.min_angle_rad))
+    throw InputError(max_angle.at, max_angle.field,
+                     std::string("an angle ") + (r.samples > 1 ? ">" : ">=") + " min_angle (a fov > 0)",
+                     "'" + std::to_string(r.max_angle_rad) + "'");
+  r.range_min_m = need(s, "range_min", [](double v) { return v >= 0.0; }, "a range min >= 0 (metres)");
+  r.range_max_m = need(s, "range_max", [](double v) { return v > 0.0; }, "a range max > 0 (metres)");
+  if (r.range_max_m <= r.range_min_m) {
+    const auto& v = s.values.at("range_max");
+    throw InputError(v.at, v.field, "a range max > range min (" + std::to_string(r.range_min_m) + " m)",
+                     "'" + std::to_string(r.range_max_m) + "'");
+  }
+  r.update_rate_hz = optional_rate(s);
+  return r;
+}
+
+void read_sensors(const XmlSource& src, const TiXmlElement* robot, const std::map<std::string, Pose3>& X_BL,
+                  RobotDescription& out) {
+  std::vector<SensorSpec> specs;
+  auto add = [&](SensorSpec s, const TiXmlElement* e) {
+    if (X_BL.count(s.link) == 0)
+      src.fail(e, s.field, "a sensor on a <link> of this file", "link '" + s.link + "'");
+    for (auto& existing : specs) {
+      if (existing.name != s.name) continue;
+      // One urdfdom <sensor> and one Gazebo <sensor> may describe the same sensor.
+      if ((s.from_gazebo && existing.from_gazebo) || (!s.from_gazebo && existing.from_urdf))
+        src.fail(e, s.field, "a unique sensor name", "a second sensor named '" + s.name + "'");
+      merge_into(existing, s);
+      existing.from_gazebo = existing.from_gazebo || s.from_gazebo;
+      existing.from_urdf = existing.from_urdf || s.from_urdf;
+      return;
+    }
+    specs.push_back(std::move(s));
+  };
+  for (const TiXmlElement* e = robot->FirstChildElement("sensor"); e != nullptr; e = e->NextSiblingElement("sensor"))
+    add(read_urdf_sensor(src, e), e);
+  for (const TiXmlElement* g = robot->FirstChildElement("gazebo"); g != nullptr; g = g->NextSiblingElement("gazebo")) {
+    const std::string link = attr_or_empty(g, "reference");
+    const TiXmlElement* first = g->FirstChildElement("sensor");
+    if (first == nullptr) continue;  // materials, plugins: not ours
+    if (link.empty()) src.fail(g, "gazebo@reference", "the link a <sensor> is attached to");
+    for (const TiXmlElement* e = first; e != nullptr; e = e->NextSiblingElement("sensor"))
+      add(read_gazebo_sensor(src, e, link), e);
+  }
+
+  for (const auto& s : specs) {
+    if (X_BL.count(s.name) > 0)
+      throw InputError(s.at, s.field, "a sensor name that is not also a link name", "'" + s.name + "'");
+    const Pose3 X_BS = X_BL.at(s.link) * s.X_LS.value_or(Pose3::Identity());
+    out.frames[s.name] = X_BS;
+    switch (s.kind) {
+      case SensorSpec::Kind::kCamera:
+      case SensorSpec::Kind::kDepth:
+        out.cameras.push_back(make_camera(s, X_BS));
+        break;
+      case SensorSpec::Kind::kRay:
+        out.range_sensors.push_back(make_range_sensor(s, X_BS));
+        break;
+      case SensorSpec::Kind::kOther:
+        break;  // an IMU or the like: a frame, nothing more
+    }
+  }
+}
+
+// ---------------------------------------------------------------- geometry, roles
+
+void read_collision_shapes(const urdf::ModelInterface& model, const std::map<std::string, Pose3>& X_BL,
+                           RobotDescription& out) {
+  for (const auto& [name, link] : model.links_) {
+    const auto pose = X_BL.find(name);
+    if (pose == X_BL.end()) continue;
+    for (const auto& col : link->collision_array) {
+      if (!col || !col->geometry) continue;
+      CollisionShape s;
+      s.link = name;
+      s.X_BS = pose->second * to_pose(col->origin);
+      switch (col->geometry->type) {
+        case urdf::Geometry::BOX: {
+          const auto& d = static_cast<const urdf::Box&>(*col->geometry).dim;
+          s.type = CollisionShape::Type::kBox;
+          s.box_size_m = Eigen::Vector3d(d.x, d.y, d.z);
+          break;
+        }
+        case urdf::Geometry::CYLINDER: {
+          const auto& c = static_cast<const urdf::Cylinder&>(*col->geometry);
+          s.type = CollisionShape::Type::kCylinder;
+          s.radius_m = c.radius;
+          s.length_m = c.length;
+          break;
+        }
+        case urdf::Geometry::SPHERE:
+          s.type = CollisionShape::Type::kSphere;
+          s.radius_m = static_cast<const urdf::Sphere&>(*col->geometry).radius;
+          break;
+        default:
+          continue;  // rejected in check_structure
+      }
+      out.collision_shapes.push_back(s);
+    }
+  }
+}
+
+/// Links are kept in URDF order for shapes and roles, so dumps are stable.
+std::vector<std::string> link_order(const TiXmlElement* robot) {
+  std::vector<std::string> names;
+  for (const TiXmlElement* l = robot->FirstChildElement("link"); l != nullptr; l = l->NextSiblingElement("link"))
+    names.push_back(attr_or_empty(l, "name"));
+  return names;
+}
+
+bool is_wheel_joint(const urdf::Joint& j) {
+  return (j.type == urdf::Joint::CONTINUOUS || j.type == urdf::Joint::REVOLUTE) &&
+         j.child_link_name.find("wheel") != std::string::npos;
+}
+
+void read_limits(const urdf::ModelInterface& model, const MissionConfig& mission, RobotDescription& out) {
+  bool has_wheels = false;
+  for (const auto& [name, joint] : model.joints_) {
+    if (!joint || !is_wheel_joint(*joint)) continue;
+    has_wheels = true;
+    if (!joint->limits || joint->limits->velocity <= 0.0) continue;
+    const auto link = model.getLink(joint->child_link_name);
+    for (const auto& col : link->collision_array) {
+      if (!col || !col->geometry || col->geometry->type != urdf::Geometry::CYLINDER) continue;
+      const double v = joint->limits->velocity * static_cast<const urdf::Cylinder&>(*col->geometry).radius;
+      out.wheel_speed_limit_mps = out.wheel_speed_limit_mps ? std::min(*out.wheel_speed_limit_mps, v) : v;
+      break;
+    }
+  }
+  out.kind = has_wheels ? RobotKind::kUgv : RobotKind::kUav;
+  out.limits = has_wheels ? mission.ugv_limits : mission.uav_limits;
+  if (out.wheel_speed_limit_mps)
+    out.limits.max_velocity_mps = std::min(out.limits.max_velocity_mps, *out.wheel_speed_limit_mps);
+}
+
+void read_roles(const std::vector<std::string>& links, RobotDescription& out) {
+  for (const auto& name : links) {
+    const Frame f{name, out.frames.at(name)};
+    if (name == "epm_link") out.epm = f;
+    if (name == "imu_link") out.imu = f;
+    if (name == "winch_spool_link") out.winch_spool = f;
+    if (name.rfind("tether_attach", 0) == 0) out.tether_attachments.push_back(f);
+  }
+}
+
+}  // namespace
+
+RobotDescription robot_description_from_string(const std::string& urdf_xml, const std::string& source,
+                                               const MissionConfig& mission) {
+  const XmlSource src(source);
+  TiXmlDocument doc;
+  doc.Parse(urdf_xml.c_str(), nullptr, TIXML_ENCODING_UTF8);
+  if (doc.Error())
+    throw InputError(source + ":" + std::to_string(doc.ErrorRow()), "xml", "well-formed XML", doc.ErrorDesc());
+  const TiXmlElement* robot = doc.RootElement();
+  if (robot == nullptr || std::string(robot->Value()) != "robot")
+    src.fail(robot, "(document)", "a <robot> root element",
+             robot == nullptr ? "nothing" : "<" + std::string(robot->Value()) + ">");
+  check_structure(src, robot);
+  const auto model = parse_with_urdfdom(src, urdf_xml);
+
+  RobotDescription out;
+  out.name = model->getName();
+  out.source = source;
+  const auto root = model->getRoot();
+  out.base_link = root->name;
+  place_links(*model, root, Pose3::Identity(), out.frames);
+  const std::map<std::string, Pose3> X_BL = out.frames;
+
+  read_collision_shapes(*model, X_BL, out);
+  // Shapes in URDF link order (urdfdom keeps links in a map).
+  const auto order = link_order(robot);
+  std::stable_sort(out.collision_shapes.begin(), out.collision_shapes.end(), [&](const auto& a, const auto& b) {
+    return std::find(order.begin(), order.end(), a.link) < std::find(order.begin(), order.end(), b.link);
+  });
+  if (out.collision_shapes.empty())
+    src.fail(robot, "robot", "at least one <collision> with a box, cylinder or sphere");
+  out.bounding_box_B.setEmpty();
+  for (const auto& s : out.collision_shapes) out.bounding_box_B.extend(s.aabb_B());
+  out.circumscribed_radius_m = 0.0;
+  for (const auto& s : out.collision_shapes)
+    out.circumscribed_radius_m = std::max(out.circumscribed_radius_m, s.xy_reach_m());
+
+  read_sensors(src, robot, X_BL, out);
+  read_limits(*model, mission, out);
+  read_roles(order, out);
+  return out;
+}
+
+RobotDescription load_robot_description(const std::filesystem::path& urdf_path, const MissionConfig& mission) {
+  std::ifstream in(urdf_path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(urdf_path))
+    throw InputError(urdf_path.string(), "", "a readable URDF file", "cannot open");
+  std::stringstream text;
+  text << in.rdbuf();
+  return robot_description_from_string(text.str(), urdf_path.string(), mission);
+}
+
+}  // namespace ferret
