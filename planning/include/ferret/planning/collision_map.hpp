@@ -1,0 +1,111 @@
+#pragma once
+// An immutable snapshot of the geometry the planners check against: the OctoMap with
+// its unknown space resolved by a policy, the FCL view of it, and a distance field
+// that answers clear-cut queries without FCL.
+//
+// Why a snapshot: OctoMap is not safe to edit while planner threads read it
+// (octomap#311). A map update builds a new CollisionMap; planners keep the shared
+// pointer they started with (MapSnapshots below hands them out).
+//
+// Why a policy: FCL treats never-observed space as free (children that do not exist
+// are skipped). The miniUGV in a hidden space must treat unknown as occupied, so the
+// snapshot materialises unknown voxels inside `bounds` as occupied cubes; FCL and
+// the distance field then see the same geometry.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace octomap {
+class OcTree;
+}
+
+namespace ferret {
+
+enum class UnknownPolicy { kFree, kOccupied };
+[[nodiscard]] const char* to_string(UnknownPolicy policy);
+/// "free" or "occupied"; throws InputError naming `source` otherwise.
+[[nodiscard]] UnknownPolicy parse_unknown_policy(const std::string& text, const std::string& source);
+
+struct Aabb3 {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero();
+  Eigen::Vector3d hi = Eigen::Vector3d::Zero();
+  [[nodiscard]] bool contains(const Eigen::Vector3d& p) const {
+    return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+  }
+};
+
+struct CollisionMapOptions {
+  UnknownPolicy unknown = UnknownPolicy::kFree;
+  /// The region where the unknown policy applies (required for kOccupied; outside it
+  /// unknown space stays free, as FCL sees it).
+  std::optional<Aabb3> bounds;
+  /// Upper bound on distance-field cells; the field's cell is the map resolution
+  /// times the smallest power of two that fits (coarser cells give looser bounds).
+  std::size_t max_field_cells = 16'000'000;
+};
+
+class CollisionMap {
+ public:
+  /// Builds a snapshot from `source` (copied; later edits of `source` do not show).
+  /// Occupancy is OctoMap's max-likelihood decision at the tree's threshold; the
+  /// copy stores every leaf at a clamping value and has its inner nodes updated,
+  /// so FCL can never miss a leaf edited with lazy evaluation.
+  /// Throws InputError (source "map") for kOccupied without bounds or bounds outside
+  /// OctoMap's key range.
+  [[nodiscard]] static std::shared_ptr<const CollisionMap> build(const octomap::OcTree& source,
+                                                                 const CollisionMapOptions& options = {});
+
+  ~CollisionMap();
+  CollisionMap(const CollisionMap&) = delete;
+  CollisionMap& operator=(const CollisionMap&) = delete;
+
+  [[nodiscard]] const octomap::OcTree& tree() const;
+  [[nodiscard]] double resolution_m() const;
+  [[nodiscard]] UnknownPolicy unknown_policy() const;
+  [[nodiscard]] const std::optional<Aabb3>& bounds() const;
+  /// Occupied leaves after the policy (a pruned leaf counts once).
+  [[nodiscard]] std::size_t occupied_leaf_count() const;
+  /// Edge length of a distance-field cell.
+  [[nodiscard]] double field_cell_m() const;
+
+  /// A lower bound on the distance from p_W to the nearest occupied voxel (0 when
+  /// p_W may be inside one; +inf for a map with nothing occupied).
+  [[nodiscard]] double clearance_lower_bound_m(const Eigen::Vector3d& p_W) const;
+  /// True when p_W lies in (or on the boundary of) an occupied voxel.
+  [[nodiscard]] bool in_occupied_voxel(const Eigen::Vector3d& p_W) const;
+  /// True when the voxel at p_W is occupied after the policy, false when free or unknown.
+  [[nodiscard]] bool is_occupied(const Eigen::Vector3d& p_W) const;
+
+  struct Data;  ///< FCL geometry and the field (planning/src/collision_map_data.hpp)
+  [[nodiscard]] const Data& data() const { return *data_; }
+
+ private:
+  explicit CollisionMap(std::unique_ptr<Data> data);
+  std::unique_ptr<Data> data_;
+};
+
+/// Hands out the current snapshot to planner threads and swaps in new ones.
+class MapSnapshots {
+ public:
+  explicit MapSnapshots(std::shared_ptr<const CollisionMap> initial) : current_(std::move(initial)) {}
+  [[nodiscard]] std::shared_ptr<const CollisionMap> current() const {
+    std::lock_guard lock(mutex_);
+    return current_;
+  }
+  /// Readers that hold the old snapshot keep using it until they ask again.
+  void publish(std::shared_ptr<const CollisionMap> next) {
+    std::lock_guard lock(mutex_);
+    current_ = std::move(next);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::shared_ptr<const CollisionMap> current_;
+};
+
+}  // namespace ferret

@@ -1,0 +1,278 @@
+#include "ferret/planning/collision_map.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "collision_map_data.hpp"
+#include "ferret/core/error.hpp"
+
+namespace ferret {
+namespace {
+
+constexpr int kTreeDepth = 16;
+constexpr std::int64_t kKeySpan = 1 << kTreeDepth;  // keys per axis
+const float kOccupiedLogOdds = octomap::logodds(0.97);
+const float kFreeLogOdds = octomap::logodds(0.12);
+
+struct KeyBox {  // inclusive voxel key ranges per axis
+  std::array<std::int64_t, 3> lo{}, hi{};
+};
+
+// Voxels whose centres lie inside `b` (OctoMap key k has its centre at (k - 2^15 + 0.5) res).
+KeyBox key_box(const Aabb3& b, double res) {
+  KeyBox k;
+  for (int a = 0; a < 3; ++a) {
+    k.lo[a] = static_cast<std::int64_t>(std::ceil(b.lo[a] / res - 0.5)) + kKeySpan / 2;
+    k.hi[a] = static_cast<std::int64_t>(std::floor(b.hi[a] / res - 0.5)) + kKeySpan / 2;
+    if (k.lo[a] < 0 || k.hi[a] >= kKeySpan || k.lo[a] > k.hi[a])
+      throw InputError("map", "bounds", "bounds inside OctoMap's key range (+-2^15 x resolution) and non-empty");
+  }
+  return k;
+}
+
+// Fills the unknown (non-existent) part of a node's subtree that lies inside `box`
+// with occupied nodes, as coarse as the box allows. `base` is the node's lowest key
+// per axis and `size` its extent in keys.
+void fill_unknown(octomap::OcTree& tree, octomap::OcTreeNode* node, const std::array<std::int64_t, 3>& base,
+                  std::int64_t size, const KeyBox& box) {
+  const std::int64_t half = size / 2;
+  for (unsigned i = 0; i < 8; ++i) {
+    std::array<std::int64_t, 3> cb{};
+    bool overlaps = true, inside = true;
+    for (int a = 0; a < 3; ++a) {
+      cb[a] = base[a] + ((i >> a) & 1) * half;
+      overlaps = overlaps && cb[a] <= box.hi[a] && cb[a] + half - 1 >= box.lo[a];
+      inside = inside && cb[a] >= box.lo[a] && cb[a] + half - 1 <= box.hi[a];
+    }
+    if (!overlaps) continue;
+    if (tree.nodeChildExists(node, i)) {
+      octomap::OcTreeNode* child = tree.getNodeChild(node, i);
+      if (tree.nodeHasChildren(child)) fill_unknown(tree, child, cb, half, box);
+      continue;  // an existing leaf is known space (free or occupied)
+    }
+    octomap::OcTreeNode* child = tree.createNodeChild(node, i);
+    child->setLogOdds(kOccupiedLogOdds);
+    if (!inside) fill_unknown(tree, child, cb, half, box);
+  }
+}
+
+// Felzenszwalb-Huttenlocher exact 1D squared distance transform of f (n samples,
+// stride `stride` in `data`), in place. v, z, tmp are scratch buffers.
+void edt_1d(float* data, int n, std::size_t stride, std::vector<int>& v, std::vector<double>& z,
+            std::vector<double>& f) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  f.resize(n);
+  for (int q = 0; q < n; ++q) f[q] = data[q * stride];
+  v.assign(n, 0);
+  z.assign(n + 1, 0.0);
+  int k = 0;
+  // Skip leading infinite samples: parabolas rooted at infinity do not exist.
+  int first = 0;
+  while (first < n && !std::isfinite(f[first])) ++first;
+  if (first == n) return;  // no occupied sample on this line: leave it infinite
+  v[0] = first;
+  z[0] = -kInf;
+  z[1] = kInf;
+  for (int q = first + 1; q < n; ++q) {
+    if (!std::isfinite(f[q])) continue;
+    double s;
+    for (;;) {
+      const int p = v[k];
+      s = ((f[q] + double(q) * q) - (f[p] + double(p) * p)) / (2.0 * (q - p));
+      if (s <= z[k] && k > 0) {
+        --k;
+        continue;
+      }
+      if (s <= z[k]) {  // k == 0 and the new parabola dominates everywhere left
+        v[0] = q;
+        z[0] = -kInf;
+        z[1] = kInf;
+        s = kInf;
+      }
+      break;
+    }
+    if (s == kInf) continue;
+    ++k;
+    v[k] = q;
+    z[k] = s;
+    z[k + 1] = kInf;
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (z[k + 1] < q) ++k;
+    const double d = q - v[k];
+    data[q * stride] = static_cast<float>(d * d + f[v[k]]);
+  }
+}
+
+DistanceField build_field(const octomap::OcTree& tree, std::size_t max_cells) {
+  DistanceField field;
+  // Key extents of the occupied leaves.
+  std::array<std::int64_t, 3> lo{kKeySpan, kKeySpan, kKeySpan}, hi{-1, -1, -1};
+  struct Leaf {
+    std::array<std::int64_t, 3> base;
+    std::int64_t size;
+  };
+  std::vector<Leaf> leaves;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    if (!tree.isNodeOccupied(*it)) continue;
+    const std::int64_t size = std::int64_t{1} << (kTreeDepth - it.getDepth());
+    const octomap::OcTreeKey key = it.getKey();
+    Leaf leaf{{key[0] - size / 2, key[1] - size / 2, key[2] - size / 2}, size};
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], leaf.base[a]);
+      hi[a] = std::max(hi[a], leaf.base[a] + size - 1);
+    }
+    leaves.push_back(leaf);
+  }
+  const double res = tree.getResolution();
+  if (leaves.empty()) {
+    field.cell_m = res;
+    return field;
+  }
+  field.empty = false;
+  // The finest level whose grid (with one free cell of margin on every side) fits.
+  std::array<std::int64_t, 3> c0{};
+  for (field.level = 0;; ++field.level) {
+    std::size_t cells = 1;
+    for (int a = 0; a < 3; ++a) {
+      c0[a] = (lo[a] >> field.level) - 1;
+      field.dims[a] = static_cast<int>((hi[a] >> field.level) + 1 - c0[a] + 1);
+      cells *= static_cast<std::size_t>(field.dims[a]);
+    }
+    if (cells <= max_cells || field.level >= kTreeDepth) break;
+  }
+  field.cell_m = res * static_cast<double>(std::int64_t{1} << field.level);
+  for (int a = 0; a < 3; ++a)
+    field.origin_m[a] = static_cast<double>((c0[a] << field.level) - kKeySpan / 2) * res;
+  const std::size_t nx = field.dims.x(), ny = field.dims.y(), nz = field.dims.z();
+  field.dist_cells.assign(nx * ny * nz, std::numeric_limits<float>::infinity());
+  for (const Leaf& leaf : leaves) {
+    std::array<std::int64_t, 3> a0{}, a1{};
+    for (int a = 0; a < 3; ++a) {
+      a0[a] = (leaf.base[a] >> field.level) - c0[a];
+      a1[a] = ((leaf.base[a] + leaf.size - 1) >> field.level) - c0[a];
+    }
+    for (std::int64_t z = a0[2]; z <= a1[2]; ++z)
+      for (std::int64_t y = a0[1]; y <= a1[1]; ++y)
+        for (std::int64_t x = a0[0]; x <= a1[0]; ++x) field.dist_cells[(z * ny + y) * nx + x] = 0.0f;
+  }
+  // Separable exact EDT: along x, then y, then z, on squared distances.
+  std::vector<int> v;
+  std::vector<double> zbuf, fbuf;
+  float* d = field.dist_cells.data();
+  for (std::size_t z = 0; z < nz; ++z)
+    for (std::size_t y = 0; y < ny; ++y) edt_1d(d + (z * ny + y) * nx, static_cast<int>(nx), 1, v, zbuf, fbuf);
+  for (std::size_t z = 0; z < nz; ++z)
+    for (std::size_t x = 0; x < nx; ++x) edt_1d(d + z * ny * nx + x, static_cast<int>(ny), nx, v, zbuf, fbuf);
+  for (std::size_t y = 0; y < ny; ++y)
+    for (std::size_t x = 0; x < nx; ++x) edt_1d(d + y * nx + x, static_cast<int>(nz), nx * ny, v, zbuf, fbuf);
+  for (float& c : field.dist_cells) c = std::sqrt(c);
+  return field;
+}
+
+}  // namespace
+
+double DistanceField::lower_bound_m(const Eigen::Vector3d& p) const {
+  if (empty) return std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d rel = (p - origin_m) / cell_m;
+  Eigen::Vector3i c;
+  bool inside = true;
+  for (int a = 0; a < 3; ++a) {
+    c[a] = static_cast<int>(std::floor(rel[a]));
+    inside = inside && c[a] >= 0 && c[a] < dims[a];
+  }
+  if (!inside) {
+    // Everything occupied lies inside the grid: the distance to the grid box bounds it.
+    const Eigen::Vector3d hi = origin_m + dims.cast<double>() * cell_m;
+    return (origin_m - p).cwiseMax(p - hi).cwiseMax(0.0).norm();
+  }
+  const float dc = dist_cells[(static_cast<std::size_t>(c.z()) * dims.y() + c.y()) * dims.x() + c.x()];
+  // |p - occupied| >= |centre(c) - centre(o)| - |p - centre(c)| - half diagonal of o.
+  return std::max(0.0, cell_m * (static_cast<double>(dc) - std::sqrt(3.0)) - 1e-9);
+}
+
+const char* to_string(UnknownPolicy policy) { return policy == UnknownPolicy::kFree ? "free" : "occupied"; }
+
+UnknownPolicy parse_unknown_policy(const std::string& text, const std::string& source) {
+  if (text == "free") return UnknownPolicy::kFree;
+  if (text == "occupied") return UnknownPolicy::kOccupied;
+  throw InputError(source, "", "\"free\" or \"occupied\"", text);
+}
+
+CollisionMap::CollisionMap(std::unique_ptr<Data> data) : data_(std::move(data)) {}
+CollisionMap::~CollisionMap() = default;
+
+std::shared_ptr<const CollisionMap> CollisionMap::build(const octomap::OcTree& source,
+                                                        const CollisionMapOptions& options) {
+  if (options.unknown == UnknownPolicy::kOccupied && !options.bounds)
+    throw InputError("map", "bounds", "bounds for the unknown policy \"occupied\"");
+  auto data = std::make_unique<Data>();
+  data->options = options;
+  const double res = source.getResolution();
+  // A deep copy with binary values: occupied leaves at the upper clamp, free ones at
+  // the lower, threshold 0.5, so OctoMap, FCL and the field agree on every leaf.
+  data->tree = std::make_shared<octomap::OcTree>(source);
+  auto& tree = *data->tree;
+  // Same structure, so the two leaf iterations run in step.
+  auto dst = tree.begin_leafs();
+  for (auto it = source.begin_leafs(), end = source.end_leafs(); it != end; ++it, ++dst)
+    dst->setLogOdds(source.isNodeOccupied(*it) ? kOccupiedLogOdds : kFreeLogOdds);
+  tree.setOccupancyThres(0.5);
+  tree.setClampingThresMin(0.1192);
+  tree.setClampingThresMax(0.971);
+  if (options.bounds) {
+    const KeyBox box = key_box(*options.bounds, res);
+    if (options.unknown == UnknownPolicy::kOccupied) {
+      if (!tree.getRoot()) {
+        octomap::OcTreeKey k(static_cast<octomap::key_type>(box.lo[0]), static_cast<octomap::key_type>(box.lo[1]),
+                             static_cast<octomap::key_type>(box.lo[2]));
+        tree.setNodeValue(k, kOccupiedLogOdds, true);
+      }
+      fill_unknown(tree, tree.getRoot(), {0, 0, 0}, kKeySpan, box);
+    }
+  }
+  tree.updateInnerOccupancy();
+  tree.prune();
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it)
+    if (tree.isNodeOccupied(*it)) ++data->occupied_leaves;
+  data->field = build_field(tree, options.max_field_cells);
+  data->fcl_tree = std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(data->tree));
+  return std::shared_ptr<const CollisionMap>(new CollisionMap(std::move(data)));
+}
+
+const octomap::OcTree& CollisionMap::tree() const { return *data_->tree; }
+double CollisionMap::resolution_m() const { return data_->tree->getResolution(); }
+UnknownPolicy CollisionMap::unknown_policy() const { return data_->options.unknown; }
+const std::optional<Aabb3>& CollisionMap::bounds() const { return data_->options.bounds; }
+std::size_t CollisionMap::occupied_leaf_count() const { return data_->occupied_leaves; }
+double CollisionMap::field_cell_m() const { return data_->field.cell_m; }
+
+double CollisionMap::clearance_lower_bound_m(const Eigen::Vector3d& p_W) const {
+  return data_->field.lower_bound_m(p_W);
+}
+
+bool CollisionMap::is_occupied(const Eigen::Vector3d& p_W) const {
+  const DistanceField& f = data_->field;
+  if (f.empty) return false;
+  if (f.level == 0) {
+    // The field's cells are the voxels: distance 0 means occupied.
+    const Eigen::Vector3d rel = (p_W - f.origin_m) / f.cell_m;
+    Eigen::Vector3i c;
+    for (int a = 0; a < 3; ++a) {
+      c[a] = static_cast<int>(std::floor(rel[a]));
+      if (c[a] < 0 || c[a] >= f.dims[a]) return false;
+    }
+    return f.dist_cells[(static_cast<std::size_t>(c.z()) * f.dims.y() + c.y()) * f.dims.x() + c.x()] == 0.0f;
+  }
+  octomap::OcTreeKey key;
+  if (!data_->tree->coordToKeyChecked(p_W.x(), p_W.y(), p_W.z(), key)) return false;
+  const octomap::OcTreeNode* node = data_->tree->search(key);
+  return node && data_->tree->isNodeOccupied(node);
+}
+
+bool CollisionMap::in_occupied_voxel(const Eigen::Vector3d& p_W) const { return is_occupied(p_W); }
+
+}  // namespace ferret

@@ -1,0 +1,42 @@
+#pragma once
+// Small OctoMaps built in code for the planning tests.
+
+#include <octomap/OcTree.h>
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "ferret/core/random.hpp"
+
+namespace ferret::test {
+
+/// Marks every voxel whose centre lies in [lo, hi] with `occupied`.
+inline void fill_box(octomap::OcTree& tree, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, bool occupied,
+                     bool lazy = false) {
+  const double r = tree.getResolution();
+  for (double z = lo.z() + 0.5 * r; z <= hi.z(); z += r)
+    for (double y = lo.y() + 0.5 * r; y <= hi.y(); y += r)
+      for (double x = lo.x() + 0.5 * r; x <= hi.x(); x += r) tree.updateNode(x, y, z, occupied, lazy);
+}
+
+/// A 6 x 6 x 3 m room at 0.1 m: known free inside, a floor, four walls and a few
+/// random boxes and posts (seeded).
+inline std::unique_ptr<octomap::OcTree> cluttered_room(std::uint64_t seed, double res = 0.1) {
+  auto tree = std::make_unique<octomap::OcTree>(res);
+  fill_box(*tree, {-3, -3, 0}, {3, 3, 3}, false);
+  fill_box(*tree, {-3, -3, -0.2}, {3, 3, 0}, true);
+  fill_box(*tree, {-3.2, -3, 0}, {-3, 3, 3}, true);
+  fill_box(*tree, {3, -3, 0}, {3.2, 3, 3}, true);
+  fill_box(*tree, {-3, -3.2, 0}, {3, -3, 3}, true);
+  fill_box(*tree, {-3, 3, 0}, {3, 3.2, 3}, true);
+  Rng rng(seed);
+  for (int k = 0; k < 12; ++k) {
+    const Eigen::Vector3d c{rng.uniform(-2.5, 2.5), rng.uniform(-2.5, 2.5), rng.uniform(0.0, 2.0)};
+    const Eigen::Vector3d h{rng.uniform(0.05, 0.5), rng.uniform(0.05, 0.5), rng.uniform(0.1, 1.0)};
+    fill_box(*tree, c - h, c + h, true);
+  }
+  tree->updateInnerOccupancy();
+  return tree;
+}
+
+}  // namespace ferret::test
