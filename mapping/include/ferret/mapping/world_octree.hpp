@@ -1,0 +1,59 @@
+#pragma once
+// The 3D world as an OctoMap: built from a WorldSpec, loaded from and saved to
+// .bt (max-likelihood) and .ot (full probabilities) files, and sliced into 2D
+// map_server maps. docs/maps_and_worlds.md has the rules.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <octomap/OcTree.h>
+
+#include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/mapping/world_spec.hpp"
+
+namespace ferret {
+
+/// Voxelizes a world: a voxel is occupied when its centre lies in a solid, known
+/// free when its centre lies inside the bounds and in no solid, unknown (absent)
+/// outside the bounds. Built top-down: a cube wholly inside one solid, or wholly
+/// clear of all of them, becomes one leaf without visiting its voxels, so the cost
+/// grows with the area of the surfaces, not the volume. Occupied leaves hold
+/// OctoMap's upper clamping log-odds, free leaves the lower one; inner nodes hold
+/// the maximum of their children (updateInnerOccupancy has run).
+[[nodiscard]] std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world);
+
+/// Loads a .bt or .ot OcTree (chosen by extension). The file's structure is
+/// validated before OctoMap reads it (OctoMap 1.9.7 recurses without a depth
+/// limit and reads uninitialised bytes on a truncated stream), so a truncated or
+/// garbage file throws InputError naming the file and the header field or the byte
+/// offset, and never crashes or hangs.
+[[nodiscard]] std::unique_ptr<octomap::OcTree> load_octree(const std::filesystem::path& path);
+
+/// Writes a .bt (max-likelihood: each leaf occupied or free) or .ot (log-odds kept)
+/// file atomically, chosen by extension; any other extension is an InputError.
+void save_octree(const octomap::OcTree& tree, const std::filesystem::path& path);
+
+/// Options of a 2D slice.
+struct SliceOptions {
+  double z_m = 0.03;         ///< height of the slice
+  double half_band_m = 0.0;  ///< voxel layers within [z - half_band, z + half_band] count
+};
+
+/// A 2D map of the voxel layers at a height: a cell is occupied when any voxel of
+/// its column in the band is occupied, free when all of them are known free, and
+/// unknown otherwise. The grid covers the tree's known extent in x and y, cell
+/// edges on voxel edges, at the tree's resolution.
+[[nodiscard]] OccupancyMap2D slice_octree(const octomap::OcTree& tree, const SliceOptions& options);
+
+/// What `ferret world info` prints.
+struct OctreeSummary {
+  double resolution_m = 0.0;
+  Eigen::Vector3d min_m = Eigen::Vector3d::Zero(), max_m = Eigen::Vector3d::Zero();  ///< known extent
+  std::size_t nodes = 0, leaves = 0, occupied_leaves = 0, free_leaves = 0;
+  double occupied_volume_m3 = 0.0, free_volume_m3 = 0.0;
+  std::size_t memory_bytes = 0;
+};
+[[nodiscard]] OctreeSummary summarize_octree(const octomap::OcTree& tree);
+
+}  // namespace ferret

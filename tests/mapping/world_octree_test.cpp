@@ -1,0 +1,276 @@
+#include "ferret/mapping/world_octree.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <fstream>
+#include <sstream>
+
+#include "ferret/core/error.hpp"
+#include "ferret/core/random.hpp"
+#include "support/cli_runner.hpp"
+
+namespace ferret {
+namespace {
+using ::testing::HasSubstr;
+using test::TempDir;
+
+const std::string kSmallWorld = std::string(FERRET_SOURCE_DIR) + "/examples/worlds/small.yaml";
+
+enum class Voxel { kUnknown, kFree, kOccupied };
+Voxel voxel_at(const octomap::OcTree& t, double x, double y, double z) {
+  const octomap::OcTreeNode* n = t.search(x, y, z);
+  if (n == nullptr) return Voxel::kUnknown;
+  return t.isNodeOccupied(n) ? Voxel::kOccupied : Voxel::kFree;
+}
+
+class SmallWorld : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    world_ = new WorldSpec(load_world(kSmallWorld));
+    tree_ = build_world_octree(*world_).release();
+  }
+  static void TearDownTestSuite() {
+    delete tree_;
+    delete world_;
+  }
+  static WorldSpec* world_;
+  static octomap::OcTree* tree_;
+};
+WorldSpec* SmallWorld::world_ = nullptr;
+octomap::OcTree* SmallWorld::tree_ = nullptr;
+
+TEST_F(SmallWorld, HandPickedVoxels) {
+  const auto& t = *tree_;
+  EXPECT_EQ(voxel_at(t, -0.55, -1.3, 0.15), Voxel::kOccupied);  // cellar wall
+  EXPECT_EQ(voxel_at(t, 0.5, -1.0, 0.15), Voxel::kFree);        // cellar interior
+  EXPECT_EQ(voxel_at(t, 0.5, -1.0, 0.35), Voxel::kOccupied);    // roof
+  EXPECT_EQ(voxel_at(t, -0.55, -1.0, 0.03), Voxel::kFree);      // in the opening
+  EXPECT_EQ(voxel_at(t, -0.55, -1.0, 0.09), Voxel::kOccupied);  // lintel (opening is 7.5 cm)
+  EXPECT_EQ(voxel_at(t, -0.55, -0.91, 0.03), Voxel::kOccupied); // beside the 15 cm opening
+  EXPECT_EQ(voxel_at(t, 0.0, 0.0, -0.1), Voxel::kOccupied);     // ground
+  EXPECT_EQ(voxel_at(t, 0.0, 0.0, 0.0125), Voxel::kFree);       // first layer above ground
+  EXPECT_EQ(voxel_at(t, 0.0, 0.0, -0.0125), Voxel::kOccupied);  // last layer of ground
+  EXPECT_EQ(voxel_at(t, 2.0, 2.0, 0.4), Voxel::kOccupied);      // post
+  EXPECT_EQ(voxel_at(t, 2.25, 2.0, 0.4), Voxel::kFree);         // beside the post (r = 0.2)
+  EXPECT_EQ(voxel_at(t, 1.0, -0.7, 0.0125), Voxel::kOccupied);  // the canister
+  EXPECT_EQ(voxel_at(t, 0.0, 0.0, 1.2), Voxel::kUnknown);       // above the ceiling
+  EXPECT_EQ(voxel_at(t, 3.5, 0.0, 0.5), Voxel::kUnknown);       // beyond the bounds
+}
+
+TEST_F(SmallWorld, EveryVoxelAgreesWithGroundTruthAtItsCentre) {
+  // The top-down builder against the plain point test, at 20000 random voxels.
+  Rng rng(5);
+  const double res = tree_->getResolution();
+  int checked = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const octomap::OcTreeKey key = tree_->coordToKey(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-0.2, 1.0));
+    const octomap::point3d c = tree_->keyToCoord(key);
+    const Eigen::Vector3d p(c.x(), c.y(), c.z());
+    const Voxel v = voxel_at(*tree_, p.x(), p.y(), p.z());
+    if (!world_->in_bounds(p)) {
+      EXPECT_EQ(v, Voxel::kUnknown);
+      continue;
+    }
+    ASSERT_EQ(v, world_->is_solid(p) ? Voxel::kOccupied : Voxel::kFree) << p.transpose() << " res " << res;
+    ++checked;
+  }
+  EXPECT_GT(checked, 19000);
+}
+
+TEST_F(SmallWorld, OpeningIsPassableAtGroundLevelOnly) {
+  // Flood fill the 2D slice from outside the cellar: the interior is reached
+  // through the opening at z = 3 cm, not at 10 cm (above the 7.5 cm opening).
+  auto reaches_interior = [&](double z) {
+    const OccupancyMap2D m = slice_octree(*tree_, {z, 0.0});
+    std::vector<char> seen(m.cells.size(), 0);
+    std::deque<Cell> queue{m.geometry.cell_at(-1.5, -1.0)};
+    const Cell goal = m.geometry.cell_at(0.5, -1.0);
+    while (!queue.empty()) {
+      const Cell c = queue.front();
+      queue.pop_front();
+      if (!m.is_free(c) || seen[m.geometry.index(c)]) continue;
+      seen[m.geometry.index(c)] = 1;
+      if (c == goal) return true;
+      for (const Cell d : {Cell{1, 0}, Cell{-1, 0}, Cell{0, 1}, Cell{0, -1}}) queue.push_back({c.i + d.i, c.j + d.j});
+    }
+    return false;
+  };
+  EXPECT_TRUE(reaches_interior(0.03));
+  EXPECT_FALSE(reaches_interior(0.10));
+}
+
+TEST_F(SmallWorld, SliceMatchesVoxels) {
+  const OccupancyMap2D m = slice_octree(*tree_, {0.03, 0.0});
+  const double res = tree_->getResolution();
+  EXPECT_DOUBLE_EQ(m.geometry.resolution_m, res);
+  // Cell edges on voxel edges, covering the bounds.
+  EXPECT_NEAR(m.geometry.origin_x_m, -3.0, 1e-9);
+  EXPECT_EQ(m.geometry.width, 240);
+  EXPECT_EQ(m.state_at(-0.55, -1.3), CellState::kOccupied);
+  EXPECT_EQ(m.state_at(0.5, -1.0), CellState::kFree);
+  EXPECT_EQ(m.state_at(-0.55, -1.0), CellState::kFree);
+  EXPECT_EQ(m.state_at(2.0, 2.0), CellState::kOccupied);
+  EXPECT_EQ(m.count(CellState::kUnknown), 0u);  // the world is known everywhere in its bounds
+  // Every cell equals the voxel at (cell centre, 0.03).
+  for (int j = 0; j < m.geometry.height; j += 7)
+    for (int i = 0; i < m.geometry.width; i += 3) {
+      const auto c = m.geometry.center({i, j});
+      const bool occ = voxel_at(*tree_, c.x(), c.y(), 0.03) == Voxel::kOccupied;
+      ASSERT_EQ(m.at({i, j}) == CellState::kOccupied, occ) << i << "," << j;
+    }
+}
+
+TEST(Slice, BandAndUnknownRules) {
+  // Hand-made tree (0.1 m): column A occupied at layer 0; B free at layers 0 and 1;
+  // C free at layer 0 only; D occupied at layer 1 only.
+  octomap::OcTree t(0.1);
+  t.updateNode(0.05, 0.05, 0.05, true);
+  t.updateNode(0.15, 0.05, 0.05, false);
+  t.updateNode(0.15, 0.05, 0.15, false);
+  t.updateNode(0.25, 0.05, 0.05, false);
+  t.updateNode(0.35, 0.05, 0.15, true);
+  const OccupancyMap2D one = slice_octree(t, {0.05, 0.0});
+  ASSERT_EQ(one.geometry.width, 4);
+  ASSERT_EQ(one.geometry.height, 1);
+  EXPECT_NEAR(one.geometry.origin_x_m, 0.0, 1e-9);
+  EXPECT_EQ(one.at({0, 0}), CellState::kOccupied);
+  EXPECT_EQ(one.at({1, 0}), CellState::kFree);
+  EXPECT_EQ(one.at({2, 0}), CellState::kFree);
+  EXPECT_EQ(one.at({3, 0}), CellState::kUnknown);
+  // Band [0.06, 0.14] spans layers 0 and 1: C is half unknown, D occupied above.
+  const OccupancyMap2D two = slice_octree(t, {0.1, 0.04});
+  EXPECT_EQ(two.at({0, 0}), CellState::kOccupied);
+  EXPECT_EQ(two.at({1, 0}), CellState::kFree);
+  EXPECT_EQ(two.at({2, 0}), CellState::kUnknown);
+  EXPECT_EQ(two.at({3, 0}), CellState::kOccupied);
+}
+
+TEST(Slice, CoarseLeavesCoverTheirCells) {
+  // A pruned 8-voxel free cube must make 2 x 2 free cells.
+  octomap::OcTree t(0.1);
+  for (double x : {0.05, 0.15})
+    for (double y : {0.05, 0.15})
+      for (double z : {0.05, 0.15}) t.updateNode(x, y, z, -2.0f);
+  t.updateNode(0.25, 0.05, 0.05, true);
+  t.prune();
+  const OccupancyMap2D m = slice_octree(t, {0.05, 0.0});
+  ASSERT_EQ(m.geometry.width, 3);
+  ASSERT_EQ(m.geometry.height, 2);
+  EXPECT_EQ(m.count(CellState::kFree), 4u);
+  EXPECT_EQ(m.at({2, 0}), CellState::kOccupied);
+  EXPECT_EQ(m.at({2, 1}), CellState::kUnknown);
+}
+
+TEST_F(SmallWorld, BinaryAndFullRoundTrips) {
+  TempDir dir;
+  for (const std::string name : {"w.bt", "w.ot"}) {
+    save_octree(*tree_, dir / name);
+    const auto back = load_octree(dir / name);
+    EXPECT_EQ(back->size(), tree_->size()) << name;
+    EXPECT_DOUBLE_EQ(back->getResolution(), tree_->getResolution());
+    std::size_t leaves = 0;
+    for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it, ++leaves) {
+      const octomap::OcTreeNode* n = back->search(it.getKey(), it.getDepth());
+      ASSERT_NE(n, nullptr);
+      // The builder writes clamped values only, so even .bt keeps them exactly.
+      ASSERT_EQ(n->getLogOdds(), it->getLogOdds()) << name;
+    }
+    EXPECT_EQ(back->getNumLeafNodes(), leaves);
+  }
+  EXPECT_EQ(dir.count(), 2u);
+}
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+void write_all(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+void expect_bad_octree(const std::string& path, const std::string& field_part) {
+  try {
+    (void)load_octree(path);
+    FAIL() << "expected InputError (" << field_part << ")";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), path);
+    EXPECT_THAT(e.field(), HasSubstr(field_part)) << e.what();
+  }
+}
+
+TEST_F(SmallWorld, TruncatedAndGarbageOctreeFilesAreInputErrors) {
+  TempDir dir;
+  for (const std::string ext : {".bt", ".ot"}) {
+    const std::string good = dir / ("good" + ext), bad = dir / ("bad" + ext);
+    save_octree(*tree_, good);
+    const std::string bytes = read_all(good);
+    const std::size_t data = bytes.find("\ndata\n") + 6;
+    ASSERT_GT(bytes.size(), data + 100);
+    // Truncated anywhere in the data, including one byte short.
+    for (const std::size_t cut : {data + 1, data + 50, (data + bytes.size()) / 2, bytes.size() - 1}) {
+      write_all(bad, bytes.substr(0, cut));
+      expect_bad_octree(bad, "data");
+    }
+    // Truncated inside the header.
+    write_all(bad, bytes.substr(0, data - 8));
+    expect_bad_octree(bad, "header");
+    // A trailing extra byte.
+    write_all(bad, bytes + "x");
+    expect_bad_octree(bad, "data");
+    // All-ones data: every node claims eight inner children. OctoMap itself
+    // would recurse past the tree depth; the validator stops at depth 16.
+    write_all(bad, bytes.substr(0, data) + std::string(100000, '\xff'));
+    expect_bad_octree(bad, "data");
+    // Random garbage after the header.
+    Rng rng(ext == ".bt" ? 1 : 2);
+    std::string garbage(5000, '\0');
+    for (char& c : garbage) c = static_cast<char>(rng.uniform_int(0, 255));
+    write_all(bad, bytes.substr(0, data) + garbage);
+    EXPECT_THROW((void)load_octree(bad), InputError);
+  }
+}
+
+TEST(OctreeFiles, BadHeadersNameTheField) {
+  TempDir dir;
+  const std::string p = dir / "x.bt";
+  const std::string magic = "# Octomap OcTree binary file\n";
+  auto check = [&](const std::string& bytes, const std::string& field) {
+    write_all(p, bytes);
+    expect_bad_octree(p, field);
+  };
+  check("", "header");
+  check("hello\n", "header");
+  check(magic + "id OcTree\nsize -5\nres 0.1\ndata\n", "header.size");
+  check(magic + "id OcTree\nsize 5\nres -0.1\ndata\n", "header.res");
+  check(magic + "id OcTree\nsize 5\nres nan\ndata\n", "header.res");
+  check(magic + "id ColorOcTree\nsize 5\nres 0.1\ndata\n", "header.id");
+  check(magic + "id OcTree\nres 0.1\ndata\n", "header.size");
+  check(magic + "id OcTree\nsize 5\nres 0.1\n", "header");
+  // A header promising 4 billion nodes over 2 bytes of data.
+  check(magic + "id OcTree\nsize 4000000000\nres 0.1\ndata\n" + std::string{'\x01', '\x00'}, "header.size");
+  check(magic + "id OcTree\nsize 1\nres 0.1\ndata\n", "data");
+  // The .ot header is a different first line.
+  write_all(dir / "x.ot", magic + "id OcTree\nsize 0\nres 0.1\ndata\n");
+  expect_bad_octree(dir / "x.ot", "header");
+  EXPECT_THROW((void)load_octree(dir / "x.txt"), InputError);
+  EXPECT_THROW((void)load_octree(dir / "missing.bt"), InputError);
+}
+
+TEST(OctreeFiles, EmptyTreeRoundTrips) {
+  TempDir dir;
+  const octomap::OcTree empty(0.2);
+  save_octree(empty, dir / "e.bt");
+  const auto back = load_octree(dir / "e.bt");
+  EXPECT_EQ(back->size(), 0u);
+  EXPECT_DOUBLE_EQ(back->getResolution(), 0.2);
+  EXPECT_THROW(save_octree(empty, dir / "e.png"), InputError);
+  EXPECT_EQ(dir.count(), 1u);
+}
+
+}  // namespace
+}  // namespace ferret
