@@ -1,0 +1,100 @@
+#pragma once
+// Exploration policies of the object search: given the maps G and O, the frontier
+// sets and the robot's state, choose the next goal. Every policy sees the same maps,
+// sensors and motion; they differ only in the goal they choose. Built in:
+//   cdos          curiosity-driven object search, the reading of ARCHITECTURE.md
+//   cdos-literal  the paper's section IV read to the letter (for comparison)
+//   rapid         rapid frontier (Cieslewski et al. 2017), the paper's baseline
+//   nearest       classic nearest reachable frontier (Yamauchi 1997)
+//   oracle        knows the object; drives towards the nearest pose that sees it
+// docs/object_search.md describes each. A new policy is one class plus one
+// register_exploration_policy() call (or one line in the built-in table).
+
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ferret/core/pose.hpp"
+#include "ferret/mapping/frontier.hpp"
+#include "ferret/mapping/ir_grid.hpp"
+#include "ferret/mapping/object_map.hpp"
+#include "ferret/planning/curiosity.hpp"
+#include "ferret/planning/grid_path_planner.hpp"
+
+namespace ferret {
+
+struct ExplorationGoal {
+  Cell cell;
+  Eigen::Vector2d p_W = Eigen::Vector2d::Zero();
+  std::optional<double> heading_rad;  ///< face this on arrival; none: any heading
+  /// The path from the robot (world waypoints); empty: the caller plans it on the
+  /// known-free field of ExplorationState::paths.
+  std::vector<Eigen::Vector2d> path_W;
+  double score = 0.0;  ///< the quantity the policy optimised (curiosity loss, velocity change, ...)
+  std::string reason;  ///< "curiosity", "rapid", "nearest", "oracle", "revisit"
+};
+
+/// What a policy may look at when it decides.
+struct ExplorationState {
+  const IrGrid& grid;
+  const ObjectMap& objects;
+  const FrontierTracker& tracker;
+  const FrontierSets& frontiers;
+  const GridPathPlanner& paths;  ///< field from the robot over known-free cells
+  Pose2 X_WG;                    ///< the robot (sensors are at its origin, facing its heading)
+  Eigen::Vector2d v_W = Eigen::Vector2d::Zero();  ///< current velocity
+  double ir_fov_rad = 0.5;
+  double ir_range_m = 4.0;
+  /// The object's true position: set by the simulator for policies that ask for it
+  /// (needs_oracle()), and only for them.
+  std::optional<Eigen::Vector2d> oracle_object_W;
+};
+
+struct PolicyOptions {
+  CuriosityOptions curiosity;
+  double max_velocity_mps = 2.0;
+  /// CDOS option: score F_g instead of F_v.
+  bool cdos_candidates_global = false;
+  /// Oracle and "revisit the evidence": a pose this close sees the object with
+  /// conf = eta / d > lambda2 (0.9 eta / lambda2 by default).
+  double view_distance_m = 0.95;
+
+  [[nodiscard]] static PolicyOptions from(const MissionConfig& mission, double camera_range_m,
+                                          double max_velocity_mps);
+};
+
+class ExplorationPolicy {
+ public:
+  virtual ~ExplorationPolicy() = default;
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  /// The next goal, or none when nothing is left to explore.
+  [[nodiscard]] virtual std::optional<ExplorationGoal> choose(const ExplorationState& state) = 0;
+  /// True for the oracle: the simulator fills ExplorationState::oracle_object_W.
+  [[nodiscard]] virtual bool needs_oracle() const { return false; }
+};
+
+using ExplorationPolicyFactory = std::function<std::unique_ptr<ExplorationPolicy>(const PolicyOptions&)>;
+
+/// Adds a policy under `name` (replaces one of the same name).
+void register_exploration_policy(std::string name, ExplorationPolicyFactory factory);
+/// Names of every registered policy, sorted.
+[[nodiscard]] std::vector<std::string> exploration_policy_names();
+[[nodiscard]] bool has_exploration_policy(std::string_view name);
+/// A new policy. @throws std::out_of_range for an unknown name (callers that read
+/// user input check has_exploration_policy first and raise an InputError).
+[[nodiscard]] std::unique_ptr<ExplorationPolicy> make_exploration_policy(std::string_view name,
+                                                                         const PolicyOptions& options);
+
+/// A goal from which the camera sees `target_W`: the reachable cell within
+/// `view_distance_m` of it (with a line of sight through non-occupied cells of G) of
+/// least path distance in `paths`, facing the target. Used by the oracle and to
+/// revisit evidence when exploration ends. None if no such cell is reachable.
+[[nodiscard]] std::optional<ExplorationGoal> viewing_goal(const IrGrid& grid, const FrontierTracker& tracker,
+                                                          const GridPathPlanner& paths,
+                                                          const Eigen::Vector2d& target_W, double view_distance_m);
+
+}  // namespace ferret

@@ -1,0 +1,80 @@
+#pragma once
+// The built-in exploration policies (see exploration_policy.hpp for the interface
+// and docs/object_search.md for the behaviour of each).
+
+#include <optional>
+
+#include "ferret/planning/exploration_policy.hpp"
+
+namespace ferret {
+
+/// The direction from a frontier cell towards the unknown cells around it (mean of
+/// the unit vectors to unknown cells within 3 cells); none if there are none.
+[[nodiscard]] std::optional<double> frontier_heading_rad(const IrGrid& grid, Cell c);
+
+/// Classic frontier: the reachable F_g cell of least path distance, facing the
+/// unknown. Commits to its goal while it stays a reachable, non-blacklisted frontier.
+class NearestFrontierPolicy final : public ExplorationPolicy {
+ public:
+  explicit NearestFrontierPolicy(const PolicyOptions& options = {}) { (void)options; }
+  [[nodiscard]] std::string_view name() const override { return "nearest"; }
+  [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
+
+ private:
+  std::optional<Cell> committed_;
+};
+
+/// Rapid frontier (Cieslewski et al. 2017): the F_v cell whose direction asks the
+/// least change of velocity, |v_max u(g) - v|; at rest the heading breaks the tie.
+/// Where F_v is empty, the nearest F_g cell (classic).
+class RapidFrontierPolicy final : public ExplorationPolicy {
+ public:
+  explicit RapidFrontierPolicy(const PolicyOptions& options) : options_(options) {}
+  [[nodiscard]] std::string_view name() const override { return "rapid"; }
+  [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
+
+  /// The rapid rule on F_v alone (none if F_v is empty).
+  [[nodiscard]] static std::optional<ExplorationGoal> choose_visible(const ExplorationState& state,
+                                                                     double max_velocity_mps);
+
+ private:
+  PolicyOptions options_;
+  NearestFrontierPolicy fallback_;
+};
+
+/// Curiosity-driven object search. `literal` selects the paper read to the letter.
+///  cdos: argmax of the curiosity loss over F_v (raw probabilities, capped
+///    prediction) among evidence cells, goal heading facing the strongest evidence;
+///    with no evidence (or no positive loss) the rapid rule; F_v empty: nearest F_g.
+///  cdos-literal: the loss on relabelled probabilities (eq. (cap_O)), uncapped
+///    prediction, argmax over F_v with ties to the nearest candidate, heading left to
+///    the path; F_v empty: nearest F_g (Algorithm 1).
+class CdosPolicy final : public ExplorationPolicy {
+ public:
+  CdosPolicy(const PolicyOptions& options, bool literal);
+  [[nodiscard]] std::string_view name() const override { return literal_ ? "cdos-literal" : "cdos"; }
+  [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
+
+ private:
+  PolicyOptions options_;
+  bool literal_;
+  NearestFrontierPolicy fallback_;
+};
+
+/// Knows the object: drives the shortest path (through unknown cells too, as far as
+/// G allows) towards the nearest pose that sees it. Falls back to the nearest frontier
+/// while no viewing pose is reachable.
+class OraclePolicy final : public ExplorationPolicy {
+ public:
+  explicit OraclePolicy(const PolicyOptions& options) : options_(options) {}
+  [[nodiscard]] std::string_view name() const override { return "oracle"; }
+  [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
+  [[nodiscard]] bool needs_oracle() const override { return true; }
+
+ private:
+  PolicyOptions options_;
+  std::optional<GridPathPlanner> planner_;
+  NearestFrontierPolicy fallback_;
+};
+
+}  // namespace ferret

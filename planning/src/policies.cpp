@@ -1,0 +1,140 @@
+#include "ferret/planning/policies.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace ferret {
+namespace {
+double direction_rad(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
+
+bool still_a_goal(const ExplorationState& s, Cell c) {
+  return s.tracker.is_frontier(c) && !s.tracker.blacklisted(c) && s.paths.reachable(c);
+}
+}  // namespace
+
+std::optional<double> frontier_heading_rad(const IrGrid& grid, Cell c) {
+  const GridGeometry& g = grid.geometry();
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  constexpr int kR = 3;
+  for (int dj = -kR; dj <= kR; ++dj)
+    for (int di = -kR; di <= kR; ++di) {
+      const Cell n{c.i + di, c.j + dj};
+      if ((di == 0 && dj == 0) || !g.contains(n) || grid.label(n) != GridLabel::kUnknown) continue;
+      sum += Eigen::Vector2d(di, dj).normalized();
+    }
+  if (sum.norm() < 1e-9) return std::nullopt;
+  return direction_rad(sum);
+}
+
+std::optional<ExplorationGoal> NearestFrontierPolicy::choose(const ExplorationState& s) {
+  if (!committed_ || !still_a_goal(s, *committed_)) {
+    committed_.reset();
+    float best = kUnreachable;
+    for (const Cell& c : s.frontiers.global) {
+      const float d = s.paths.distance_m(c);
+      if (d < best) {
+        best = d;
+        committed_ = c;
+      }
+    }
+  }
+  if (!committed_) return std::nullopt;
+  ExplorationGoal goal;
+  goal.cell = *committed_;
+  goal.p_W = s.grid.geometry().center(goal.cell);
+  goal.heading_rad = frontier_heading_rad(s.grid, goal.cell);
+  goal.score = s.paths.distance_m(goal.cell);
+  goal.reason = "nearest";
+  return goal;
+}
+
+std::optional<ExplorationGoal> RapidFrontierPolicy::choose_visible(const ExplorationState& s, double max_velocity_mps) {
+  if (s.frontiers.visible.empty()) return std::nullopt;
+  // At rest every direction asks the same change |v_max u|: a small velocity along
+  // the heading makes the current heading break the tie.
+  Eigen::Vector2d v = s.v_W;
+  if (v.norm() < 0.05) v = 0.05 * Eigen::Vector2d(std::cos(s.X_WG.yaw_rad), std::sin(s.X_WG.yaw_rad));
+  const GridGeometry& g = s.grid.geometry();
+  const Eigen::Vector2d p = s.X_WG.position();
+  std::optional<ExplorationGoal> best;
+  for (const Cell& c : s.frontiers.visible) {
+    const Eigen::Vector2d to = g.center(c) - p;
+    const double dist = to.norm();
+    const Eigen::Vector2d u = dist > 1e-9 ? Eigen::Vector2d(to / dist) : Eigen::Vector2d(v.normalized());
+    const double change = (max_velocity_mps * u - v).norm();
+    if (!best || change < best->score - 1e-12) {
+      best = ExplorationGoal{};
+      best->cell = c;
+      best->p_W = g.center(c);
+      best->score = change;
+    }
+  }
+  best->reason = "rapid";
+  return best;
+}
+
+std::optional<ExplorationGoal> RapidFrontierPolicy::choose(const ExplorationState& s) {
+  if (auto goal = choose_visible(s, options_.max_velocity_mps)) return goal;
+  return fallback_.choose(s);
+}
+
+CdosPolicy::CdosPolicy(const PolicyOptions& options, bool literal) : options_(options), literal_(literal) {
+  if (literal_) {
+    options_.curiosity.use_labels = true;
+    options_.curiosity.cap_prediction = false;
+    options_.cdos_candidates_global = false;
+  }
+}
+
+std::optional<ExplorationGoal> CdosPolicy::choose(const ExplorationState& s) {
+  const auto evidence = collect_evidence(s.objects);
+  if (!literal_ && evidence.empty()) {  // no evidence: choose as the baseline does
+    if (auto goal = RapidFrontierPolicy::choose_visible(s, options_.max_velocity_mps)) return goal;
+    return fallback_.choose(s);
+  }
+  const auto& candidates = options_.cdos_candidates_global ? s.frontiers.global : s.frontiers.visible;
+  if (candidates.empty()) return fallback_.choose(s);  // Algorithm 1: F_v empty -> nearest in F_g
+  const GridGeometry& g = s.grid.geometry();
+  const Eigen::Vector2d p = s.X_WG.position();
+  const auto scored = score_frontiers(candidates, g, p, evidence, options_.curiosity);
+  // argmax L(C) (paper eq. (action_select)). Ties: the confidence floor makes the
+  // predicted gain flat beyond eta / conf_floor of the evidence, so cdos breaks ties
+  // towards the strongest evidence (what the loss says without the floor); the
+  // literal reading has no rule and takes the candidate nearest the robot.
+  const Eigen::Vector2d tie_anchor = literal_ || evidence.empty() ? p : strongest_evidence(evidence).p_W;
+  const ScoredFrontier* best = nullptr;
+  double best_dist = 0.0;
+  for (const auto& sf : scored) {
+    const double dist = (sf.p_W - tie_anchor).norm();
+    if (!best || sf.loss > best->loss + 1e-12 || (std::abs(sf.loss - best->loss) <= 1e-12 && dist < best_dist)) {
+      best = &sf;
+      best_dist = dist;
+    }
+  }
+  if (!literal_ && best->loss <= 1e-12)  // curiosity is silent here: choose as the baseline does
+    return RapidFrontierPolicy::choose_visible(s, options_.max_velocity_mps);
+  ExplorationGoal goal;
+  goal.cell = best->cell;
+  goal.p_W = best->p_W;
+  goal.score = best->loss;
+  goal.reason = "curiosity";
+  if (!literal_) {
+    // The paper's "pointing towards o_i": face the strongest evidence on arrival.
+    const Eigen::Vector2d to = strongest_evidence(evidence).p_W - goal.p_W;
+    if (to.norm() > 1e-6) goal.heading_rad = direction_rad(to);
+  }
+  return goal;
+}
+
+std::optional<ExplorationGoal> OraclePolicy::choose(const ExplorationState& s) {
+  if (!s.oracle_object_W) return fallback_.choose(s);
+  if (!planner_) planner_.emplace(s.grid.geometry());
+  planner_->compute(s.grid, s.paths.start(), GridPathPlanner::Traversal::kNotOccupied);
+  auto goal = viewing_goal(s.grid, s.tracker, *planner_, *s.oracle_object_W, options_.view_distance_m);
+  if (!goal) return fallback_.choose(s);
+  goal->path_W = planner_->path_to(goal->cell);
+  goal->reason = "oracle";
+  return goal;
+}
+
+}  // namespace ferret
