@@ -12,6 +12,7 @@
 //     and has no range for rays.
 
 #include <console_bridge/console.h>
+#include <fmt/format.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
@@ -51,6 +52,9 @@ class XmlSource {
  private:
   std::string source_;
 };
+
+/// Shortest round-trip form of a number, for messages.
+std::string num(double v) { return fmt::format("{}", v); }
 
 std::string quoted(const char* text) { return text == nullptr ? "nothing" : "'" + std::string(text) + "'"; }
 
@@ -401,8 +405,8 @@ bool same_value(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(
 /// long as the two agree wherever both say something.
 void merge_into(SensorSpec& into, const SensorSpec& from) {
   auto conflict = [&](const std::string& at, const std::string& field, const std::string& what,
-                      const std::string& other_at) {
-    throw InputError(at, field, what + " as declared at " + other_at, "a conflicting value");
+                      const std::string& other_at, const std::string& got = "a conflicting value") {
+    throw InputError(at, field, what + " as declared at " + other_at, got);
   };
   if (into.link != from.link)
     conflict(from.at, from.field, "the same link ('" + into.link + "')", into.at);
@@ -419,7 +423,8 @@ void merge_into(SensorSpec& into, const SensorSpec& from) {
   for (const auto& [key, v] : from.values) {
     const auto it = into.values.find(key);
     if (it != into.values.end() && !same_value(it->second.value, v.value))
-      conflict(v.at, v.field, "the value " + std::to_string(it->second.value), it->second.at + " (" + it->second.field + ")");
+      conflict(v.at, v.field, "the value " + num(it->second.value), it->second.at + " (" + it->second.field + ")",
+               "'" + num(v.value) + "'");
     into.values[key] = v;
   }
 }
@@ -431,7 +436,7 @@ double need(const SensorSpec& s, const std::string& key, bool (*ok)(double), con
   if (it == s.values.end())
     throw InputError(s.at, s.field + ": " + value_names().at(key), expected + " (required)", "nothing");
   if (!ok(it->second.value))
-    throw InputError(it->second.at, it->second.field, expected, "'" + std::to_string(it->second.value) + "'");
+    throw InputError(it->second.at, it->second.field, expected, "'" + num(it->second.value) + "'");
   return it->second.value;
 }
 
@@ -458,8 +463,8 @@ CameraSensor make_camera(const SensorSpec& s, const Pose3& X_BS) {
   const auto far = s.values.find("far");
   c.range_max_m = need(s, "far", [](double v) { return v > 0.0; }, "a clip far > 0 (metres)");
   if (c.range_max_m <= c.range_min_m)
-    throw InputError(far->second.at, far->second.field, "a clip far > clip near (" + std::to_string(c.range_min_m) + " m)",
-                     "'" + std::to_string(c.range_max_m) + "'");
+    throw InputError(far->second.at, far->second.field, "a clip far > clip near (" + num(c.range_min_m) + " m)",
+                     "'" + num(c.range_max_m) + "'");
   // Square pixels: tan(v/2) / tan(h/2) = height / width.
   c.vertical_fov_rad = 2.0 * std::atan(std::tan(c.horizontal_fov_rad / 2.0) * c.image_height_px / c.image_width_px);
   c.update_rate_hz = optional_rate(s);
@@ -479,13 +484,13 @@ RangeSensor make_range_sensor(const SensorSpec& s, const Pose3& X_BS) {
   if (r.max_angle_rad < r.min_angle_rad || (r.samples > 1 && r.max_angle_rad == r.min_angle_rad))
     throw InputError(max_angle.at, max_angle.field,
                      std::string("an angle ") + (r.samples > 1 ? ">" : ">=") + " min_angle (a fov > 0)",
-                     "'" + std::to_string(r.max_angle_rad) + "'");
+                     "'" + num(r.max_angle_rad) + "'");
   r.range_min_m = need(s, "range_min", [](double v) { return v >= 0.0; }, "a range min >= 0 (metres)");
   r.range_max_m = need(s, "range_max", [](double v) { return v > 0.0; }, "a range max > 0 (metres)");
   if (r.range_max_m <= r.range_min_m) {
     const auto& v = s.values.at("range_max");
-    throw InputError(v.at, v.field, "a range max > range min (" + std::to_string(r.range_min_m) + " m)",
-                     "'" + std::to_string(r.range_max_m) + "'");
+    throw InputError(v.at, v.field, "a range max > range min (" + num(r.range_min_m) + " m)",
+                     "'" + num(r.range_max_m) + "'");
   }
   r.update_rate_hz = optional_rate(s);
   return r;

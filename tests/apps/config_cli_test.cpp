@@ -1,0 +1,197 @@
+// `ferret config --dump`: the effective configuration comes from the URDF and the
+// mission YAML, and every bad input is one line naming file and field, exit code 2.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "support/cli_runner.hpp"
+
+namespace ferret::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+/// The shipped miniUGV model with `from` replaced by `to` (which must occur).
+std::string edited_miniugv(const std::string& from, const std::string& to) {
+  std::string xml = read_text(fs::path(FERRET_SOURCE_DIR) / "urdf/models/miniugv.urdf");
+  const auto at = xml.find(from);
+  EXPECT_NE(at, std::string::npos) << "model no longer contains " << from;
+  if (at != std::string::npos) xml.replace(at, from.size(), to);
+  return xml;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+/// The section of a dump from `key` to the next line at the same indentation, with its
+/// final newline.
+std::string section(const std::string& dump, const std::string& key) {
+  const auto start = dump.find(key);
+  if (start == std::string::npos) return {};
+  const auto line_start = dump.rfind('\n', start) + 1;
+  const std::string indent(start - line_start, ' ');
+  auto end = dump.find("\n" + indent, start + key.size());
+  while (end != std::string::npos && dump.size() > end + 1 + indent.size() && dump[end + 1 + indent.size()] == ' ')
+    end = dump.find("\n" + indent, end + 1);
+  return dump.substr(start, end == std::string::npos ? std::string::npos : end - start + 1);  // with its '\n'
+
+}
+
+/// Checks the usual bad-input contract: exit 2, one line on stderr naming `file` and `field`.
+void expect_bad_input(const CliResult& r, const std::string& file, const std::string& field) {
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "not one line:\n" << r.err;
+  EXPECT_TRUE(contains(r.err, "ferret: error: ")) << r.err;
+  EXPECT_TRUE(contains(r.err, file)) << r.err;
+  EXPECT_TRUE(contains(r.err, field)) << r.err;
+  EXPECT_TRUE(r.out.empty()) << "partial output on stdout:\n" << r.out;
+}
+
+TEST(ConfigCli, DumpShowsSensorsFromTheDefaultUrdfAndTheMission) {
+  const auto r = run_cli("config --dump");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "source: urdf/models/miniugv.urdf")) << r.out;
+  const std::string camera = section(r.out, "- name: front_camera");
+  EXPECT_TRUE(contains(camera, "horizontal_fov_deg: 90\n")) << camera;
+  EXPECT_TRUE(contains(camera, "horizontal_fov_rad: 1.570796327\n")) << camera;
+  EXPECT_TRUE(contains(camera, "range_max_m: 4\n")) << camera;
+  const std::string ir = section(r.out, "ir_array:");
+  EXPECT_TRUE(contains(ir, "fov_deg: 30\n")) << ir;
+  EXPECT_TRUE(contains(ir, "fov_rad: 0.523598776\n")) << ir;
+  EXPECT_TRUE(contains(ir, "beams: 9\n")) << ir;
+  EXPECT_TRUE(contains(ir, "range_max_m: 4\n")) << ir;
+  EXPECT_TRUE(contains(r.out, "size: [0.13, 0.12, 0.055]")) << r.out;
+  EXPECT_TRUE(contains(r.out, "source: \"config/mission.yaml\"")) << r.out;
+  const std::string curiosity = section(r.out, "curiosity:");
+  EXPECT_TRUE(contains(curiosity, "a: -0.5\n") && contains(curiosity, "b: 0.1\n") && contains(curiosity, "K: 0.62"))
+      << curiosity;
+}
+
+TEST(ConfigCli, ShippedModelByName) {
+  const auto r = run_cli("config --dump --robot m100");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string depth = section(r.out, "- name: depth_camera");
+  EXPECT_TRUE(contains(depth, "depth: true")) << depth;
+  EXPECT_TRUE(contains(depth, "horizontal_fov_deg: 65\n")) << depth;
+  EXPECT_TRUE(contains(depth, "image_px: [1280, 720]")) << depth;
+  EXPECT_TRUE(contains(depth, "range_min_m: 0.3\n")) << depth;
+  EXPECT_TRUE(contains(r.out, "kind: uav")) << r.out;
+}
+
+TEST(ConfigCli, ChangingTheUrdfChangesTheDump) {
+  TempDir dir;
+  const auto original = run_cli("config --dump --robot urdf/models/miniugv.urdf");
+  ASSERT_EQ(original.exit_code, 0) << original.err;
+  // Camera fov 90 -> 60 deg; one IR sensor's range 4 -> 2.5 m (the array takes the smallest).
+  std::string xml = edited_miniugv("hfov=\"1.5707963267948966\"", "hfov=\"1.0471975511965976\"");
+  const auto at = xml.find("<max>4.0</max>");
+  ASSERT_NE(at, std::string::npos);
+  xml.replace(at, 14, "<max>2.5</max>");
+  write_text(dir / "robot.urdf", xml);
+  const auto edited = run_cli("config --dump --robot '" + dir / "robot.urdf" + "'");
+  ASSERT_EQ(edited.exit_code, 0) << edited.err;
+
+  const std::string cam_before = section(original.out, "- name: front_camera");
+  const std::string cam_after = section(edited.out, "- name: front_camera");
+  EXPECT_TRUE(contains(cam_before, "horizontal_fov_deg: 90\n"));
+  EXPECT_TRUE(contains(cam_after, "horizontal_fov_deg: 60\n")) << cam_after;
+  EXPECT_TRUE(contains(cam_after, "horizontal_fov_rad: 1.047197551\n")) << cam_after;
+  EXPECT_TRUE(contains(section(original.out, "ir_array:"), "range_max_m: 4\n"));
+  EXPECT_TRUE(contains(section(edited.out, "ir_array:"), "range_max_m: 2.5\n")) << edited.out;
+  // Nothing else moved: the collision geometry is the same.
+  EXPECT_EQ(section(original.out, "collision_shapes:"), section(edited.out, "collision_shapes:"));
+}
+
+TEST(ConfigCli, MissionFileFeedsTheLimits) {
+  TempDir dir;
+  write_text(dir / "mission.yaml", "ugv_limits:\n  max_velocity_mps: 0.5\n");
+  const auto r = run_cli("config --dump --config '" + dir / "mission.yaml" + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(section(r.out, "motion_limits:"), "max_velocity_mps: 0.5\n")) << r.out;
+}
+
+TEST(ConfigCli, OutputFileIsWrittenWholeOrNotAtAll) {
+  TempDir dir;
+  const auto ok = run_cli("config --dump -o '" + dir / "effective.yaml" + "'");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_TRUE(contains(read_text(dir / "effective.yaml"), "ir_array:"));
+  write_text(dir / "bad.urdf", "<robot name=\"x\"><link name=\"a\">");
+  const auto bad = run_cli("config --dump --robot '" + dir / "bad.urdf" + "' -o '" + dir / "second.yaml" + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir / "second.yaml"));
+  EXPECT_EQ(dir.count(), 2u);  // effective.yaml and bad.urdf: no temporary left behind
+}
+
+TEST(ConfigCli, BadUrdfFiles) {
+  TempDir dir;
+  struct Case {
+    std::string name, from, to, field;
+  };
+  const Case cases[] = {
+      {"malformed.urdf", "</robot>", "</robt>", "xml"},
+      {"missing_link.urdf", "<child link=\"imu_link\"/>", "<child link=\"imu_lnk\"/>", "joint[imu_joint]/child@link"},
+      {"negative_size.urdf", "<box size=\"0.130 0.090 0.040\"/></geometry></collision>",
+       "<box size=\"0.130 0.090 -0.040\"/></geometry></collision>", "link[chassis_link]/collision[0]/geometry/box@size"},
+      {"zero_radius.urdf", "<collision><origin rpy=\"1.5707963267948966 0 0\"/><geometry><cylinder radius=\"0.020\"",
+       "<collision><origin rpy=\"1.5707963267948966 0 0\"/><geometry><cylinder radius=\"0\"",
+       "link[front_left_wheel_link]/collision[0]/geometry/cylinder@radius"},
+      {"negative_range.urdf", "near=\"0.05\" far=\"4.0\"", "near=\"0.05\" far=\"-4.0\"",
+       "sensor[front_camera]/camera/image@far"},
+      {"missing_range.urdf", "<range><min>0.02</min><max>4.0</max><resolution>0.01</resolution></range>", "",
+       "gazebo[ir_left_link]/sensor[ir_left]: range min"},
+      {"negative_fov.urdf", "hfov=\"1.5707963267948966\"", "hfov=\"-1.5707963267948966\"",
+       "sensor[front_camera]/camera/image@hfov"},
+      {"missing_fov.urdf", "hfov=\"1.5707963267948966\"", "", "sensor[front_camera]: horizontal fov"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    write_text(dir / c.name, edited_miniugv(c.from, c.to));
+    expect_bad_input(run_cli("config --dump --robot '" + dir / c.name + "'"), c.name, c.field);
+  }
+  expect_bad_input(run_cli("config --dump --robot '" + dir / "absent.urdf" + "'"), "absent.urdf",
+                   "a readable URDF file");
+}
+
+TEST(ConfigCli, BadMissionFiles) {
+  TempDir dir;
+  struct Case {
+    std::string name, yaml, field;
+  };
+  const Case cases[] = {
+      {"wrong_type.yaml", "object_search:\n  lambda1: high\n", "object_search.lambda1: expected a number"},
+      {"unknown_key.yaml", "curiosty:\n  a: -0.5\n", "curiosty: expected a known key"},
+      {"unknown_nested.yaml", "tether:\n  length_m: 3\n", "tether.length_m: expected a known key"},
+      {"out_of_range.yaml", "object_search:\n  lambda2: 1.5\n", "object_search.lambda2: expected a number in [0.5, 1]"},
+      {"negative_speed.yaml", "ugv_limits:\n  max_velocity_mps: -2\n", "ugv_limits.max_velocity_mps"},
+      {"inconsistent.yaml", "tether:\n  total_length_m: 1\n  entry_offset_m: 2\n", "tether.entry_offset_m"},
+      {"syntax.yaml", "tether: [1, 2\n", "valid YAML"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    write_text(dir / c.name, c.yaml);
+    expect_bad_input(run_cli("config --dump --config '" + dir / c.name + "'"), c.name, c.field);
+  }
+  expect_bad_input(run_cli("config --dump --config '" + dir / "absent.yaml" + "'"), "absent.yaml",
+                   "a readable YAML file");
+}
+
+TEST(ConfigCli, WithoutDumpIsBadInput) {
+  const auto r = run_cli("config");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--dump")) << r.err;
+}
+
+}  // namespace
+}  // namespace ferret::test
