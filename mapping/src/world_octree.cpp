@@ -358,6 +358,19 @@ std::unique_ptr<octomap::OcTree> load_octree(const fs::path& path) {
   return tree;
 }
 
+std::unique_ptr<octomap::OcTree> load_or_build_octree(const fs::path& path, std::optional<WorldSpec>* world) {
+  if (world != nullptr) world->reset();
+  if (has_ext(path, ".yaml") || has_ext(path, ".yml")) {
+    WorldSpec spec = load_world(path);
+    auto tree = build_world_octree(spec);
+    if (world != nullptr) *world = std::move(spec);
+    return tree;
+  }
+  if (!has_ext(path, ".bt") && !has_ext(path, ".ot"))
+    throw InputError(path.string(), "", "a world YAML (.yaml) or an OctoMap file (.bt, .ot)");
+  return load_octree(path);
+}
+
 void save_octree(const octomap::OcTree& tree, const fs::path& path) {
   const bool binary = has_ext(path, ".bt");
   if (!binary && !has_ext(path, ".ot"))

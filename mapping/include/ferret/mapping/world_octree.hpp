@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <octomap/OcTree.h>
 
 #include "ferret/mapping/occupancy_map_2d.hpp"
@@ -33,6 +34,12 @@ namespace ferret {
 /// Writes a .bt (max-likelihood: each leaf occupied or free) or .ot (log-odds kept)
 /// file atomically, chosen by extension; any other extension is an InputError.
 void save_octree(const octomap::OcTree& tree, const std::filesystem::path& path);
+
+/// The world at `path` as an OcTree: a .bt/.ot file is loaded, a world YAML
+/// (.yaml/.yml) is parsed and built; then `world`, when given, receives the
+/// parsed world (and is reset for OctoMap files).
+[[nodiscard]] std::unique_ptr<octomap::OcTree> load_or_build_octree(const std::filesystem::path& path,
+                                                                    std::optional<WorldSpec>* world = nullptr);
 
 /// Options of a 2D slice.
 struct SliceOptions {

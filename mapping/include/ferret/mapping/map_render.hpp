@@ -1,0 +1,95 @@
+#pragma once
+// PNG pictures of 2D maps, with overlays drawn in world coordinates: later stages
+// (paths, frontiers, the object map, robot poses) draw on a MapCanvas and save it.
+//
+//   MapCanvas canvas(map);                       // occupied black, free white, unknown grey
+//   canvas.draw_path(path_W, Rgb{220, 30, 30});
+//   canvas.draw_cells(map.geometry, frontier_cells, Rgb{0, 120, 255}, 0.6);
+//   canvas.save_png("out.png");                  // atomic; adds the scale bar
+//
+// OpenCV stays inside the implementation.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ferret/core/grid.hpp"
+#include "ferret/core/pose.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
+
+namespace ferret {
+
+struct WorldSpec;
+
+struct Rgb {
+  std::uint8_t r = 0, g = 0, b = 0;
+};
+
+/// An 8-bit RGB image, rows top to bottom, 3 bytes a pixel.
+struct RgbImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> data;  ///< index = (row * width + column) * 3 + channel (r, g, b)
+  [[nodiscard]] Rgb at(int column, int row) const {
+    const std::size_t k = (static_cast<std::size_t>(row) * width + column) * 3;
+    return {data[k], data[k + 1], data[k + 2]};
+  }
+};
+
+struct RenderOptions {
+  int pixels_per_cell = 0;      ///< 0: the smallest integer making the longer side >= min_size_px (at most 16)
+  int min_size_px = 800;
+  double grid_spacing_m = 0.0;  ///< > 0: light grid lines every this many metres
+  bool scale_bar = true;        ///< a labelled bar in the lower-left corner
+  Rgb occupied{0, 0, 0};
+  Rgb free{255, 255, 255};
+  Rgb unknown{160, 160, 160};
+};
+
+class MapCanvas {
+ public:
+  explicit MapCanvas(const OccupancyMap2D& map, const RenderOptions& options = {});
+  ~MapCanvas();
+  MapCanvas(MapCanvas&&) noexcept;
+  MapCanvas& operator=(MapCanvas&&) noexcept;
+
+  /// A polyline through world points.
+  void draw_path(const std::vector<Eigen::Vector2d>& points_W, Rgb color, int thickness_px = 2);
+  /// Fills cells of a grid (which need not be the map's) blended with `alpha` in [0, 1].
+  void draw_cells(const GridGeometry& grid, const std::vector<Cell>& cells, Rgb color, double alpha = 1.0);
+  /// Colours each cell of a grid by a value in [0, 1] between two colours (e.g. the
+  /// object map's probabilities); cells whose value is outside [0, 1] are skipped.
+  void draw_field(const GridGeometry& grid, const std::vector<double>& values, Rgb low, Rgb high, double alpha = 0.7);
+  void draw_point(const Eigen::Vector2d& p_W, Rgb color, int radius_px = 4);
+  void draw_circle(const Eigen::Vector2d& center_W, double radius_m, Rgb color, int thickness_px = 2);
+  /// A pose as a dot with a heading line `length_m` long.
+  void draw_pose(const Pose2& X_W, Rgb color, double length_m = 0.5);
+  void draw_text(const Eigen::Vector2d& p_W, const std::string& text, Rgb color);
+
+  /// Pixel (column, row) of a world point.
+  [[nodiscard]] Eigen::Vector2d to_pixel(const Eigen::Vector2d& p_W) const;
+  [[nodiscard]] int pixels_per_cell() const;
+  /// The picture so far, with the scale bar when enabled.
+  [[nodiscard]] RgbImage image() const;
+  /// Writes image() as PNG atomically. The path must end in .png.
+  void save_png(const std::filesystem::path& path) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Draws a world's annotations: hidden-space entries with their heading (green),
+/// markers (blue, labelled with the space's name and marker id), objects (red),
+/// the drop zone (orange circle).
+void draw_world_annotations(MapCanvas& canvas, const WorldSpec& world);
+
+/// Writes an RGB image as PNG atomically (path must end in .png).
+void write_png(const RgbImage& image, const std::filesystem::path& path);
+/// Reads a PNG (or any image OpenCV reads) as RGB. Throws InputError if unreadable.
+[[nodiscard]] RgbImage read_rgb_image(const std::filesystem::path& path);
+
+}  // namespace ferret
