@@ -150,10 +150,10 @@ TEST(ConfigCli, BadUrdfFiles) {
       {"negative_range.urdf", "near=\"0.05\" far=\"4.0\"", "near=\"0.05\" far=\"-4.0\"",
        "sensor[front_camera]/camera/image@far"},
       {"missing_range.urdf", "<range><min>0.02</min><max>4.0</max><resolution>0.01</resolution></range>", "",
-       "gazebo[ir_left_link]/sensor[ir_left]: range min"},
+       "gazebo[ir_left_link]/sensor[ir_left]/range_min"},
       {"negative_fov.urdf", "hfov=\"1.5707963267948966\"", "hfov=\"-1.5707963267948966\"",
        "sensor[front_camera]/camera/image@hfov"},
-      {"missing_fov.urdf", "hfov=\"1.5707963267948966\"", "", "sensor[front_camera]: horizontal fov"},
+      {"missing_fov.urdf", "hfov=\"1.5707963267948966\"", "", "sensor[front_camera]/horizontal_fov"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);

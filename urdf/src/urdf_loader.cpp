@@ -260,20 +260,23 @@ struct SensorSpec {
   bool from_urdf = false, from_gazebo = false;
 };
 
-/// Human names of the sensor values, with where each can come from.
-const std::map<std::string, std::string>& value_names() {
-  static const std::map<std::string, std::string> names{
-      {"hfov", "horizontal fov (<image hfov> or Gazebo <camera><horizontal_fov>)"},
-      {"width", "image width (<image width> or Gazebo <image><width>)"},
-      {"height", "image height (<image height> or Gazebo <image><height>)"},
-      {"near", "clip near (<image near> or Gazebo <clip><near>)"},
-      {"far", "clip far (<image far> or Gazebo <clip><far>)"},
-      {"samples", "horizontal samples (<horizontal samples> or Gazebo <scan><horizontal><samples>)"},
-      {"min_angle", "horizontal min_angle"},
-      {"max_angle", "horizontal max_angle"},
-      {"range_min", "range min (<ray><range min> or Gazebo <ray><range><min>)"},
-      {"range_max", "range max (<ray><range max> or Gazebo <ray><range><max>)"},
-      {"update_rate", "update rate"},
+/// How a missing sensor value is named in errors, and where a user can write it.
+struct ValueName {
+  const char* field;  ///< appended to the sensor's path
+  const char* where;  ///< the urdfdom and Gazebo places
+};
+const std::map<std::string, ValueName>& value_names() {
+  static const std::map<std::string, ValueName> names{
+      {"hfov", {"horizontal_fov", "<image hfov=..> or Gazebo <camera><horizontal_fov>"}},
+      {"width", {"image_width", "<image width=..> or Gazebo <image><width>"}},
+      {"height", {"image_height", "<image height=..> or Gazebo <image><height>"}},
+      {"near", {"clip_near", "<image near=..> or Gazebo <clip><near>"}},
+      {"far", {"clip_far", "<image far=..> or Gazebo <clip><far>"}},
+      {"samples", {"samples", "<horizontal samples=..> or Gazebo <scan><horizontal><samples>"}},
+      {"min_angle", {"min_angle", "<horizontal min_angle=..> or Gazebo <scan><horizontal><min_angle>"}},
+      {"max_angle", {"max_angle", "<horizontal max_angle=..> or Gazebo <scan><horizontal><max_angle>"}},
+      {"range_min", {"range_min", "<ray><range min=..> or Gazebo <ray><range><min>"}},
+      {"range_max", {"range_max", "<ray><range max=..> or Gazebo <ray><range><max>"}},
   };
   return names;
 }
@@ -434,7 +437,8 @@ void merge_into(SensorSpec& into, const SensorSpec& from) {
 double need(const SensorSpec& s, const std::string& key, bool (*ok)(double), const std::string& expected) {
   const auto it = s.values.find(key);
   if (it == s.values.end())
-    throw InputError(s.at, s.field + ": " + value_names().at(key), expected + " (required)", "nothing");
+    throw InputError(s.at, s.field + "/" + value_names().at(key).field,
+                     expected + ", required: " + value_names().at(key).where, "nothing");
   if (!ok(it->second.value))
     throw InputError(it->second.at, it->second.field, expected, "'" + num(it->second.value) + "'");
   return it->second.value;
