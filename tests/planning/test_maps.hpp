@@ -40,3 +40,19 @@ inline std::unique_ptr<octomap::OcTree> cluttered_room(std::uint64_t seed, doubl
 }
 
 }  // namespace ferret::test
+
+namespace ferret::test {
+
+/// A 12 x 8 m hidden space at 0.05 m with a floor at z = 0, known free up to 0.1 m
+/// (the miniUGV's height) except for the blocks given as [x0, x1] x [y0, y1].
+inline std::unique_ptr<octomap::OcTree> hidden_space(const std::vector<Eigen::Vector4d>& blocks,
+                                                     double res = 0.05) {
+  auto tree = std::make_unique<octomap::OcTree>(res);
+  fill_box(*tree, {0, 0, -res}, {12, 8, 0}, true);
+  fill_box(*tree, {0, 0, 0}, {12, 8, 0.1}, false);
+  for (const auto& b : blocks) fill_box(*tree, {b[0], b[2], 0}, {b[1], b[3], 0.1}, true);
+  tree->updateInnerOccupancy();
+  return tree;
+}
+
+}  // namespace ferret::test
