@@ -128,7 +128,7 @@ TEST(UrdfBadInput, EachBadValueNamesItsElement) {
       {"zero width",
        robot("<sensor name=\"cam\" parent_link_name=\"cam_link\"><camera><image width=\"0\" height=\"10\" "
              "hfov=\"1\" near=\"0\" far=\"1\"/></camera></sensor>"),
-       "sensor[cam]/camera/image@width", ">= 1"},
+       "sensor[cam]/camera/image@width", "an integer in [1, 1000000]"},
       {"ray without range", ray(kGoodScan, ""), "gazebo[cam_link]/sensor[ir]/range_min", "required: <ray><range min=..> or Gazebo"},
       {"negative range max", ray(kGoodScan, "<range><min>0.1</min><max>-2</max></range>"), ir + "range/max", "> 0"},
       {"negative range min", ray(kGoodScan, "<range><min>-0.1</min><max>2</max></range>"), ir + "range/min", ">= 0"},
@@ -136,7 +136,7 @@ TEST(UrdfBadInput, EachBadValueNamesItsElement) {
        ir + "scan/horizontal/max_angle", "fov > 0"},
       {"fractional samples",
        ray("<samples>2.5</samples><min_angle>-0.1</min_angle><max_angle>0.1</max_angle>", kGoodRange),
-       ir + "scan/horizontal/samples", ">= 1"},
+       ir + "scan/horizontal/samples", "an integer in [1, 1000000]"},
       {"sensor on a missing link", robot("<gazebo reference=\"nowhere\"><sensor type=\"imu\" name=\"imu\"/></gazebo>"),
        "gazebo[nowhere]/sensor[imu]", "a sensor on a <link> of this file"},
       {"sensor without parent", robot("<sensor name=\"cam\"><camera><image/></camera></sensor>"),

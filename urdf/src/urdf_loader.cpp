@@ -461,8 +461,8 @@ CameraSensor make_camera(const SensorSpec& s, const Pose3& X_BS) {
   c.depth = s.kind == SensorSpec::Kind::kDepth;
   c.horizontal_fov_rad =
       need(s, "hfov", [](double v) { return v > 0.0 && v < kPi; }, "a horizontal fov in (0, pi) radians");
-  c.image_width_px = static_cast<int>(need(s, "width", is_count, "an image width >= 1 (pixels)"));
-  c.image_height_px = static_cast<int>(need(s, "height", is_count, "an image height >= 1 (pixels)"));
+  c.image_width_px = static_cast<int>(need(s, "width", is_count, "an image width in pixels, an integer in [1, 1000000]"));
+  c.image_height_px = static_cast<int>(need(s, "height", is_count, "an image height in pixels, an integer in [1, 1000000]"));
   c.range_min_m = need(s, "near", [](double v) { return v >= 0.0; }, "a clip near >= 0 (metres)");
   const auto far = s.values.find("far");
   c.range_max_m = need(s, "far", [](double v) { return v > 0.0; }, "a clip far > 0 (metres)");
@@ -481,7 +481,7 @@ RangeSensor make_range_sensor(const SensorSpec& s, const Pose3& X_BS) {
   r.link = s.link;
   r.X_BS = X_BS;
   auto angle_ok = [](double v) { return v >= -kPi && v <= kPi; };
-  r.samples = static_cast<int>(need(s, "samples", is_count, "a number of samples >= 1"));
+  r.samples = static_cast<int>(need(s, "samples", is_count, "a number of samples, an integer in [1, 1000000]"));
   r.min_angle_rad = need(s, "min_angle", angle_ok, "an angle in [-pi, pi] radians");
   r.max_angle_rad = need(s, "max_angle", angle_ok, "an angle in [-pi, pi] radians");
   const auto& max_angle = s.values.at("max_angle");
