@@ -76,7 +76,9 @@ TEST(UgvPlanner, PlansAroundObstaclesWithinTheTether) {
 
 TEST(UgvPlanner, RejectsBadEndpoints) {
   const auto map = hidden_map({{3, 4, 0, 6}});
-  UgvPlanner planner(map, frame());
+  UgvPlannerOptions opt;
+  opt.time_limit_s = 0.2;
+  UgvPlanner planner(map, frame(), {}, opt);
   UgvPlanRequest req;
   req.start = {1.0, 4.0, 0.0};
   req.tether = {15.0, 1.0};

@@ -1,0 +1,58 @@
+#pragma once
+// The UAV approach planner: OMPL in position + yaw (R^3 x SO2) from the current pose
+// to a hover pose (over a landing point near a hidden-space opening), inside a
+// geofence and an altitude band, collision-checked with FCL against the world
+// OctoMap for the UAV's shape, or for the UAV with the miniUGV hanging on its
+// tether (the transport leg). The path is simplified, then re-validated pose by
+// pose with FCL alone at the resolution `ferret validate` uses.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ferret/planning/collision_map.hpp"
+#include "ferret/planning/motion_check.hpp"
+#include "ferret/planning/robot_shape.hpp"
+
+namespace ferret {
+
+struct UavPlannerOptions {
+  Aabb3 geofence{{-30.0, -30.0, 0.5}, {30.0, 30.0, 8.0}};  ///< x, y fence; z is the altitude band
+  std::string planner = "rrtconnect";  ///< see ompl_planner_names()
+  double time_limit_s = 1.0;
+  double simplify_time_s = 0.05;       ///< OMPL path simplification budget
+  CheckResolution resolution{0.05, 0.1};
+  double range_m = 0.0;                ///< planner range; 0 = the planner's default
+  std::uint64_t seed = 1;              ///< seeds OMPL once per process (seed_ompl_once)
+  double max_velocity_mps = 5.0;       ///< for time stamps (MissionConfig::uav_limits)
+  double max_yaw_rate_radps = 1.0;
+};
+
+struct UavPlan {
+  bool solved = false;
+  std::string status;
+  std::vector<Waypoint> states;
+  double planning_time_s = 0.0;
+};
+
+class UavPlanner {
+ public:
+  UavPlanner(std::shared_ptr<const CollisionMap> map, RobotShape shape, const UavPlannerOptions& options = {});
+  ~UavPlanner();
+  [[nodiscard]] UavPlan plan(const Waypoint& start, const Waypoint& goal);
+  [[nodiscard]] CollisionChecker& checker() { return *checker_; }
+  [[nodiscard]] const UavPlannerOptions& options() const { return options_; }
+
+  struct Problem;  ///< the OMPL setup, shared with bench-plan (uav_problem below)
+  /// The OMPL problem of a plan request (SpaceInformation with this planner's
+  /// validity checker and motion validator, start and goal).
+  [[nodiscard]] std::shared_ptr<Problem> problem(const Waypoint& start, const Waypoint& goal);
+
+ private:
+  std::shared_ptr<const CollisionMap> map_;
+  UavPlannerOptions options_;
+  std::unique_ptr<CollisionChecker> checker_;
+};
+
+}  // namespace ferret

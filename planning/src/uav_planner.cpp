@@ -1,0 +1,155 @@
+#include "ferret/planning/uav_planner.hpp"
+
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/Planner.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/PathSimplifier.h>
+
+#include <chrono>
+
+#include "ferret/planning/collision_checker.hpp"
+#include "ferret/planning/ompl_setup.hpp"
+#include "uav_problem.hpp"
+
+namespace ob = ompl::base;
+
+namespace ferret {
+namespace {
+
+Waypoint to_waypoint(const ob::State* s) {
+  const auto* c = s->as<ob::CompoundStateSpace::StateType>();
+  const auto* p = c->as<ob::RealVectorStateSpace::StateType>(0);
+  Waypoint w;
+  w.x_m = p->values[0];
+  w.y_m = p->values[1];
+  w.z_m = p->values[2];
+  w.yaw_rad = c->as<ob::SO2StateSpace::StateType>(1)->value;
+  return w;
+}
+
+void from_waypoint(const Waypoint& w, ob::State* s) {
+  auto* c = s->as<ob::CompoundStateSpace::StateType>();
+  auto* p = c->as<ob::RealVectorStateSpace::StateType>(0);
+  p->values[0] = w.x_m;
+  p->values[1] = w.y_m;
+  p->values[2] = w.z_m;
+  c->as<ob::SO2StateSpace::StateType>(1)->value = wrap_angle_rad(w.yaw_rad);
+}
+
+// Straight lines in position with the yaw turning along the shorter arc, checked at
+// the poses `ferret validate` checks.
+class LinearMotionValidator : public ob::MotionValidator {
+ public:
+  LinearMotionValidator(const ob::SpaceInformationPtr& si, CollisionChecker& checker, CheckResolution res)
+      : ob::MotionValidator(si), checker_(checker), res_(res) {}
+  bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
+    const bool ok = !first_collision(checker_, to_waypoint(s1), to_waypoint(s2), res_);
+    ++(ok ? valid_ : invalid_);
+    return ok;
+  }
+  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& last) const override {
+    const Waypoint a = to_waypoint(s1), b = to_waypoint(s2);
+    const auto hit = first_collision(checker_, a, b, res_);
+    if (!hit) {
+      ++valid_;
+      return true;
+    }
+    ++invalid_;
+    const double s = std::max(0.0, *hit - 1.0 / segment_steps(a, b, res_));
+    if (last.first) from_waypoint(interpolate(a, b, s), last.first);
+    last.second = s;
+    return false;
+  }
+
+ private:
+  CollisionChecker& checker_;
+  CheckResolution res_;
+};
+
+}  // namespace
+
+UavPlanner::UavPlanner(std::shared_ptr<const CollisionMap> map, RobotShape shape, const UavPlannerOptions& options)
+    : map_(std::move(map)), options_(options) {
+  checker_ = std::make_unique<CollisionChecker>(map_, std::move(shape));
+}
+
+UavPlanner::~UavPlanner() = default;
+
+std::shared_ptr<UavPlanner::Problem> UavPlanner::problem(const Waypoint& start, const Waypoint& goal) {
+  auto pr = std::make_shared<Problem>();
+  auto r3 = std::make_shared<ob::RealVectorStateSpace>(3);
+  ob::RealVectorBounds bounds(3);
+  for (int a = 0; a < 3; ++a) {
+    bounds.setLow(a, options_.geofence.lo[a]);
+    bounds.setHigh(a, options_.geofence.hi[a]);
+  }
+  r3->setBounds(bounds);
+  auto space = std::make_shared<ob::CompoundStateSpace>();
+  space->addSubspace(r3, 1.0);
+  space->addSubspace(std::make_shared<ob::SO2StateSpace>(), 0.5);
+  pr->space = space;
+  pr->si = std::make_shared<ob::SpaceInformation>(space);
+  CollisionChecker* checker = checker_.get();
+  const Aabb3 fence = options_.geofence;
+  pr->si->setStateValidityChecker([checker, fence](const ob::State* s) {
+    const Waypoint w = to_waypoint(s);
+    return fence.contains(w.position()) && !checker->in_collision(w.pose());
+  });
+  pr->si->setMotionValidator(std::make_shared<LinearMotionValidator>(pr->si, *checker, options_.resolution));
+  pr->si->setup();
+  pr->pdef = std::make_shared<ob::ProblemDefinition>(pr->si);
+  ob::ScopedState<> s(space), g(space);
+  from_waypoint(start, s.get());
+  from_waypoint(goal, g.get());
+  pr->pdef->setStartAndGoalStates(s, g);
+  pr->to_waypoint = to_waypoint;
+  return pr;
+}
+
+UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
+  const auto t0 = std::chrono::steady_clock::now();
+  seed_ompl_once(options_.seed);
+  UavPlan out;
+  auto fail = [&](std::string why) {
+    out.status = std::move(why);
+    out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+  };
+  for (const auto& [w, name] : {std::pair{start, "start"}, std::pair{goal, "goal"}}) {
+    if (!options_.geofence.contains(w.position())) return fail(std::string(name) + " outside the geofence");
+    if (checker_->in_collision(w.pose())) return fail(std::string(name) + " in collision");
+  }
+  auto pr = problem(start, goal);
+  auto planner = make_ompl_planner(options_.planner, pr->si);
+  if (options_.range_m > 0.0 && planner->params().hasParam("range"))
+    planner->params().setParam("range", std::to_string(options_.range_m));
+  planner->setProblemDefinition(pr->pdef);
+  planner->setup();
+  const ob::PlannerStatus status = planner->solve(ob::timedPlannerTerminationCondition(options_.time_limit_s));
+  if (status != ob::PlannerStatus::EXACT_SOLUTION) return fail("no path found within the time limit");
+  auto& path = *pr->pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+  ompl::geometric::PathSimplifier simplifier(pr->si);
+  simplifier.simplify(path, options_.simplify_time_s);
+  std::vector<Waypoint> states;
+  for (const ob::State* s : path.getStates()) states.push_back(to_waypoint(s));
+  assign_times(states, options_.max_velocity_mps, options_.max_yaw_rate_radps);
+  // Simplified paths can touch invalid regions (OMPL #221, #1292): check every
+  // segment again with FCL alone.
+  for (std::size_t k = 1; k < states.size(); ++k) {
+    if (!options_.geofence.contains(states[k].position()) ||
+        first_collision(*checker_, states[k - 1], states[k], options_.resolution, /*exact=*/true))
+      return fail("final path failed exact validation");
+  }
+  out.solved = true;
+  out.status = "solved";
+  out.states = std::move(states);
+  out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace ferret
