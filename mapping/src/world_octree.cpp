@@ -23,6 +23,9 @@ namespace {
 constexpr int kTreeDepth = 16;        // OctoMap's fixed depth
 constexpr int kKeyOffset = 1 << 15;   // key of the voxel whose lower corner is 0
 constexpr double kTol_m = 1e-9;       // same face tolerance as the primitives' contains()
+// A world that would need more nodes than this is refused rather than exhausting
+// memory (about 50 bytes a node measured; the default world needs 2.5 million).
+constexpr std::size_t kMaxNodes = 60'000'000;
 
 // ---------------------------------------------------------------------------------
 // Building
@@ -178,6 +181,12 @@ class WorldVoxelizer {
       const State s = classify(kc, half, cands, child_cands);
       if (s == State::kUnknown) continue;
       octomap::OcTreeNode* child = tree_.createNodeChild(node, i);
+      if (tree_.size() > kMaxNodes)
+        throw InputError(world_.source.string(), "resolution_m",
+                         fmt::format("a resolution coarse enough for at most {} million tree nodes (about {} GB); "
+                                     "sloped ground and tilted faces cost a leaf a voxel of surface",
+                                     kMaxNodes / 1000000, kMaxNodes * 55 / 1000000000),
+                         fmt::format("{}", world_.resolution_m));
       if (s == State::kMixed) {
         fill(child, kc, half, depth + 1, child_cands);
         child->updateOccupancyChildren();

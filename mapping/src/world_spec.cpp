@@ -456,9 +456,12 @@ WorldSpec parse_world_node(const YAML::Node& root, const std::string& source) {
     if (w.find_hidden_space(h.name) >= 0) hr.fail("name", "a name not used by another hidden space", "'" + h.name + "'");
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
     for (const auto& s : h.solids()) {
-      const double rr = s.size_m.head<2>().norm() / 2;
-      lo = lo.cwiseMin(s.center_m - Eigen::Vector3d(rr, rr, s.size_m.z() / 2));
-      hi = hi.cwiseMax(s.center_m + Eigen::Vector3d(rr, rr, s.size_m.z() / 2));
+      // Half extents of the yawed box along the world axes.
+      const double c = std::abs(std::cos(s.yaw_rad)), sn = std::abs(std::sin(s.yaw_rad));
+      const Eigen::Vector3d half{(c * s.size_m.x() + sn * s.size_m.y()) / 2, (sn * s.size_m.x() + c * s.size_m.y()) / 2,
+                                 s.size_m.z() / 2};
+      lo = lo.cwiseMin(s.center_m - half);
+      hi = hi.cwiseMax(s.center_m + half);
     }
     check_inside_bounds(w, hr, "center_m", lo, hi);
     w.hidden_spaces.push_back(std::move(h));

@@ -115,6 +115,21 @@ hidden_spaces:
   EXPECT_TRUE(w.is_solid({0.45, 1.0, 0.05}));   // wall beside it
 }
 
+TEST(WorldSpec, EnclosureMayReachTheBounds) {
+  // Walls span x in [0, 1.6] and y in [-0.8, 0.8]; the bounds end 5 cm beyond them.
+  const std::string yaml = R"(
+resolution_m: 0.05
+bounds_m: {min: [-1, -0.85, -0.5], max: [1.65, 0.85, 1]}
+hidden_spaces:
+  - {name: s, center_m: [0.8, 0], interior_size_m: [1.2, 1.2, 0.4], wall_thickness_m: 0.2,
+     opening: {wall: -x, width_m: 0.15, height_m: 0.07}, marker: {id: 1, size_m: 0.1}}
+)";
+  EXPECT_NO_THROW((void)parse_world(yaml, "w.yaml"));
+  std::string tighter = yaml;
+  tighter.replace(tighter.find("1.65"), 4, "1.55");
+  expect_field(tighter, "hidden_spaces[0].center_m", "inside bounds");
+}
+
 TEST(WorldSpec, RubbleIsSeededAndKeepsClear) {
   const std::string rubble = R"(
 rubble:
