@@ -154,6 +154,9 @@ TEST(ConfigCli, BadUrdfFiles) {
       {"negative_fov.urdf", "hfov=\"1.5707963267948966\"", "hfov=\"-1.5707963267948966\"",
        "sensor[front_camera]/camera/image@hfov"},
       {"missing_fov.urdf", "hfov=\"1.5707963267948966\"", "", "sensor[front_camera]/horizontal_fov"},
+      // Only urdfdom notices a second root; its console message must come out as our one line.
+      {"two_roots.urdf", "<link name=\"imu_link\"/>", "<link name=\"imu_link\"/><link name=\"orphan\"/>",
+       "robot: expected a URDF that urdfdom accepts"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
