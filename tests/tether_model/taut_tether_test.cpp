@@ -69,6 +69,9 @@ TEST(TautTether, WrapsAroundTheCornersItIsPulledInto) {
   const double left = std::sqrt(0.25 + 4.0) + 2.0 + std::sqrt(1.0 + 9.0);
   EXPECT_NEAR(t.length_m(), left, 1e-9);
   EXPECT_EQ(t.polyline().size(), 4u);
+  // The same tether rebuilt from its recorded wrap points.
+  const TautTether copy(block_world(), V{4.5, 2}, t.wrap_points(), V{5, 9});
+  EXPECT_NEAR(copy.length_m(), left, 1e-12);
 
   // The same goal round the right side is another homotopy class, another length.
   TautTether r(block_world(), V{4.5, 2});

@@ -94,6 +94,21 @@ TautTether::TautTether(std::shared_ptr<const TetherCorners> corners, const Eigen
                        const Eigen::Vector2d& p_WR)
     : corners_(std::move(corners)), p_WE_(p_WE), p_WR_(p_WR) {}
 
+TautTether::TautTether(std::shared_ptr<const TetherCorners> corners, const Eigen::Vector2d& p_WE,
+                       std::vector<WrapPoint> wraps, const Eigen::Vector2d& p_WR)
+    : corners_(std::move(corners)), p_WE_(p_WE), p_WR_(p_WR), wraps_(std::move(wraps)) {
+  update_fixed_length();
+}
+
+void TautTether::update_fixed_length() {
+  fixed_length_m_ = 0.0;
+  Eigen::Vector2d from = p_WE_;
+  for (const auto& w : wraps_) {
+    fixed_length_m_ += (w.p_W - from).norm();
+    from = w.p_W;
+  }
+}
+
 std::vector<Eigen::Vector2d> TautTether::polyline() const {
   std::vector<Eigen::Vector2d> out{p_WE_};
   for (const auto& w : wraps_) out.push_back(w.p_W);
@@ -161,13 +176,7 @@ void TautTether::move_to(const Eigen::Vector2d& p_target) {
     if (!wrap && !unwrap) break;
     p += best_t * d;
     if (unwrap) wraps_.pop_back();
-    // The fixed part changed: recompute it (a handful of segments).
-    fixed_length_m_ = 0.0;
-    Eigen::Vector2d from = p_WE_;
-    for (const auto& w : wraps_) {
-      fixed_length_m_ += (w.p_W - from).norm();
-      from = w.p_W;
-    }
+    update_fixed_length();  // a handful of segments
   }
   p_WR_ = p_target;
 }

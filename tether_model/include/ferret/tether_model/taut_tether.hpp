@@ -84,6 +84,10 @@ class TautTether {
   TautTether(std::shared_ptr<const TetherCorners> corners, const Eigen::Vector2d& p_WE)
       : TautTether(std::move(corners), p_WE, p_WE) {}
 
+  /// A tether that already bends at `wraps` (as a plan file records it), robot at p_WR.
+  TautTether(std::shared_ptr<const TetherCorners> corners, const Eigen::Vector2d& p_WE, std::vector<WrapPoint> wraps,
+             const Eigen::Vector2d& p_WR);
+
   /// Drives the robot in a straight line to p_W, wrapping and unwrapping corners.
   void move_to(const Eigen::Vector2d& p_W);
 
@@ -103,6 +107,7 @@ class TautTether {
   Eigen::Vector2d p_WR_;
   std::vector<WrapPoint> wraps_;
   double fixed_length_m_ = 0.0;  ///< entry to the last wrap point
+  void update_fixed_length();
 };
 
 /// The released tether l_0 + taut length must not exceed L (paper sect. III-A:
