@@ -46,7 +46,8 @@ struct Options {
 };
 
 void run(const Options& o) {
-  if (!o.dump) throw InputError("ferret config", "--dump", "the --dump flag (the only action so far)");
+  if (!o.dump)
+    throw InputError("ferret config", "--dump", "the --dump flag (the only action so far)");
   std::string mission_source = "(built-in defaults)";
   MissionConfig mission;
   if (!o.config.empty()) {
@@ -60,23 +61,28 @@ void run(const Options& o) {
 
   std::string text = "# ferret effective configuration (ferret config --dump)\n";
   text += "robot:\n" + indent(robot_description_to_yaml(robot));
-  text += "mission:\n" + indent("source: \"" + mission_source + "\"\n" + mission_config_to_yaml(mission));
+  text += "mission:\n" +
+          indent("source: \"" + mission_source + "\"\n" + mission_config_to_yaml(mission));
   if (o.output.empty() || o.output == "-")
     std::cout << text;
   else
     write_text_atomically(o.output, text);
 }
 
-const CommandRegistration kConfig{"config", [](CLI::App& app) {
-  auto options = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("config", "Show the effective robot and mission configuration");
-  sub->add_flag("--dump", options->dump, "Print the effective configuration as YAML");
-  sub->add_option("--robot", options->robot,
-                  "Robot URDF, or a shipped model name (m100, miniugv); default: miniugv.urdf");
-  sub->add_option("--config", options->config, "Mission YAML; default: config/mission.yaml if present");
-  sub->add_option("-o,--output", options->output, "Write the YAML to this file instead of stdout");
-  sub->callback([options] { run(*options); });
-}};
+const CommandRegistration kConfig{
+    "config", [](CLI::App& app) {
+      auto options = std::make_shared<Options>();
+      auto* sub =
+          app.add_subcommand("config", "Show the effective robot and mission configuration");
+      sub->add_flag("--dump", options->dump, "Print the effective configuration as YAML");
+      sub->add_option("--robot", options->robot,
+                      "Robot URDF, or a shipped model name (m100, miniugv); default: miniugv.urdf");
+      sub->add_option("--config", options->config,
+                      "Mission YAML; default: config/mission.yaml if present");
+      sub->add_option("-o,--output", options->output,
+                      "Write the YAML to this file instead of stdout");
+      sub->callback([options] { run(*options); });
+    }};
 
 }  // namespace
 }  // namespace ferret::cli

@@ -33,7 +33,9 @@ std::string edited_miniugv(const std::string& from, const std::string& to) {
   return xml;
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 /// The section of a dump from `key` to the next line at the same indentation, with its
 /// final newline.
@@ -43,10 +45,11 @@ std::string section(const std::string& dump, const std::string& key) {
   const auto line_start = dump.rfind('\n', start) + 1;
   const std::string indent(start - line_start, ' ');
   auto end = dump.find("\n" + indent, start + key.size());
-  while (end != std::string::npos && dump.size() > end + 1 + indent.size() && dump[end + 1 + indent.size()] == ' ')
+  while (end != std::string::npos && dump.size() > end + 1 + indent.size() &&
+         dump[end + 1 + indent.size()] == ' ')
     end = dump.find("\n" + indent, end + 1);
-  return dump.substr(start, end == std::string::npos ? std::string::npos : end - start + 1);  // with its '\n'
-
+  return dump.substr(
+      start, end == std::string::npos ? std::string::npos : end - start + 1);  // with its '\n'
 }
 
 /// Checks the usual bad-input contract: exit 2, one line on stderr naming `file` and `field`.
@@ -75,7 +78,8 @@ TEST(ConfigCli, DumpShowsSensorsFromTheDefaultUrdfAndTheMission) {
   EXPECT_TRUE(contains(r.out, "size: [0.13, 0.12, 0.055]")) << r.out;
   EXPECT_TRUE(contains(r.out, "source: \"config/mission.yaml\"")) << r.out;
   const std::string curiosity = section(r.out, "curiosity:");
-  EXPECT_TRUE(contains(curiosity, "a: -0.5\n") && contains(curiosity, "b: 0.1\n") && contains(curiosity, "K: 0.62"))
+  EXPECT_TRUE(contains(curiosity, "a: -0.5\n") && contains(curiosity, "b: 0.1\n") &&
+              contains(curiosity, "K: 0.62"))
       << curiosity;
 }
 
@@ -128,7 +132,8 @@ TEST(ConfigCli, OutputFileIsWrittenWholeOrNotAtAll) {
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_TRUE(contains(read_text(dir / "effective.yaml"), "ir_array:"));
   write_text(dir / "bad.urdf", "<robot name=\"x\"><link name=\"a\">");
-  const auto bad = run_cli("config --dump --robot '" + dir / "bad.urdf" + "' -o '" + dir / "second.yaml" + "'");
+  const auto bad =
+      run_cli("config --dump --robot '" + dir / "bad.urdf" + "' -o '" + dir / "second.yaml" + "'");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_FALSE(fs::exists(dir / "second.yaml"));
   EXPECT_EQ(dir.count(), 2u);  // effective.yaml and bad.urdf: no temporary left behind
@@ -141,21 +146,27 @@ TEST(ConfigCli, BadUrdfFiles) {
   };
   const Case cases[] = {
       {"malformed.urdf", "</robot>", "</robt>", "xml"},
-      {"missing_link.urdf", "<child link=\"imu_link\"/>", "<child link=\"imu_lnk\"/>", "joint[imu_joint]/child@link"},
+      {"missing_link.urdf", "<child link=\"imu_link\"/>", "<child link=\"imu_lnk\"/>",
+       "joint[imu_joint]/child@link"},
       {"negative_size.urdf", "<box size=\"0.130 0.090 0.040\"/></geometry></collision>",
-       "<box size=\"0.130 0.090 -0.040\"/></geometry></collision>", "link[chassis_link]/collision[0]/geometry/box@size"},
-      {"zero_radius.urdf", "<collision><origin rpy=\"1.5707963267948966 0 0\"/><geometry><cylinder radius=\"0.020\"",
+       "<box size=\"0.130 0.090 -0.040\"/></geometry></collision>",
+       "link[chassis_link]/collision[0]/geometry/box@size"},
+      {"zero_radius.urdf",
+       "<collision><origin rpy=\"1.5707963267948966 0 0\"/><geometry><cylinder radius=\"0.020\"",
        "<collision><origin rpy=\"1.5707963267948966 0 0\"/><geometry><cylinder radius=\"0\"",
        "link[front_left_wheel_link]/collision[0]/geometry/cylinder@radius"},
       {"negative_range.urdf", "near=\"0.05\" far=\"4.0\"", "near=\"0.05\" far=\"-4.0\"",
        "sensor[front_camera]/camera/image@far"},
-      {"missing_range.urdf", "<range><min>0.02</min><max>4.0</max><resolution>0.01</resolution></range>", "",
+      {"missing_range.urdf",
+       "<range><min>0.02</min><max>4.0</max><resolution>0.01</resolution></range>", "",
        "gazebo[ir_left_link]/sensor[ir_left]/range_min"},
       {"negative_fov.urdf", "hfov=\"1.5707963267948966\"", "hfov=\"-1.5707963267948966\"",
        "sensor[front_camera]/camera/image@hfov"},
-      {"missing_fov.urdf", "hfov=\"1.5707963267948966\"", "", "sensor[front_camera]/horizontal_fov"},
+      {"missing_fov.urdf", "hfov=\"1.5707963267948966\"", "",
+       "sensor[front_camera]/horizontal_fov"},
       // Only urdfdom notices a second root; its console message must come out as our one line.
-      {"two_roots.urdf", "<link name=\"imu_link\"/>", "<link name=\"imu_link\"/><link name=\"orphan\"/>",
+      {"two_roots.urdf", "<link name=\"imu_link\"/>",
+       "<link name=\"imu_link\"/><link name=\"orphan\"/>",
        "robot: expected a URDF that urdfdom accepts"},
   };
   for (const auto& c : cases) {
@@ -173,12 +184,16 @@ TEST(ConfigCli, BadMissionFiles) {
     std::string name, yaml, field;
   };
   const Case cases[] = {
-      {"wrong_type.yaml", "object_search:\n  lambda1: high\n", "object_search.lambda1: expected a number"},
+      {"wrong_type.yaml", "object_search:\n  lambda1: high\n",
+       "object_search.lambda1: expected a number"},
       {"unknown_key.yaml", "curiosty:\n  a: -0.5\n", "curiosty: expected a known key"},
       {"unknown_nested.yaml", "tether:\n  length_m: 3\n", "tether.length_m: expected a known key"},
-      {"out_of_range.yaml", "object_search:\n  lambda2: 1.5\n", "object_search.lambda2: expected a number in [0.5, 1]"},
-      {"negative_speed.yaml", "ugv_limits:\n  max_velocity_mps: -2\n", "ugv_limits.max_velocity_mps"},
-      {"inconsistent.yaml", "tether:\n  total_length_m: 1\n  entry_offset_m: 2\n", "tether.entry_offset_m"},
+      {"out_of_range.yaml", "object_search:\n  lambda2: 1.5\n",
+       "object_search.lambda2: expected a number in [0.5, 1]"},
+      {"negative_speed.yaml", "ugv_limits:\n  max_velocity_mps: -2\n",
+       "ugv_limits.max_velocity_mps"},
+      {"inconsistent.yaml", "tether:\n  total_length_m: 1\n  entry_offset_m: 2\n",
+       "tether.entry_offset_m"},
       {"syntax.yaml", "tether: [1, 2\n", "valid YAML"},
   };
   for (const auto& c : cases) {

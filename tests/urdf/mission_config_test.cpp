@@ -11,7 +11,9 @@
 namespace ferret {
 namespace {
 
-MissionConfig parse(const std::string& text) { return mission_config_from_yaml(YAML::Load(text), "mission.yaml"); }
+MissionConfig parse(const std::string& text) {
+  return mission_config_from_yaml(YAML::Load(text), "mission.yaml");
+}
 
 InputError parse_error(const std::string& text) {
   try {
@@ -32,14 +34,17 @@ TEST(MissionConfig, DefaultsAreThePapersValues) {
   EXPECT_EQ(c.object_search.lambda2, 0.95);
   EXPECT_EQ(c.ugv_limits.max_velocity_mps, 2.0);  // the paper's max velocity
   // c(p) = -(p + a)^2 / (4b) + K peaks at p = 0.5 with 0.62 and is about 0 at p = 0 and 1.
-  auto curiosity = [&](double p) { return -std::pow(p + c.curiosity.a, 2) / (4 * c.curiosity.b) + c.curiosity.K; };
+  auto curiosity = [&](double p) {
+    return -std::pow(p + c.curiosity.a, 2) / (4 * c.curiosity.b) + c.curiosity.K;
+  };
   EXPECT_NEAR(curiosity(0.5), 0.62, 1e-12);
   EXPECT_NEAR(curiosity(0.0), -0.005, 1e-12);
   EXPECT_NEAR(curiosity(1.0), -0.005, 1e-12);
 }
 
 TEST(MissionConfig, ShippedFileHoldsTheDefaults) {
-  const MissionConfig file = load_mission_config(std::string(FERRET_SOURCE_DIR) + "/config/mission.yaml");
+  const MissionConfig file =
+      load_mission_config(std::string(FERRET_SOURCE_DIR) + "/config/mission.yaml");
   EXPECT_EQ(mission_config_to_yaml(file), mission_config_to_yaml(MissionConfig{}));
 }
 
@@ -83,12 +88,15 @@ TEST(MissionConfig, OutOfRangeValues) {
   EXPECT_EQ(parse_error("object_search: {lambda2: 1.5}\n").field(), "object_search.lambda2");
   EXPECT_EQ(parse_error("object_search: {lambda1: -0.1}\n").field(), "object_search.lambda1");
   EXPECT_EQ(parse_error("curiosity: {b: 0}\n").field(), "curiosity.b");
-  EXPECT_EQ(parse_error("ugv_limits: {max_velocity_mps: 0}\n").field(), "ugv_limits.max_velocity_mps");
+  EXPECT_EQ(parse_error("ugv_limits: {max_velocity_mps: 0}\n").field(),
+            "ugv_limits.max_velocity_mps");
   EXPECT_EQ(parse_error("tether: {total_length_m: -1}\n").field(), "tether.total_length_m");
   EXPECT_EQ(parse_error("object_search: {eta_m: .nan}\n").field(), "object_search.eta_m");
   // Inconsistent pairs name the field that breaks the relation.
-  EXPECT_EQ(parse_error("object_search: {conf_floor: 0.9, conf_cap: 0.8}\n").field(), "object_search.conf_floor");
-  EXPECT_EQ(parse_error("tether: {total_length_m: 2, entry_offset_m: 2}\n").field(), "tether.entry_offset_m");
+  EXPECT_EQ(parse_error("object_search: {conf_floor: 0.9, conf_cap: 0.8}\n").field(),
+            "object_search.conf_floor");
+  EXPECT_EQ(parse_error("tether: {total_length_m: 2, entry_offset_m: 2}\n").field(),
+            "tether.entry_offset_m");
 }
 
 TEST(MissionConfig, MissingFile) {

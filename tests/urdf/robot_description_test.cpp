@@ -14,7 +14,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kTol = 1e-9;
 
-std::string models(const std::string& name) { return std::string(FERRET_SOURCE_DIR) + "/urdf/models/" + name; }
+std::string models(const std::string& name) {
+  return std::string(FERRET_SOURCE_DIR) + "/urdf/models/" + name;
+}
 
 /// A robot around a body box, with extra XML inside <robot>.
 std::string robot_xml(const std::string& extra) {
@@ -24,7 +26,8 @@ std::string robot_xml(const std::string& extra) {
   <link name="sensor_link"/>
   <joint name="sensor_joint" type="fixed"><parent link="base_link"/><child link="sensor_link"/>
     <origin xyz="0.1 0 0.02" rpy="0 0 0"/></joint>
-)" + extra + "</robot>\n";
+)" + extra +
+         "</robot>\n";
 }
 
 RobotDescription from(const std::string& xml, const MissionConfig& mission = {}) {
@@ -63,7 +66,7 @@ TEST(MiniUgvModel, CameraAndIrMatchThePaperExperiments) {
   EXPECT_EQ(cam.image_width_px, 640);
   EXPECT_EQ(cam.image_height_px, 480);
   EXPECT_NEAR(cam.vertical_fov_rad, 2 * std::atan(0.75), kTol);  // tan(45 deg) * 480/640
-  EXPECT_DOUBLE_EQ(cam.range_max_m, 4.0);                         // D_cam
+  EXPECT_DOUBLE_EQ(cam.range_max_m, 4.0);                        // D_cam
   expect_vec(cam.X_BS.translation(), {0.062, 0.0, 0.045});
   expect_vec(cam.X_BS.linear().col(0), {1, 0, 0});  // looks forward
 
@@ -114,7 +117,8 @@ TEST(M100Model, RotorsDepthCameraAndWinch) {
   EXPECT_EQ(r.kind, RobotKind::kUav);
   EXPECT_DOUBLE_EQ(r.limits.max_velocity_mps, MissionConfig{}.uav_limits.max_velocity_mps);
   // 650 mm motor to motor across the diagonal.
-  const auto d = r.frame("rotor_front_left_link").translation() - r.frame("rotor_rear_right_link").translation();
+  const auto d = r.frame("rotor_front_left_link").translation() -
+                 r.frame("rotor_rear_right_link").translation();
   EXPECT_NEAR(d.norm(), 0.65, 1e-9);
   int props = 0;
   for (const auto& s : r.collision_shapes)

@@ -38,16 +38,19 @@ Failure load_failure(const std::string& xml) {
 
 std::string robot(const std::string& body) {
   return "<?xml version=\"1.0\"?>\n<robot name=\"bad\">\n"
-         "<link name=\"base_link\"><collision><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision></link>\n"
+         "<link name=\"base_link\"><collision><geometry><box size=\"0.1 0.1 "
+         "0.1\"/></geometry></collision></link>\n"
          "<link name=\"cam_link\"/>\n"
-         "<joint name=\"cam_joint\" type=\"fixed\"><parent link=\"base_link\"/><child link=\"cam_link\"/></joint>\n" +
+         "<joint name=\"cam_joint\" type=\"fixed\"><parent link=\"base_link\"/><child "
+         "link=\"cam_link\"/></joint>\n" +
          body + "\n</robot>\n";
 }
 // Line of the first line of `body` in robot(body).
 constexpr int kBodyLine = 6;
 
 std::string gazebo_camera(const std::string& camera) {
-  return "<gazebo reference=\"cam_link\"><sensor type=\"camera\" name=\"cam\">" + camera + "</sensor></gazebo>";
+  return "<gazebo reference=\"cam_link\"><sensor type=\"camera\" name=\"cam\">" + camera +
+         "</sensor></gazebo>";
 }
 const std::string kGoodImage = "<image><width>640</width><height>480</height></image>";
 
@@ -75,8 +78,9 @@ TEST(UrdfBadInput, RootMustBeRobot) {
 }
 
 TEST(UrdfBadInput, JointNamingAMissingLink) {
-  const auto f = load_failure(robot(
-      "<joint name=\"j\" type=\"fixed\"><parent link=\"base_link\"/><child link=\"ghost\"/></joint>"));
+  const auto f =
+      load_failure(robot("<joint name=\"j\" type=\"fixed\"><parent link=\"base_link\"/><child "
+                         "link=\"ghost\"/></joint>"));
   EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine));
   EXPECT_EQ(f.field, "joint[j]/child@link");
   EXPECT_EQ(f.expected, "the name of a <link> in this file");
@@ -84,19 +88,23 @@ TEST(UrdfBadInput, JointNamingAMissingLink) {
 }
 
 std::string shape(const std::string& geometry) {
-  return robot("<link name=\"s\"><collision><geometry>" + geometry + "</geometry></collision></link>");
+  return robot("<link name=\"s\"><collision><geometry>" + geometry +
+               "</geometry></collision></link>");
 }
 
 std::string ray(const std::string& scan, const std::string& range) {
-  return robot("<gazebo reference=\"cam_link\"><sensor type=\"ray\" name=\"ir\"><ray><scan><horizontal>" + scan +
-               "</horizontal></scan>" + range + "</ray></sensor></gazebo>");
+  return robot(
+      "<gazebo reference=\"cam_link\"><sensor type=\"ray\" name=\"ir\"><ray><scan><horizontal>" +
+      scan + "</horizontal></scan>" + range + "</ray></sensor></gazebo>");
 }
-const std::string kGoodScan = "<samples>3</samples><min_angle>-0.1</min_angle><max_angle>0.1</max_angle>";
+const std::string kGoodScan =
+    "<samples>3</samples><min_angle>-0.1</min_angle><max_angle>0.1</max_angle>";
 const std::string kGoodRange = "<range><min>0.1</min><max>2</max></range>";
 
 std::string camera_clip(const std::string& hfov, const std::string& near, const std::string& far) {
-  return robot(gazebo_camera("<camera><horizontal_fov>" + hfov + "</horizontal_fov>" + kGoodImage + "<clip><near>" +
-                             near + "</near><far>" + far + "</far></clip></camera>"));
+  return robot(gazebo_camera("<camera><horizontal_fov>" + hfov + "</horizontal_fov>" + kGoodImage +
+                             "<clip><near>" + near + "</near><far>" + far +
+                             "</far></clip></camera>"));
 }
 
 /// One bad URDF, the field the error must name and a part of what it must expect.
@@ -108,45 +116,60 @@ TEST(UrdfBadInput, EachBadValueNamesItsElement) {
   const std::string cam = "gazebo[cam_link]/sensor[cam]/camera/";
   const std::string ir = "gazebo[cam_link]/sensor[ir]/ray/";
   const BadCase cases[] = {
-      {"negative box", shape("<box size=\"0.1 -0.2 0.3\"/>"), "link[s]/collision[0]/geometry/box@size",
-       "3 numbers > 0 (metres)"},
-      {"zero box", shape("<box size=\"0.1 0 0.3\"/>"), "link[s]/collision[0]/geometry/box@size", "> 0"},
-      {"short box", shape("<box size=\"0.1 0.3\"/>"), "link[s]/collision[0]/geometry/box@size", "3 numbers"},
+      {"negative box", shape("<box size=\"0.1 -0.2 0.3\"/>"),
+       "link[s]/collision[0]/geometry/box@size", "3 numbers > 0 (metres)"},
+      {"zero box", shape("<box size=\"0.1 0 0.3\"/>"), "link[s]/collision[0]/geometry/box@size",
+       "> 0"},
+      {"short box", shape("<box size=\"0.1 0.3\"/>"), "link[s]/collision[0]/geometry/box@size",
+       "3 numbers"},
       {"sizeless box", shape("<box/>"), "link[s]/collision[0]/geometry/box@size", "3 numbers"},
-      {"zero radius", shape("<cylinder radius=\"0\" length=\"1\"/>"), "link[s]/collision[0]/geometry/cylinder@radius",
-       "a number > 0 (metres)"},
+      {"zero radius", shape("<cylinder radius=\"0\" length=\"1\"/>"),
+       "link[s]/collision[0]/geometry/cylinder@radius", "a number > 0 (metres)"},
       {"negative length", shape("<cylinder radius=\"0.1\" length=\"-1\"/>"),
        "link[s]/collision[0]/geometry/cylinder@length", "> 0"},
-      {"negative sphere", shape("<sphere radius=\"-0.5\"/>"), "link[s]/collision[0]/geometry/sphere@radius", "> 0"},
-      {"text radius", shape("<sphere radius=\"big\"/>"), "link[s]/collision[0]/geometry/sphere@radius", "> 0"},
-      {"negative fov", camera_clip("-1", "0.1", "4"), cam + "horizontal_fov", "a horizontal fov in (0, pi) radians"},
+      {"negative sphere", shape("<sphere radius=\"-0.5\"/>"),
+       "link[s]/collision[0]/geometry/sphere@radius", "> 0"},
+      {"text radius", shape("<sphere radius=\"big\"/>"),
+       "link[s]/collision[0]/geometry/sphere@radius", "> 0"},
+      {"negative fov", camera_clip("-1", "0.1", "4"), cam + "horizontal_fov",
+       "a horizontal fov in (0, pi) radians"},
       {"fov past pi", camera_clip("3.5", "0.1", "4"), cam + "horizontal_fov", "(0, pi)"},
       {"text fov", camera_clip("wide", "0.1", "4"), cam + "horizontal_fov", "a number"},
       {"negative far", camera_clip("1", "0.1", "-4"), cam + "clip/far", "> 0"},
-      {"far before near", camera_clip("1", "5", "4"), cam + "clip/far", "clip far > clip near (5 m)"},
+      {"far before near", camera_clip("1", "5", "4"), cam + "clip/far",
+       "clip far > clip near (5 m)"},
       {"negative near", camera_clip("1", "-0.1", "4"), cam + "clip/near", ">= 0"},
       {"zero width",
-       robot("<sensor name=\"cam\" parent_link_name=\"cam_link\"><camera><image width=\"0\" height=\"10\" "
+       robot("<sensor name=\"cam\" parent_link_name=\"cam_link\"><camera><image width=\"0\" "
+             "height=\"10\" "
              "hfov=\"1\" near=\"0\" far=\"1\"/></camera></sensor>"),
        "sensor[cam]/camera/image@width", "an integer in [1, 1000000]"},
-      {"ray without range", ray(kGoodScan, ""), "gazebo[cam_link]/sensor[ir]/range_min", "required: <ray><range min=..> or Gazebo"},
-      {"negative range max", ray(kGoodScan, "<range><min>0.1</min><max>-2</max></range>"), ir + "range/max", "> 0"},
-      {"negative range min", ray(kGoodScan, "<range><min>-0.1</min><max>2</max></range>"), ir + "range/min", ">= 0"},
-      {"negative ray fov", ray("<samples>3</samples><min_angle>0.1</min_angle><max_angle>-0.1</max_angle>", kGoodRange),
+      {"ray without range", ray(kGoodScan, ""), "gazebo[cam_link]/sensor[ir]/range_min",
+       "required: <ray><range min=..> or Gazebo"},
+      {"negative range max", ray(kGoodScan, "<range><min>0.1</min><max>-2</max></range>"),
+       ir + "range/max", "> 0"},
+      {"negative range min", ray(kGoodScan, "<range><min>-0.1</min><max>2</max></range>"),
+       ir + "range/min", ">= 0"},
+      {"negative ray fov",
+       ray("<samples>3</samples><min_angle>0.1</min_angle><max_angle>-0.1</max_angle>", kGoodRange),
        ir + "scan/horizontal/max_angle", "fov > 0"},
       {"fractional samples",
-       ray("<samples>2.5</samples><min_angle>-0.1</min_angle><max_angle>0.1</max_angle>", kGoodRange),
+       ray("<samples>2.5</samples><min_angle>-0.1</min_angle><max_angle>0.1</max_angle>",
+           kGoodRange),
        ir + "scan/horizontal/samples", "an integer in [1, 1000000]"},
-      {"sensor on a missing link", robot("<gazebo reference=\"nowhere\"><sensor type=\"imu\" name=\"imu\"/></gazebo>"),
+      {"sensor on a missing link",
+       robot("<gazebo reference=\"nowhere\"><sensor type=\"imu\" name=\"imu\"/></gazebo>"),
        "gazebo[nowhere]/sensor[imu]", "a sensor on a <link> of this file"},
       {"sensor without parent", robot("<sensor name=\"cam\"><camera><image/></camera></sensor>"),
        "sensor[cam]/parent@link", "the link"},
-      {"sensor without type", robot("<sensor name=\"cam\" parent_link_name=\"cam_link\"/>"), "sensor[cam]",
-       "a <camera> or <ray> element"},
-      {"sensor named like a link", robot("<gazebo reference=\"cam_link\"><sensor type=\"imu\" name=\"cam_link\"/></gazebo>"),
+      {"sensor without type", robot("<sensor name=\"cam\" parent_link_name=\"cam_link\"/>"),
+       "sensor[cam]", "a <camera> or <ray> element"},
+      {"sensor named like a link",
+       robot("<gazebo reference=\"cam_link\"><sensor type=\"imu\" name=\"cam_link\"/></gazebo>"),
        "gazebo[cam_link]/sensor[cam_link]", "not also a link name"},
       {"two sensors of one name",
-       robot("<gazebo reference=\"cam_link\"><sensor type=\"imu\" name=\"a\"/><sensor type=\"imu\" name=\"a\"/></gazebo>"),
+       robot("<gazebo reference=\"cam_link\"><sensor type=\"imu\" name=\"a\"/><sensor type=\"imu\" "
+             "name=\"a\"/></gazebo>"),
        "gazebo[cam_link]/sensor[a]", "a unique sensor name"},
   };
   for (const auto& c : cases) {
@@ -159,17 +182,21 @@ TEST(UrdfBadInput, EachBadValueNamesItsElement) {
 }
 
 TEST(UrdfBadInput, ErrorsPointAtTheLine) {
-  EXPECT_EQ(load_failure(shape("<box size=\"1 1 -1\"/>")).source, "bad.urdf:" + std::to_string(kBodyLine));
-  EXPECT_EQ(load_failure(camera_clip("1", "0.1", "-4")).source, "bad.urdf:" + std::to_string(kBodyLine));
+  EXPECT_EQ(load_failure(shape("<box size=\"1 1 -1\"/>")).source,
+            "bad.urdf:" + std::to_string(kBodyLine));
+  EXPECT_EQ(load_failure(camera_clip("1", "0.1", "-4")).source,
+            "bad.urdf:" + std::to_string(kBodyLine));
 }
 
 TEST(UrdfBadInput, MeshCollisionAndMalformedOrigin) {
-  auto f = load_failure(robot(
-      "<link name=\"m\"><collision><geometry><mesh filename=\"m.stl\"/></geometry></collision></link>"));
+  auto f =
+      load_failure(robot("<link name=\"m\"><collision><geometry><mesh "
+                         "filename=\"m.stl\"/></geometry></collision></link>"));
   EXPECT_EQ(f.field, "link[m]/collision[0]/geometry");
   EXPECT_NE(f.expected.find("box, cylinder or sphere"), std::string::npos);
-  f = load_failure(robot(
-      "<link name=\"o\"><collision><origin xyz=\"1 2\"/><geometry><sphere radius=\"1\"/></geometry></collision></link>"));
+  f =
+      load_failure(robot("<link name=\"o\"><collision><origin xyz=\"1 2\"/><geometry><sphere "
+                         "radius=\"1\"/></geometry></collision></link>"));
   EXPECT_EQ(f.field, "link[o]/collision[0]/origin@xyz");
   EXPECT_EQ(f.expected, "three numbers");
 }
@@ -191,19 +218,22 @@ TEST(UrdfBadInput, UrdfdomRejectionIsCapturedIntoOneLine) {
 }
 
 TEST(UrdfBadInput, CameraWithoutRange) {
-  const auto f = load_failure(robot(gazebo_camera("<camera><horizontal_fov>1</horizontal_fov>" + kGoodImage +
-                                                  "<clip><near>0.1</near></clip></camera>")));
+  const auto f =
+      load_failure(robot(gazebo_camera("<camera><horizontal_fov>1</horizontal_fov>" + kGoodImage +
+                                       "<clip><near>0.1</near></clip></camera>")));
   EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine));
   EXPECT_NE(f.field.find("gazebo[cam_link]/sensor[cam]"), std::string::npos);
   EXPECT_EQ(f.field, "gazebo[cam_link]/sensor[cam]/clip_far");
-  EXPECT_NE(f.expected.find("required: <image far=..> or Gazebo <clip><far>"), std::string::npos) << f.expected;
+  EXPECT_NE(f.expected.find("required: <image far=..> or Gazebo <clip><far>"), std::string::npos)
+      << f.expected;
 }
 
 TEST(UrdfBadInput, ConflictingUrdfAndGazeboDeclarations) {
-  const auto f = load_failure(robot(
-      "<sensor name=\"cam\" parent_link_name=\"cam_link\"><camera><image width=\"640\" height=\"480\" hfov=\"1.5\" "
-      "near=\"0.1\" far=\"4\"/></camera></sensor>\n" +
-      gazebo_camera("<camera><horizontal_fov>1.2</horizontal_fov></camera>")));
+  const auto f =
+      load_failure(robot("<sensor name=\"cam\" parent_link_name=\"cam_link\"><camera><image "
+                         "width=\"640\" height=\"480\" hfov=\"1.5\" "
+                         "near=\"0.1\" far=\"4\"/></camera></sensor>\n" +
+                         gazebo_camera("<camera><horizontal_fov>1.2</horizontal_fov></camera>")));
   EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine + 1));
   EXPECT_EQ(f.field, "gazebo[cam_link]/sensor[cam]/camera/horizontal_fov");
   EXPECT_NE(f.expected.find("sensor[cam]/camera/image@hfov"), std::string::npos) << f.expected;

@@ -12,15 +12,18 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 void read_limits(const yaml::MapReader& r, MotionLimits& l) {
   r.allow_only({"max_velocity_mps", "max_acceleration_mps2", "max_yaw_rate_radps"});
   l.max_velocity_mps = r.get_in_range_or("max_velocity_mps", 1e-6, kInf, l.max_velocity_mps);
-  l.max_acceleration_mps2 = r.get_in_range_or("max_acceleration_mps2", 1e-6, kInf, l.max_acceleration_mps2);
+  l.max_acceleration_mps2 =
+      r.get_in_range_or("max_acceleration_mps2", 1e-6, kInf, l.max_acceleration_mps2);
   l.max_yaw_rate_radps = r.get_in_range_or("max_yaw_rate_radps", 1e-6, kInf, l.max_yaw_rate_radps);
 }
 
 void emit_limits(YAML::Emitter& e, const char* name, const MotionLimits& l) {
   e << YAML::Key << name << YAML::Value << YAML::BeginMap;
   e << YAML::Key << "max_velocity_mps" << YAML::Value << internal::yaml_number(l.max_velocity_mps);
-  e << YAML::Key << "max_acceleration_mps2" << YAML::Value << internal::yaml_number(l.max_acceleration_mps2);
-  e << YAML::Key << "max_yaw_rate_radps" << YAML::Value << internal::yaml_number(l.max_yaw_rate_radps);
+  e << YAML::Key << "max_acceleration_mps2" << YAML::Value
+    << internal::yaml_number(l.max_acceleration_mps2);
+  e << YAML::Key << "max_yaw_rate_radps" << YAML::Value
+    << internal::yaml_number(l.max_yaw_rate_radps);
   e << YAML::EndMap;
 }
 }  // namespace
@@ -49,8 +52,10 @@ MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string
   }
   if (const auto r = root.optional_child("tether")) {
     r->allow_only({"total_length_m", "entry_offset_m"});
-    c.tether.total_length_m = r->get_in_range_or("total_length_m", 1e-3, kInf, c.tether.total_length_m);
-    c.tether.entry_offset_m = r->get_in_range_or("entry_offset_m", 0.0, kInf, c.tether.entry_offset_m);
+    c.tether.total_length_m =
+        r->get_in_range_or("total_length_m", 1e-3, kInf, c.tether.total_length_m);
+    c.tether.entry_offset_m =
+        r->get_in_range_or("entry_offset_m", 0.0, kInf, c.tether.entry_offset_m);
     if (c.tether.entry_offset_m >= c.tether.total_length_m)
       r->fail("entry_offset_m", "a value below tether.total_length_m");
   }
@@ -77,10 +82,13 @@ std::string mission_config_to_yaml(const MissionConfig& c) {
   e << YAML::Key << "eta_m" << YAML::Value << internal::yaml_number(o.eta_m);
   e << YAML::Key << "conf_floor" << YAML::Value << internal::yaml_number(o.conf_floor);
   e << YAML::Key << "conf_cap" << YAML::Value << internal::yaml_number(o.conf_cap);
-  e << YAML::Key << "miss_likelihood" << YAML::Value << internal::yaml_number(o.miss_likelihood) << YAML::EndMap;
+  e << YAML::Key << "miss_likelihood" << YAML::Value << internal::yaml_number(o.miss_likelihood)
+    << YAML::EndMap;
   e << YAML::Key << "tether" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "total_length_m" << YAML::Value << internal::yaml_number(c.tether.total_length_m);
-  e << YAML::Key << "entry_offset_m" << YAML::Value << internal::yaml_number(c.tether.entry_offset_m) << YAML::EndMap;
+  e << YAML::Key << "total_length_m" << YAML::Value
+    << internal::yaml_number(c.tether.total_length_m);
+  e << YAML::Key << "entry_offset_m" << YAML::Value
+    << internal::yaml_number(c.tether.entry_offset_m) << YAML::EndMap;
   emit_limits(e, "ugv_limits", c.ugv_limits);
   emit_limits(e, "uav_limits", c.uav_limits);
   e << YAML::EndMap;

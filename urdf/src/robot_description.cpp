@@ -38,7 +38,8 @@ Eigen::AlignedBox3d CollisionShape::aabb_B() const {
       // The axis contributes |a_i| L/2; the end discs contribute r sqrt(1 - a_i^2).
       const Eigen::Vector3d a = R.col(2);
       for (int i = 0; i < 3; ++i)
-        half[i] = std::abs(a[i]) * length_m / 2.0 + radius_m * std::sqrt(std::max(0.0, 1.0 - a[i] * a[i]));
+        half[i] = std::abs(a[i]) * length_m / 2.0 +
+                  radius_m * std::sqrt(std::max(0.0, 1.0 - a[i] * a[i]));
       break;
     }
     case Type::kSphere:
@@ -53,11 +54,14 @@ double CollisionShape::xy_reach_m() const {
   // Distance from the z axis is convex, so its maximum over a convex shape is at an
   // extreme point: a box corner, or a point on a cylinder's rim.
   double reach = 0.0;
-  auto consider = [&](const Eigen::Vector3d& p_BP) { reach = std::max(reach, p_BP.head<2>().norm()); };
+  auto consider = [&](const Eigen::Vector3d& p_BP) {
+    reach = std::max(reach, p_BP.head<2>().norm());
+  };
   switch (type) {
     case Type::kBox:
       for (int corner = 0; corner < 8; ++corner) {
-        const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1, (corner & 4) ? 1 : -1);
+        const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1,
+                                   (corner & 4) ? 1 : -1);
         consider(X_BS * sign.cwiseProduct(box_size_m / 2.0));
       }
       break;
@@ -91,8 +95,9 @@ const CameraSensor* RobotDescription::find_camera(std::string_view camera_name) 
 
 const CameraSensor& RobotDescription::camera(std::string_view camera_name) const {
   if (const auto* c = find_camera(camera_name)) return *c;
-  throw InputError(source, "sensor[" + std::string(camera_name) + "]",
-                   "a camera sensor named '" + std::string(camera_name) + "' (docs/configuration.md)", "none");
+  throw InputError(
+      source, "sensor[" + std::string(camera_name) + "]",
+      "a camera sensor named '" + std::string(camera_name) + "' (docs/configuration.md)", "none");
 }
 
 const CameraSensor& RobotDescription::depth_camera() const {
@@ -111,8 +116,8 @@ const RangeSensor* RobotDescription::find_range_sensor(std::string_view sensor_n
 const Pose3& RobotDescription::frame(std::string_view frame_name) const {
   const auto it = frames.find(std::string(frame_name));
   if (it == frames.end())
-    throw InputError(source, std::string(frame_name), "a link or sensor named '" + std::string(frame_name) + "'",
-                     "none");
+    throw InputError(source, std::string(frame_name),
+                     "a link or sensor named '" + std::string(frame_name) + "'", "none");
   return it->second;
 }
 
@@ -121,15 +126,18 @@ IrArray RobotDescription::ir_array() const {
   for (const auto& r : range_sensors)
     if (r.name.rfind("ir", 0) == 0) ir.push_back(&r);
   if (ir.empty())
-    throw InputError(source, "sensor[ir_*]", "one or more ray sensors whose names start with 'ir'", "none");
+    throw InputError(source, "sensor[ir_*]", "one or more ray sensors whose names start with 'ir'",
+                     "none");
 
   // Beam yaw in B; sensors are taken as level (their scan plane parallel to B's xy).
   auto yaw_B = [](const RangeSensor& r, double angle) {
-    const Eigen::Vector3d d_B = r.X_BS.linear() * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
+    const Eigen::Vector3d d_B =
+        r.X_BS.linear() * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
     return std::atan2(d_B.y(), d_B.x());
   };
   // Measure every edge relative to the first sensor's middle, so a fov across +-pi works.
-  const double ref = yaw_B(*ir.front(), (ir.front()->min_angle_rad + ir.front()->max_angle_rad) / 2.0);
+  const double ref =
+      yaw_B(*ir.front(), (ir.front()->min_angle_rad + ir.front()->max_angle_rad) / 2.0);
   double lo = 0.0, hi = 0.0;
   IrArray out;
   out.range_min_m = 0.0;
@@ -143,7 +151,8 @@ IrArray RobotDescription::ir_array() const {
     out.range_min_m = std::max(out.range_min_m, r->range_min_m);
     out.range_max_m = std::min(out.range_max_m, r->range_max_m);
     for (int i = 0; i < r->samples; ++i)
-      out.beams.push_back(IrBeam{r->name, r->X_BS.translation().head<2>(), yaw_B(*r, r->beam_angle_rad(i))});
+      out.beams.push_back(
+          IrBeam{r->name, r->X_BS.translation().head<2>(), yaw_B(*r, r->beam_angle_rad(i))});
   }
   out.fov_rad = hi - lo;
   out.center_yaw_B_rad = wrap_angle_rad(ref + (lo + hi) / 2.0);
@@ -201,7 +210,8 @@ void emit_sensor_tail(YAML::Emitter& e, const Sensor& s) {
 
 void emit_frame(YAML::Emitter& e, const char* key, const std::optional<Frame>& f) {
   if (!f) return;
-  e << YAML::Key << key << YAML::Value << YAML::BeginMap << YAML::Key << "link" << YAML::Value << f->name;
+  e << YAML::Key << key << YAML::Value << YAML::BeginMap << YAML::Key << "link" << YAML::Value
+    << f->name;
   emit_pose(e, "X_BF", f->X_BF);
   e << YAML::EndMap;
 }
@@ -228,7 +238,8 @@ std::string robot_description_to_yaml(const RobotDescription& r) {
   emit_key_number(e, "max_velocity_mps", r.limits.max_velocity_mps);
   emit_key_number(e, "max_acceleration_mps2", r.limits.max_acceleration_mps2);
   emit_key_number(e, "max_yaw_rate_radps", r.limits.max_yaw_rate_radps);
-  if (r.wheel_speed_limit_mps) emit_key_number(e, "wheel_speed_limit_mps", clean(*r.wheel_speed_limit_mps));
+  if (r.wheel_speed_limit_mps)
+    emit_key_number(e, "wheel_speed_limit_mps", clean(*r.wheel_speed_limit_mps));
   e << YAML::EndMap;
 
   e << YAML::Key << "cameras" << YAML::Value << YAML::BeginSeq;
@@ -308,7 +319,8 @@ std::filesystem::path find_model(std::string_view file_name) {
   std::vector<fs::path> tried{fs::path("urdf") / "models" / file_name};
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) tried.push_back(exe.parent_path().parent_path() / "share" / "ferret" / "models" / file_name);
+  if (!ec)
+    tried.push_back(exe.parent_path().parent_path() / "share" / "ferret" / "models" / file_name);
 #ifdef FERRET_URDF_MODELS_DIR
   tried.push_back(fs::path(FERRET_URDF_MODELS_DIR) / file_name);
 #endif

@@ -43,8 +43,8 @@ class XmlSource {
   [[nodiscard]] std::string at(const TiXmlNode* node) const {
     return node != nullptr ? source_ + ":" + std::to_string(node->Row()) : source_;
   }
-  [[noreturn]] void fail(const TiXmlNode* node, const std::string& field, const std::string& expected,
-                         const std::string& got = {}) const {
+  [[noreturn]] void fail(const TiXmlNode* node, const std::string& field,
+                         const std::string& expected, const std::string& got = {}) const {
     throw InputError(at(node), field, expected, got);
   }
   [[nodiscard]] const std::string& source() const { return source_; }
@@ -56,7 +56,9 @@ class XmlSource {
 /// Shortest round-trip form of a number, for messages.
 std::string num(double v) { return fmt::format("{}", v); }
 
-std::string quoted(const char* text) { return text == nullptr ? "nothing" : "'" + std::string(text) + "'"; }
+std::string quoted(const char* text) {
+  return text == nullptr ? "nothing" : "'" + std::string(text) + "'";
+}
 
 /// Whitespace-separated finite numbers; nullopt when any token is not one.
 std::optional<std::vector<double>> parse_numbers(const char* text) {
@@ -115,15 +117,16 @@ Pose3 read_origin(const XmlSource& src, const TiXmlElement* origin, const std::s
 }
 
 /// A positive size attribute of a collision primitive.
-void check_positive(const XmlSource& src, const TiXmlElement* e, const char* key, const std::string& field,
-                    std::size_t count) {
+void check_positive(const XmlSource& src, const TiXmlElement* e, const char* key,
+                    const std::string& field, std::size_t count) {
   const char* text = e->Attribute(key);
   auto values = parse_numbers(text);
   bool ok = values && values->size() == count;
   if (ok)
     for (const double v : *values) ok = ok && v > 0.0;
   if (!ok) {
-    const std::string what = count == 1 ? "a number > 0 (metres)" : std::to_string(count) + " numbers > 0 (metres)";
+    const std::string what =
+        count == 1 ? "a number > 0 (metres)" : std::to_string(count) + " numbers > 0 (metres)";
     src.fail(e, field + "@" + key, what, text == nullptr ? "nothing" : quoted(text));
   }
 }
@@ -136,7 +139,8 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
        link = link->NextSiblingElement("link")) {
     const std::string name = attr_or_empty(link, "name");
     if (name.empty()) src.fail(link, "link@name", "a link name");
-    if (!links.insert(name).second) src.fail(link, "link[" + name + "]", "a unique link name", "a duplicate");
+    if (!links.insert(name).second)
+      src.fail(link, "link[" + name + "]", "a unique link name", "a duplicate");
     int index = 0;
     for (const TiXmlElement* col = link->FirstChildElement("collision"); col != nullptr;
          col = col->NextSiblingElement("collision"), ++index) {
@@ -144,7 +148,8 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
       (void)read_origin(src, col->FirstChildElement("origin"), field + "/origin");
       const TiXmlElement* geometry = col->FirstChildElement("geometry");
       const TiXmlElement* shape = geometry != nullptr ? geometry->FirstChildElement() : nullptr;
-      if (shape == nullptr) src.fail(col, field + "/geometry", "a <geometry> with a box, cylinder or sphere");
+      if (shape == nullptr)
+        src.fail(col, field + "/geometry", "a <geometry> with a box, cylinder or sphere");
       const std::string type = shape->Value();
       const std::string shape_field = field + "/geometry/" + type;
       if (type == "box") {
@@ -156,7 +161,8 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
         check_positive(src, shape, "radius", shape_field, 1);
       } else {
         src.fail(shape, field + "/geometry",
-                 "a box, cylinder or sphere (planning needs primitive collision shapes)", "<" + type + ">");
+                 "a box, cylinder or sphere (planning needs primitive collision shapes)",
+                 "<" + type + ">");
       }
     }
   }
@@ -174,7 +180,8 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
       if (link.empty())
         src.fail(e != nullptr ? e : joint, field + "/" + role + "@link", "the name of a link");
       if (links.count(link) == 0)
-        src.fail(e, field + "/" + role + "@link", "the name of a <link> in this file", "'" + link + "'");
+        src.fail(e, field + "/" + role + "@link", "the name of a <link> in this file",
+                 "'" + link + "'");
     }
   }
 }
@@ -212,7 +219,9 @@ urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const XmlSource& src, const std
     console_bridge::restorePreviousOutputHandler();
   }
   if (model) return model;
-  std::string why = !exception.empty() ? exception : output.messages.empty() ? "" : output.messages.front();
+  std::string why = !exception.empty()        ? exception
+                    : output.messages.empty() ? ""
+                                              : output.messages.front();
   for (char& c : why)
     if (c == '\n' || c == '\r') c = ' ';
   throw InputError(src.source(), "robot", "a URDF that urdfdom accepts",
@@ -229,12 +238,13 @@ Pose3 to_pose(const urdf::Pose& p) {
 }
 
 /// X_BL of every link at zero joint positions, walking the tree from the root.
-void place_links(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& link, const Pose3& X_BL,
-                 std::map<std::string, Pose3>& X_B) {
+void place_links(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& link,
+                 const Pose3& X_BL, std::map<std::string, Pose3>& X_B) {
   X_B[link->name] = X_BL;
   for (const auto& joint : link->child_joints) {
     const auto child = model.getLink(joint->child_link_name);
-    if (child) place_links(model, child, X_BL * to_pose(joint->parent_to_joint_origin_transform), X_B);
+    if (child)
+      place_links(model, child, X_BL * to_pose(joint->parent_to_joint_origin_transform), X_B);
   }
 }
 
@@ -273,8 +283,10 @@ const std::map<std::string, ValueName>& value_names() {
       {"near", {"clip_near", "<image near=..> or Gazebo <clip><near>"}},
       {"far", {"clip_far", "<image far=..> or Gazebo <clip><far>"}},
       {"samples", {"samples", "<horizontal samples=..> or Gazebo <scan><horizontal><samples>"}},
-      {"min_angle", {"min_angle", "<horizontal min_angle=..> or Gazebo <scan><horizontal><min_angle>"}},
-      {"max_angle", {"max_angle", "<horizontal max_angle=..> or Gazebo <scan><horizontal><max_angle>"}},
+      {"min_angle",
+       {"min_angle", "<horizontal min_angle=..> or Gazebo <scan><horizontal><min_angle>"}},
+      {"max_angle",
+       {"max_angle", "<horizontal max_angle=..> or Gazebo <scan><horizontal><max_angle>"}},
       {"range_min", {"range_min", "<ray><range min=..> or Gazebo <ray><range><min>"}},
       {"range_max", {"range_max", "<ray><range max=..> or Gazebo <ray><range><max>"}},
   };
@@ -295,8 +307,8 @@ void attr_value(const XmlSource& src, SensorSpec& s, const std::string& key, con
 }
 
 /// Gazebo style: the number is the element's text, <parent><child>1.0</child></parent>.
-void text_value(const XmlSource& src, SensorSpec& s, const std::string& key, const TiXmlElement* parent,
-                const char* child, const std::string& field) {
+void text_value(const XmlSource& src, SensorSpec& s, const std::string& key,
+                const TiXmlElement* parent, const char* child, const std::string& field) {
   if (parent == nullptr) return;
   const TiXmlElement* e = parent->FirstChildElement(child);
   if (e == nullptr) return;
@@ -317,7 +329,8 @@ SensorSpec read_urdf_sensor(const XmlSource& src, const TiXmlElement* e) {
   s.field = "sensor[" + s.name + "]";
   s.from_urdf = true;
   s.link = attr_or_empty(e, "parent_link_name");
-  if (const TiXmlElement* parent = e->FirstChildElement("parent")) s.link = attr_or_empty(parent, "link");
+  if (const TiXmlElement* parent = e->FirstChildElement("parent"))
+    s.link = attr_or_empty(parent, "link");
   if (s.link.empty()) src.fail(e, s.field + "/parent@link", "the link the sensor is attached to");
   if (const TiXmlElement* origin = e->FirstChildElement("origin")) {
     s.X_LS = read_origin(src, origin, s.field + "/origin");
@@ -330,12 +343,14 @@ SensorSpec read_urdf_sensor(const XmlSource& src, const TiXmlElement* e) {
     const TiXmlElement* image = camera->FirstChildElement("image");
     if (image == nullptr) src.fail(camera, s.field + "/camera/image", "an <image> element");
     const std::string f = s.field + "/camera/image";
-    for (const char* key : {"hfov", "width", "height", "near", "far"}) attr_value(src, s, key, image, key, f);
+    for (const char* key : {"hfov", "width", "height", "near", "far"})
+      attr_value(src, s, key, image, key, f);
   } else if (const TiXmlElement* ray = e->FirstChildElement("ray")) {
     s.kind = SensorSpec::Kind::kRay;
     const TiXmlElement* h = ray->FirstChildElement("horizontal");
     const std::string f = s.field + "/ray/horizontal";
-    for (const char* key : {"samples", "min_angle", "max_angle"}) attr_value(src, s, key, h, key, f);
+    for (const char* key : {"samples", "min_angle", "max_angle"})
+      attr_value(src, s, key, h, key, f);
     const TiXmlElement* range = ray->FirstChildElement("range");
     attr_value(src, s, "range_min", range, "min", s.field + "/ray/range");
     attr_value(src, s, "range_max", range, "max", s.field + "/ray/range");
@@ -346,15 +361,18 @@ SensorSpec read_urdf_sensor(const XmlSource& src, const TiXmlElement* e) {
 }
 
 SensorSpec::Kind gazebo_kind(const std::string& type) {
-  if (type == "camera" || type == "wideanglecamera" || type == "multicamera") return SensorSpec::Kind::kCamera;
+  if (type == "camera" || type == "wideanglecamera" || type == "multicamera")
+    return SensorSpec::Kind::kCamera;
   if (type == "depth" || type == "depth_camera" || type == "rgbd_camera" || type == "rgbd")
     return SensorSpec::Kind::kDepth;
-  if (type == "ray" || type == "gpu_ray" || type == "lidar" || type == "gpu_lidar") return SensorSpec::Kind::kRay;
+  if (type == "ray" || type == "gpu_ray" || type == "lidar" || type == "gpu_lidar")
+    return SensorSpec::Kind::kRay;
   return SensorSpec::Kind::kOther;
 }
 
 /// Gazebo style: <gazebo reference="L"><sensor type="camera|depth|ray" name="..">.
-SensorSpec read_gazebo_sensor(const XmlSource& src, const TiXmlElement* e, const std::string& link) {
+SensorSpec read_gazebo_sensor(const XmlSource& src, const TiXmlElement* e,
+                              const std::string& link) {
   SensorSpec s;
   s.name = attr_or_empty(e, "name");
   const std::string type = attr_or_empty(e, "type");
@@ -368,8 +386,10 @@ SensorSpec read_gazebo_sensor(const XmlSource& src, const TiXmlElement* e, const
   if (const TiXmlElement* pose = e->FirstChildElement("pose")) {
     auto values = parse_numbers(pose->GetText() != nullptr ? pose->GetText() : "");
     if (!values || values->size() != 6)
-      src.fail(pose, s.field + "/pose", "six numbers: x y z roll pitch yaw", quoted(pose->GetText()));
-    s.X_LS = pose_from_xyz_rpy({(*values)[0], (*values)[1], (*values)[2]}, {(*values)[3], (*values)[4], (*values)[5]});
+      src.fail(pose, s.field + "/pose", "six numbers: x y z roll pitch yaw",
+               quoted(pose->GetText()));
+    s.X_LS = pose_from_xyz_rpy({(*values)[0], (*values)[1], (*values)[2]},
+                               {(*values)[3], (*values)[4], (*values)[5]});
     s.pose_at = src.at(pose);
     s.pose_field = s.field + "/pose";
   }
@@ -413,11 +433,15 @@ void merge_into(SensorSpec& into, const SensorSpec& from) {
   };
   if (into.link != from.link)
     conflict(from.at, from.field, "the same link ('" + into.link + "')", into.at);
-  const bool into_camera = into.kind == SensorSpec::Kind::kCamera || into.kind == SensorSpec::Kind::kDepth;
-  const bool from_camera = from.kind == SensorSpec::Kind::kCamera || from.kind == SensorSpec::Kind::kDepth;
-  if (into_camera != from_camera || (into.kind == SensorSpec::Kind::kRay) != (from.kind == SensorSpec::Kind::kRay))
+  const bool into_camera =
+      into.kind == SensorSpec::Kind::kCamera || into.kind == SensorSpec::Kind::kDepth;
+  const bool from_camera =
+      from.kind == SensorSpec::Kind::kCamera || from.kind == SensorSpec::Kind::kDepth;
+  if (into_camera != from_camera ||
+      (into.kind == SensorSpec::Kind::kRay) != (from.kind == SensorSpec::Kind::kRay))
     conflict(from.at, from.field + "@type", "the same sensor type", into.at);
-  if (from.kind == SensorSpec::Kind::kDepth) into.kind = SensorSpec::Kind::kDepth;  // only Gazebo knows depth
+  if (from.kind == SensorSpec::Kind::kDepth)
+    into.kind = SensorSpec::Kind::kDepth;  // only Gazebo knows depth
   if (from.X_LS) {
     if (into.X_LS && !into.X_LS->isApprox(*from.X_LS, 1e-9))
       conflict(from.pose_at, from.pose_field, "the same pose", into.pose_at);
@@ -426,15 +450,16 @@ void merge_into(SensorSpec& into, const SensorSpec& from) {
   for (const auto& [key, v] : from.values) {
     const auto it = into.values.find(key);
     if (it != into.values.end() && !same_value(it->second.value, v.value))
-      conflict(v.at, v.field, "the value " + num(it->second.value), it->second.at + " (" + it->second.field + ")",
-               "'" + num(v.value) + "'");
+      conflict(v.at, v.field, "the value " + num(it->second.value),
+               it->second.at + " (" + it->second.field + ")", "'" + num(v.value) + "'");
     into.values[key] = v;
   }
 }
 
 /// A required value checked against a predicate; errors point at the value's own
 /// element, or at the sensor when the value is missing.
-double need(const SensorSpec& s, const std::string& key, bool (*ok)(double), const std::string& expected) {
+double need(const SensorSpec& s, const std::string& key, bool (*ok)(double),
+            const std::string& expected) {
   const auto it = s.values.find(key);
   if (it == s.values.end())
     throw InputError(s.at, s.field + "/" + value_names().at(key).field,
@@ -447,7 +472,8 @@ double need(const SensorSpec& s, const std::string& key, bool (*ok)(double), con
 double optional_rate(const SensorSpec& s) {
   const auto it = s.values.find("update_rate");
   if (it == s.values.end()) return 0.0;
-  if (!(it->second.value > 0.0)) throw InputError(it->second.at, it->second.field, "a rate > 0 (Hz)");
+  if (!(it->second.value > 0.0))
+    throw InputError(it->second.at, it->second.field, "a rate > 0 (Hz)");
   return it->second.value;
 }
 
@@ -459,18 +485,25 @@ CameraSensor make_camera(const SensorSpec& s, const Pose3& X_BS) {
   c.link = s.link;
   c.X_BS = X_BS;
   c.depth = s.kind == SensorSpec::Kind::kDepth;
-  c.horizontal_fov_rad =
-      need(s, "hfov", [](double v) { return v > 0.0 && v < kPi; }, "a horizontal fov in (0, pi) radians");
-  c.image_width_px = static_cast<int>(need(s, "width", is_count, "an image width in pixels, an integer in [1, 1000000]"));
-  c.image_height_px = static_cast<int>(need(s, "height", is_count, "an image height in pixels, an integer in [1, 1000000]"));
-  c.range_min_m = need(s, "near", [](double v) { return v >= 0.0; }, "a clip near >= 0 (metres)");
+  c.horizontal_fov_rad = need(
+      s, "hfov", [](double v) { return v > 0.0 && v < kPi; },
+      "a horizontal fov in (0, pi) radians");
+  c.image_width_px = static_cast<int>(
+      need(s, "width", is_count, "an image width in pixels, an integer in [1, 1000000]"));
+  c.image_height_px = static_cast<int>(
+      need(s, "height", is_count, "an image height in pixels, an integer in [1, 1000000]"));
+  c.range_min_m = need(
+      s, "near", [](double v) { return v >= 0.0; }, "a clip near >= 0 (metres)");
   const auto far = s.values.find("far");
-  c.range_max_m = need(s, "far", [](double v) { return v > 0.0; }, "a clip far > 0 (metres)");
+  c.range_max_m = need(
+      s, "far", [](double v) { return v > 0.0; }, "a clip far > 0 (metres)");
   if (c.range_max_m <= c.range_min_m)
-    throw InputError(far->second.at, far->second.field, "a clip far > clip near (" + num(c.range_min_m) + " m)",
+    throw InputError(far->second.at, far->second.field,
+                     "a clip far > clip near (" + num(c.range_min_m) + " m)",
                      "'" + num(c.range_max_m) + "'");
   // Square pixels: tan(v/2) / tan(h/2) = height / width.
-  c.vertical_fov_rad = 2.0 * std::atan(std::tan(c.horizontal_fov_rad / 2.0) * c.image_height_px / c.image_width_px);
+  c.vertical_fov_rad =
+      2.0 * std::atan(std::tan(c.horizontal_fov_rad / 2.0) * c.image_height_px / c.image_width_px);
   c.update_rate_hz = optional_rate(s);
   return c;
 }
@@ -481,16 +514,20 @@ RangeSensor make_range_sensor(const SensorSpec& s, const Pose3& X_BS) {
   r.link = s.link;
   r.X_BS = X_BS;
   auto angle_ok = [](double v) { return v >= -kPi && v <= kPi; };
-  r.samples = static_cast<int>(need(s, "samples", is_count, "a number of samples, an integer in [1, 1000000]"));
+  r.samples = static_cast<int>(
+      need(s, "samples", is_count, "a number of samples, an integer in [1, 1000000]"));
   r.min_angle_rad = need(s, "min_angle", angle_ok, "an angle in [-pi, pi] radians");
   r.max_angle_rad = need(s, "max_angle", angle_ok, "an angle in [-pi, pi] radians");
   const auto& max_angle = s.values.at("max_angle");
   if (r.max_angle_rad < r.min_angle_rad || (r.samples > 1 && r.max_angle_rad == r.min_angle_rad))
-    throw InputError(max_angle.at, max_angle.field,
-                     std::string("an angle ") + (r.samples > 1 ? ">" : ">=") + " min_angle (a fov > 0)",
-                     "'" + num(r.max_angle_rad) + "'");
-  r.range_min_m = need(s, "range_min", [](double v) { return v >= 0.0; }, "a range min >= 0 (metres)");
-  r.range_max_m = need(s, "range_max", [](double v) { return v > 0.0; }, "a range max > 0 (metres)");
+    throw InputError(
+        max_angle.at, max_angle.field,
+        std::string("an angle ") + (r.samples > 1 ? ">" : ">=") + " min_angle (a fov > 0)",
+        "'" + num(r.max_angle_rad) + "'");
+  r.range_min_m = need(
+      s, "range_min", [](double v) { return v >= 0.0; }, "a range min >= 0 (metres)");
+  r.range_max_m = need(
+      s, "range_max", [](double v) { return v > 0.0; }, "a range max > 0 (metres)");
   if (r.range_max_m <= r.range_min_m) {
     const auto& v = s.values.at("range_max");
     throw InputError(v.at, v.field, "a range max > range min (" + num(r.range_min_m) + " m)",
@@ -500,8 +537,8 @@ RangeSensor make_range_sensor(const SensorSpec& s, const Pose3& X_BS) {
   return r;
 }
 
-void read_sensors(const XmlSource& src, const TiXmlElement* robot, const std::map<std::string, Pose3>& X_BL,
-                  RobotDescription& out) {
+void read_sensors(const XmlSource& src, const TiXmlElement* robot,
+                  const std::map<std::string, Pose3>& X_BL, RobotDescription& out) {
   std::vector<SensorSpec> specs;
   auto add = [&](SensorSpec s, const TiXmlElement* e) {
     if (X_BL.count(s.link) == 0)
@@ -518,9 +555,11 @@ void read_sensors(const XmlSource& src, const TiXmlElement* robot, const std::ma
     }
     specs.push_back(std::move(s));
   };
-  for (const TiXmlElement* e = robot->FirstChildElement("sensor"); e != nullptr; e = e->NextSiblingElement("sensor"))
+  for (const TiXmlElement* e = robot->FirstChildElement("sensor"); e != nullptr;
+       e = e->NextSiblingElement("sensor"))
     add(read_urdf_sensor(src, e), e);
-  for (const TiXmlElement* g = robot->FirstChildElement("gazebo"); g != nullptr; g = g->NextSiblingElement("gazebo")) {
+  for (const TiXmlElement* g = robot->FirstChildElement("gazebo"); g != nullptr;
+       g = g->NextSiblingElement("gazebo")) {
     const std::string link = attr_or_empty(g, "reference");
     const TiXmlElement* first = g->FirstChildElement("sensor");
     if (first == nullptr) continue;  // materials, plugins: not ours
@@ -531,7 +570,8 @@ void read_sensors(const XmlSource& src, const TiXmlElement* robot, const std::ma
 
   for (const auto& s : specs) {
     if (X_BL.count(s.name) > 0)
-      throw InputError(s.at, s.field, "a sensor name that is not also a link name", "'" + s.name + "'");
+      throw InputError(s.at, s.field, "a sensor name that is not also a link name",
+                       "'" + s.name + "'");
     const Pose3 X_BS = X_BL.at(s.link) * s.X_LS.value_or(Pose3::Identity());
     out.frames[s.name] = X_BS;
     switch (s.kind) {
@@ -550,8 +590,8 @@ void read_sensors(const XmlSource& src, const TiXmlElement* robot, const std::ma
 
 // ---------------------------------------------------------------- geometry, roles
 
-void read_collision_shapes(const urdf::ModelInterface& model, const std::map<std::string, Pose3>& X_BL,
-                           RobotDescription& out) {
+void read_collision_shapes(const urdf::ModelInterface& model,
+                           const std::map<std::string, Pose3>& X_BL, RobotDescription& out) {
   for (const auto& [name, link] : model.links_) {
     const auto pose = X_BL.find(name);
     if (pose == X_BL.end()) continue;
@@ -589,7 +629,8 @@ void read_collision_shapes(const urdf::ModelInterface& model, const std::map<std
 /// Links are kept in URDF order for shapes and roles, so dumps are stable.
 std::vector<std::string> link_order(const TiXmlElement* robot) {
   std::vector<std::string> names;
-  for (const TiXmlElement* l = robot->FirstChildElement("link"); l != nullptr; l = l->NextSiblingElement("link"))
+  for (const TiXmlElement* l = robot->FirstChildElement("link"); l != nullptr;
+       l = l->NextSiblingElement("link"))
     names.push_back(attr_or_empty(l, "name"));
   return names;
 }
@@ -599,7 +640,8 @@ bool is_wheel_joint(const urdf::Joint& j) {
          j.child_link_name.find("wheel") != std::string::npos;
 }
 
-void read_limits(const urdf::ModelInterface& model, const MissionConfig& mission, RobotDescription& out) {
+void read_limits(const urdf::ModelInterface& model, const MissionConfig& mission,
+                 RobotDescription& out) {
   bool has_wheels = false;
   for (const auto& [name, joint] : model.joints_) {
     if (!joint || !is_wheel_joint(*joint)) continue;
@@ -608,8 +650,10 @@ void read_limits(const urdf::ModelInterface& model, const MissionConfig& mission
     const auto link = model.getLink(joint->child_link_name);
     for (const auto& col : link->collision_array) {
       if (!col || !col->geometry || col->geometry->type != urdf::Geometry::CYLINDER) continue;
-      const double v = joint->limits->velocity * static_cast<const urdf::Cylinder&>(*col->geometry).radius;
-      out.wheel_speed_limit_mps = out.wheel_speed_limit_mps ? std::min(*out.wheel_speed_limit_mps, v) : v;
+      const double v =
+          joint->limits->velocity * static_cast<const urdf::Cylinder&>(*col->geometry).radius;
+      out.wheel_speed_limit_mps =
+          out.wheel_speed_limit_mps ? std::min(*out.wheel_speed_limit_mps, v) : v;
       break;
     }
   }
@@ -631,13 +675,15 @@ void read_roles(const std::vector<std::string>& links, RobotDescription& out) {
 
 }  // namespace
 
-RobotDescription robot_description_from_string(const std::string& urdf_xml, const std::string& source,
+RobotDescription robot_description_from_string(const std::string& urdf_xml,
+                                               const std::string& source,
                                                const MissionConfig& mission) {
   const XmlSource src(source);
   TiXmlDocument doc;
   doc.Parse(urdf_xml.c_str(), nullptr, TIXML_ENCODING_UTF8);
   if (doc.Error())
-    throw InputError(source + ":" + std::to_string(doc.ErrorRow()), "xml", "well-formed XML", doc.ErrorDesc());
+    throw InputError(source + ":" + std::to_string(doc.ErrorRow()), "xml", "well-formed XML",
+                     doc.ErrorDesc());
   const TiXmlElement* robot = doc.RootElement();
   if (robot == nullptr || std::string(robot->Value()) != "robot")
     src.fail(robot, "(document)", "a <robot> root element",
@@ -656,9 +702,11 @@ RobotDescription robot_description_from_string(const std::string& urdf_xml, cons
   read_collision_shapes(*model, X_BL, out);
   // Shapes in URDF link order (urdfdom keeps links in a map).
   const auto order = link_order(robot);
-  std::stable_sort(out.collision_shapes.begin(), out.collision_shapes.end(), [&](const auto& a, const auto& b) {
-    return std::find(order.begin(), order.end(), a.link) < std::find(order.begin(), order.end(), b.link);
-  });
+  std::stable_sort(out.collision_shapes.begin(), out.collision_shapes.end(),
+                   [&](const auto& a, const auto& b) {
+                     return std::find(order.begin(), order.end(), a.link) <
+                            std::find(order.begin(), order.end(), b.link);
+                   });
   if (out.collision_shapes.empty())
     src.fail(robot, "robot", "at least one <collision> with a box, cylinder or sphere");
   out.bounding_box_B.setEmpty();
@@ -673,7 +721,8 @@ RobotDescription robot_description_from_string(const std::string& urdf_xml, cons
   return out;
 }
 
-RobotDescription load_robot_description(const std::filesystem::path& urdf_path, const MissionConfig& mission) {
+RobotDescription load_robot_description(const std::filesystem::path& urdf_path,
+                                        const MissionConfig& mission) {
   std::ifstream in(urdf_path, std::ios::binary);
   if (!in || std::filesystem::is_directory(urdf_path))
     throw InputError(urdf_path.string(), "", "a readable URDF file", "cannot open");

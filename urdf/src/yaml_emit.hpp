@@ -32,7 +32,8 @@ void emit_key_numbers(YAML::Emitter& e, const char* key, const Range& values) {
   e << YAML::EndSeq;
 }
 
-inline void emit_key_numbers(YAML::Emitter& e, const char* key, std::initializer_list<double> values) {
+inline void emit_key_numbers(YAML::Emitter& e, const char* key,
+                             std::initializer_list<double> values) {
   emit_key_numbers<std::initializer_list<double>>(e, key, values);
 }
 

@@ -28,11 +28,11 @@ namespace ferret {
 struct CollisionShape {
   enum class Type { kBox, kCylinder, kSphere };
   Type type = Type::kBox;
-  std::string link;                            ///< the URDF link the shape belongs to
+  std::string link;  ///< the URDF link the shape belongs to
   Pose3 X_BS = Pose3::Identity();
   Eigen::Vector3d box_size_m = Eigen::Vector3d::Zero();  ///< full extents (boxes)
-  double radius_m = 0.0;                       ///< cylinders and spheres
-  double length_m = 0.0;                       ///< cylinders, along S's z
+  double radius_m = 0.0;                                 ///< cylinders and spheres
+  double length_m = 0.0;                                 ///< cylinders, along S's z
 
   /// Tight axis-aligned bounding box of the shape in B.
   [[nodiscard]] Eigen::AlignedBox3d aabb_B() const;
@@ -53,8 +53,8 @@ struct CameraSensor {
   double vertical_fov_rad = 0.0;
   int image_width_px = 0;
   int image_height_px = 0;
-  double range_min_m = 0.0;  ///< clip near
-  double range_max_m = 0.0;  ///< clip far: for the object camera, D_cam of the paper
+  double range_min_m = 0.0;     ///< clip near
+  double range_max_m = 0.0;     ///< clip far: for the object camera, D_cam of the paper
   double update_rate_hz = 0.0;  ///< 0 when the URDF does not say
 };
 
@@ -80,14 +80,14 @@ struct RangeSensor {
 struct IrBeam {
   std::string sensor;
   Eigen::Vector2d p_BO = Eigen::Vector2d::Zero();  ///< beam origin in B (x, y)
-  double yaw_B_rad = 0.0;                           ///< beam direction in B
+  double yaw_B_rad = 0.0;                          ///< beam direction in B
 };
 
 /// The miniUGV's IR sensors taken together (paper: fov beta, range D_IR).
 struct IrArray {
-  double fov_rad = 0.0;      ///< beta: from the leftmost beam edge to the rightmost
-  double range_min_m = 0.0;  ///< the largest range_min of the IR sensors
-  double range_max_m = 0.0;  ///< the smallest range_max of the IR sensors (D_IR)
+  double fov_rad = 0.0;           ///< beta: from the leftmost beam edge to the rightmost
+  double range_min_m = 0.0;       ///< the largest range_min of the IR sensors
+  double range_max_m = 0.0;       ///< the smallest range_max of the IR sensors (D_IR)
   double center_yaw_B_rad = 0.0;  ///< the middle of the fov, in B
   std::vector<IrBeam> beams;
 };
@@ -104,9 +104,9 @@ enum class RobotKind { kUgv, kUav };
 [[nodiscard]] const char* to_string(RobotKind kind);
 
 struct RobotDescription {
-  std::string name;        ///< <robot name=...>
-  std::string source;      ///< the URDF file it came from
-  std::string base_link;   ///< the root link: frame B
+  std::string name;       ///< <robot name=...>
+  std::string source;     ///< the URDF file it came from
+  std::string base_link;  ///< the root link: frame B
   RobotKind kind = RobotKind::kUgv;
 
   std::vector<CollisionShape> collision_shapes;
@@ -121,10 +121,10 @@ struct RobotDescription {
   MotionLimits limits;
   std::optional<double> wheel_speed_limit_mps;  ///< from the wheel joints, if any
 
-  std::optional<Frame> epm;                ///< link `epm_link` (x out of the magnet face)
-  std::optional<Frame> imu;                ///< link `imu_link`
-  std::optional<Frame> winch_spool;        ///< link `winch_spool_link` (spool axis = z)
-  std::vector<Frame> tether_attachments;   ///< links named `tether_attach*`, in URDF order
+  std::optional<Frame> epm;               ///< link `epm_link` (x out of the magnet face)
+  std::optional<Frame> imu;               ///< link `imu_link`
+  std::optional<Frame> winch_spool;       ///< link `winch_spool_link` (spool axis = z)
+  std::vector<Frame> tether_attachments;  ///< links named `tether_attach*`, in URDF order
 
   /// Axis-aligned box around all collision shapes, in B.
   Eigen::AlignedBox3d bounding_box_B;
