@@ -8,6 +8,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "command.hpp"
 #include "ferret/core/error.hpp"
@@ -20,7 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RenderArgs {
-  std::string input, output;
+  std::string input, output, space;
+  std::vector<double> window;
   SliceOptions slice;
   RenderOptions render;
   bool annotate = true;
@@ -45,7 +47,9 @@ void run(const RenderArgs& a) {
     map = load_map_server(a.input);
   } else {
     const auto tree = load_or_build_octree(a.input, &world);
-    map = slice_octree(*tree, a.slice);
+    SliceOptions slice = a.slice;
+    slice.window_m = requested_slice_window(a.window, a.space, world);
+    map = slice_octree(*tree, slice);
   }
   MapCanvas canvas(map, a.render);
   if (world && a.annotate) draw_world_annotations(canvas, *world);
@@ -63,6 +67,8 @@ const CommandRegistration kRender{"render", [](CLI::App& app) {
   sub->add_option("-o,--output", args->output, "output PNG")->required();
   sub->add_option("--z", args->slice.z_m, "slice height for 3D maps, m")->capture_default_str();
   sub->add_option("--band", args->slice.half_band_m, "slice half band for 3D maps, m")->capture_default_str();
+  sub->add_option("--window", args->window, "3D maps: cut to x0,y0,x1,y1 (m)")->expected(4)->delimiter(',');
+  sub->add_option("--space", args->space, "world YAML: cut to a hidden space (and 0.5 m around it)");
   sub->add_option("--scale", args->render.pixels_per_cell, "pixels per cell (0: at least 800 px a side)")
       ->capture_default_str();
   sub->add_option("--grid", args->render.grid_spacing_m, "grid line spacing, m (0: none)")->capture_default_str();

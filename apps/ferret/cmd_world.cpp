@@ -9,6 +9,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "command.hpp"
 #include "ferret/core/error.hpp"
@@ -83,7 +84,8 @@ const CommandRegistration kWorld{"world", [](CLI::App& app) {
   });
 
   struct SliceArgs {
-    std::string input, output;
+    std::string input, output, space;
+    std::vector<double> window;
     SliceOptions options;
   };
   auto slice_args = std::make_shared<SliceArgs>();
@@ -93,12 +95,17 @@ const CommandRegistration kWorld{"world", [](CLI::App& app) {
   slice->add_option("--band", slice_args->options.half_band_m,
                     "voxel layers within +-band of z count (occupied if any is)")
       ->capture_default_str();
+  slice->add_option("--window", slice_args->window, "cut to x0,y0,x1,y1 (m)")->expected(4)->delimiter(',');
+  slice->add_option("--space", slice_args->space, "cut to a hidden space (and 0.5 m around it); world YAML input");
   slice->add_option("-o,--output", slice_args->output, "output map_server YAML (the PGM is written beside it)")
       ->required();
   slice->callback([slice_args] {
     require_extension(slice_args->output, {".yaml"}, "an output path ending in .yaml");
-    const auto tree = load_or_build_octree(slice_args->input);
-    const OccupancyMap2D map = slice_octree(*tree, slice_args->options);
+    std::optional<WorldSpec> world;
+    const auto tree = load_or_build_octree(slice_args->input, &world);
+    SliceOptions options = slice_args->options;
+    options.window_m = requested_slice_window(slice_args->window, slice_args->space, world);
+    const OccupancyMap2D map = slice_octree(*tree, options);
     save_map_server(map, slice_args->output);
     std::cout << fmt::format("slice at z = {} m: {} x {} cells ({} occupied, {} free, {} unknown) -> {}\n",
                              slice_args->options.z_m, map.geometry.width, map.geometry.height,

@@ -170,8 +170,15 @@ void MapCanvas::draw_pose(const Pose2& X_W, Rgb color, double length_m) {
 }
 
 void MapCanvas::draw_text(const Eigen::Vector2d& p_W, const std::string& text, Rgb color) {
-  cv::putText(impl_->image, text, impl_->pixel(p_W) + cv::Point(6, -6), cv::FONT_HERSHEY_SIMPLEX,
-              impl_->text_scale(), bgr(color), impl_->line_px() / 2 + 1, cv::LINE_AA);
+  const double scale = impl_->text_scale();
+  const int thickness = impl_->line_px() / 2 + 1;
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, thickness, &baseline);
+  // Right of the point, or left of it when the label would leave the picture.
+  cv::Point at = impl_->pixel(p_W) + cv::Point(6, -6);
+  if (at.x + size.width > impl_->image.cols) at.x -= size.width + 12;
+  if (at.y - size.height < 0) at.y += size.height + 12;
+  cv::putText(impl_->image, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, bgr(color), thickness, cv::LINE_AA);
 }
 
 Eigen::Vector2d MapCanvas::to_pixel(const Eigen::Vector2d& p_W) const { return impl_->to_pixel(p_W); }

@@ -117,13 +117,7 @@ class WorldVoxelizer {
       kmin_[a] = static_cast<long>(std::ceil(world.bounds_min_m[a] / res_ - 0.5 - 1e-9)) + kKeyOffset;
       kmax_[a] = static_cast<long>(std::floor(world.bounds_max_m[a] / res_ - 0.5 + 1e-9)) + kKeyOffset;
     }
-    boxes_ = world.boxes;
-    boxes_.insert(boxes_.end(), world.rubble.begin(), world.rubble.end());
-    for (const auto& o : world.objects) boxes_.push_back(o.box);
-    for (const auto& h : world.hidden_spaces) {
-      const auto s = h.solids();
-      boxes_.insert(boxes_.end(), s.begin(), s.end());
-    }
+    boxes_ = world.solid_boxes();
     occupied_ = tree.getClampingThresMaxLog();
     free_ = tree.getClampingThresMinLog();
     // Candidate index -1 is the ground, [0, boxes) boxes, then cylinders.
@@ -398,6 +392,32 @@ void save_octree(const octomap::OcTree& tree, const fs::path& path) {
   });
 }
 
+Eigen::Vector4d hidden_space_window(const WorldSpec& world, const std::string& name, double margin_m,
+                                    const std::string& option) {
+  const int index = world.find_hidden_space(name);
+  if (index < 0) {
+    std::string names;
+    for (const auto& h : world.hidden_spaces) names += (names.empty() ? "" : ", ") + h.name;
+    throw InputError(option, "", fmt::format("the name of a hidden space of {} ({})", world.source.string(),
+                                             names.empty() ? "it has none" : "one of: " + names),
+                     "'" + name + "'");
+  }
+  const Eigen::AlignedBox3d b = world.hidden_spaces[index].outer_bounds_m();
+  return {b.min().x() - margin_m, b.min().y() - margin_m, b.max().x() + margin_m, b.max().y() + margin_m};
+}
+
+std::optional<Eigen::Vector4d> requested_slice_window(const std::vector<double>& window, const std::string& space,
+                                                      const std::optional<WorldSpec>& world) {
+  if (!window.empty() && !space.empty()) throw InputError("--space", "", "either --space or --window, not both");
+  if (!window.empty()) {
+    if (window.size() != 4) throw InputError("--window", "", "four numbers x0,y0,x1,y1");
+    return Eigen::Vector4d(window[0], window[1], window[2], window[3]);
+  }
+  if (space.empty()) return std::nullopt;
+  if (!world) throw InputError("--space", "", "a world YAML input (hidden spaces are named there)");
+  return hidden_space_window(*world, space, 0.5, "--space");
+}
+
 OccupancyMap2D slice_octree(const octomap::OcTree& tree, const SliceOptions& options) {
   if (tree.size() == 0) throw InputError("octree", "", "a non-empty tree to slice");
   if (!std::isfinite(options.z_m) || !std::isfinite(options.half_band_m) || options.half_band_m < 0)
@@ -406,6 +426,19 @@ OccupancyMap2D slice_octree(const octomap::OcTree& tree, const SliceOptions& opt
   double x0, y0, z0, x1, y1, z1;
   tree.getMetricMin(x0, y0, z0);
   tree.getMetricMax(x1, y1, z1);
+  if (options.window_m) {
+    const Eigen::Vector4d& w = *options.window_m;
+    if (!w.allFinite() || w[2] <= w[0] || w[3] <= w[1] || w[0] >= x1 || w[2] <= x0 || w[1] >= y1 || w[3] <= y0)
+      throw InputError("--window", "", fmt::format("x0 < x1 and y0 < y1 overlapping the known extent [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}]",
+                                                   x0, x1, y0, y1),
+                       fmt::format("[{}, {}, {}, {}]", w[0], w[1], w[2], w[3]));
+    // Whole voxels: the cells the window touches (a window edge on a voxel edge,
+    // up to rounding, does not pull in the next voxel).
+    x0 = std::max(x0, std::floor(w[0] / res + 1e-9) * res);
+    y0 = std::max(y0, std::floor(w[1] / res + 1e-9) * res);
+    x1 = std::min(x1, std::ceil(w[2] / res - 1e-9) * res);
+    y1 = std::min(y1, std::ceil(w[3] / res - 1e-9) * res);
+  }
   octomap::OcTreeKey kmin, kmax;
   if (!tree.coordToKeyChecked(x0 + res / 2, y0 + res / 2, options.z_m - options.half_band_m, kmin) ||
       !tree.coordToKeyChecked(x1 - res / 2, y1 - res / 2, options.z_m + options.half_band_m, kmax))

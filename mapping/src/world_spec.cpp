@@ -120,6 +120,19 @@ bool HiddenSpace::interior_contains(const Eigen::Vector3d& p_W) const {
   return std::abs(across - opening_offset_m) <= opening_width_m / 2 && depth >= 0 && depth <= t;
 }
 
+Eigen::AlignedBox3d HiddenSpace::outer_bounds_m() const {
+  Eigen::AlignedBox3d out;
+  for (const auto& s : solids()) {
+    // Half extents of the yawed box along the world axes.
+    const double c = std::abs(std::cos(s.yaw_rad)), sn = std::abs(std::sin(s.yaw_rad));
+    const Eigen::Vector3d half{(c * s.size_m.x() + sn * s.size_m.y()) / 2, (sn * s.size_m.x() + c * s.size_m.y()) / 2,
+                               s.size_m.z() / 2};
+    out.extend(s.center_m - half);
+    out.extend(s.center_m + half);
+  }
+  return out;
+}
+
 Eigen::Vector3d HiddenSpace::to_world(const Eigen::Vector3d& p_H) const {
   const Eigen::Vector2d xy = X_WH.position() + rotate(p_H.head<2>(), X_WH.yaw_rad);
   return {xy.x(), xy.y(), floor_z_m + p_H.z()};
@@ -129,20 +142,24 @@ bool WorldSpec::in_bounds(const Eigen::Vector3d& p) const {
   return (p.array() >= bounds_min_m.array()).all() && (p.array() <= bounds_max_m.array()).all();
 }
 
+std::vector<OrientedBox> WorldSpec::solid_boxes() const {
+  std::vector<OrientedBox> out = boxes;
+  out.insert(out.end(), rubble.begin(), rubble.end());
+  for (const auto& o : objects) out.push_back(o.box);
+  for (const auto& h : hidden_spaces) {
+    const auto s = h.solids();
+    out.insert(out.end(), s.begin(), s.end());
+  }
+  return out;
+}
+
 bool WorldSpec::is_solid(const Eigen::Vector3d& p) const {
   if (!in_bounds(p)) return false;
   if (p.z() <= ground.height_at(p.x(), p.y()) + kFaceTolerance_m) return true;
-  for (const auto& b : boxes)
-    if (b.contains(p)) return true;
-  for (const auto& b : rubble)
-    if (b.contains(p)) return true;
   for (const auto& c : cylinders)
     if (c.contains(p)) return true;
-  for (const auto& o : objects)
-    if (o.box.contains(p)) return true;
-  for (const auto& h : hidden_spaces)
-    for (const auto& b : h.solids())
-      if (b.contains(p)) return true;
+  for (const auto& b : solid_boxes())
+    if (b.contains(p)) return true;
   return false;
 }
 
@@ -454,16 +471,8 @@ WorldSpec parse_world_node(const YAML::Node& root, const std::string& source) {
   for (const auto& hr : spaces) {
     HiddenSpace h = parse_hidden_space(hr, w.ground);
     if (w.find_hidden_space(h.name) >= 0) hr.fail("name", "a name not used by another hidden space", "'" + h.name + "'");
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-    for (const auto& s : h.solids()) {
-      // Half extents of the yawed box along the world axes.
-      const double c = std::abs(std::cos(s.yaw_rad)), sn = std::abs(std::sin(s.yaw_rad));
-      const Eigen::Vector3d half{(c * s.size_m.x() + sn * s.size_m.y()) / 2, (sn * s.size_m.x() + c * s.size_m.y()) / 2,
-                                 s.size_m.z() / 2};
-      lo = lo.cwiseMin(s.center_m - half);
-      hi = hi.cwiseMax(s.center_m + half);
-    }
-    check_inside_bounds(w, hr, "center_m", lo, hi);
+    const Eigen::AlignedBox3d extent = h.outer_bounds_m();
+    check_inside_bounds(w, hr, "center_m", extent.min(), extent.max());
     w.hidden_spaces.push_back(std::move(h));
   }
   for (const auto& orr : optional_list(r, "objects")) w.objects.push_back(parse_object(orr, w));

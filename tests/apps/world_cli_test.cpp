@@ -57,6 +57,21 @@ TEST(WorldCli, OtOutputAndSliceStraightFromYaml) {
   EXPECT_THAT(info.out, HasSubstr("marker: {id: 7"));
 }
 
+TEST(WorldCli, SliceOfOneHiddenSpace) {
+  TempDir dir;
+  const auto r = run_cli("world slice " + kSmall + " --space cellar -o " + (dir / "c.yaml"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const OccupancyMap2D m = load_map_server(dir / "c.yaml");
+  // Enclosure x [-0.6, 1.6], y [-1.7, -0.3], plus 0.5 m: 3.2 x 2.4 m at 2.5 cm.
+  EXPECT_EQ(m.geometry.width, 128);
+  EXPECT_EQ(m.geometry.height, 96);
+  EXPECT_EQ(m.state_at(-0.55, -1.0), CellState::kFree);  // the opening
+  const auto bad = run_cli("world slice " + kSmall + " --space attic -o " + (dir / "d.yaml"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("one of: cellar"));
+  EXPECT_EQ(dir.count(), 2u);
+}
+
 TEST(WorldCli, BadWorldYamlExitsTwoNamingFieldWithoutOutput) {
   TempDir dir;
   const std::string base = read(FERRET_SOURCE_DIR "/" + kSmall);

@@ -18,6 +18,18 @@ using test::TempDir;
 
 const std::string kSmallWorld = std::string(FERRET_SOURCE_DIR) + "/examples/worlds/small.yaml";
 
+SliceOptions at_z(double z_m, double half_band_m = 0.0) {
+  SliceOptions o;
+  o.z_m = z_m;
+  o.half_band_m = half_band_m;
+  return o;
+}
+SliceOptions windowed(double z_m, const Eigen::Vector4d& window_m) {
+  SliceOptions o = at_z(z_m);
+  o.window_m = window_m;
+  return o;
+}
+
 enum class Voxel { kUnknown, kFree, kOccupied };
 Voxel voxel_at(const octomap::OcTree& t, double x, double y, double z) {
   const octomap::OcTreeNode* n = t.search(x, y, z);
@@ -83,7 +95,7 @@ TEST_F(SmallWorld, OpeningIsPassableAtGroundLevelOnly) {
   // Flood fill the 2D slice from outside the cellar: the interior is reached
   // through the opening at z = 3 cm, not at 10 cm (above the 7.5 cm opening).
   auto reaches_interior = [&](double z) {
-    const OccupancyMap2D m = slice_octree(*tree_, {z, 0.0});
+    const OccupancyMap2D m = slice_octree(*tree_, at_z(z, 0.0));
     std::vector<char> seen(m.cells.size(), 0);
     std::deque<Cell> queue{m.geometry.cell_at(-1.5, -1.0)};
     const Cell goal = m.geometry.cell_at(0.5, -1.0);
@@ -102,7 +114,7 @@ TEST_F(SmallWorld, OpeningIsPassableAtGroundLevelOnly) {
 }
 
 TEST_F(SmallWorld, SliceMatchesVoxels) {
-  const OccupancyMap2D m = slice_octree(*tree_, {0.03, 0.0});
+  const OccupancyMap2D m = slice_octree(*tree_, at_z(0.03, 0.0));
   const double res = tree_->getResolution();
   EXPECT_DOUBLE_EQ(m.geometry.resolution_m, res);
   // Cell edges on voxel edges, covering the bounds.
@@ -122,6 +134,28 @@ TEST_F(SmallWorld, SliceMatchesVoxels) {
     }
 }
 
+TEST_F(SmallWorld, WindowCutsTheSliceOnVoxelEdges) {
+  const OccupancyMap2D full = slice_octree(*tree_, at_z(0.03, 0.0));
+  const OccupancyMap2D m = slice_octree(*tree_, windowed(0.03, Eigen::Vector4d(-1.01, -2.0, 0.0, -0.5)));
+  EXPECT_NEAR(m.geometry.origin_x_m, -1.025, 1e-9);  // widened to the voxel edge below -1.01
+  EXPECT_NEAR(m.geometry.origin_y_m, -2.0, 1e-9);
+  EXPECT_EQ(m.geometry.width, 41);
+  EXPECT_EQ(m.geometry.height, 60);
+  for (std::size_t k = 0; k < m.cells.size(); ++k) {
+    const Eigen::Vector2d c = m.geometry.center(m.geometry.cell_of_index(k));
+    ASSERT_EQ(m.cells[k], full.state_at(c.x(), c.y())) << k;
+  }
+  // The cellar's enclosure spans x [-0.6, 1.6], y [-1.7, -0.3].
+  const Eigen::Vector4d w = hidden_space_window(*world_, "cellar", 0.5, "--space");
+  EXPECT_TRUE(w.isApprox(Eigen::Vector4d(-1.1, -2.2, 2.1, 0.2))) << w.transpose();
+  EXPECT_THROW((void)hidden_space_window(*world_, "attic", 0.5, "--space"), InputError);
+  EXPECT_THROW((void)slice_octree(*tree_, windowed(0.03, Eigen::Vector4d(5, 5, 6, 6))), InputError);
+  EXPECT_THROW((void)slice_octree(*tree_, windowed(0.03, Eigen::Vector4d(1, 0, 0, 1))), InputError);
+  EXPECT_THROW((void)requested_slice_window({1, 2, 3, 4}, "cellar", *world_), InputError);
+  EXPECT_THROW((void)requested_slice_window({}, "cellar", std::nullopt), InputError);
+  EXPECT_FALSE(requested_slice_window({}, "", std::nullopt).has_value());
+}
+
 TEST(Slice, BandAndUnknownRules) {
   // Hand-made tree (0.1 m): column A occupied at layer 0; B free at layers 0 and 1;
   // C free at layer 0 only; D occupied at layer 1 only.
@@ -131,7 +165,7 @@ TEST(Slice, BandAndUnknownRules) {
   t.updateNode(0.15, 0.05, 0.15, false);
   t.updateNode(0.25, 0.05, 0.05, false);
   t.updateNode(0.35, 0.05, 0.15, true);
-  const OccupancyMap2D one = slice_octree(t, {0.05, 0.0});
+  const OccupancyMap2D one = slice_octree(t, at_z(0.05, 0.0));
   ASSERT_EQ(one.geometry.width, 4);
   ASSERT_EQ(one.geometry.height, 1);
   EXPECT_NEAR(one.geometry.origin_x_m, 0.0, 1e-9);
@@ -140,7 +174,7 @@ TEST(Slice, BandAndUnknownRules) {
   EXPECT_EQ(one.at({2, 0}), CellState::kFree);
   EXPECT_EQ(one.at({3, 0}), CellState::kUnknown);
   // Band [0.06, 0.14] spans layers 0 and 1: C is half unknown, D occupied above.
-  const OccupancyMap2D two = slice_octree(t, {0.1, 0.04});
+  const OccupancyMap2D two = slice_octree(t, at_z(0.1, 0.04));
   EXPECT_EQ(two.at({0, 0}), CellState::kOccupied);
   EXPECT_EQ(two.at({1, 0}), CellState::kFree);
   EXPECT_EQ(two.at({2, 0}), CellState::kUnknown);
@@ -155,7 +189,7 @@ TEST(Slice, CoarseLeavesCoverTheirCells) {
       for (double z : {0.05, 0.15}) t.updateNode(x, y, z, -2.0f);
   t.updateNode(0.25, 0.05, 0.05, true);
   t.prune();
-  const OccupancyMap2D m = slice_octree(t, {0.05, 0.0});
+  const OccupancyMap2D m = slice_octree(t, at_z(0.05, 0.0));
   ASSERT_EQ(m.geometry.width, 3);
   ASSERT_EQ(m.geometry.height, 2);
   EXPECT_EQ(m.count(CellState::kFree), 4u);

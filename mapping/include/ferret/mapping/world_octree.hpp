@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 #include <octomap/OcTree.h>
 
 #include "ferret/mapping/occupancy_map_2d.hpp"
@@ -45,12 +47,28 @@ void save_octree(const octomap::OcTree& tree, const std::filesystem::path& path)
 struct SliceOptions {
   double z_m = 0.03;         ///< height of the slice
   double half_band_m = 0.0;  ///< voxel layers within [z - half_band, z + half_band] count
+  /// Cut the slice to [x0, y0, x1, y1] (m), widened to whole voxels; default: the
+  /// tree's known extent.
+  std::optional<Eigen::Vector4d> window_m;
 };
+
+/// The plan window [x0, y0, x1, y1] around the enclosure of the hidden space
+/// `name`, widened by `margin_m`: to slice or render just that space. Throws
+/// InputError naming `option` (e.g. "--space") when the world has no such space.
+[[nodiscard]] Eigen::Vector4d hidden_space_window(const WorldSpec& world, const std::string& name, double margin_m,
+                                                  const std::string& option);
+
+/// The window a user asked for on the command line: `window` holds x0, y0, x1, y1
+/// (or nothing), `space` names a hidden space of `world` (0.5 m margin), or
+/// neither (no window). Errors name --window and --space.
+[[nodiscard]] std::optional<Eigen::Vector4d> requested_slice_window(const std::vector<double>& window,
+                                                                    const std::string& space,
+                                                                    const std::optional<WorldSpec>& world);
 
 /// A 2D map of the voxel layers at a height: a cell is occupied when any voxel of
 /// its column in the band is occupied, free when all of them are known free, and
-/// unknown otherwise. The grid covers the tree's known extent in x and y, cell
-/// edges on voxel edges, at the tree's resolution.
+/// unknown otherwise. The grid covers the tree's known extent in x and y (or the
+/// window, clipped to it), cell edges on voxel edges, at the tree's resolution.
 [[nodiscard]] OccupancyMap2D slice_octree(const octomap::OcTree& tree, const SliceOptions& options);
 
 /// What `ferret world info` prints.

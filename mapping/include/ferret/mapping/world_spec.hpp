@@ -6,6 +6,7 @@
 // world_octree.hpp turns it into voxels.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -80,6 +81,8 @@ struct HiddenSpace {
   [[nodiscard]] std::vector<OrientedBox> solids() const;
   /// True for a point of the free interior (including the opening's tunnel through the wall).
   [[nodiscard]] bool interior_contains(const Eigen::Vector3d& p_W) const;
+  /// Axis-aligned world box around the whole enclosure (walls, roof, floor slab).
+  [[nodiscard]] Eigen::AlignedBox3d outer_bounds_m() const;
   /// Position of a point given in H (x, y in the interior frame, z above the floor).
   [[nodiscard]] Eigen::Vector3d to_world(const Eigen::Vector3d& p_H) const;
 };
@@ -122,6 +125,8 @@ struct WorldSpec {
   std::vector<RubbleSpec> rubble_specs;
   std::vector<OrientedBox> rubble;  ///< generated from rubble_specs (deterministic)
 
+  /// Every solid box: boxes, rubble, objects and the hidden spaces' enclosures.
+  [[nodiscard]] std::vector<OrientedBox> solid_boxes() const;
   /// Ground truth: is the point solid (ground, a box, a cylinder, an enclosure,
   /// rubble or an object)? Points outside the bounds are not solid.
   [[nodiscard]] bool is_solid(const Eigen::Vector3d& p_W) const;
