@@ -28,12 +28,16 @@ struct RenderArgs {
   bool annotate = true;
 };
 
-// A map_server YAML names its image; a world YAML never has that key.
+// A map_server YAML has keys a world YAML never has (image, resolution, origin),
+// so a map_server file that lacks one of them still gets map_server's messages.
 bool is_map_server_yaml(const fs::path& path) {
   const std::string ext = path.extension().string();
   if (ext != ".yaml" && ext != ".yml") return false;
   const YAML::Node doc = yaml::load_file(path);
-  return doc.IsMap() && doc["image"].IsDefined();
+  if (!doc.IsMap()) return false;
+  for (const char* key : {"image", "resolution", "origin"})
+    if (doc[key].IsDefined()) return true;
+  return false;
 }
 
 void run(const RenderArgs& a) {

@@ -53,10 +53,12 @@ TEST(RenderCli, BadInputsExitTwoWithoutOutput) {
   write(dir / "magic.yaml", "image: magic.pgm\nresolution: 0.5\norigin: [0, 0, 0]\n");
   write(dir / "missing.yaml", "image: nowhere.pgm\nresolution: 0.5\norigin: [0, 0, 0]\n");
   write(dir / "scale.yaml", "image: cut.pgm\nresolution: 0.5\norigin: [0, 0, 0]\nmode: scale\n");
+  write(dir / "noimage.yaml", "resolution: 0.5\norigin: [0, 0, 0]\n");
   const std::pair<std::string, std::string> cases[] = {{"cut.yaml", "cut.pgm: pixels"},
                                                        {"magic.yaml", "magic.pgm: magic"},
                                                        {"missing.yaml", "missing.yaml: image"},
-                                                       {"scale.yaml", "scale.yaml: mode"}};
+                                                       {"scale.yaml", "scale.yaml: mode"},
+                                                       {"noimage.yaml", "noimage.yaml: image"}};
   const std::size_t before = dir.count();
   for (const auto& [input, message] : cases) {
     const auto r = run_cli("render " + (dir / input) + " -o " + (dir / "out.png"));
