@@ -1,0 +1,115 @@
+// PNG plot of a tether simulation run, drawn with OpenCV (kept out of the public header).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "ferret/core/atomic_file.hpp"
+#include "ferret/sim/tether_sim.hpp"
+
+namespace ferret::sim {
+namespace {
+
+struct Panel {
+  cv::Rect area;
+  double t0, t1, y0, y1;
+  [[nodiscard]] cv::Point to_px(double t, double y) const {
+    const double fx = (t - t0) / std::max(t1 - t0, 1e-9), fy = (y - y0) / std::max(y1 - y0, 1e-9);
+    return {area.x + static_cast<int>(std::lround(fx * area.width)),
+            area.y + area.height - static_cast<int>(std::lround(fy * area.height))};
+  }
+};
+
+void draw_axes(cv::Mat& img, const Panel& p, const std::string& y_label, double y_step) {
+  const cv::Scalar grid(225, 225, 225), text(40, 40, 40);
+  const double t_step = (p.t1 - p.t0) > 60 ? 10.0 : 5.0;
+  for (double t = std::ceil(p.t0 / t_step) * t_step; t <= p.t1; t += t_step) {
+    cv::line(img, p.to_px(t, p.y0), p.to_px(t, p.y1), grid, 1);
+    cv::putText(img, fmt::format("{:.0f}", t), p.to_px(t, p.y0) + cv::Point(-8, 18), cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                text, 1, cv::LINE_AA);
+  }
+  for (double y = std::ceil(p.y0 / y_step) * y_step; y <= p.y1 + 1e-9; y += y_step) {
+    cv::line(img, p.to_px(p.t0, y), p.to_px(p.t1, y), grid, 1);
+    cv::putText(img, fmt::format("{:.2f}", y), p.to_px(p.t0, y) + cv::Point(-52, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                text, 1, cv::LINE_AA);
+  }
+  cv::rectangle(img, p.area, cv::Scalar(90, 90, 90), 1);
+  cv::putText(img, y_label, cv::Point(p.area.x, p.area.y - 8), cv::FONT_HERSHEY_SIMPLEX, 0.5, text, 1, cv::LINE_AA);
+}
+
+double nice_step(double range) {
+  const double raw = range / 6.0, mag = std::pow(10.0, std::floor(std::log10(std::max(raw, 1e-9))));
+  for (const double f : {1.0, 2.0, 5.0, 10.0})
+    if (raw <= f * mag) return f * mag;
+  return 10.0 * mag;
+}
+
+template <class Get>
+void polyline(cv::Mat& img, const Panel& p, const TetherSimResult& r, Get get, const cv::Scalar& color) {
+  std::vector<cv::Point> pts;
+  pts.reserve(r.log.size());
+  for (const auto& s : r.log) pts.push_back(p.to_px(s.t_s, std::clamp(get(s), p.y0, p.y1)));
+  cv::polylines(img, pts, false, color, 1, cv::LINE_AA);
+}
+
+}  // namespace
+
+void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double total_length_m,
+                           const std::filesystem::path& path) {
+  if (r.log.empty()) throw std::invalid_argument("tether plot: empty log");
+  cv::Mat img(720, 1100, CV_8UC3, cv::Scalar(255, 255, 255));
+  const double t0 = r.log.front().t_s, t1 = r.log.back().t_s;
+  double lo = total_length_m, hi = 0.0;
+  for (const auto& s : r.log) {
+    lo = std::min({lo, s.released_m, s.required_m});
+    hi = std::max({hi, s.released_m, s.required_m});
+  }
+  const double pad = std::max(0.1, 0.05 * (hi - lo));
+  const Panel top{cv::Rect(80, 60, 990, 330), t0, t1, std::max(0.0, lo - pad), std::min(total_length_m + pad, hi + pad)};
+  double smin = -0.05, smax = max_slack_m + 0.05;
+  for (const auto& s : r.log) {
+    smin = std::min(smin, s.slack_m);
+    smax = std::max(smax, s.slack_m);
+  }
+  const Panel bottom{cv::Rect(80, 440, 990, 230), t0, t1, smin, smax};
+
+  // Snag intervals shaded in both panels.
+  for (std::size_t i = 0; i < r.log.size(); ++i) {
+    if (!r.log[i].snagged) continue;
+    const double ta = r.log[i].t_s, tb = i + 1 < r.log.size() ? r.log[i + 1].t_s : ta;
+    for (const Panel* p : {&top, &bottom})
+      cv::rectangle(img, cv::Rect(p->to_px(ta, p->y1), p->to_px(tb, p->y0)), cv::Scalar(210, 230, 255), cv::FILLED);
+  }
+  // The allowed slack band [0, s_max].
+  cv::rectangle(img, cv::Rect(bottom.to_px(t0, max_slack_m), bottom.to_px(t1, 0.0)), cv::Scalar(225, 245, 225),
+                cv::FILLED);
+  draw_axes(img, top, "tether length [m]: released l_t (blue), required (red), L (grey)", nice_step(top.y1 - top.y0));
+  draw_axes(img, bottom, "slack l_t - required [m] (green band: [0, s_max]; orange: snag)",
+            nice_step(bottom.y1 - bottom.y0));
+  if (total_length_m <= top.y1)
+    cv::line(img, top.to_px(t0, total_length_m), top.to_px(t1, total_length_m), cv::Scalar(150, 150, 150), 1);
+  polyline(img, top, r, [](const TetherSimSample& s) { return s.required_m; }, cv::Scalar(40, 40, 220));
+  polyline(img, top, r, [](const TetherSimSample& s) { return s.released_m; }, cv::Scalar(200, 90, 20));
+  polyline(img, bottom, r, [](const TetherSimSample& s) { return s.slack_m; }, cv::Scalar(200, 90, 20));
+  cv::line(img, bottom.to_px(t0, 0.0), bottom.to_px(t1, 0.0), cv::Scalar(0, 0, 0), 1);
+  const auto& m = r.metrics;
+  cv::putText(img,
+              fmt::format("{} / {}: slack RMS {:.4f} m, max {:.3f} m, over-tension events {}, limit active {:.2f} s",
+                          r.scenario, r.controller, m.slack_rms_m, m.max_slack_m, m.over_tension_events,
+                          m.limit_active_s),
+              cv::Point(80, 30), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, "time [s]", cv::Point(540, 705), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(40, 40, 40), 1,
+              cv::LINE_AA);
+  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
+    // imwrite picks the format from the extension, so the temporary keeps ".png".
+    const auto png = tmp.string() + ".png";
+    if (!cv::imwrite(png, img)) throw std::runtime_error("cannot write " + path.string());
+    std::filesystem::rename(png, tmp);
+  });
+}
+
+}  // namespace ferret::sim

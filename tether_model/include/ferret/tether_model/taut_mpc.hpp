@@ -1,0 +1,70 @@
+#pragma once
+// Taut-tether MPC for the winch (paper sect. III, tether mechanism; after Glick et
+// al.'s unified tether model): from the miniUGV's pose, desired velocity and desired
+// acceleration it predicts the required length over the horizon and chooses spool
+// velocity commands that keep the slack in [0, s_max] within the servo's speed and
+// acceleration limits and 0 <= l_t <= L. Condensed QP (only the commands are
+// variables), solved by DenseQpSolver each cycle; docs/tether.md has the formulation.
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "ferret/tether_model/qp_solver.hpp"
+#include "ferret/tether_model/tether_controller.hpp"
+
+namespace ferret::tether {
+
+class TautTetherMpc final : public TetherController {
+ public:
+  struct Options {
+    TautControlOptions control;
+    int horizon = 20;                 ///< N prediction steps
+    double prediction_dt_s = 0.02;    ///< N * dt = 0.4 s look-ahead by default
+    double acceleration_time_s = 0.1;  ///< how long the miniUGV's desired acceleration is assumed to last
+    double weight_slack = 100.0;      ///< on (slack - reference)^2 per step, 1/m^2
+    double weight_command_rate = 0.5; ///< on (delta command)^2, (s/m)^2
+    double weight_feedforward = 0.05; ///< on (command - required-length rate)^2
+    double weight_terminal = 5.0;     ///< extra slack weight on the last step (multiplier)
+    double soft_linear_weight = 2000.0;     ///< exact-penalty weight of the soft slack bounds
+    double soft_quadratic_weight = 20000.0;
+  };
+
+  TautTetherMpc(Options options, std::shared_ptr<const RequiredLengthModel> model);
+
+  [[nodiscard]] std::string_view name() const override { return "mpc"; }
+  void reset() override;
+  [[nodiscard]] double step(const TetherObservation& obs) override;
+
+  /// The QP of the last step, for tests and the benchmark.
+  [[nodiscard]] const QpResult& last_solution() const { return last_; }
+  /// Predicted l_t over the horizon for the last solution (N values).
+  [[nodiscard]] Eigen::VectorXd predicted_released_m() const;
+  /// Required lengths the last step predicted (N values, k = 1..N).
+  [[nodiscard]] const Eigen::VectorXd& predicted_required_m() const { return required_; }
+  /// Cycles where the QP was infeasible and the fallback (brake) was used.
+  [[nodiscard]] int fallback_count() const { return fallbacks_; }
+  [[nodiscard]] const Options& options() const { return options_; }
+
+ private:
+  void build();
+
+  Options options_;
+  std::shared_ptr<const RequiredLengthModel> model_;
+  UgvPositionFilter filter_;
+  DenseQpSolver solver_;
+  int n_ = 0;  ///< QP variables: N commands + 2 soft-constraint slacks
+  // l_k = l_free_k + Phi_l.row(k) u and v_k likewise: the condensed dynamics.
+  Eigen::MatrixXd Phi_l_;
+  Eigen::VectorXd free_l_from_l_, free_l_from_v_;
+  Eigen::MatrixXd H_;
+  // Constraint row blocks of C (see build()).
+  int row_rate_ = 0, row_length_ = 0, row_slack_lo_ = 0, row_slack_hi_ = 0, row_box_ = 0, row_soft_ = 0, rows_ = 0;
+  Eigen::VectorXd required_;
+  Eigen::VectorXd required_rate_;
+  QpResult last_;
+  double last_command_mps_ = 0.0;
+  Eigen::VectorXd last_free_l_;  ///< free response of l_t in the last step
+  int fallbacks_ = 0;
+};
+
+}  // namespace ferret::tether

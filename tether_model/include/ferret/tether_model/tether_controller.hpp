@@ -1,0 +1,104 @@
+#pragma once
+// The winch's taut-tether control loop: a narrow interface with two named
+// implementations, "mpc" (TautTetherMpc) and "baseline" (FeedForwardPid). Both see
+// the same observation: the winch encoder, the winch's tension estimate, and the
+// miniUGV's pose, desired velocity and desired acceleration as received over the
+// link (with its age). Both output a spool velocity command (positive pays out).
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ferret/tether_model/required_length.hpp"
+
+namespace ferret::tether {
+
+/// Winch and tether limits shared by the controllers and the simulation.
+struct WinchLimits {
+  double total_length_m = 15.0;        ///< L: l_t never exceeds it
+  double max_speed_mps = 0.6;          ///< spool surface speed (MX-64: 63 rpm on a 9 cm spool)
+  double max_acceleration_mps2 = 2.0;  ///< profile acceleration
+  double velocity_time_constant_s = 0.05;  ///< first-order lag of the servo's velocity loop
+};
+
+/// Elastic tether: tension = EA / l * stretch (stretch = -slack when negative).
+struct TensionModel {
+  double axial_stiffness_n = 1500.0;  ///< EA of a 1 mm nylon line
+  double hanging_weight_n = 0.5;      ///< weight of the hanging part (winch to entry): the winch always feels it
+  double max_tension_n = 10.0;        ///< above this the tether drags the miniUGV: an over-tension event
+
+  /// Spring rate of `length_m` of tether (N/m).
+  [[nodiscard]] double stiffness_npm(double length_m) const;
+  /// Tension of `length_m` of tether with slack `slack_m` (0 when slack).
+  [[nodiscard]] double tension_n(double length_m, double slack_m) const;
+};
+
+struct TetherObservation {
+  double t_s = 0.0;
+  double released_m = 0.0;         ///< l_t from the spool encoder
+  double spool_speed_mps = 0.0;    ///< measured
+  double winch_tension_n = 0.0;    ///< from motor current, includes the hanging weight
+  UgvMotion ugv;                   ///< last message from the miniUGV
+  double ugv_age_s = 0.0;          ///< how old that message is (link latency)
+};
+
+/// Slack the controllers act on: geometric slack l_t - l_req from the (latency-
+/// compensated) miniUGV position, but never more than the tension implies. A tension
+/// above `guard_n` with geometric slack means the tether is caught somewhere (a snag):
+/// the measured stretch wins, so the winch stops reeling in against it.
+struct SlackEstimator {
+  TensionModel tension;
+  double guard_n = 1.5;  ///< tension (above the hanging weight) that overrides geometry
+
+  [[nodiscard]] double estimate_m(double released_m, double required_m, double winch_tension_n) const;
+};
+
+/// Smooths the miniUGV's reported position with its own desired motion: each message
+/// is first predicted from the previous estimate with the desired velocity and
+/// acceleration, then corrected towards the measurement by `gain` (1: no filtering).
+/// A fixed-gain (steady-state) Kalman filter for a robot that follows its commands.
+class UgvPositionFilter {
+ public:
+  explicit UgvPositionFilter(double gain = 1.0) : gain_(gain) {}
+  /// @param t_msg_s time the message was sent (its pose's time stamp)
+  /// @return the motion with the filtered position (velocity and acceleration unchanged)
+  UgvMotion update(double t_msg_s, const UgvMotion& measured);
+  void reset() { initialised_ = false; }
+
+ private:
+  double gain_;
+  bool initialised_ = false;
+  double t_s_ = 0.0;
+  UgvMotion estimate_;
+};
+
+class TetherController {
+ public:
+  virtual ~TetherController() = default;
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  /// Forget integrators and the previous command.
+  virtual void reset() = 0;
+  /// One control cycle; returns the spool velocity command in m/s (positive pays out).
+  [[nodiscard]] virtual double step(const TetherObservation& obs) = 0;
+};
+
+/// Options common to both controllers.
+struct TautControlOptions {
+  WinchLimits limits;
+  SlackEstimator slack_estimator;
+  double slack_reference_m = 0.005; ///< slack held when nothing moves
+  double max_slack_m = 0.15;        ///< s_max: slack kept in [0, s_max]
+  double control_period_s = 0.02;   ///< 50 Hz
+  double ugv_max_speed_mps = 2.0;   ///< caps the miniUGV prediction
+  double pose_filter_gain = 0.05;   ///< UgvPositionFilter gain a cycle (1: raw positions)
+};
+
+/// Named factory: "mpc" or "baseline". Throws std::invalid_argument for another name.
+[[nodiscard]] std::unique_ptr<TetherController> make_tether_controller(
+    std::string_view name, const TautControlOptions& options,
+    std::shared_ptr<const RequiredLengthModel> model);
+
+[[nodiscard]] std::vector<std::string> tether_controller_names();
+
+}  // namespace ferret::tether

@@ -1,0 +1,177 @@
+#include "ferret/tether_model/taut_mpc.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace ferret::tether {
+
+TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLengthModel> model)
+    : options_(options), model_(std::move(model)), filter_(options.control.pose_filter_gain) {
+  if (!model_) throw std::invalid_argument("TautTetherMpc: no required-length model");
+  if (options_.horizon < 2) throw std::invalid_argument("TautTetherMpc: horizon must be >= 2");
+  if (!(options_.prediction_dt_s > 0.0) || !(options_.control.control_period_s > 0.0))
+    throw std::invalid_argument("TautTetherMpc: time steps must be > 0");
+  if (!(options_.control.limits.velocity_time_constant_s > 0.0))
+    throw std::invalid_argument("TautTetherMpc: servo time constant must be > 0");
+  build();
+}
+
+void TautTetherMpc::reset() {
+  last_command_mps_ = 0.0;
+  last_ = QpResult{};
+  filter_ = UgvPositionFilter(options_.control.pose_filter_gain);
+}
+
+// Servo model: the spool speed follows the command with a first-order lag tau,
+// v' = (u - v) / tau, so over one step of length dt with the command u held
+//   v+ = alpha v + (1 - alpha) u,   l+ = l + c v + (dt - c) u,
+// alpha = exp(-dt / tau), c = tau (1 - alpha) (the exact discretisation).
+void TautTetherMpc::build() {
+  const int N = options_.horizon;
+  const double dt = options_.prediction_dt_s;
+  const double tau = options_.control.limits.velocity_time_constant_s;
+  const double alpha = std::exp(-dt / tau), c = tau * (1.0 - alpha);
+  n_ = N + 2;
+  Phi_l_ = Eigen::MatrixXd::Zero(N, n_);
+  free_l_from_l_ = Eigen::VectorXd::Ones(N);
+  free_l_from_v_ = Eigen::VectorXd::Zero(N);
+  Eigen::RowVectorXd dl = Eigen::RowVectorXd::Zero(n_), dv = Eigen::RowVectorXd::Zero(n_);
+  double fl_v = 0.0, fv_v = 1.0;  // free response of l and v to the initial speed
+  for (int k = 0; k < N; ++k) {
+    dl = dl + c * dv;
+    dl[k] += dt - c;
+    dv = alpha * dv;
+    dv[k] += 1.0 - alpha;
+    fl_v += c * fv_v;
+    fv_v *= alpha;
+    Phi_l_.row(k) = dl;
+    free_l_from_v_[k] = fl_v;
+  }
+
+  // Hessian of J = sum_k w_k (l_k - r_k - s_ref)^2 + w_rate sum (u_k - u_k-1)^2
+  //             + w_ff sum (u_k - rdot_k)^2 + rho1 (e_lo + e_hi) + rho2 (e_lo^2 + e_hi^2)
+  // written as 1/2 z' H z + g' z with z = [u_0..u_N-1, e_lo, e_hi].
+  H_ = Eigen::MatrixXd::Zero(n_, n_);
+  for (int k = 0; k < N; ++k) {
+    const double w = options_.weight_slack * (k == N - 1 ? options_.weight_terminal : 1.0);
+    H_ += 2.0 * w * Phi_l_.row(k).transpose() * Phi_l_.row(k);
+  }
+  const double w_rate = options_.weight_command_rate;
+  for (int k = 0; k < N; ++k) {
+    H_(k, k) += 2.0 * w_rate + 2.0 * std::max(options_.weight_feedforward, 1e-6);
+    if (k > 0) {
+      H_(k - 1, k - 1) += 2.0 * w_rate;
+      H_(k, k - 1) -= 2.0 * w_rate;
+      H_(k - 1, k) -= 2.0 * w_rate;
+    }
+  }
+  H_(N, N) = H_(N + 1, N + 1) = 2.0 * options_.soft_quadratic_weight;
+
+  // Constraint rows: command rate (N), l_t in [0, L] (N), slack >= 0 softened by
+  // e_lo (N), slack <= s_max softened by e_hi (N), command box (N), e >= 0 (2).
+  row_rate_ = 0;
+  row_length_ = N;
+  row_slack_lo_ = 2 * N;
+  row_slack_hi_ = 3 * N;
+  row_box_ = 4 * N;
+  row_soft_ = 5 * N;
+  rows_ = 5 * N + 2;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(rows_, n_);
+  for (int k = 0; k < N; ++k) {
+    C(row_rate_ + k, k) = 1.0;
+    if (k > 0) C(row_rate_ + k, k - 1) = -1.0;
+    C.row(row_length_ + k) = Phi_l_.row(k);
+    C.row(row_slack_lo_ + k) = Phi_l_.row(k);
+    C(row_slack_lo_ + k, N) = 1.0;
+    C.row(row_slack_hi_ + k) = Phi_l_.row(k);
+    C(row_slack_hi_ + k, N + 1) = -1.0;
+    C(row_box_ + k, k) = 1.0;
+  }
+  C(row_soft_, N) = 1.0;
+  C(row_soft_ + 1, N + 1) = 1.0;
+  solver_.setup(H_, C);
+  required_ = Eigen::VectorXd::Zero(N);
+  required_rate_ = Eigen::VectorXd::Zero(N);
+}
+
+double TautTetherMpc::step(const TetherObservation& obs) {
+  const int N = options_.horizon;
+  const auto& ctl = options_.control;
+  const double dt = options_.prediction_dt_s;
+  const double vmax = ctl.limits.max_speed_mps, amax = ctl.limits.max_acceleration_mps2;
+  const double inf = std::numeric_limits<double>::infinity();
+
+  // Required length now (the link message is ugv_age_s old) and over the horizon,
+  // from the desired velocity and acceleration.
+  const double ta = options_.acceleration_time_s;
+  const UgvMotion now =
+      filter_.update(obs.t_s - obs.ugv_age_s, obs.ugv).extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
+  const double required_now = model_->required_length_m(now.p_WG);
+  // A tension the geometry does not explain (a snag) shifts every prediction by the
+  // measured stretch: the tether behaves as if it were that much longer.
+  const double slack = ctl.slack_estimator.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
+  const double bias = (obs.released_m - required_now) - slack;
+  for (int k = 0; k < N; ++k) {
+    const UgvMotion future = now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps, std::max(0.0, ta - obs.ugv_age_s));
+    required_[k] = model_->required_length_m(future.p_WG) + bias;
+    required_rate_[k] = required_length_rate_mps(*model_, future);
+  }
+
+  const double l0 = obs.released_m, v0 = obs.spool_speed_mps;
+  const Eigen::VectorXd free_l = free_l_from_l_ * l0 + free_l_from_v_ * v0;
+  last_free_l_ = free_l;
+  // Linear term.
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(n_);
+  for (int k = 0; k < N; ++k) {
+    const double w = options_.weight_slack * (k == N - 1 ? options_.weight_terminal : 1.0);
+    const double offset = free_l[k] - required_[k] - ctl.slack_reference_m;
+    g += 2.0 * w * offset * Phi_l_.row(k).transpose();
+    g[k] -= 2.0 * std::max(options_.weight_feedforward, 1e-6) * required_rate_[k];
+  }
+  g[0] -= 2.0 * options_.weight_command_rate * last_command_mps_;
+  g[N] = g[N + 1] = options_.soft_linear_weight;
+
+  // Bounds.
+  Eigen::VectorXd lo(rows_), hi(rows_);
+  for (int k = 0; k < N; ++k) {
+    const double step_dt = k == 0 ? ctl.control_period_s : dt;
+    lo[row_rate_ + k] = (k == 0 ? last_command_mps_ : 0.0) - amax * step_dt;
+    hi[row_rate_ + k] = (k == 0 ? last_command_mps_ : 0.0) + amax * step_dt;
+    lo[row_length_ + k] = 0.0 - free_l[k];
+    hi[row_length_ + k] = ctl.limits.total_length_m - free_l[k];
+    lo[row_slack_lo_ + k] = required_[k] - free_l[k];
+    hi[row_slack_lo_ + k] = inf;
+    lo[row_slack_hi_ + k] = -inf;
+    hi[row_slack_hi_ + k] = required_[k] + ctl.max_slack_m - free_l[k];
+    lo[row_box_ + k] = -vmax;
+    hi[row_box_ + k] = vmax;
+  }
+  lo[row_soft_] = lo[row_soft_ + 1] = 0.0;
+  hi[row_soft_] = hi[row_soft_ + 1] = inf;
+
+  last_ = solver_.solve(g, lo, hi);
+  double command;
+  if (last_.status == QpResult::Status::kOptimal) {
+    command = std::clamp(last_.x[0], -vmax, vmax);
+  } else {
+    // No command satisfies the hard limits (l_t at or past an end while moving):
+    // brake towards zero speed as hard as allowed.
+    ++fallbacks_;
+    spdlog::debug("tether MPC: QP {} at t = {:.3f} s; braking", to_string(last_.status), obs.t_s);
+    const double step = amax * ctl.control_period_s;
+    command = std::clamp(0.0, last_command_mps_ - step, last_command_mps_ + step);
+  }
+  last_command_mps_ = command;
+  return command;
+}
+
+Eigen::VectorXd TautTetherMpc::predicted_released_m() const {
+  if (last_.x.size() != n_) return {};
+  return last_free_l_ + Phi_l_ * last_.x;
+}
+
+}  // namespace ferret::tether
