@@ -24,7 +24,7 @@ dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction, co
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.timeout_ms);
     bool retry = false;
     while (!retry) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
       if (left.count() <= 0) {
         last_kind = DynamixelError::Kind::kTimeout;
         last_problem = fmt::format("no reply within {} ms", options_.timeout_ms);
