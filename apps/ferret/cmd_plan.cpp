@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <octomap/OcTree.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -78,6 +79,12 @@ void run_uav(const UavArgs& a) {
   if (a.tether_length_m && !(*a.tether_length_m >= 0.0 && *a.tether_length_m <= 100.0))
     throw InputError("--tether-length", "", "a released length in [0, 100] m", std::to_string(*a.tether_length_m));
   const UnknownPolicy unknown = parse_unknown_policy(a.unknown, "--unknown");
+  const auto& names = ompl_planner_names();
+  if (std::find(names.begin(), names.end(), a.planner) == names.end()) {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw InputError("--planner", "", "one of " + list, a.planner);
+  }
   const MissionConfig config = mission(a.common);
   const PlanningWorld world = load_planning_world(a.common.world);
 

@@ -66,8 +66,12 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
   else throw InputError(source, "robot", "\"uav\", \"uav_with_ugv\" or \"ugv\"", robot);
   if (doc.contains("frame")) plan.frame = r.string_at(doc, "frame", "");
   if (plan.frame != "world") throw InputError(source, "frame", "\"world\"", plan.frame);
-  if (doc.contains("unknown_policy"))
-    plan.unknown_policy = parse_unknown_policy(r.string_at(doc, "unknown_policy", ""), source + ": unknown_policy");
+  if (doc.contains("unknown_policy")) {
+    const std::string policy = r.string_at(doc, "unknown_policy", "");
+    if (policy != "free" && policy != "occupied")
+      throw InputError(source, "unknown_policy", "\"free\" or \"occupied\"", policy);
+    plan.unknown_policy = parse_unknown_policy(policy, source);
+  }
   if (doc.contains("bounds")) {
     const json& b = doc["bounds"];
     Aabb3 box{r.numbers(r.need(b, "min", "bounds."), 3, "bounds.min"),

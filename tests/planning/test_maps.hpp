@@ -44,12 +44,20 @@ inline std::unique_ptr<octomap::OcTree> cluttered_room(std::uint64_t seed, doubl
 namespace ferret::test {
 
 /// A 12 x 8 m hidden space at 0.05 m with a floor at z = 0, known free up to 0.1 m
-/// (the miniUGV's height) except for the blocks given as [x0, x1] x [y0, y1].
+/// (the miniUGV's height) except for the blocks given as [x0, x1] x [y0, y1] and the
+/// never-observed (unknown) patches.
 inline std::unique_ptr<octomap::OcTree> hidden_space(const std::vector<Eigen::Vector4d>& blocks,
+                                                     const std::vector<Eigen::Vector4d>& unobserved = {},
                                                      double res = 0.05) {
   auto tree = std::make_unique<octomap::OcTree>(res);
   fill_box(*tree, {0, 0, -res}, {12, 8, 0}, true);
-  fill_box(*tree, {0, 0, 0}, {12, 8, 0.1}, false);
+  for (double z = 0.5 * res; z <= 0.1; z += res)
+    for (double y = 0.5 * res; y <= 8; y += res)
+      for (double x = 0.5 * res; x <= 12; x += res) {
+        bool seen = true;
+        for (const auto& u : unobserved) seen = seen && !(x > u[0] && x < u[1] && y > u[2] && y < u[3]);
+        if (seen) tree->updateNode(x, y, z, false);
+      }
   for (const auto& b : blocks) fill_box(*tree, {b[0], b[2], 0}, {b[1], b[3], 0.1}, true);
   tree->updateInnerOccupancy();
   return tree;

@@ -118,13 +118,16 @@ TEST(UgvPlanner, ShortestPathInfeasibleForTheTether) {
     driven += (plan.states[k].position() - plan.states[k - 1].position()).norm();
   EXPECT_GT(driven, 15.0);  // far longer than the 3 m straight drive
 
-  // With 10 m of tether neither way fits: the planner reports no path.
-  req.tether = {11.0, 1.0};
+  // A goal further down, (11, 0.5), needs 14.83 m one way and 11.69 m the other:
+  // with 11 m neither fits (the start needs 10.77 m) and the planner reports no path.
+  req.goal = {11.0, 0.5, -1.57};
+  req.tether = {12.0, 1.0};
   UgvPlannerOptions quick = opt;
   quick.time_limit_s = 0.3;
   UgvPlanner limited(map, frame(), {}, quick);
   const UgvPlan none = limited.plan(req);
   EXPECT_FALSE(none.solved);
+  EXPECT_EQ(none.status, "no tether-feasible path found within the time limit");
   EXPECT_TRUE(none.states.empty());
 }
 

@@ -1,0 +1,102 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "support/cli_runner.hpp"
+
+namespace ferret::test {
+namespace {
+
+const std::string kDetour = "examples/scenarios/tether_detour.yaml";
+const std::string kDetourArgs = "--driven '1,6.5;10,6.5' --from 10,4.5,-1.57 --to 10,1.5,-1.57";
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A 20 x 20 m yard with a 2 m wall across x = 0 that leaves a gap at y > 6.
+std::string write_yard(const TempDir& dir, bool with_crate = false) {
+  const std::string path = dir / (with_crate ? "yard_crate.yaml" : "yard.yaml");
+  std::ofstream out(path);
+  out << "name: yard\nresolution_m: 0.1\nbounds_m: {min: [-10, -10, -0.2], max: [10, 10, 5]}\n"
+         "ground: {height_m: 0.0}\nboxes:\n"
+         "  - {name: wall, center_m: [0, -2], size_m: [0.4, 16, 4]}\n";
+  if (with_crate) out << "  - {name: crate, center_m: [-5, 5, 2], size_m: [4, 4, 4]}\n";
+  return path;
+}
+
+TEST(PlanCli, UgvDetourScenarioPlansAndValidates) {
+  TempDir dir;
+  const auto r = run_cli("plan ugv --world " + kDetour + " " + kDetourArgs + " --tether 12.5 -o " + dir / "p.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 wrap points"), std::string::npos) << r.out;
+  const auto plan = nlohmann::json::parse(slurp(dir / "p.json"));
+  EXPECT_EQ(plan["robot"], "ugv");
+  EXPECT_EQ(plan["unknown_policy"], "occupied");
+  EXPECT_EQ(plan["tether"]["initial_wraps"].size(), 2u);
+  const auto& last = plan["states"].back();
+  EXPECT_NEAR(last["x_m"].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(last["tether_length_m"].get<double>(), std::hypot(3.1, 1.5) + std::hypot(7.0, 1.0), 1e-6);
+  const auto v = run_cli("validate --world " + kDetour + " --plan " + dir / "p.json");
+  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
+  EXPECT_NE(v.out.find("valid:"), std::string::npos);
+}
+
+TEST(PlanCli, NoPathExitsOneAndWritesNothing) {
+  TempDir dir;
+  const auto r = run_cli("plan ugv --world " + kDetour +
+                         " --driven '1,6.5;10,6.5' --from 10,4.5,-1.57 --to 11,0.5,-1.57 --tether 11"
+                         " --time-limit 0.3 -o " + dir / "none.json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no tether-feasible path"), std::string::npos) << r.err;
+  EXPECT_EQ(dir.count(), 0u);
+}
+
+TEST(PlanCli, UavPlansAreDeterministicGivenTheSeed) {
+  TempDir dir;
+  const std::string world = write_yard(dir);
+  const std::string args = "plan uav --world " + world + " --from -5,-5,2,0 --to 5,-5,2,0 --seed 3 -o ";
+  const auto a = run_cli(args + dir / "a.json");
+  const auto b = run_cli(args + dir / "b.json");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const auto pa = nlohmann::json::parse(slurp(dir / "a.json")), pb = nlohmann::json::parse(slurp(dir / "b.json"));
+  EXPECT_EQ(pa["states"], pb["states"]);
+  EXPECT_GE(pa["states"].size(), 3u);  // it had to go round the wall
+  const auto v = run_cli("validate --world " + world + " --plan " + dir / "a.json");
+  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
+  // With the miniUGV hanging 1 m below, too.
+  const auto t = run_cli("plan uav --world " + world + " --from -5,-5,2,0 --to 5,-5,2,0 --tether-length 1 -o " +
+                         dir / "t.json");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "t.json"))["robot"], "uav_with_ugv");
+  EXPECT_EQ(run_cli("validate --world " + world + " --plan " + dir / "t.json").exit_code, 0);
+}
+
+TEST(PlanCli, BadInputExitsTwo) {
+  TempDir dir;
+  const std::string out = " -o " + dir / "p.json";
+  for (const std::string& args : std::vector<std::string>{
+           "plan ugv --world " + kDetour + " --from 10,4.5 --to 10,1.5,0" + out,          // 2 numbers
+           "plan ugv --world " + kDetour + " --from 10,4.5,x --to 10,1.5,0" + out,        // not a number
+           "plan ugv --world " + kDetour + " --from 1,1,0 --to 2,2,0 --tether -1" + out,  // budget
+           "plan ugv --world " + kDetour + " --from 1,1,0 --to 2,2,0 --hidden-space x" + out,
+           "plan ugv --world /nonexistent.yaml --from 1,1,0 --to 2,2,0" + out,
+           "plan uav --world " + kDetour + " --from 0,0,1,0 --to 1,1,1,0 --planner nope" + out,
+           "plan uav --world " + kDetour + " --from 0,0,1,0 --to 1,1,1,0 --unknown maybe" + out,
+           "plan uav --world " + kDetour + " --from 0,0,1,0 --to 1,1,1,0 --time-limit 0" + out,
+       }) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find("ferret: error:"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(dir.count(), 0u);
+}
+
+}  // namespace
+}  // namespace ferret::test
