@@ -31,8 +31,8 @@ TEST(SimulatedWinch, HoldsAgainstTensionWithTorqueAndPaysOutWithout) {
   SimulatedWinch w(o);
   run(w, 2.0, 5.0);
   EXPECT_NEAR(w.speed_mps(), 0.0, 1e-3);
-  // The velocity loop's I term takes the load after the line has given F / Ki = 5 / 80 m.
-  EXPECT_NEAR(w.released_m() - 5.0, 5.0 / 80.0, 0.005);
+  // The velocity loop's I term takes the load after the line has given F / Ki = 5 / 640 m.
+  EXPECT_NEAR(w.released_m() - 5.0, 5.0 / 640.0, 0.001);
   EXPECT_DOUBLE_EQ(w.read_state().tension_n, 5.0);
   w.set_torque_enabled(false);
   run(w, 0.5, 5.0);

@@ -19,7 +19,7 @@ struct WinchLimits {
   double total_length_m = 15.0;        ///< L: l_t never exceeds it
   double max_speed_mps = 0.6;          ///< spool surface speed (MX-64: 63 rpm on a 9 cm spool)
   double max_acceleration_mps2 = 2.0;  ///< profile acceleration
-  double velocity_time_constant_s = 0.05;  ///< first-order lag of the servo's velocity loop
+  double velocity_time_constant_s = 0.025;  ///< first-order lag of the servo's velocity loop
 };
 
 /// Elastic tether: tension = EA / l * stretch (stretch = -slack when negative).

@@ -1,0 +1,259 @@
+#include "ferret/sim/tether_sim.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "ferret/core/error.hpp"
+#include "ferret/tether_model/taut_mpc.hpp"
+#include "support/cli_runner.hpp"
+
+namespace ferret::sim {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string write(const test::TempDir& dir, const std::string& name, const std::string& text) {
+  const std::string path = dir / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Expects InputError from loading `path` whose field contains `field`.
+void expect_input_error(const std::string& path, const std::string& field, const std::string& expected = "") {
+  try {
+    (void)load_tether_scenario(path);
+    FAIL() << "expected InputError for " << path;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source().substr(0, path.size()), path);
+    EXPECT_THAT(e.field(), HasSubstr(field));
+    if (!expected.empty()) {
+      EXPECT_THAT(e.expected(), HasSubstr(expected));
+    }
+  }
+}
+
+TEST(TetherTrajectory, CsvWithPositionsOnlyIsDifferentiated) {
+  test::TempDir dir;
+  // x = t^2: central differences give v(1) = (4 - 0) / 2 = 2 and v(2) = (9 - 1) / 2 = 4.
+  const auto path = write(dir, "t.csv", "# a comment\nt,x,y,yaw\n0,0,1,0\n1,1,1,0\n\n2,4,1,0\n3,9,1,0\n");
+  const auto s = load_tether_scenario(path);
+  ASSERT_EQ(s.samples.size(), 4u);
+  EXPECT_EQ(s.name, "t");
+  EXPECT_DOUBLE_EQ(s.samples[1].v_WG.x(), 2.0);
+  EXPECT_DOUBLE_EQ(s.samples[2].v_WG.x(), 4.0);
+  EXPECT_DOUBLE_EQ(s.samples[0].v_WG.x(), 1.0);  // one-sided at the ends
+  EXPECT_DOUBLE_EQ(s.samples[1].a_WG.x(), (4.0 - 1.0) / 2.0);
+  EXPECT_DOUBLE_EQ(s.samples[1].p_WG.y(), 1.0);
+  // Interpolation between samples.
+  EXPECT_DOUBLE_EQ(s.at(1.5).p_WG.x(), 2.5);
+  EXPECT_DOUBLE_EQ(s.at(-1.0).p_WG.x(), 0.0);
+}
+
+TEST(TetherTrajectory, CsvWithDesiredVelocityAndAcceleration) {
+  test::TempDir dir;
+  const auto path = write(dir, "t.csv", "t, x, y, yaw, vx, vy, ax, ay\r\n0,1,2,0.5,0.1,0.2,0.3,0.4\r\n0.5,1.05,2.1,0.5,0.1,0.2,0,0\r\n");
+  const auto s = load_tether_scenario(path);
+  ASSERT_EQ(s.samples.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.samples[0].yaw_rad, 0.5);
+  EXPECT_DOUBLE_EQ(s.samples[0].v_WG.y(), 0.2);
+  EXPECT_DOUBLE_EQ(s.samples[0].a_WG.y(), 0.4);
+}
+
+TEST(TetherTrajectory, BrokenCsvFilesNameLineAndField) {
+  test::TempDir dir;
+  expect_input_error(write(dir, "a.csv", "time,x,y,yaw\n0,0,0,0\n"), "line 1", "header");
+  expect_input_error(write(dir, "b.csv", "t,x,y,yaw\n0,0,0,0\n1,0,north,0\n"), "line 3, field 'y'", "finite number");
+  expect_input_error(write(dir, "c.csv", "t,x,y,yaw\n0,0,0,0\n1,0,0\n"), "line 3", "4 comma-separated");
+  expect_input_error(write(dir, "d.csv", "t,x,y,yaw\n0,0,0,0\n0,1,0,0\n"), "line 3, field 't'", "greater");
+  expect_input_error(write(dir, "e.csv", "t,x,y,yaw\n0,0,0,0\n"), "", "at least two");
+  expect_input_error(write(dir, "f.csv", ""), "", "header");
+  expect_input_error(write(dir, "g.csv", "t,x,y,yaw\n0,0,0,0\n1,inf,0,0\n"), "line 3, field 'x'");
+  expect_input_error(write(dir, "h.txt", "t,x,y,yaw\n"), "", ".csv");
+  expect_input_error(dir / "missing.csv", "", "existing");
+}
+
+TEST(TetherTrajectory, YamlWithWrapPointsSnagsAndAScript) {
+  test::TempDir dir;
+  const auto path = write(dir, "s.yaml", R"(name: corner
+entry_xy_m: [0.5, 0]
+wrap_points:
+  - {xy_m: [2, 1], side: left}
+  - {xy_m: [3, 1], side: right}
+  - {xy_m: [4, 1]}
+snags: [{wrap_point: 1, start_s: 2, duration_s: 1.5}]
+script: {waypoints_xy_m: [[0, 0], [2, 0]], cruise_mps: 0.5, accel_mps2: 1.0}
+)");
+  const auto s = load_tether_scenario(path);
+  EXPECT_EQ(s.name, "corner");
+  EXPECT_DOUBLE_EQ(s.p_WE.x(), 0.5);
+  ASSERT_EQ(s.wrap_points.size(), 3u);
+  EXPECT_EQ(s.wrap_points[0].side, 1);
+  EXPECT_EQ(s.wrap_points[1].side, -1);
+  EXPECT_EQ(s.wrap_points[2].side, 0);
+  ASSERT_EQ(s.snags.size(), 1u);
+  EXPECT_EQ(s.snags[0].wrap_point, 1u);
+  EXPECT_DOUBLE_EQ(s.snags[0].duration_s, 1.5);
+  EXPECT_NEAR(s.end_s(), 4.5, 1e-9);  // see ScriptedTrajectory
+  EXPECT_DOUBLE_EQ(s.samples.back().p_WG.x(), 2.0);
+}
+
+TEST(TetherTrajectory, YamlSamplesInlineAndFromACsvBesideIt) {
+  test::TempDir dir;
+  write(dir, "pts.csv", "t,x,y,yaw\n0,1,0,0\n1,2,0,0\n");
+  const auto a = load_tether_scenario(write(dir, "a.yaml", "samples_csv: pts.csv\n"));
+  EXPECT_EQ(a.samples.size(), 2u);
+  EXPECT_DOUBLE_EQ(a.samples[0].v_WG.x(), 1.0);
+  const auto b = load_tether_scenario(write(dir, "b.yaml", "samples: [[0, 1, 0, 0], [2, 1, 1, 0]]\n"));
+  EXPECT_DOUBLE_EQ(b.samples[1].v_WG.y(), 0.5);
+}
+
+TEST(TetherTrajectory, BrokenYamlFilesNameTheField) {
+  test::TempDir dir;
+  expect_input_error(write(dir, "a.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nwrap_points: [{xy_m: [1, 1], side: up}]\n"),
+                     "wrap_points[0].side", "left, right or always");
+  expect_input_error(write(dir, "b.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nsnags: [{wrap_point: 0, start_s: 1, duration_s: 1}]\n"),
+                     "snags[0].wrap_point", "index into wrap_points");
+  expect_input_error(write(dir, "c.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0]]\n"), "samples[1]");
+  expect_input_error(write(dir, "d.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nsamples_csv: x.csv\n"), "samples",
+                     "exactly one");
+  expect_input_error(write(dir, "e.yaml", "script: {waypoints_xy_m: [[0, 0], [1, 0]], cruise_mps: -1, accel_mps2: 1}\n"),
+                     "script.cruise_mps");
+  expect_input_error(write(dir, "f.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nspeed: 3\n"), "speed");
+  // A missing CSV is named itself.
+  write(dir, "g.yaml", "samples_csv: nowhere.csv\n");
+  expect_input_error(dir / "nowhere.csv", "", "existing");
+  EXPECT_THROW((void)load_tether_scenario(dir / "g.yaml"), InputError);
+}
+
+TEST(ScriptedTrajectory, TrapezoidalSegmentsByHand) {
+  // 2 m at 0.5 m/s and 1 m/s^2: 0.5 s up (0.125 m), 1.75 m in 3.5 s, 0.5 s down; 4.5 s in all.
+  const auto s = scripted_trajectory({{0, 0}, {2, 0}}, 0.5, 1.0, 0.0, 0.05);
+  ASSERT_NEAR(s.back().t_s, 4.5, 1e-9);
+  EXPECT_NEAR(s[5].p_WG.x(), 0.5 * 0.25 * 0.25, 1e-12);  // t = 0.25
+  EXPECT_NEAR(s[5].a_WG.x(), 1.0, 1e-12);
+  EXPECT_NEAR(s[40].p_WG.x(), 0.125 + 0.5 * 1.5, 1e-12);  // t = 2.0
+  EXPECT_NEAR(s[40].v_WG.x(), 0.5, 1e-12);
+  EXPECT_NEAR(s.back().p_WG.x(), 2.0, 1e-12);
+  EXPECT_NEAR(s.back().v_WG.norm(), 0.0, 1e-12);
+  // A short segment is a triangle: 0.1 m at 1 m/s^2 peaks at sqrt(0.1) m/s.
+  const auto t = scripted_trajectory({{0, 0}, {0, 0.1}}, 1.0, 1.0, 0.5, 0.01);
+  EXPECT_NEAR(t.back().t_s, 2.0 * std::sqrt(0.1) + 0.5, 0.01);
+  EXPECT_DOUBLE_EQ(t.back().yaw_rad, std::atan2(1.0, 0.0));
+}
+
+TEST(TetherScenario, TheBuiltInDefaultIsTheShippedDefaultYaml) {
+  const auto builtin = default_tether_scenario();
+  const auto shipped = load_tether_scenario(std::string(FERRET_SOURCE_DIR) + "/examples/trajectories/default.yaml");
+  ASSERT_EQ(builtin.samples.size(), shipped.samples.size());
+  ASSERT_EQ(builtin.wrap_points.size(), shipped.wrap_points.size());
+  for (std::size_t i = 0; i < builtin.wrap_points.size(); ++i)
+    EXPECT_EQ(builtin.wrap_points[i].p_W, shipped.wrap_points[i].p_W);
+  for (std::size_t i = 0; i < builtin.samples.size(); i += 97)
+    EXPECT_EQ(builtin.samples[i].p_WG, shipped.samples[i].p_WG) << i;
+}
+
+// Holds the spool at a fixed speed: exposes the tether model without a controller.
+class ConstantSpool final : public tether::TetherController {
+ public:
+  explicit ConstantSpool(double speed) : speed_(speed) {}
+  std::string_view name() const override { return "constant"; }
+  void reset() override {}
+  double step(const tether::TetherObservation&) override { return speed_; }
+
+ private:
+  double speed_;
+};
+
+TetherScenario straight_out(double from_x, double to_x, double duration_s) {
+  TetherScenario s;
+  s.name = "straight";
+  for (int i = 0; i <= 10; ++i) {
+    TrajectorySample p;
+    p.t_s = duration_s * i / 10.0;
+    p.p_WG = {from_x + (to_x - from_x) * i / 10.0, 0.0};
+    s.samples.push_back(p);
+  }
+  differentiate_trajectory(s.samples);
+  return s;
+}
+
+TEST(TetherSim, ElasticTensionWhenTheMiniUgvPullsAHeldTether) {
+  const auto scn = straight_out(3.0, 3.1, 2.0);
+  auto options = TetherSimOptions::for_tether(15.0, 1.0);
+  ConstantSpool hold(0.0);
+  const auto r = run_tether_sim(scn, options, hold);
+  const auto& last = r.log.back();
+  // The spool barely moves (its I term holds); the stretch is ~0.1 - 0.005 m on ~4 m.
+  EXPECT_LT(last.slack_m, -0.05);
+  EXPECT_NEAR(last.ugv_tension_n, 1500.0 / last.released_m * -last.slack_m, 1e-9);
+  EXPECT_DOUBLE_EQ(last.winch_tension_n, last.ugv_tension_n);
+  EXPECT_GE(r.metrics.over_tension_events, 1);
+  EXPECT_GT(r.metrics.over_tension_time_s, 0.0);
+  EXPECT_NEAR(r.metrics.min_slack_m, last.slack_m, 0.01);
+}
+
+TEST(TetherSim, ASnagLoadsTheWinchSideOnlyAndReleases) {
+  // The miniUGV drives from (3, 0) back towards a wrap point at (2, 0) while the
+  // winch reels in; the line is pinned at the wrap point from t = 1 s to 3 s.
+  TetherScenario scn = straight_out(3.0, 2.5, 4.0);
+  scn.wrap_points = {{{2.0, 0.0}, 0}};
+  scn.snags = {{0, 1.0, 2.0}};
+  auto options = TetherSimOptions::for_tether(15.0, 1.0);
+  ConstantSpool reel_in(-0.1);
+  const auto r = run_tether_sim(scn, options, reel_in);
+  bool saw_snag = false;
+  for (const auto& s : r.log) {
+    if (!s.snagged) continue;
+    saw_snag = true;
+    EXPECT_EQ(s.ugv_tension_n, 0.0) << "t = " << s.t_s;  // the miniUGV's side goes slack
+  }
+  EXPECT_TRUE(saw_snag);
+  // Reeling in 0.1 m/s against a fixed 3 m of line: ~500 N/m of stretch rate until the
+  // servo stalls at its 40 N force limit.
+  const auto during = *std::find_if(r.log.rbegin(), r.log.rend(), [](const auto& s) { return s.snagged; });
+  EXPECT_GT(during.winch_tension_n, 35.0);
+  EXPECT_LT(r.metrics.max_tension_n, 41.0);
+  EXPECT_NEAR(during.speed_mps, 0.0, 0.01);
+  const auto& after = r.log.back();
+  EXPECT_FALSE(after.snagged);
+  EXPECT_DOUBLE_EQ(after.winch_tension_n, after.ugv_tension_n);
+}
+
+TEST(TetherSim, DeterministicForASeed) {
+  const auto scn = default_tether_scenario();
+  auto options = TetherSimOptions::for_tether(15.0, 1.0);
+  auto model = std::make_shared<tether::FixedWrapTether>(1.0, scn.p_WE, scn.wrap_points);
+  auto run_with = [&](std::uint64_t seed) {
+    options.seed = seed;
+    tether::TautTetherMpc mpc(tether::TautTetherMpc::Options{}, model);
+    return run_tether_sim(scn, options, mpc);
+  };
+  const auto a = run_with(7), b = run_with(7), c = run_with(8);
+  ASSERT_EQ(a.log.size(), b.log.size());
+  for (std::size_t i = 0; i < a.log.size(); i += 50) EXPECT_EQ(a.log[i].released_m, b.log[i].released_m);
+  EXPECT_EQ(a.metrics.slack_rms_m, b.metrics.slack_rms_m);
+  EXPECT_NE(a.metrics.slack_rms_m, c.metrics.slack_rms_m);
+}
+
+TEST(TetherSim, TheMpcMeetsTheTargetsOnEveryShippedTrajectory) {
+  for (const char* file : {"default.yaml", "corner_snag.yaml", "fast_back_and_forth.csv", "reach_limit.csv"}) {
+    SCOPED_TRACE(file);
+    const auto scn = load_tether_scenario(std::string(FERRET_SOURCE_DIR) + "/examples/trajectories/" + file);
+    const auto options = TetherSimOptions::for_tether(15.0, 1.0);
+    auto model = std::make_shared<tether::FixedWrapTether>(1.0, scn.p_WE, scn.wrap_points);
+    tether::TautTetherMpc::Options mpc_options;
+    mpc_options.control = options.control;
+    tether::TautTetherMpc mpc(mpc_options, model);
+    const auto r = run_tether_sim(scn, options, mpc);
+    EXPECT_EQ(r.metrics.over_tension_events, 0);
+    EXPECT_EQ(r.metrics.released_over_limit, 0);
+    EXPECT_LE(r.metrics.max_released_m, 15.0);
+    EXPECT_GT(r.metrics.min_slack_m, -0.03);
+  }
+}
+
+}  // namespace
+}  // namespace ferret::sim
