@@ -1,5 +1,6 @@
 #include "ferret/planning/policies.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -74,11 +75,14 @@ std::optional<ExplorationGoal> RapidFrontierPolicy::choose_visible(const Explora
 }
 
 std::optional<ExplorationGoal> RapidFrontierPolicy::choose(const ExplorationState& s) {
-  if (auto goal = choose_visible(s, options_.max_velocity_mps)) return goal;
+  if (committed_ && still_a_goal(s, committed_->cell)) return committed_;
+  committed_ = choose_visible(s, options_.max_velocity_mps);
+  if (committed_) return committed_;
   return fallback_.choose(s);
 }
 
-CdosPolicy::CdosPolicy(const PolicyOptions& options, bool literal) : options_(options), literal_(literal) {
+CdosPolicy::CdosPolicy(const PolicyOptions& options, bool literal)
+    : options_(options), literal_(literal), baseline_(options) {
   if (literal_) {
     options_.curiosity.use_labels = true;
     options_.curiosity.cap_prediction = false;
@@ -87,11 +91,19 @@ CdosPolicy::CdosPolicy(const PolicyOptions& options, bool literal) : options_(op
 }
 
 std::optional<ExplorationGoal> CdosPolicy::choose(const ExplorationState& s) {
-  const auto evidence = collect_evidence(s.objects);
-  if (!literal_ && evidence.empty()) {  // no evidence: choose as the baseline does
-    if (auto goal = RapidFrontierPolicy::choose_visible(s, options_.max_velocity_mps)) return goal;
-    return fallback_.choose(s);
+  if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell)) return committed_;
+  committed_.reset();
+  auto goal = choose_fresh(s);
+  if (goal && goal->reason == "curiosity") {
+    committed_ = goal;
+    baseline_.goal_done();  // the baseline's goal is abandoned
   }
+  return goal;
+}
+
+std::optional<ExplorationGoal> CdosPolicy::choose_fresh(const ExplorationState& s) {
+  const auto evidence = collect_evidence(s.objects);
+  if (!literal_ && evidence.empty()) return baseline_.choose(s);  // no evidence: choose as the baseline does
   const auto& candidates = options_.cdos_candidates_global ? s.frontiers.global : s.frontiers.visible;
   if (candidates.empty()) return fallback_.choose(s);  // Algorithm 1: F_v empty -> nearest in F_g
   const GridGeometry& g = s.grid.geometry();
@@ -99,8 +111,9 @@ std::optional<ExplorationGoal> CdosPolicy::choose(const ExplorationState& s) {
   const auto scored = score_frontiers(candidates, g, p, evidence, options_.curiosity);
   // argmax L(C) (paper eq. (action_select)). Ties: the confidence floor makes the
   // predicted gain flat beyond eta / conf_floor of the evidence, so cdos breaks ties
-  // towards the strongest evidence (what the loss says without the floor); the
-  // literal reading has no rule and takes the candidate nearest the robot.
+  // towards the strongest evidence (what the loss says without the floor).
+  if (literal_ && std::all_of(scored.begin(), scored.end(), [](const auto& sf) { return sf.loss <= 1e-12; }))
+    return baseline_.choose(s);  // the paper gives no rule: the baseline's
   const Eigen::Vector2d tie_anchor = literal_ || evidence.empty() ? p : strongest_evidence(evidence).p_W;
   const ScoredFrontier* best = nullptr;
   double best_dist = 0.0;
@@ -112,7 +125,7 @@ std::optional<ExplorationGoal> CdosPolicy::choose(const ExplorationState& s) {
     }
   }
   if (!literal_ && best->loss <= 1e-12)  // curiosity is silent here: choose as the baseline does
-    return RapidFrontierPolicy::choose_visible(s, options_.max_velocity_mps);
+    return baseline_.choose(s);
   ExplorationGoal goal;
   goal.cell = best->cell;
   goal.p_W = best->p_W;
@@ -129,7 +142,8 @@ std::optional<ExplorationGoal> CdosPolicy::choose(const ExplorationState& s) {
 std::optional<ExplorationGoal> OraclePolicy::choose(const ExplorationState& s) {
   if (!s.oracle_object_W) return fallback_.choose(s);
   if (!planner_) planner_.emplace(s.grid.geometry());
-  planner_->compute(s.grid, s.paths.start(), GridPathPlanner::Traversal::kNotOccupied);
+  const double escape_m = s.grid.options().clearance_m + 2 * s.grid.geometry().resolution_m;
+  planner_->compute(s.grid, s.paths.start(), GridPathPlanner::Traversal::kNotOccupied, escape_m);
   auto goal = viewing_goal(s.grid, s.tracker, *planner_, *s.oracle_object_W, options_.view_distance_m);
   if (!goal) return fallback_.choose(s);
   goal->path_W = planner_->path_to(goal->cell);

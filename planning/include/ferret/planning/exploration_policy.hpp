@@ -75,6 +75,9 @@ class ExplorationPolicy {
   [[nodiscard]] virtual std::optional<ExplorationGoal> choose(const ExplorationState& state) = 0;
   /// True for the oracle: the simulator fills ExplorationState::oracle_object_W.
   [[nodiscard]] virtual bool needs_oracle() const { return false; }
+  /// The last goal chosen was reached (or given up: unreachable, stuck). Policies that
+  /// commit to a goal until then (Algorithm 1's "goto g*") release it here.
+  virtual void goal_done() {}
 };
 
 using ExplorationPolicyFactory = std::function<std::unique_ptr<ExplorationPolicy>(const PolicyOptions&)>;

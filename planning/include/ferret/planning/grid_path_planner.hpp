@@ -27,10 +27,12 @@ class GridPathPlanner {
 
   explicit GridPathPlanner(GridGeometry geometry);
 
-  /// Computes the field from `start` (always expanded, even if not traversable: the
-  /// robot may stand inside the clearance band of a newly seen wall). Cells with
-  /// `blocked[idx] != 0` are never crossed (may be empty).
-  void compute(const IrGrid& grid, Cell start, Traversal traversal, std::span<const std::uint8_t> blocked = {});
+  /// Computes the field from `start`. The robot may stand inside the clearance band of
+  /// a wall it has just seen and must be able to leave it: band cells connected to the
+  /// start (within `escape_radius_m`) may be crossed at a penalty, but are never
+  /// reachable as goals. Cells with `blocked[idx] != 0` are never crossed (may be empty).
+  void compute(const IrGrid& grid, Cell start, Traversal traversal, double escape_radius_m = 0.0,
+               std::span<const std::uint8_t> blocked = {});
 
   /// Path distance in metres per cell, kUnreachable where unreachable.
   [[nodiscard]] std::span<const float> distances_m() const { return distance_m_; }
@@ -53,6 +55,8 @@ class GridPathPlanner {
   std::vector<std::int32_t> parent_;
   std::vector<float> distance_m_;
   std::vector<std::uint8_t> crossable_;
+  std::vector<std::uint8_t> band_;
+  std::vector<std::uint8_t> seen_;
 };
 
 }  // namespace ferret

@@ -19,6 +19,7 @@ class NearestFrontierPolicy final : public ExplorationPolicy {
   explicit NearestFrontierPolicy(const PolicyOptions& options = {}) { (void)options; }
   [[nodiscard]] std::string_view name() const override { return "nearest"; }
   [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
+  void goal_done() override { committed_.reset(); }
 
  private:
   std::optional<Cell> committed_;
@@ -26,12 +27,20 @@ class NearestFrontierPolicy final : public ExplorationPolicy {
 
 /// Rapid frontier (Cieslewski et al. 2017): the F_v cell whose direction asks the
 /// least change of velocity, |v_max u(g) - v|; at rest the heading breaks the tie.
-/// Where F_v is empty, the nearest F_g cell (classic).
+/// Where F_v is empty, the nearest F_g cell (classic). The goal is kept while it is
+/// still a frontier: in open space the IR resolves it long before the robot gets
+/// there and a new one is chosen (the method stays reactive), while a frontier that
+/// no view resolves is reached and blacklisted. Re-choosing every cycle instead lets
+/// the robot circle unresolvable frontiers forever.
 class RapidFrontierPolicy final : public ExplorationPolicy {
  public:
   explicit RapidFrontierPolicy(const PolicyOptions& options) : options_(options) {}
   [[nodiscard]] std::string_view name() const override { return "rapid"; }
   [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
+  void goal_done() override {
+    committed_.reset();
+    fallback_.goal_done();
+  }
 
   /// The rapid rule on F_v alone (none if F_v is empty).
   [[nodiscard]] static std::optional<ExplorationGoal> choose_visible(const ExplorationState& state,
@@ -40,25 +49,39 @@ class RapidFrontierPolicy final : public ExplorationPolicy {
  private:
   PolicyOptions options_;
   NearestFrontierPolicy fallback_;
+  std::optional<ExplorationGoal> committed_;
 };
 
 /// Curiosity-driven object search. `literal` selects the paper read to the letter.
 ///  cdos: argmax of the curiosity loss over F_v (raw probabilities, capped
-///    prediction) among evidence cells, goal heading facing the strongest evidence;
+///    prediction) among evidence cells, goal heading facing the strongest evidence,
+///    driven to before the next choice;
 ///    with no evidence (or no positive loss) the rapid rule; F_v empty: nearest F_g.
 ///  cdos-literal: the loss on relabelled probabilities (eq. (cap_O)), uncapped
-///    prediction, argmax over F_v with ties to the nearest candidate, heading left to
-///    the path; F_v empty: nearest F_g (Algorithm 1).
+///    prediction, argmax over F_v (all zero, as is usual: the rapid rule; other ties:
+///    the candidate nearest the robot), heading left to the path; F_v empty: nearest
+///    F_g (Algorithm 1).
 class CdosPolicy final : public ExplorationPolicy {
  public:
   CdosPolicy(const PolicyOptions& options, bool literal);
   [[nodiscard]] std::string_view name() const override { return literal_ ? "cdos-literal" : "cdos"; }
   [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
+  void goal_done() override {
+    committed_.reset();
+    baseline_.goal_done();
+    fallback_.goal_done();
+  }
 
  private:
+  [[nodiscard]] std::optional<ExplorationGoal> choose_fresh(const ExplorationState& state);
+
   PolicyOptions options_;
   bool literal_;
+  RapidFrontierPolicy baseline_;  ///< where curiosity is silent
   NearestFrontierPolicy fallback_;
+  /// A curiosity goal is driven to before deciding again (Algorithm 1: "goto g*");
+  /// without evidence the policy stays as reactive as the baseline.
+  std::optional<ExplorationGoal> committed_;
 };
 
 /// Knows the object: drives the shortest path (through unknown cells too, as far as

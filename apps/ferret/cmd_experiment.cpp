@@ -1,0 +1,115 @@
+// `ferret experiment CONFIG.yaml --out DIR [--jobs N] [--shard I/N]`: the paper's
+// exploration experiment (sim/experiment.hpp). Writes runs.csv, summary.csv and the
+// sweep CSVs into DIR, then draws the plots with examples/plot_experiment.py when it
+// can find it (unsharded runs only: shards are merged first, see docs/object_search.md).
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "command.hpp"
+#include "ferret/core/error.hpp"
+#include "ferret/sim/experiment.hpp"
+
+namespace ferret::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Options {
+  std::string config, out, shard = "0/1", plot_script;
+  int jobs = 1;
+  bool no_plots = false, quiet = false;
+};
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument(text);
+    std::size_t u1 = 0, u2 = 0;
+    const int i = std::stoi(text.substr(0, slash), &u1);
+    const int n = std::stoi(text.substr(slash + 1), &u2);
+    if (u1 != slash || u2 != text.size() - slash - 1 || n < 1 || i < 0 || i >= n) throw std::invalid_argument(text);
+    return {i, n};
+  } catch (const std::exception&) {
+    throw InputError("ferret experiment", "--shard", "I/N with integers 0 <= I < N", text);
+  }
+}
+
+std::string format_duration(double s) {
+  char buf[32];
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s / 3600), static_cast<int>(s / 60) % 60);
+  else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
+  else std::snprintf(buf, sizeof buf, "%.0fs", s);
+  return buf;
+}
+
+fs::path find_plot_script(const Options& o) {
+  if (!o.plot_script.empty()) return o.plot_script;
+  if (const char* env = std::getenv("FERRET_PLOT_SCRIPT")) return env;
+  for (const fs::path& p : {fs::path(o.config).parent_path() / ".." / "plot_experiment.py",
+                            fs::path("examples") / "plot_experiment.py"})
+    if (fs::is_regular_file(p)) return p;
+  return {};
+}
+
+void run(const Options& o) {
+  const auto [shard_index, shard_count] = parse_shard(o.shard);
+  if (o.jobs < 1) throw InputError("ferret experiment", "--jobs", "an integer >= 1", std::to_string(o.jobs));
+  const ExperimentConfig config = load_experiment_config(o.config);
+
+  ExperimentOptions eo;
+  eo.jobs = o.jobs;
+  eo.shard_index = shard_index;
+  eo.shard_count = shard_count;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto last = t0 - std::chrono::seconds(10);
+  if (!o.quiet)
+    eo.progress = [&](std::size_t done, std::size_t total) {
+      const auto now = std::chrono::steady_clock::now();
+      if (done != total && now - last < std::chrono::milliseconds(500)) return;
+      last = now;
+      const double elapsed = std::chrono::duration<double>(now - t0).count();
+      const double rate = elapsed > 0 ? done / elapsed : 0.0;
+      const double left = rate > 0 ? (total - done) / rate : 0.0;
+      std::fprintf(stderr, "\r%zu/%zu runs, %.1f runs/s, %s left   ", done, total, rate,
+                   format_duration(left).c_str());
+      if (done == total) std::fprintf(stderr, "\n");
+      std::fflush(stderr);
+    };
+  run_experiment(config, o.out, eo);
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("wrote %s (runs.csv, summary.csv%s%s) in %s\n", o.out.c_str(),
+              config.sweep_camera_fov_deg.empty() ? "" : ", sweep_camera_fov.csv",
+              config.sweep_ir_fov_deg.empty() ? "" : ", sweep_ir_fov.csv", format_duration(elapsed).c_str());
+
+  if (o.no_plots || shard_count > 1) return;
+  const fs::path script = find_plot_script(o);
+  if (script.empty()) {
+    std::fprintf(stderr, "ferret: warning: examples/plot_experiment.py not found; no plots drawn\n");
+    return;
+  }
+  const std::string cmd = "python3 '" + script.string() + "' '" + o.out + "'";
+  if (std::system(cmd.c_str()) != 0)
+    std::fprintf(stderr, "ferret: warning: plotting failed (%s); the CSVs are complete\n", cmd.c_str());
+}
+
+const CommandRegistration kExperiment{"experiment", [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  auto* sub = app.add_subcommand("experiment", "Run the object-search experiment of a config (CDOS vs. baselines)");
+  sub->add_option("config", o->config, "Experiment YAML (docs/object_search.md)")->required();
+  sub->add_option("--out", o->out, "Output directory")->required();
+  sub->add_option("--jobs", o->jobs, "Worker threads")->capture_default_str();
+  sub->add_option("--shard", o->shard, "Run slice I of N (groups g with g % N == I)")->capture_default_str();
+  sub->add_option("--plot-script", o->plot_script, "Plot script (default: examples/plot_experiment.py)");
+  sub->add_flag("--no-plots", o->no_plots, "Write the CSVs only");
+  sub->add_flag("--quiet", o->quiet, "No progress line");
+  sub->callback([o] { run(*o); });
+}};
+
+}  // namespace
+}  // namespace ferret::cli

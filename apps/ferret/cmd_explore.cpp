@@ -1,0 +1,161 @@
+// `ferret explore`: one simulated object search in a map_server hidden space.
+//   ferret explore --map examples/maps/sparse.yaml --start 1,4,0 --object 9,6
+//                  --method cdos --seed 1 --out out/
+// Prints the time to find, the path length and the number of decisions; with --out,
+// writes G.png, O.png, G_O.png (the paper's map figure) and log.json.
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "ferret/core/atomic_file.hpp"
+#include "ferret/core/error.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/planning/exploration_policy.hpp"
+#include "ferret/sim/exploration_run.hpp"
+#include "ferret/urdf/mission_config.hpp"
+
+namespace ferret::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Options {
+  std::string map, start, object, method = "cdos", out, mission;
+  std::uint64_t seed = 1;
+  double camera_fov_deg = 90, ir_fov_deg = 30, camera_range_m = 4, ir_range_m = 4;
+  double max_velocity_mps = 2, max_yaw_rate_radps = 2, time_limit_s = 300;
+  std::string candidates = "fv";
+  bool closest_approach = false;
+};
+
+std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& option,
+                                  const std::string& what) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      std::size_t used = 0;
+      values.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InputError("ferret explore", option, what, text);
+    }
+  }
+  if (values.size() != count) throw InputError("ferret explore", option, what, text);
+  return values;
+}
+
+void check_positive(double value, const char* option) {
+  if (!(value > 0)) throw InputError("ferret explore", option, "a number > 0", std::to_string(value));
+}
+
+void run(const Options& o) {
+  const auto start_v = parse_numbers(o.start, 3, "--start", "x,y,yaw (metres, metres, radians)");
+  const auto object_v = parse_numbers(o.object, 2, "--object", "x,y (metres)");
+  if (!has_exploration_policy(o.method)) {
+    std::string names;
+    for (const auto& n : exploration_policy_names()) names += (names.empty() ? "" : ", ") + n;
+    throw InputError("ferret explore", "--method", "one of " + names, o.method);
+  }
+  if (o.candidates != "fv" && o.candidates != "fg")
+    throw InputError("ferret explore", "--cdos-candidates", "fv or fg", o.candidates);
+  for (const auto& [v, name] : {std::pair{o.camera_fov_deg, "--camera-fov"}, {o.ir_fov_deg, "--ir-fov"},
+                                {o.camera_range_m, "--camera-range"}, {o.ir_range_m, "--ir-range"},
+                                {o.max_velocity_mps, "--max-velocity"}, {o.max_yaw_rate_radps, "--max-yaw-rate"},
+                                {o.time_limit_s, "--time-limit"}})
+    check_positive(v, name);
+  if (o.camera_fov_deg >= 360 || o.ir_fov_deg >= 360)
+    throw InputError("ferret explore", "--camera-fov/--ir-fov", "a field of view below 360 degrees");
+
+  const OccupancyMap2D map = load_map_server(o.map);
+  const Pose2 start{start_v[0], start_v[1], start_v[2]};
+  const Eigen::Vector2d object(object_v[0], object_v[1]);
+  if (!map.is_free(map.geometry.cell_at(start.x_m, start.y_m)))
+    throw InputError("ferret explore", "--start", "a position on a free cell of " + o.map, o.start);
+  if (!map.is_free(map.geometry.cell_at(object.x(), object.y())))
+    throw InputError("ferret explore", "--object", "a position on a free cell of " + o.map, o.object);
+
+  ExplorationSettings s;
+  s.method = o.method;
+  if (!o.mission.empty()) s.mission = load_mission_config(o.mission);
+  s.sensors.camera_fov_rad = deg_to_rad(o.camera_fov_deg);
+  s.sensors.ir_fov_rad = deg_to_rad(o.ir_fov_deg);
+  s.sensors.camera_range_m = o.camera_range_m;
+  s.sensors.ir_range_m = o.ir_range_m;
+  s.robot.max_velocity_mps = o.max_velocity_mps;
+  s.robot.max_yaw_rate_radps = o.max_yaw_rate_radps;
+  s.robot.max_acceleration_mps2 = s.mission.ugv_limits.max_acceleration_mps2;
+  s.time_limit_s = o.time_limit_s;
+  s.cdos_candidates_global = o.candidates == "fg";
+  s.cdos_closest_approach = o.closest_approach;
+  s.record = !o.out.empty();
+
+  const EpisodeResult r = run_exploration(map, start, object, s, o.seed);
+
+  std::printf("method: %s\nfound: %s\ntime_s: %.2f\npath_m: %.2f\ndecisions: %d\nend: %s\n", o.method.c_str(),
+              r.found ? "yes" : "no", r.time_s, r.path_m, r.decisions, r.end_reason.c_str());
+  if (o.out.empty()) return;
+
+  const fs::path out(o.out);
+  write_exploration_images(map, object, r, out);
+  nlohmann::json log;
+  log["map"] = o.map;
+  log["method"] = o.method;
+  log["seed"] = o.seed;
+  log["start"] = {start.x_m, start.y_m, start.yaw_rad};
+  log["object"] = {object.x(), object.y()};
+  log["sensors"] = {{"camera_fov_deg", o.camera_fov_deg}, {"camera_range_m", o.camera_range_m},
+                    {"ir_fov_deg", o.ir_fov_deg}, {"ir_range_m", o.ir_range_m}};
+  log["robot"] = {{"max_velocity_mps", o.max_velocity_mps}, {"max_yaw_rate_radps", o.max_yaw_rate_radps}};
+  log["result"] = {{"found", r.found},       {"time_s", r.time_s},   {"path_m", r.path_m},
+                   {"decisions", r.decisions}, {"end", r.end_reason}, {"found_at", {r.found_W.x(), r.found_W.y()}}};
+  auto& decisions = log["decisions"] = nlohmann::json::array();
+  for (const auto& d : r.decision_log)
+    decisions.push_back({{"t_s", d.time_s},
+                         {"pose", {d.pose.x_m, d.pose.y_m, d.pose.yaw_rad}},
+                         {"goal", {d.goal_W.x(), d.goal_W.y()}},
+                         {"reason", d.reason},
+                         {"score", d.score},
+                         {"frontier_global", d.frontier_global},
+                         {"frontier_visible", d.frontier_visible},
+                         {"evidence_cells", d.evidence_cells}});
+  auto& trajectory = log["trajectory"] = nlohmann::json::array();  // every 0.1 s
+  for (std::size_t k = 0; k < r.trajectory.size(); k += 2)
+    trajectory.push_back({r.trajectory[k].x_m, r.trajectory[k].y_m, r.trajectory[k].yaw_rad});
+  write_text_atomically(out / "log.json", log.dump(1) + "\n");
+  std::printf("wrote: %s %s %s %s\n", (out / "G.png").c_str(), (out / "O.png").c_str(), (out / "G_O.png").c_str(),
+              (out / "log.json").c_str());
+}
+
+const CommandRegistration kExplore{"explore", [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  auto* sub = app.add_subcommand("explore", "Simulate one object search in a hidden-space map");
+  sub->add_option("--map", o->map, "Hidden space, map_server YAML")->required();
+  sub->add_option("--start", o->start, "Start pose x,y,yaw (m, m, rad)")->required();
+  sub->add_option("--object", o->object, "Object position x,y (m)")->required();
+  sub->add_option("--method", o->method, "cdos, cdos-literal, rapid, nearest or oracle")->capture_default_str();
+  sub->add_option("--seed", o->seed, "Seed of the sensor noise")->capture_default_str();
+  sub->add_option("--out", o->out, "Directory for G.png, O.png, G_O.png and log.json");
+  sub->add_option("--mission", o->mission, "Mission YAML (curiosity and object-search constants)");
+  sub->add_option("--camera-fov", o->camera_fov_deg, "Camera fov alpha (deg)")->capture_default_str();
+  sub->add_option("--ir-fov", o->ir_fov_deg, "IR fov beta (deg)")->capture_default_str();
+  sub->add_option("--camera-range", o->camera_range_m, "D_cam (m)")->capture_default_str();
+  sub->add_option("--ir-range", o->ir_range_m, "D_IR (m)")->capture_default_str();
+  sub->add_option("--max-velocity", o->max_velocity_mps, "m/s")->capture_default_str();
+  sub->add_option("--max-yaw-rate", o->max_yaw_rate_radps, "rad/s")->capture_default_str();
+  sub->add_option("--time-limit", o->time_limit_s, "Simulated seconds before giving up")->capture_default_str();
+  sub->add_option("--cdos-candidates", o->candidates, "cdos: score fv (F_v) or fg (F_g)")->capture_default_str();
+  sub->add_flag("--closest-approach", o->closest_approach, "cdos: d_{t+1} is the closest approach on the way");
+  sub->callback([o] { run(*o); });
+}};
+
+}  // namespace
+}  // namespace ferret::cli

@@ -1,0 +1,352 @@
+#include "ferret/sim/experiment.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+#include <tuple>
+
+#include "ferret/core/atomic_file.hpp"
+#include "ferret/core/error.hpp"
+#include "ferret/core/random.hpp"
+#include "ferret/core/yaml_config.hpp"
+#include "ferret/planning/exploration_policy.hpp"
+
+namespace ferret {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> read_methods(const yaml::MapReader& r, std::string_view key) {
+  const auto methods = r.get_list<std::string>(key);
+  if (methods.empty()) r.fail(key, "a non-empty list of methods");
+  std::string names;
+  for (const auto& n : exploration_policy_names()) names += (names.empty() ? "" : ", ") + n;
+  for (std::size_t k = 0; k < methods.size(); ++k)
+    if (!has_exploration_policy(methods[k]))
+      throw InputError(r.source(), r.field_path(key) + "[" + std::to_string(k) + "]", "one of " + names, methods[k]);
+  return methods;
+}
+
+std::vector<double> read_fovs(const yaml::MapReader& r, std::string_view key) {
+  const auto values = r.get_list<double>(key);
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (!(values[k] > 0 && values[k] < 360))
+      throw InputError(r.source(), r.field_path(key) + "[" + std::to_string(k) + "]",
+                       "a field of view in (0, 360) degrees", std::to_string(values[k]));
+  return values;
+}
+
+// Cells that are free with clearance_m to every non-free cell (and the map border).
+bool clear_cell(const OccupancyMap2D& map, Cell c, double clearance_m) {
+  const GridGeometry& g = map.geometry;
+  const int r = static_cast<int>(std::ceil(clearance_m / g.resolution_m));
+  for (int dj = -r; dj <= r; ++dj)
+    for (int di = -r; di <= r; ++di) {
+      if ((di * di + dj * dj) * g.resolution_m * g.resolution_m > clearance_m * clearance_m) continue;
+      if (!map.is_free({c.i + di, c.j + dj})) return false;
+    }
+  return true;
+}
+
+std::vector<Cell> zone_cells(const OccupancyMap2D& map, const ZoneSpec& zone, double clearance_m) {
+  const GridGeometry& g = map.geometry;
+  std::vector<Cell> cells;
+  const Cell lo = g.cell_at(zone.xmin_m, zone.ymin_m), hi = g.cell_at(zone.xmax_m, zone.ymax_m);
+  for (int j = std::max(0, lo.j); j <= std::min(g.height - 1, hi.j); ++j)
+    for (int i = std::max(0, lo.i); i <= std::min(g.width - 1, hi.i); ++i) {
+      const Eigen::Vector2d p = g.center({i, j});
+      if (p.x() < zone.xmin_m || p.x() > zone.xmax_m || p.y() < zone.ymin_m || p.y() > zone.ymax_m) continue;
+      if (clear_cell(map, {i, j}, clearance_m)) cells.push_back({i, j});
+    }
+  return cells;
+}
+
+ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double clearance_m) {
+  r.allow_only({"name", "map", "start", "zones"});
+  ExperimentMap m;
+  m.name = r.get<std::string>("name");
+  if (m.name.empty() || m.name.find_first_of(",\"\n") != std::string::npos)
+    r.fail("name", "a non-empty name without commas or quotes", m.name);
+  m.map_path = base / r.get<std::string>("map");
+  try {
+    m.map = load_map_server(m.map_path);
+  } catch (const InputError& e) {
+    r.fail("map", "a readable map_server YAML (" + std::string(e.what()) + ")", m.map_path.string());
+  }
+  const auto start = r.get_list<double>("start", 3);
+  m.start = {start[0], start[1], start[2]};
+  if (!m.map.is_free(m.map.geometry.cell_at(m.start.x_m, m.start.y_m)))
+    r.fail("start", "a pose on a free cell of the map");
+  if (!r.has("zones")) r.fail("zones", "a mapping of zone ids 1..N to [xmin, ymin, xmax, ymax] (required field missing)");
+  const YAML::Node zones = r.node()["zones"];
+  if (!zones.IsMap() || zones.size() == 0)
+    r.fail("zones", "a mapping of zone ids 1..N to [xmin, ymin, xmax, ymax]");
+  const yaml::MapReader zr(zones, r.source(), r.field_path("zones"));
+  std::map<int, ZoneSpec> by_id;
+  for (const auto& entry : zones) {
+    const auto key = entry.first.as<std::string>();
+    int id = 0;
+    try {
+      std::size_t used = 0;
+      id = std::stoi(key, &used);
+      if (used != key.size()) throw std::invalid_argument(key);
+    } catch (const std::exception&) {
+      zr.fail(key, "a zone id (an integer >= 1)", key);
+    }
+    const auto rect = zr.get_list<double>(key, 4);
+    ZoneSpec z{id, rect[0], rect[1], rect[2], rect[3]};
+    if (!(z.xmin_m < z.xmax_m && z.ymin_m < z.ymax_m)) zr.fail(key, "[xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax");
+    const GridGeometry& g = m.map.geometry;
+    if (z.xmin_m < g.origin_x_m || z.ymin_m < g.origin_y_m || z.xmax_m > g.origin_x_m + g.width_m() ||
+        z.ymax_m > g.origin_y_m + g.height_m()) {
+      std::ostringstream bounds;
+      bounds << "a rectangle inside the map [" << g.origin_x_m << ", " << g.origin_y_m << ", "
+             << g.origin_x_m + g.width_m() << ", " << g.origin_y_m + g.height_m() << "]";
+      zr.fail(key, bounds.str());
+    }
+    if (zone_cells(m.map, z, clearance_m).empty())
+      zr.fail(key, "a zone with free cells at least " + std::to_string(clearance_m) + " m from obstacles");
+    by_id[id] = z;
+  }
+  for (int id = 1; id <= static_cast<int>(by_id.size()); ++id)
+    if (!by_id.count(id))
+      zr.fail(std::to_string(id), "zones numbered 1.." + std::to_string(by_id.size()) + " without gaps (zone " +
+                                      std::to_string(id) + " missing)");
+  for (const auto& [id, z] : by_id) m.zones.push_back(z);
+  return m;
+}
+
+std::string format_double(double v) {
+  if (!std::isfinite(v)) return "nan";
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// Student t quantile at 0.975 for df degrees of freedom.
+double t975(int df) {
+  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
+                                 2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
+                                 2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
+  if (df <= 0) return 0.0;
+  if (df <= 30) return table[df - 1];
+  return 1.96 + 2.4 / df;  // within 0.01 of the exact value beyond 30
+}
+
+struct Outcome {
+  bool done = false;
+  EpisodeResult result;
+};
+
+}  // namespace
+
+MeanCi mean_ci95(const std::vector<double>& values) {
+  MeanCi out;
+  if (values.empty()) return {std::nan(""), std::nan("")};
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  out.mean = sum / static_cast<double>(values.size());
+  if (values.size() < 2) return out;
+  double ss = 0.0;
+  for (const double v : values) ss += (v - out.mean) * (v - out.mean);
+  const double sd = std::sqrt(ss / static_cast<double>(values.size() - 1));
+  out.ci95 = t975(static_cast<int>(values.size()) - 1) * sd / std::sqrt(static_cast<double>(values.size()));
+  return out;
+}
+
+ExperimentConfig load_experiment_config(const fs::path& path) {
+  const yaml::MapReader r(yaml::load_file(path), path.string());
+  r.allow_only({"seed", "objects_per_zone", "methods", "robot", "sensors", "maps", "sweeps", "mission",
+                "time_limit_s", "object_clearance_m"});
+  ExperimentConfig c;
+  c.source = path;
+  const fs::path base = path.parent_path();
+  c.seed = r.get_or<std::uint64_t>("seed", 1);
+  c.objects_per_zone = static_cast<int>(r.get_in_range_or("objects_per_zone", 1, 100000, 20));
+  c.methods = read_methods(r, "methods");
+  if (r.has("mission")) c.base.mission = load_mission_config(base / r.get<std::string>("mission"));
+  c.base.time_limit_s = r.get_in_range_or("time_limit_s", 1, 1e6, 300);
+  c.object_clearance_m = r.get_in_range_or("object_clearance_m", 0, 10, 0.25);
+  c.base.robot.max_acceleration_mps2 = c.base.mission.ugv_limits.max_acceleration_mps2;
+  if (const auto robot = r.optional_child("robot")) {
+    robot->allow_only({"max_velocity", "max_yaw_rate", "clearance"});
+    c.base.robot.max_velocity_mps = robot->get_in_range_or("max_velocity", 1e-3, 100, 2.0);
+    c.base.robot.max_yaw_rate_radps = robot->get_in_range_or("max_yaw_rate", 1e-3, 100, 2.0);
+    c.base.robot.clearance_m = robot->get_in_range_or("clearance", 0, 5, c.base.robot.clearance_m);
+  }
+  if (const auto s = r.optional_child("sensors")) {
+    s->allow_only({"camera_fov_deg", "camera_range", "ir_fov_deg", "ir_range"});
+    c.base.sensors.camera_fov_rad = deg_to_rad(s->get_in_range_or("camera_fov_deg", 1, 359, 90));
+    c.base.sensors.camera_range_m = s->get_in_range_or("camera_range", 0.1, 100, 4.0);
+    c.base.sensors.ir_fov_rad = deg_to_rad(s->get_in_range_or("ir_fov_deg", 1, 359, 30));
+    c.base.sensors.ir_range_m = s->get_in_range_or("ir_range", 0.1, 100, 4.0);
+  }
+  const auto maps = r.child_list("maps");
+  if (maps.empty()) r.fail("maps", "at least one map");
+  for (const auto& m : maps) c.maps.push_back(read_map(m, base, c.object_clearance_m));
+  for (std::size_t a = 0; a < c.maps.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b)
+      if (c.maps[a].name == c.maps[b].name)
+        maps[a].fail("name", "a name no other map has", c.maps[a].name);
+  for (const auto& m : c.methods)
+    if (m != "oracle") c.sweep_methods.push_back(m);
+  c.sweep_objects_per_zone = c.objects_per_zone;
+  if (const auto sw = r.optional_child("sweeps")) {
+    sw->allow_only({"camera_fov_deg", "ir_fov_deg", "methods", "objects_per_zone"});
+    if (sw->has("camera_fov_deg")) c.sweep_camera_fov_deg = read_fovs(*sw, "camera_fov_deg");
+    if (sw->has("ir_fov_deg")) c.sweep_ir_fov_deg = read_fovs(*sw, "ir_fov_deg");
+    if (sw->has("methods")) c.sweep_methods = read_methods(*sw, "methods");
+    c.sweep_objects_per_zone = static_cast<int>(sw->get_in_range_or("objects_per_zone", 1, 100000, c.objects_per_zone));
+  }
+  return c;
+}
+
+std::vector<Eigen::Vector2d> sample_zone_objects(const OccupancyMap2D& map, const ZoneSpec& zone, int count,
+                                                 double clearance_m, std::uint64_t seed) {
+  const auto cells = zone_cells(map, zone, clearance_m);
+  std::vector<Eigen::Vector2d> out;
+  if (cells.empty()) return out;
+  Rng rng(seed);
+  for (int k = 0; k < count; ++k) {
+    const auto idx = static_cast<std::size_t>(rng.uniform_int(0, static_cast<std::int64_t>(cells.size()) - 1));
+    out.push_back(map.geometry.center(cells[idx]));
+  }
+  return out;
+}
+
+std::vector<RunSpec> plan_runs(const ExperimentConfig& c) {
+  std::vector<RunSpec> runs;
+  std::size_t group = 0;
+  const double cam_deg = rad_to_deg(c.base.sensors.camera_fov_rad), ir_deg = rad_to_deg(c.base.sensors.ir_fov_rad);
+  const int most = std::max(c.objects_per_zone, c.sweep_objects_per_zone);
+  auto add = [&](const std::string& experiment, const std::vector<std::string>& methods, int objects, double cam,
+                 double ir) {
+    for (std::size_t m = 0; m < c.maps.size(); ++m) {
+      const auto& map = c.maps[m];
+      const std::uint64_t map_hash = stable_hash(map.name.c_str());
+      for (const auto& zone : map.zones) {
+        // The same objects for every method and sweep: seeded by (seed, map, zone).
+        const auto objects_W = sample_zone_objects(map.map, zone, most, c.object_clearance_m,
+                                                   derive_seed(c.seed, {map_hash, static_cast<std::uint64_t>(zone.id)}));
+        for (const auto& method : methods) {
+          for (int k = 0; k < objects; ++k) {
+            RunSpec s;
+            s.experiment = experiment;
+            s.map_index = m;
+            s.zone = zone.id;
+            s.object_index = k;
+            s.method = method;
+            s.camera_fov_deg = cam;
+            s.ir_fov_deg = ir;
+            s.object_W = objects_W[static_cast<std::size_t>(k)];
+            s.seed = derive_seed(c.seed, {map_hash, static_cast<std::uint64_t>(zone.id), static_cast<std::uint64_t>(k)});
+            s.group = group;
+            runs.push_back(s);
+          }
+          ++group;
+        }
+      }
+    }
+  };
+  add("main", c.methods, c.objects_per_zone, cam_deg, ir_deg);
+  for (const double a : c.sweep_camera_fov_deg) add("camera_fov", c.sweep_methods, c.sweep_objects_per_zone, a, ir_deg);
+  for (const double b : c.sweep_ir_fov_deg) add("ir_fov", c.sweep_methods, c.sweep_objects_per_zone, cam_deg, b);
+  return runs;
+}
+
+void run_experiment(const ExperimentConfig& c, const fs::path& out_dir, const ExperimentOptions& options) {
+  if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count)
+    throw InputError("--shard", "", "I/N with 0 <= I < N");
+  std::vector<RunSpec> runs;
+  for (const auto& s : plan_runs(c))
+    if (static_cast<int>(s.group % static_cast<std::size_t>(options.shard_count)) == options.shard_index)
+      runs.push_back(s);
+
+  std::vector<Outcome> outcomes(runs.size());
+  std::atomic<std::size_t> next{0};
+  std::size_t done = 0;
+  std::mutex progress_mutex;
+  std::exception_ptr failure;
+  auto worker = [&] {
+    for (std::size_t k = next++; k < runs.size(); k = next++) {
+      const RunSpec& s = runs[k];
+      ExplorationSettings settings = c.base;
+      settings.method = s.method;
+      settings.sensors.camera_fov_rad = deg_to_rad(s.camera_fov_deg);
+      settings.sensors.ir_fov_rad = deg_to_rad(s.ir_fov_deg);
+      try {
+        outcomes[k].result = run_exploration(c.maps[s.map_index].map, c.maps[s.map_index].start, s.object_W,
+                                             settings, s.seed);
+        outcomes[k].done = true;
+      } catch (...) {
+        std::lock_guard lock(progress_mutex);
+        if (!failure) failure = std::current_exception();
+        next = runs.size();
+      }
+      std::lock_guard lock(progress_mutex);
+      ++done;
+      if (options.progress) options.progress(done, runs.size());
+    }
+  };
+  const int jobs = std::max(1, options.jobs);
+  std::vector<std::thread> threads;
+  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+
+  std::ostringstream runs_csv;
+  runs_csv << "experiment,map,zone,object,method,camera_fov_deg,ir_fov_deg,seed,object_x,object_y,found,time_s,"
+              "path_m,decisions,end\n";
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const RunSpec& s = runs[k];
+    const EpisodeResult& r = outcomes[k].result;
+    runs_csv << s.experiment << ',' << c.maps[s.map_index].name << ',' << s.zone << ',' << s.object_index << ','
+             << s.method << ',' << format_double(s.camera_fov_deg) << ',' << format_double(s.ir_fov_deg) << ','
+             << s.seed << ',' << format_double(s.object_W.x()) << ',' << format_double(s.object_W.y()) << ','
+             << (r.found ? 1 : 0) << ',' << format_double(r.time_s) << ',' << format_double(r.path_m) << ','
+             << r.decisions << ',' << r.end_reason << '\n';
+  }
+
+  // One summary row a group, in plan order.
+  std::ostringstream summary, sweep_cam, sweep_ir;
+  summary << kSummaryHeader << '\n';
+  const char* sweep_header = "map,zone,method,camera_fov_deg,ir_fov_deg,runs,found,mean_time_s,ci95_time_s,mean_path_m\n";
+  sweep_cam << sweep_header;
+  sweep_ir << sweep_header;
+  for (std::size_t k = 0; k < runs.size();) {
+    std::size_t end = k;
+    std::vector<double> times, paths;
+    while (end < runs.size() && runs[end].group == runs[k].group) {
+      const EpisodeResult& r = outcomes[end].result;
+      if (r.found) {
+        times.push_back(r.time_s);
+        paths.push_back(r.path_m);
+      }
+      ++end;
+    }
+    const RunSpec& s = runs[k];
+    const MeanCi t = mean_ci95(times), p = mean_ci95(paths);
+    std::ostringstream stats;
+    stats << (end - k) << ',' << times.size() << ',' << format_double(t.mean) << ',' << format_double(t.ci95) << ','
+          << format_double(p.mean) << '\n';
+    const std::string key = c.maps[s.map_index].name + "," + std::to_string(s.zone) + "," + s.method + ",";
+    const std::string fovs = format_double(s.camera_fov_deg) + "," + format_double(s.ir_fov_deg) + ",";
+    if (s.experiment == "main") summary << key << stats.str();
+    if (s.experiment == "camera_fov") sweep_cam << key << fovs << stats.str();
+    if (s.experiment == "ir_fov") sweep_ir << key << fovs << stats.str();
+    k = end;
+  }
+  fs::create_directories(out_dir);
+  write_text_atomically(out_dir / "runs.csv", runs_csv.str());
+  write_text_atomically(out_dir / "summary.csv", summary.str());
+  if (!c.sweep_camera_fov_deg.empty()) write_text_atomically(out_dir / "sweep_camera_fov.csv", sweep_cam.str());
+  if (!c.sweep_ir_fov_deg.empty()) write_text_atomically(out_dir / "sweep_ir_fov.csv", sweep_ir.str());
+}
+
+}  // namespace ferret
