@@ -23,9 +23,6 @@ namespace {
 constexpr int kTreeDepth = 16;        // OctoMap's fixed depth
 constexpr int kKeyOffset = 1 << 15;   // key of the voxel whose lower corner is 0
 constexpr double kTol_m = 1e-9;       // same face tolerance as the primitives' contains()
-// A world that would need more nodes than this is refused rather than exhausting
-// memory (about 50 bytes a node measured; the default world needs 2.5 million).
-constexpr std::size_t kMaxNodes = 60'000'000;
 
 // ---------------------------------------------------------------------------------
 // Building
@@ -110,7 +107,8 @@ class BuildableOcTree : public octomap::OcTree {
 
 class WorldVoxelizer {
  public:
-  WorldVoxelizer(const WorldSpec& world, BuildableOcTree& tree) : world_(world), tree_(tree) {
+  WorldVoxelizer(const WorldSpec& world, const WorldBuildOptions& options, BuildableOcTree& tree)
+      : world_(world), options_(options), tree_(tree) {
     res_ = world.resolution_m;
     for (int a = 0; a < 3; ++a) {
       // Keys whose voxel centres lie within the bounds.
@@ -175,11 +173,11 @@ class WorldVoxelizer {
       const State s = classify(kc, half, cands, child_cands);
       if (s == State::kUnknown) continue;
       octomap::OcTreeNode* child = tree_.createNodeChild(node, i);
-      if (tree_.size() > kMaxNodes)
+      if (tree_.size() > options_.max_nodes)
         throw InputError(world_.source.string(), "resolution_m",
-                         fmt::format("a resolution coarse enough for at most {} million tree nodes (about {} GB); "
+                         fmt::format("a resolution coarse enough for at most {} tree nodes (about {} MB); "
                                      "sloped ground and tilted faces cost a leaf a voxel of surface",
-                                     kMaxNodes / 1000000, kMaxNodes * 55 / 1000000000),
+                                     options_.max_nodes, options_.max_nodes * 50 / 1000000),
                          fmt::format("{}", world_.resolution_m));
       if (s == State::kMixed) {
         fill(child, kc, half, depth + 1, child_cands);
@@ -191,6 +189,7 @@ class WorldVoxelizer {
   }
 
   const WorldSpec& world_;
+  const WorldBuildOptions& options_;
   BuildableOcTree& tree_;
   double res_ = 0.05;
   std::array<long, 3> kmin_{}, kmax_{};
@@ -326,9 +325,9 @@ bool has_ext(const fs::path& p, std::string_view ext) { return p.extension() == 
 
 }  // namespace
 
-std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world) {
+std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world, const WorldBuildOptions& options) {
   auto tree = std::make_unique<BuildableOcTree>(world.resolution_m);
-  WorldVoxelizer(world, *tree).run();
+  WorldVoxelizer(world, options, *tree).run();
   // The conservative cube tests can split a cube whose children all agree; merge them.
   tree->prune();
   tree->updateInnerOccupancy();

@@ -91,6 +91,21 @@ TEST_F(SmallWorld, EveryVoxelAgreesWithGroundTruthAtItsCentre) {
   EXPECT_GT(checked, 19000);
 }
 
+TEST_F(SmallWorld, NodeBudgetRefusesTooFineAWorld) {
+  // The small world needs about 12 700 nodes at 2.5 cm.
+  WorldBuildOptions options;
+  options.max_nodes = 5000;
+  try {
+    (void)build_world_octree(*world_, options);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "resolution_m");
+    EXPECT_THAT(e.source(), HasSubstr("small.yaml"));
+  }
+  options.max_nodes = 20000;
+  EXPECT_GT(build_world_octree(*world_, options)->size(), 5000u);
+}
+
 TEST_F(SmallWorld, OpeningIsPassableAtGroundLevelOnly) {
   // Flood fill the 2D slice from outside the cellar: the interior is reached
   // through the opening at z = 3 cm, not at 10 cm (above the 7.5 cm opening).

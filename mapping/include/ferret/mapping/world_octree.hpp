@@ -24,7 +24,13 @@ namespace ferret {
 /// grows with the area of the surfaces, not the volume. Occupied leaves hold
 /// OctoMap's upper clamping log-odds, free leaves the lower one; inner nodes hold
 /// the maximum of their children (updateInnerOccupancy has run).
-[[nodiscard]] std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world);
+struct WorldBuildOptions {
+  /// A world needing more nodes is refused (InputError on resolution_m) instead of
+  /// exhausting memory: about 50 bytes a node, so 60 million is about 3 GB.
+  std::size_t max_nodes = 60'000'000;
+};
+[[nodiscard]] std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world,
+                                                                  const WorldBuildOptions& options = {});
 
 /// Loads a .bt or .ot OcTree (chosen by extension). The file's structure is
 /// validated before OctoMap reads it (OctoMap 1.9.7 recurses without a depth
