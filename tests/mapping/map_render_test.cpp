@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "ferret/core/error.hpp"
+#include "ferret/mapping/world_octree.hpp"
 #include "support/cli_runner.hpp"
 
 namespace ferret {
@@ -85,6 +87,26 @@ TEST(MapCanvas, PngRoundTripAndScaleBar) {
   EXPECT_TRUE(white_seen);
   EXPECT_THROW(canvas.save_png(dir / "m.jpg"), InputError);
   EXPECT_EQ(dir.count(), 1u);
+}
+
+TEST(MapCanvas, WorldAnnotationsMarkObjectsAndDropZone) {
+  const WorldSpec world = load_world(FERRET_SOURCE_DIR "/examples/worlds/small.yaml");
+  SliceOptions at_floor;
+  at_floor.z_m = 0.03;
+  RenderOptions o;
+  o.pixels_per_cell = 4;
+  o.scale_bar = false;
+  MapCanvas canvas(slice_octree(*build_world_octree(world), at_floor), o);
+  draw_world_annotations(canvas, world);
+  const RgbImage img = canvas.image();
+  auto pixel = [&](double x, double y) {
+    const Eigen::Vector2d p = canvas.to_pixel({x, y});
+    return img.at(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
+  };
+  EXPECT_TRUE(same(pixel(1.0, -0.7), Rgb{220, 20, 20}));    // the canister
+  EXPECT_TRUE(same(pixel(-2.0, -2.5), Rgb{255, 140, 0}));   // bottom of the drop zone's circle
+  EXPECT_TRUE(same(pixel(-0.601, -1.0), Rgb{30, 80, 230})); // the cellar's marker
+  EXPECT_TRUE(same(pixel(-0.3, -1.0), Rgb{0, 160, 0}));     // the entry heading, into the cellar
 }
 
 TEST(MapServerImage, PngThroughOpenCv) {
