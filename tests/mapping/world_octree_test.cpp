@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <deque>
 #include <fstream>
 #include <sstream>
@@ -106,26 +107,50 @@ TEST_F(SmallWorld, NodeBudgetRefusesTooFineAWorld) {
   EXPECT_GT(build_world_octree(*world_, options)->size(), 5000u);
 }
 
+// 4-connected path of free cells between two world points.
+bool connected(const OccupancyMap2D& m, const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+  std::vector<char> seen(m.cells.size(), 0);
+  std::deque<Cell> queue{m.geometry.cell_at(from.x(), from.y())};
+  const Cell goal = m.geometry.cell_at(to.x(), to.y());
+  while (!queue.empty()) {
+    const Cell c = queue.front();
+    queue.pop_front();
+    if (!m.is_free(c) || seen[m.geometry.index(c)]) continue;
+    seen[m.geometry.index(c)] = 1;
+    if (c == goal) return true;
+    for (const Cell d : {Cell{1, 0}, Cell{-1, 0}, Cell{0, 1}, Cell{0, -1}}) queue.push_back({c.i + d.i, c.j + d.j});
+  }
+  return false;
+}
+
 TEST_F(SmallWorld, OpeningIsPassableAtGroundLevelOnly) {
   // Flood fill the 2D slice from outside the cellar: the interior is reached
   // through the opening at z = 3 cm, not at 10 cm (above the 7.5 cm opening).
-  auto reaches_interior = [&](double z) {
-    const OccupancyMap2D m = slice_octree(*tree_, at_z(z, 0.0));
-    std::vector<char> seen(m.cells.size(), 0);
-    std::deque<Cell> queue{m.geometry.cell_at(-1.5, -1.0)};
-    const Cell goal = m.geometry.cell_at(0.5, -1.0);
-    while (!queue.empty()) {
-      const Cell c = queue.front();
-      queue.pop_front();
-      if (!m.is_free(c) || seen[m.geometry.index(c)]) continue;
-      seen[m.geometry.index(c)] = 1;
-      if (c == goal) return true;
-      for (const Cell d : {Cell{1, 0}, Cell{-1, 0}, Cell{0, 1}, Cell{0, -1}}) queue.push_back({c.i + d.i, c.j + d.j});
-    }
-    return false;
-  };
-  EXPECT_TRUE(reaches_interior(0.03));
-  EXPECT_FALSE(reaches_interior(0.10));
+  const Eigen::Vector2d outside(-1.5, -1.0), inside(0.5, -1.0);
+  EXPECT_TRUE(connected(slice_octree(*tree_, at_z(0.03)), outside, inside));
+  EXPECT_FALSE(connected(slice_octree(*tree_, at_z(0.10)), outside, inside));
+}
+
+TEST(DefaultWorld, BothHiddenSpacesAreEnteredOnlyThroughTheirOpenings) {
+  const WorldSpec w = load_world(FERRET_SOURCE_DIR "/examples/worlds/default.yaml");
+  ASSERT_EQ(w.hidden_spaces.size(), 2u);
+  ASSERT_EQ(w.objects.size(), 1u);
+  EXPECT_EQ(w.hidden_spaces[w.objects[0].hidden_space].name, "house_void");
+  ASSERT_TRUE(w.drop_zone.has_value());
+  const auto tree = build_world_octree(w);
+  for (const HiddenSpace& h : w.hidden_spaces) {
+    EXPECT_DOUBLE_EQ(h.opening_width_m, 0.15);
+    EXPECT_DOUBLE_EQ(h.opening_height_m, 0.07);
+    const Eigen::Vector2d into(std::cos(h.entry_yaw_rad), std::sin(h.entry_yaw_rad));
+    const Eigen::Vector2d outside = h.p_WE.head<2>() - 0.4 * into, inside = h.p_WE.head<2>() + 0.6 * into;
+    auto slice = [&](double z) {
+      SliceOptions o = at_z(z);
+      o.window_m = hidden_space_window(w, h.name, 0.5, "test");
+      return slice_octree(*tree, o);
+    };
+    EXPECT_TRUE(connected(slice(0.03), outside, inside)) << h.name;
+    EXPECT_FALSE(connected(slice(0.09), outside, inside)) << h.name;
+  }
 }
 
 TEST_F(SmallWorld, SliceMatchesVoxels) {
