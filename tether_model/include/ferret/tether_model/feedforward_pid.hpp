@@ -16,9 +16,9 @@ class FeedForwardPid final : public TetherController {
  public:
   struct Options {
     TautControlOptions control;
-    double kp_per_s = 8.0;     ///< m/s of command per m of slack error
-    double ki_per_s2 = 4.0;
-    double kd = 0.0;           ///< s * (m/s per m)... derivative of the slack error
+    double kp_per_s = 10.0;    ///< m/s of command per m of slack error
+    double ki_per_s2 = 16.0;   ///< m/s of command per m*s of integrated error
+    double kd = 0.0;           ///< m/s of command per m/s of error rate
     double feedforward_gain = 1.0;
     double integral_limit_m_s = 0.2;
   };

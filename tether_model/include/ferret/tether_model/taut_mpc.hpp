@@ -22,7 +22,7 @@ class TautTetherMpc final : public TetherController {
     double prediction_dt_s = 0.02;    ///< N * dt = 0.4 s look-ahead by default
     double acceleration_time_s = 0.1;  ///< how long the miniUGV's desired acceleration is assumed to last
     double weight_slack = 100.0;      ///< on (slack - reference)^2 per step, 1/m^2
-    double weight_command_rate = 0.5; ///< on (delta command)^2, (s/m)^2
+    double weight_command_rate = 2.0; ///< on (delta command)^2, (s/m)^2
     double weight_feedforward = 0.05; ///< on (command - required-length rate)^2
     double weight_terminal = 5.0;     ///< extra slack weight on the last step (multiplier)
     double soft_linear_weight = 2000.0;     ///< exact-penalty weight of the soft slack bounds

@@ -87,7 +87,7 @@ class TetherController {
 struct TautControlOptions {
   WinchLimits limits;
   SlackEstimator slack_estimator;
-  double slack_reference_m = 0.005; ///< slack held when nothing moves
+  double slack_reference_m = 0.0;   ///< slack aimed for: taut (tuned, docs/tether.md)
   double max_slack_m = 0.15;        ///< s_max: slack kept in [0, s_max]
   double control_period_s = 0.02;   ///< 50 Hz
   double ugv_max_speed_mps = 2.0;   ///< caps the miniUGV prediction
