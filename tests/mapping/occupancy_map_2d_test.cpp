@@ -159,6 +159,24 @@ TEST(OccupancyMap2D, TruncatedAndBrokenPgmHeaders) {
   expect_input_error([&] { (void)read_pgm(p); }, "m.pgm", "pixels[0]");
 }
 
+TEST(OccupancyMap2D, EveryTruncationOfAPgmIsDetected) {
+  TempDir dir;
+  const std::string p = dir / "m.pgm";
+  const std::string binary = std::string("P5\n# c\n3 2\n255\n") + std::string{'\x00', '\xfe', '\xcd', '\x59', '\x5a', '\xce'};
+  const std::string ascii = "P2\n3 2\n255\n0 254 205\n89 90 206\n";
+  for (const std::string& full : {binary, ascii}) {
+    write_bytes(p, full);
+    ASSERT_EQ(read_pgm(p).pixels.size(), 6u);
+    // ASCII ends with a newline and its last sample may lose digits without
+    // becoming invalid: cut only before the last sample starts.
+    const std::size_t last = full[1] == '5' ? full.size() : full.rfind(' ') + 1;
+    for (std::size_t n = 0; n < last; ++n) {
+      write_bytes(p, full.substr(0, n));
+      EXPECT_THROW((void)read_pgm(p), InputError) << "prefix of " << n << " bytes";
+    }
+  }
+}
+
 TEST(OccupancyMap2D, BadYamlFieldsNameTheField) {
   TempDir dir;
   write_bytes(dir / "m.pgm", "P2 1 1 255 0");
