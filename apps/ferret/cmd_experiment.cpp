@@ -93,7 +93,9 @@ void run(const Options& o) {
     std::fprintf(stderr, "ferret: warning: examples/plot_experiment.py not found; no plots drawn\n");
     return;
   }
-  const std::string cmd = "python3 '" + script.string() + "' '" + o.out + "'";
+  // Debian's python3 has python3-matplotlib; a python3 earlier on PATH (pyenv, venv) may not.
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string cmd = python + " '" + script.string() + "' '" + o.out + "'";
   if (std::system(cmd.c_str()) != 0)
     std::fprintf(stderr, "ferret: warning: plotting failed (%s); the CSVs are complete\n", cmd.c_str());
 }
