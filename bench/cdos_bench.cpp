@@ -1,0 +1,113 @@
+// One decision cycle of the object search at 0.05 m on the 12 x 8 m sparse hidden
+// space: fold one IR scan into G and one camera frame into O, update the frontiers,
+// compute the path-distance field, extract F_g and F_v, score and choose. `cdos`
+// (with object evidence in O, so the curiosity loss is computed) against `rapid`.
+//
+//   build/<dir>/bench/ferret_bench_cdos
+//
+// Prints Google Benchmark's table (15 repetitions, mean/median/stddev) and then the
+// median time of each method and the ratio cdos / rapid.
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "ferret/mapping/frontier.hpp"
+#include "ferret/mapping/ir_grid.hpp"
+#include "ferret/mapping/object_map.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/grid_path_planner.hpp"
+#include "ferret/sim/hidden_space_sim.hpp"
+#include "ferret/urdf/mission_config.hpp"
+
+namespace ferret {
+namespace {
+
+// The robot mid-search: it has driven from the start (1, 4) to (2.2, 4) and turned a
+// little towards an object in zone 2 that its camera has seen from afar.
+struct Scene {
+  OccupancyMap2D truth = load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/sparse.yaml");
+  Eigen::Vector2d object{3.6, 5.4};
+  SensorOptions sensors;
+  HiddenSpaceSim sim{truth, object, sensors, 1};
+  IrGrid grid{truth.geometry, {}};
+  ObjectMap objects{truth.geometry, ObjectMap::Options::from(ObjectSearchParams{}, sensors.camera_range_m)};
+  FrontierTracker tracker{truth.geometry};
+  GridPathPlanner planner{truth.geometry};
+  Pose2 pose{2.2, 4.0, 0.3};
+  RangeScan scan;
+  CameraFrame frame;
+
+  Scene() {
+    grid.mark_free_disk({1.0, 4.0}, 0.2);
+    for (int k = 0; k <= 12; ++k) {
+      const Pose2 p{1.0 + 0.1 * k, 4.0, 0.025 * k};
+      grid.integrate_scan(sim.ir_scan(p));
+      objects.integrate_frame(sim.camera_frame(p, 0.1 * k));
+    }
+    tracker.update(grid);
+    scan = sim.ir_scan(pose);
+    frame = sim.camera_frame(pose, 2.0);
+  }
+};
+
+void decision_cycle(benchmark::State& state, const char* method) {
+  Scene scene;
+  const PolicyOptions options = PolicyOptions::from(MissionConfig{}, scene.sensors.camera_range_m, 2.0);
+  auto policy = make_exploration_policy(method, options);
+  std::size_t evidence = 0, visible = 0;
+  double t = 2.0;
+  for (auto _ : state) {
+    scene.frame.time_s = (t += 1.0);  // a new frame each cycle: O fuses it
+    scene.grid.integrate_scan(scene.scan);
+    scene.objects.integrate_frame(scene.frame);
+    scene.tracker.update(scene.grid);
+    const Cell robot = scene.truth.geometry.cell_at(scene.pose.x_m, scene.pose.y_m);
+    scene.planner.compute(scene.grid, robot, GridPathPlanner::Traversal::kKnownFree, 1.0);
+    const FrontierSets sets =
+        scene.tracker.extract(scene.planner.distances_m(), scene.pose, scene.sensors.ir_fov_rad, scene.sensors.ir_range_m);
+    const ExplorationState s{scene.grid, scene.objects, scene.tracker, sets, scene.planner, scene.pose,
+                             Eigen::Vector2d(1.0, 0.3), scene.sensors.ir_fov_rad, scene.sensors.ir_range_m,
+                             std::nullopt};
+    policy->goal_done();  // choose afresh every cycle
+    auto goal = policy->choose(s);
+    benchmark::DoNotOptimize(goal);
+    evidence = scene.objects.evidence_cells().size();
+    visible = sets.visible.size();
+  }
+  state.counters["evidence_cells"] = static_cast<double>(evidence);
+  state.counters["F_v"] = static_cast<double>(visible);
+}
+
+BENCHMARK_CAPTURE(decision_cycle, cdos, "cdos")->Unit(benchmark::kMicrosecond)->Repetitions(15);
+BENCHMARK_CAPTURE(decision_cycle, rapid, "rapid")->Unit(benchmark::kMicrosecond)->Repetitions(15);
+
+// Keeps the medians to print their ratio after the table.
+class MedianReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const auto& r : runs)
+      if (r.aggregate_name == "median") medians[r.run_name.str()] = r.GetAdjustedRealTime();
+    ConsoleReporter::ReportRuns(runs);
+  }
+  std::map<std::string, double> medians;
+};
+
+}  // namespace
+}  // namespace ferret
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  ferret::MedianReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const auto& m = reporter.medians;
+  const auto cdos = m.find("decision_cycle/cdos/repeats:15"), rapid = m.find("decision_cycle/rapid/repeats:15");
+  if (cdos != m.end() && rapid != m.end())
+    std::printf("median decision cycle: cdos %.1f us, rapid %.1f us, ratio cdos/rapid %.2f\n", cdos->second,
+                rapid->second, cdos->second / rapid->second);
+  benchmark::Shutdown();
+  return 0;
+}
