@@ -7,6 +7,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -18,16 +19,32 @@ namespace {
 // Spheres (centre in S, radius) that together cover a part. Long parts (the tether,
 // a flat rotor disc) get a chain of small spheres instead of one huge one, so the
 // distance field can clear them.
-std::vector<std::pair<Eigen::Vector3d, double>> covering_spheres(const ShapePart& p) {
-  Eigen::Vector3d extent = Eigen::Vector3d::Zero();  // full extents of the part's bounding box in S
+// Full extents of the part's bounding box in S.
+Eigen::Vector3d part_extent(const ShapePart& p) {
   switch (p.kind) {
-    case ShapePart::Kind::kBox: extent = p.box_size_m; break;
-    case ShapePart::Kind::kCylinder: extent = {2 * p.radius_m, 2 * p.radius_m, p.length_m}; break;
-    case ShapePart::Kind::kCapsule:
-      extent = {2 * p.radius_m, 2 * p.radius_m, p.length_m + 2 * p.radius_m};
-      break;
-    case ShapePart::Kind::kSphere: return {{Eigen::Vector3d::Zero(), p.radius_m}};
+    case ShapePart::Kind::kBox: return p.box_size_m;
+    case ShapePart::Kind::kCylinder: return {2 * p.radius_m, 2 * p.radius_m, p.length_m};
+    case ShapePart::Kind::kCapsule: return {2 * p.radius_m, 2 * p.radius_m, p.length_m + 2 * p.radius_m};
+    case ShapePart::Kind::kSphere: return Eigen::Vector3d::Constant(2 * p.radius_m);
   }
+  return Eigen::Vector3d::Zero();
+}
+
+struct SphereGroup {  // a ball around up to 4 x 4 x 4 covering spheres
+  Eigen::Vector3d c;
+  double r;
+  std::size_t begin, end;  ///< its spheres in the part's list
+};
+
+// Covering spheres ordered by group, and the groups: a part is cleared by its
+// bounding ball, else group by group, descending to the small balls of a group only
+// when the group's ball is not clear.
+std::vector<std::pair<Eigen::Vector3d, double>> covering_spheres(const ShapePart& p, std::vector<SphereGroup>& groups) {
+  if (p.kind == ShapePart::Kind::kSphere) {
+    groups.push_back({Eigen::Vector3d::Zero(), p.radius_m, 0, 1});
+    return {{Eigen::Vector3d::Zero(), p.radius_m}};
+  }
+  const Eigen::Vector3d extent = part_extent(p);
   // Cubes about as large as the part's smallest extent (at least 5 cm), at most 64.
   const double edge = std::max(extent.minCoeff(), 0.05);
   Eigen::Vector3i n;
@@ -35,10 +52,43 @@ std::vector<std::pair<Eigen::Vector3d, double>> covering_spheres(const ShapePart
   const Eigen::Vector3d cell = extent.cwiseQuotient(n.cast<double>());
   const double r = 0.5 * cell.norm();
   std::vector<std::pair<Eigen::Vector3d, double>> out;
-  for (int k = 0; k < n.z(); ++k)
-    for (int j = 0; j < n.y(); ++j)
-      for (int i = 0; i < n.x(); ++i)
-        out.emplace_back(-0.5 * extent + cell.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5)), r);
+  for (int gk = 0; gk < n.z(); gk += 4)
+    for (int gj = 0; gj < n.y(); gj += 4)
+      for (int gi = 0; gi < n.x(); gi += 4) {
+        const Eigen::Vector3i g0(gi, gj, gk), g1 = (g0 + Eigen::Vector3i::Constant(4)).cwiseMin(n);
+        const Eigen::Vector3d lo = -0.5 * extent + cell.cwiseProduct(g0.cast<double>());
+        const Eigen::Vector3d hi = -0.5 * extent + cell.cwiseProduct(g1.cast<double>());
+        SphereGroup group{0.5 * (lo + hi), 0.5 * (hi - lo).norm(), out.size(), 0};
+        for (int k = g0.z(); k < g1.z(); ++k)
+          for (int j = g0.y(); j < g1.y(); ++j)
+            for (int i = g0.x(); i < g1.x(); ++i)
+              out.emplace_back(-0.5 * extent + cell.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5)), r);
+        group.end = out.size();
+        groups.push_back(group);
+      }
+  return out;
+}
+
+// Points inside a part (in S): the centres of its covering spheres that lie inside
+// it. A part with such a point in an occupied voxel certainly collides.
+std::vector<Eigen::Vector3d> inner_points(const ShapePart& p,
+                                          const std::vector<std::pair<Eigen::Vector3d, double>>& spheres) {
+  std::vector<Eigen::Vector3d> out{Eigen::Vector3d::Zero()};
+  for (const auto& [c, r] : spheres) {
+    (void)r;
+    bool inside = false;
+    switch (p.kind) {
+      case ShapePart::Kind::kBox: inside = true; break;
+      case ShapePart::Kind::kCylinder:
+        inside = c.head<2>().norm() <= p.radius_m && std::abs(c.z()) <= 0.5 * p.length_m;
+        break;
+      case ShapePart::Kind::kCapsule:
+        inside = c.head<2>().norm() <= p.radius_m && std::abs(c.z()) <= 0.5 * p.length_m + p.radius_m;
+        break;
+      case ShapePart::Kind::kSphere: inside = c.norm() <= p.radius_m; break;
+    }
+    if (inside && c.norm() > 1e-12) out.push_back(c);
+  }
   return out;
 }
 
@@ -57,7 +107,11 @@ std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry(const ShapePart& p) {
 struct CollisionChecker::Impl {
   struct Part {
     Pose3 X_BS;
+    double bounding_radius_m;
     std::vector<std::pair<Eigen::Vector3d, double>> spheres;
+    std::vector<SphereGroup> groups;
+    std::vector<Eigen::Vector3d> inner;
+    std::array<Eigen::Vector3d, 8> corners;  ///< of the part's bounding box, in S
     std::unique_ptr<fcl::CollisionObjectd> object;
   };
   std::vector<Part> parts;
@@ -75,8 +129,17 @@ struct CollisionChecker::Impl {
 
 CollisionChecker::CollisionChecker(std::shared_ptr<const CollisionMap> map, RobotShape shape)
     : shape_(std::move(shape)), impl_(std::make_unique<Impl>()) {
-  for (const ShapePart& p : shape_.parts)
-    impl_->parts.push_back({p.X_BS, covering_spheres(p), std::make_unique<fcl::CollisionObjectd>(fcl_geometry(p))});
+  for (const ShapePart& p : shape_.parts) {
+    std::vector<SphereGroup> groups;
+    auto spheres = covering_spheres(p, groups);
+    auto inner = inner_points(p, spheres);
+    const Eigen::Vector3d half = 0.5 * part_extent(p);
+    std::array<Eigen::Vector3d, 8> corners;
+    for (int c = 0; c < 8; ++c)
+      corners[c] = Eigen::Vector3d((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(), (c & 4 ? 1 : -1) * half.z());
+    impl_->parts.push_back({p.X_BS, p.bounding_radius_m(), std::move(spheres), std::move(groups), std::move(inner), corners,
+                            std::make_unique<fcl::CollisionObjectd>(fcl_geometry(p))});
+  }
   set_map(std::move(map));
 }
 
@@ -97,26 +160,58 @@ bool CollisionChecker::in_collision_fcl(const Pose3& X_WB) {
 
 bool CollisionChecker::in_collision(const Pose3& X_WB) {
   ++stats_.queries;
-  const CollisionMap& map = *map_;
+  if (recorder_) recorder_->push_back(X_WB);
+  const DistanceField& field = map_->data().field;
+  const std::optional<BandField>& band = map_->data().band;
   // First the cheap certainties of every part, then FCL for the undecided ones.
   std::uint64_t undecided = 0;  // bit k: part k needs FCL (shapes have few parts)
   for (std::size_t k = 0; k < impl_->parts.size(); ++k) {
     auto& part = impl_->parts[k];
     const Pose3 X_WS = X_WB * part.X_BS;
-    bool free = true;
-    for (const auto& [p_S, r] : part.spheres) {
-      if (map.clearance_lower_bound_m(X_WS * p_S) <= r) {
-        free = false;
-        break;
+    // For ground robots: the footprint circle against the band's columns. Then one
+    // ball around the whole part, then the small balls that cover it.
+    bool free = false;
+    if (band) {
+      Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+      for (const Eigen::Vector3d& c : part.corners) {
+        const Eigen::Vector3d w = X_WS * c;
+        lo = lo.cwiseMin(w);
+        hi = hi.cwiseMax(w);
+      }
+      if (lo.z() > band->z_lo + 1e-9 && hi.z() < band->z_hi - 1e-9) {
+        const Eigen::Vector2d c = X_WS.translation().head<2>();
+        // Small footprints: no occupied column under the footprint's bounding
+        // rectangle. Large ones: the disc through its farthest corner.
+        if ((hi.head<2>() - lo.head<2>()).maxCoeff() < 32 * band->cell_m) {
+          free = band->rect_free(lo.head<2>(), hi.head<2>());
+        } else {
+          const double r =
+              std::hypot(std::max(c.x() - lo.x(), hi.x() - c.x()), std::max(c.y() - lo.y(), hi.y() - c.y()));
+          free = band->disc_free(c, r);
+        }
+      }
+    }
+    if (!free) free = field.sphere_free(X_WS.translation(), part.bounding_radius_m);
+    if (!free) {
+      free = true;
+      for (const SphereGroup& g : part.groups) {
+        if (g.end - g.begin > 1 && field.sphere_free(X_WS * g.c, g.r)) continue;
+        for (std::size_t k = g.begin; k < g.end && free; ++k)
+          free = field.sphere_free(X_WS * part.spheres[k].first, part.spheres[k].second);
+        if (!free) break;
       }
     }
     if (free) {
       ++stats_.fast_free;
       continue;
     }
-    if (map.is_occupied(X_WS.translation())) {
-      ++stats_.fast_hit;
-      return true;
+    for (const Eigen::Vector3d& p_S : part.inner) {
+      const Eigen::Vector3d p_W = X_WS * p_S;
+      const int occ = field.occupied_at(p_W);
+      if (occ == 1 || (occ < 0 && map_->is_occupied(p_W))) {
+        ++stats_.fast_hit;
+        return true;
+      }
     }
     if (k < 64) {
       undecided |= std::uint64_t{1} << k;

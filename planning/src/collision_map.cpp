@@ -107,10 +107,17 @@ void edt_1d(float* data, int n, std::size_t stride, std::vector<int>& v, std::ve
   }
 }
 
-DistanceField build_field(const octomap::OcTree& tree, std::size_t max_cells) {
+DistanceField build_field(const octomap::OcTree& tree, const CollisionMapOptions& options) {
   DistanceField field;
-  // Key extents of the occupied leaves.
+  const double res = tree.getResolution();
+  field.floor_cut_z = options.field_floor_cut_z;
+  field.covers_all = !options.field_region;
   std::array<std::int64_t, 3> lo{kKeySpan, kKeySpan, kKeySpan}, hi{-1, -1, -1};
+  if (options.field_region) {
+    const KeyBox box = key_box(*options.field_region, res);
+    lo = box.lo;
+    hi = box.hi;
+  }
   struct Leaf {
     std::array<std::int64_t, 3> base;
     std::int64_t size;
@@ -119,21 +126,21 @@ DistanceField build_field(const octomap::OcTree& tree, std::size_t max_cells) {
   for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
     if (!tree.isNodeOccupied(*it)) continue;
     const std::int64_t size = std::int64_t{1} << (kTreeDepth - it.getDepth());
+    if (field.floor_cut_z && it.getZ() + 0.5 * it.getSize() <= *field.floor_cut_z) continue;
     const octomap::OcTreeKey key = it.getKey();
     Leaf leaf{{key[0] - size / 2, key[1] - size / 2, key[2] - size / 2}, size};
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], leaf.base[a]);
-      hi[a] = std::max(hi[a], leaf.base[a] + size - 1);
+    if (!options.field_region) {
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], leaf.base[a]);
+        hi[a] = std::max(hi[a], leaf.base[a] + size - 1);
+      }
     }
-    leaves.push_back(leaf);
+    leaves.push_back(leaf);  // with a region: clipped to the grid when marked
   }
-  const double res = tree.getResolution();
-  if (leaves.empty()) {
-    field.cell_m = res;
-    return field;
-  }
-  field.empty = false;
-  // The finest level whose grid (with one free cell of margin on every side) fits.
+  field.cell_m = res;
+  if (leaves.empty() && field.covers_all) return field;
+  field.empty = leaves.empty();
+  // The finest level whose grid (with one cell of margin on every side) fits.
   std::array<std::int64_t, 3> c0{};
   for (field.level = 0;; ++field.level) {
     std::size_t cells = 1;
@@ -142,56 +149,138 @@ DistanceField build_field(const octomap::OcTree& tree, std::size_t max_cells) {
       field.dims[a] = static_cast<int>((hi[a] >> field.level) + 1 - c0[a] + 1);
       cells *= static_cast<std::size_t>(field.dims[a]);
     }
-    if (cells <= max_cells || field.level >= kTreeDepth) break;
+    if (cells <= options.max_field_cells || field.level >= kTreeDepth) break;
   }
   field.cell_m = res * static_cast<double>(std::int64_t{1} << field.level);
   for (int a = 0; a < 3; ++a)
     field.origin_m[a] = static_cast<double>((c0[a] << field.level) - kKeySpan / 2) * res;
   const std::size_t nx = field.dims.x(), ny = field.dims.y(), nz = field.dims.z();
-  field.dist_cells.assign(nx * ny * nz, std::numeric_limits<float>::infinity());
+  std::vector<float> d2(nx * ny * nz, std::numeric_limits<float>::infinity());
   for (const Leaf& leaf : leaves) {
     std::array<std::int64_t, 3> a0{}, a1{};
     for (int a = 0; a < 3; ++a) {
-      a0[a] = (leaf.base[a] >> field.level) - c0[a];
-      a1[a] = ((leaf.base[a] + leaf.size - 1) >> field.level) - c0[a];
+      a0[a] = std::max<std::int64_t>((leaf.base[a] >> field.level) - c0[a], 0);
+      a1[a] = std::min<std::int64_t>(((leaf.base[a] + leaf.size - 1) >> field.level) - c0[a], field.dims[a] - 1);
     }
     for (std::int64_t z = a0[2]; z <= a1[2]; ++z)
       for (std::int64_t y = a0[1]; y <= a1[1]; ++y)
-        for (std::int64_t x = a0[0]; x <= a1[0]; ++x) field.dist_cells[(z * ny + y) * nx + x] = 0.0f;
+        for (std::int64_t x = a0[0]; x <= a1[0]; ++x) d2[(z * ny + y) * nx + x] = 0.0f;
   }
   // Separable exact EDT: along x, then y, then z, on squared distances.
   std::vector<int> v;
   std::vector<double> zbuf, fbuf;
-  float* d = field.dist_cells.data();
+  float* d = d2.data();
   for (std::size_t z = 0; z < nz; ++z)
     for (std::size_t y = 0; y < ny; ++y) edt_1d(d + (z * ny + y) * nx, static_cast<int>(nx), 1, v, zbuf, fbuf);
   for (std::size_t z = 0; z < nz; ++z)
     for (std::size_t x = 0; x < nx; ++x) edt_1d(d + z * ny * nx + x, static_cast<int>(ny), nx, v, zbuf, fbuf);
   for (std::size_t y = 0; y < ny; ++y)
     for (std::size_t x = 0; x < nx; ++x) edt_1d(d + y * nx + x, static_cast<int>(nz), nx * ny, v, zbuf, fbuf);
-  for (float& c : field.dist_cells) c = std::sqrt(c);
+  field.dist.resize(d2.size());
+  for (std::size_t k = 0; k < d2.size(); ++k)
+    field.dist[k] = static_cast<std::uint16_t>(
+        std::min(65535.0, std::floor(std::sqrt(static_cast<double>(d2[k])) * DistanceField::kUnitsPerCell)));
   return field;
+}
+
+BandField build_band(const octomap::OcTree& tree, const Aabb3& region, double z_lo, double z_hi) {
+  BandField band;
+  band.z_lo = z_lo;
+  band.z_hi = z_hi;
+  const double res = tree.getResolution();
+  const KeyBox box = key_box(region, res);
+  band.cell_m = res;
+  band.dims = Eigen::Vector2i(static_cast<int>(box.hi[0] - box.lo[0] + 3), static_cast<int>(box.hi[1] - box.lo[1] + 3));
+  const std::int64_t c0x = box.lo[0] - 1, c0y = box.lo[1] - 1;
+  band.origin_m = Eigen::Vector2d(static_cast<double>(c0x - kKeySpan / 2) * res,
+                                  static_cast<double>(c0y - kKeySpan / 2) * res);
+  const std::size_t nx = band.dims.x(), ny = band.dims.y();
+  std::vector<float> d2(nx * ny, std::numeric_limits<float>::infinity());
+  for (auto it = tree.begin_leafs_bbx(octomap::point3d(static_cast<float>(region.lo.x() - res), static_cast<float>(region.lo.y() - res), static_cast<float>(z_lo)),
+                                      octomap::point3d(static_cast<float>(region.hi.x() + res), static_cast<float>(region.hi.y() + res), static_cast<float>(z_hi))),
+            end = tree.end_leafs_bbx();
+       it != end; ++it) {
+    if (!tree.isNodeOccupied(*it)) continue;
+    const double half = 0.5 * it.getSize();
+    if (it.getZ() + half <= z_lo || it.getZ() - half >= z_hi) continue;  // touches the band only at its edge
+    const std::int64_t size = std::int64_t{1} << (kTreeDepth - it.getDepth());
+    const octomap::OcTreeKey key = it.getKey();
+    const std::int64_t bx = key[0] - size / 2 - c0x, by = key[1] - size / 2 - c0y;
+    for (std::int64_t y = std::max<std::int64_t>(by, 0); y < std::min<std::int64_t>(by + size, ny); ++y)
+      for (std::int64_t x = std::max<std::int64_t>(bx, 0); x < std::min<std::int64_t>(bx + size, nx); ++x)
+        d2[y * nx + x] = 0.0f;
+  }
+  std::vector<int> v;
+  std::vector<double> zbuf, fbuf;
+  for (std::size_t y = 0; y < ny; ++y) edt_1d(d2.data() + y * nx, static_cast<int>(nx), 1, v, zbuf, fbuf);
+  for (std::size_t x = 0; x < nx; ++x) edt_1d(d2.data() + x, static_cast<int>(ny), nx, v, zbuf, fbuf);
+  band.dist.resize(d2.size());
+  for (std::size_t k = 0; k < d2.size(); ++k)
+    band.dist[k] = static_cast<std::uint16_t>(
+        std::min(65535.0, std::floor(std::sqrt(static_cast<double>(d2[k])) * DistanceField::kUnitsPerCell)));
+  return band;
 }
 
 }  // namespace
 
+bool BandField::disc_free(const Eigen::Vector2d& c, double r) const {
+  const Eigen::Vector2d rel = (c - origin_m) / cell_m;
+  const double fx = std::floor(rel.x()), fy = std::floor(rel.y());
+  // The disc must lie inside the grid: columns outside it are not in the field.
+  if ((c.array() - r <= origin_m.array()).any() ||
+      (c.array() + r >= (origin_m + dims.cast<double>() * cell_m).array()).any())
+    return false;
+  const std::uint16_t d = dist[static_cast<std::size_t>(fy) * dims.x() + static_cast<std::size_t>(fx)];
+  return cell_m * (d / DistanceField::kUnitsPerCell - std::sqrt(2.0)) - 1e-9 > r;
+}
+
+bool BandField::rect_free(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) const {
+  // Cells touching the rectangle, with a hair of margin for rounding.
+  const Eigen::Vector2d a = (lo - origin_m) / cell_m - Eigen::Vector2d::Constant(1e-7);
+  const Eigen::Vector2d b = (hi - origin_m) / cell_m + Eigen::Vector2d::Constant(1e-7);
+  if (a.x() < 0 || a.y() < 0 || b.x() >= dims.x() || b.y() >= dims.y()) return false;
+  const int i0 = static_cast<int>(a.x()), j0 = static_cast<int>(a.y());
+  const int i1 = static_cast<int>(b.x()), j1 = static_cast<int>(b.y());
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i)
+      if (dist[static_cast<std::size_t>(j) * dims.x() + i] == 0) return false;
+  return true;
+}
+
 double DistanceField::lower_bound_m(const Eigen::Vector3d& p) const {
   if (empty) return std::numeric_limits<double>::infinity();
-  const Eigen::Vector3d rel = (p - origin_m) / cell_m;
-  Eigen::Vector3i c;
-  bool inside = true;
-  for (int a = 0; a < 3; ++a) {
-    c[a] = static_cast<int>(std::floor(rel[a]));
-    inside = inside && c[a] >= 0 && c[a] < dims[a];
-  }
-  if (!inside) {
+  const std::ptrdiff_t idx = cell_index(p);
+  if (idx < 0) {
+    if (!covers_all) return 0.0;
     // Everything occupied lies inside the grid: the distance to the grid box bounds it.
     const Eigen::Vector3d hi = origin_m + dims.cast<double>() * cell_m;
     return (origin_m - p).cwiseMax(p - hi).cwiseMax(0.0).norm();
   }
-  const float dc = dist_cells[(static_cast<std::size_t>(c.z()) * dims.y() + c.y()) * dims.x() + c.x()];
   // |p - occupied| >= |centre(c) - centre(o)| - |p - centre(c)| - half diagonal of o.
-  return std::max(0.0, cell_m * (static_cast<double>(dc) - std::sqrt(3.0)) - 1e-9);
+  const Eigen::Vector3d rel = (p - origin_m) / cell_m;
+  const Eigen::Vector3d centre = origin_m + cell_m * (rel.array().floor() + 0.5).matrix();
+  return std::max(0.0, cell_m * (dist[static_cast<std::size_t>(idx)] / kUnitsPerCell - 0.5 * std::sqrt(3.0)) -
+                           (p - centre).norm() - 1e-9);
+}
+
+bool DistanceField::sphere_free(const Eigen::Vector3d& c, double r) const {
+  if (floor_cut_z && c.z() - r <= *floor_cut_z + 1e-9) return false;
+  if (!covers_all) {
+    // Voxels outside the region are not in the field: the ball must lie inside it.
+    const Eigen::Vector3d hi = origin_m + dims.cast<double>() * cell_m;
+    if (((c.array() - r) <= origin_m.array()).any() || ((c.array() + r) >= hi.array()).any()) return false;
+  }
+  return lower_bound_m(c) > r;
+}
+
+int DistanceField::occupied_at(const Eigen::Vector3d& p) const {
+  if (floor_cut_z && p.z() <= *floor_cut_z) return -1;
+  if (empty) return covers_all ? 0 : -1;
+  const std::ptrdiff_t idx = cell_index(p);
+  if (idx < 0) return covers_all ? 0 : -1;
+  // A cell with no occupied voxel has a non-zero distance at any level.
+  if (dist[static_cast<std::size_t>(idx)] != 0) return 0;
+  return level == 0 ? 1 : -1;
 }
 
 const char* to_string(UnknownPolicy policy) { return policy == UnknownPolicy::kFree ? "free" : "occupied"; }
@@ -238,7 +327,12 @@ std::shared_ptr<const CollisionMap> CollisionMap::build(const octomap::OcTree& s
   tree.prune();
   for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it)
     if (tree.isNodeOccupied(*it)) ++data->occupied_leaves;
-  data->field = build_field(tree, options.max_field_cells);
+  data->field = build_field(tree, options);
+  if (options.ground_band_z) {
+    if (!options.field_region)
+      throw InputError("map", "field_region", "a field region for the ground band");
+    data->band = build_band(tree, *options.field_region, options.ground_band_z->first, options.ground_band_z->second);
+  }
   data->fcl_tree = std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(data->tree));
   return std::shared_ptr<const CollisionMap>(new CollisionMap(std::move(data)));
 }
@@ -254,25 +348,15 @@ double CollisionMap::clearance_lower_bound_m(const Eigen::Vector3d& p_W) const {
   return data_->field.lower_bound_m(p_W);
 }
 
+bool CollisionMap::sphere_free(const Eigen::Vector3d& c_W, double radius_m) const {
+  return data_->field.sphere_free(c_W, radius_m);
+}
+
 bool CollisionMap::is_occupied(const Eigen::Vector3d& p_W) const {
-  const DistanceField& f = data_->field;
-  if (f.empty) return false;
-  if (f.level == 0) {
-    // The field's cells are the voxels: distance 0 means occupied.
-    const Eigen::Vector3d rel = (p_W - f.origin_m) / f.cell_m;
-    Eigen::Vector3i c;
-    for (int a = 0; a < 3; ++a) {
-      c[a] = static_cast<int>(std::floor(rel[a]));
-      if (c[a] < 0 || c[a] >= f.dims[a]) return false;
-    }
-    return f.dist_cells[(static_cast<std::size_t>(c.z()) * f.dims.y() + c.y()) * f.dims.x() + c.x()] == 0.0f;
-  }
   octomap::OcTreeKey key;
   if (!data_->tree->coordToKeyChecked(p_W.x(), p_W.y(), p_W.z(), key)) return false;
   const octomap::OcTreeNode* node = data_->tree->search(key);
   return node && data_->tree->isNodeOccupied(node);
 }
-
-bool CollisionMap::in_occupied_voxel(const Eigen::Vector3d& p_W) const { return is_occupied(p_W); }
 
 }  // namespace ferret

@@ -53,6 +53,10 @@ std::shared_ptr<const CollisionMap> ugv_collision_map(const octomap::OcTree& tre
   CollisionMapOptions opt;
   opt.unknown = UnknownPolicy::kOccupied;
   opt.bounds = ugv_policy_bounds(space, ugv);
+  // A fine field over the hidden space only, without the floor the miniUGV rides on.
+  opt.field_region = Aabb3{opt.bounds->lo - Eigen::Vector3d(0.5, 0.5, 0.1), opt.bounds->hi + Eigen::Vector3d(0.5, 0.5, 0.3)};
+  opt.field_floor_cut_z = space.floor_z_m;
+  opt.ground_band_z = std::pair{space.floor_z_m, opt.bounds->hi.z()};
   return CollisionMap::build(tree, opt);
 }
 

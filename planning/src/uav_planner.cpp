@@ -106,6 +106,9 @@ std::shared_ptr<UavPlanner::Problem> UavPlanner::problem(const Waypoint& start, 
   ob::ScopedState<> s(space), g(space);
   from_waypoint(start, s.get());
   from_waypoint(goal, g.get());
+  // OMPL's SO2 range differs from wrap_angle_rad's at +-pi: let the space normalise.
+  space->enforceBounds(s.get());
+  space->enforceBounds(g.get());
   pr->pdef->setStartAndGoalStates(s, g);
   pr->to_waypoint = to_waypoint;
   return pr;

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "ferret/core/pose.hpp"
 #include "ferret/planning/collision_map.hpp"
@@ -47,12 +48,17 @@ class CollisionChecker {
   };
   [[nodiscard]] const Stats& stats() const { return stats_; }
 
+  /// Appends every pose in_collision() is asked about to `sink` (nullptr stops);
+  /// the benchmarks replay a planner's queries with it.
+  void record_queries(std::vector<Pose3>* sink) { recorder_ = sink; }
+
  private:
   struct Impl;
   std::shared_ptr<const CollisionMap> map_;
   RobotShape shape_;
   std::unique_ptr<Impl> impl_;
   Stats stats_;
+  std::vector<Pose3>* recorder_ = nullptr;
 };
 
 }  // namespace ferret

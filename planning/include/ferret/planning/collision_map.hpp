@@ -44,9 +44,21 @@ struct CollisionMapOptions {
   /// The region where the unknown policy applies (required for kOccupied; outside it
   /// unknown space stays free, as FCL sees it).
   std::optional<Aabb3> bounds;
-  /// Upper bound on distance-field cells; the field's cell is the map resolution
-  /// times the smallest power of two that fits (coarser cells give looser bounds).
-  std::size_t max_field_cells = 16'000'000;
+  /// Upper bound on distance-field cells (2 bytes each); the field's cell is the map
+  /// resolution times the smallest power of two that fits (coarser cells give looser
+  /// bounds, so more queries go to FCL).
+  std::size_t max_field_cells = 40'000'000;
+  /// Where the distance field is kept (default: around everything occupied). Parts
+  /// reaching outside it always go to FCL; a small region allows a fine field.
+  std::optional<Aabb3> field_region;
+  /// Occupied voxels wholly below this height are left out of the field, and the fast
+  /// path only clears spheres above it. For ground robots: with the floor in the
+  /// field nothing 1 cm above it could ever be cleared.
+  std::optional<double> field_floor_cut_z;
+  /// For ground robots: a 2D field over the columns of this height band (z_lo, z_hi)
+  /// inside field_region (required with it). Parts that lie within the band are
+  /// cleared by their footprint circle.
+  std::optional<std::pair<double, double>> ground_band_z;
 };
 
 class CollisionMap {
@@ -74,10 +86,11 @@ class CollisionMap {
   [[nodiscard]] double field_cell_m() const;
 
   /// A lower bound on the distance from p_W to the nearest occupied voxel (0 when
-  /// p_W may be inside one; +inf for a map with nothing occupied).
+  /// p_W may be inside one or the field cannot tell; +inf for a map with nothing
+  /// occupied). Ignores field_floor_cut_z: only for maps built without it.
   [[nodiscard]] double clearance_lower_bound_m(const Eigen::Vector3d& p_W) const;
-  /// True when p_W lies in (or on the boundary of) an occupied voxel.
-  [[nodiscard]] bool in_occupied_voxel(const Eigen::Vector3d& p_W) const;
+  /// True when the ball (c_W, r) provably touches no occupied voxel (distance field).
+  [[nodiscard]] bool sphere_free(const Eigen::Vector3d& c_W, double radius_m) const;
   /// True when the voxel at p_W is occupied after the policy, false when free or unknown.
   [[nodiscard]] bool is_occupied(const Eigen::Vector3d& p_W) const;
 
