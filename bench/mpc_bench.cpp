@@ -73,8 +73,8 @@ void BM_TautTetherMpc(benchmark::State& state) {
   state.counters["active_mean"] = benchmark::Counter(static_cast<double>(active), benchmark::Counter::kAvgIterations);
   state.counters["qp_iterations_mean"] =
       benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
-  state.counters["variables"] = o.horizon + 2;
-  state.counters["constraint_rows"] = 5 * o.horizon + 2;
+  state.counters["variables"] = o.horizon + 3;
+  state.counters["constraint_rows"] = 6 * o.horizon + 3;
 }
 BENCHMARK(BM_TautTetherMpc)->Arg(20)->Arg(40)->Unit(benchmark::kMicrosecond);
 

@@ -16,7 +16,6 @@
 #include "ferret/core/error.hpp"
 #include "ferret/sim/tether_sim.hpp"
 #include "ferret/tether_model/taut_mpc.hpp"
-#include "ferret/tether_model/feedforward_pid.hpp"
 #include "ferret/urdf/mission_config.hpp"
 
 namespace ferret::cli {
@@ -50,11 +49,14 @@ void run(const Options& o) {
   options.control.ugv_max_speed_mps = mission.ugv_limits.max_velocity_mps;
   auto model = std::make_shared<tether::FixedWrapTether>(options.entry_offset_m, scenario.p_WE, scenario.wrap_points);
   std::unique_ptr<tether::TetherController> controller;
+  const tether::TautTetherMpc* mpc_controller = nullptr;
   if (o.controller == "mpc") {
     tether::TautTetherMpc::Options mpc;
     mpc.control = options.control;
     mpc.horizon = o.horizon;
-    controller = std::make_unique<tether::TautTetherMpc>(mpc, model);
+    auto owned = std::make_unique<tether::TautTetherMpc>(mpc, model);
+    mpc_controller = owned.get();
+    controller = std::move(owned);
   } else {
     controller = tether::make_tether_controller("baseline", options.control, model);
   }
@@ -68,6 +70,7 @@ void run(const Options& o) {
               m.over_tension_events, m.over_tension_time_s, m.max_tension_n, c.slack_estimator.tension.max_tension_n);
   std::printf("tether_limit_active_s: %.2f\nmax_released_m: %.3f (L = %.2f)\ncycles_above_L: %d\n", m.limit_active_s,
               m.max_released_m, c.limits.total_length_m, m.released_over_limit);
+  if (mpc_controller) std::printf("mpc_fallback_cycles: %d\n", mpc_controller->fallback_count());
   std::printf("step_time_median_us: %.1f\nstep_time_max_us: %.1f\n", m.step_time_median_us, m.step_time_max_us);
 
   const fs::path out(o.out);
@@ -94,6 +97,7 @@ void run(const Options& o) {
                   {"cycles_above_L", m.released_over_limit},
                   {"duration_s", m.duration_s},
                   {"control_cycles", m.control_cycles}};
+  if (mpc_controller) j["metrics"]["mpc_fallback_cycles"] = mpc_controller->fallback_count();
   write_text_atomically(out / (stem + ".json"), j.dump(2) + "\n");
 }
 

@@ -236,7 +236,10 @@ TetherScenario read_yaml_scenario(const std::filesystem::path& path) {
       s.allow_only({"wrap_point", "start_s", "duration_s"});
       const int index = s.get<int>("wrap_point");
       if (index < 0 || static_cast<std::size_t>(index) >= scn.wrap_points.size())
-        s.fail("wrap_point", fmt::format("an index into wrap_points (0..{})", static_cast<int>(scn.wrap_points.size()) - 1),
+        s.fail("wrap_point",
+               scn.wrap_points.empty()
+                   ? std::string("an index into wrap_points (the file has none)")
+                   : fmt::format("an index into wrap_points (0..{})", scn.wrap_points.size() - 1),
                std::to_string(index));
       scn.snags.push_back({static_cast<std::size_t>(index), s.get_in_range("start_s", -1e9, 1e9),
                            s.get_in_range("duration_s", 1e-6, 1e9)});

@@ -119,7 +119,8 @@ QpResult DenseQpSolver::solve(const Eigen::VectorXd& g, const Eigen::VectorXd& l
           k = j;
         }
       }
-      const double s_p = slack(p, C_ * x);
+      const double cx_p = C_.row(p.row).dot(x);
+      const double s_p = p.sign > 0 ? cx_p - lower[p.row] : upper[p.row] - cx_p;
       const double t2 = z_norm2 > 1e-14 ? -s_p / z_norm2 : inf;
       const double t = std::min(t1, t2);
       if (!std::isfinite(t)) {

@@ -35,7 +35,7 @@ void TautTetherMpc::build() {
   const double dt = options_.prediction_dt_s;
   const double tau = options_.control.limits.velocity_time_constant_s;
   const double alpha = std::exp(-dt / tau), c = tau * (1.0 - alpha);
-  n_ = N + 2;
+  n_ = N + 3;
   Phi_l_ = Eigen::MatrixXd::Zero(N, n_);
   free_l_from_l_ = Eigen::VectorXd::Ones(N);
   free_l_from_v_ = Eigen::VectorXd::Zero(N);
@@ -70,21 +70,29 @@ void TautTetherMpc::build() {
     }
   }
   H_(N, N) = H_(N + 1, N + 1) = 2.0 * options_.soft_quadratic_weight;
+  H_(N + 2, N + 2) = 2.0 * options_.length_quadratic_weight;
 
-  // Constraint rows: command rate (N), l_t in [0, L] (N), slack >= 0 softened by
-  // e_lo (N), slack <= s_max softened by e_hi (N), command box (N), e >= 0 (2).
+  // Constraint rows: command rate (N), l_t <= L and l_t >= 0 softened by e_len
+  // (2N), slack >= 0 softened by e_lo (N), slack <= s_max softened by e_hi (N),
+  // command box (N), e >= 0 (3). The length bounds are soft only so that a state
+  // already past them (a spool that cannot stop in time) still has a solution: their
+  // penalty is far above everything else, so they hold whenever they can.
   row_rate_ = 0;
   row_length_ = N;
-  row_slack_lo_ = 2 * N;
-  row_slack_hi_ = 3 * N;
-  row_box_ = 4 * N;
-  row_soft_ = 5 * N;
-  rows_ = 5 * N + 2;
+  row_length_lo_ = 2 * N;
+  row_slack_lo_ = 3 * N;
+  row_slack_hi_ = 4 * N;
+  row_box_ = 5 * N;
+  row_soft_ = 6 * N;
+  rows_ = 6 * N + 3;
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(rows_, n_);
   for (int k = 0; k < N; ++k) {
     C(row_rate_ + k, k) = 1.0;
     if (k > 0) C(row_rate_ + k, k - 1) = -1.0;
     C.row(row_length_ + k) = Phi_l_.row(k);
+    C(row_length_ + k, N + 2) = -1.0;
+    C.row(row_length_lo_ + k) = Phi_l_.row(k);
+    C(row_length_lo_ + k, N + 2) = 1.0;
     C.row(row_slack_lo_ + k) = Phi_l_.row(k);
     C(row_slack_lo_ + k, N) = 1.0;
     C.row(row_slack_hi_ + k) = Phi_l_.row(k);
@@ -93,6 +101,7 @@ void TautTetherMpc::build() {
   }
   C(row_soft_, N) = 1.0;
   C(row_soft_ + 1, N + 1) = 1.0;
+  C(row_soft_ + 2, N + 2) = 1.0;
   solver_.setup(H_, C);
   required_ = Eigen::VectorXd::Zero(N);
   required_rate_ = Eigen::VectorXd::Zero(N);
@@ -134,6 +143,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   }
   g[0] -= 2.0 * options_.weight_command_rate * last_command_mps_;
   g[N] = g[N + 1] = options_.soft_linear_weight;
+  g[N + 2] = options_.length_linear_weight;
 
   // Bounds.
   Eigen::VectorXd lo(rows_), hi(rows_);
@@ -141,8 +151,10 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     const double step_dt = k == 0 ? ctl.control_period_s : dt;
     lo[row_rate_ + k] = (k == 0 ? last_command_mps_ : 0.0) - amax * step_dt;
     hi[row_rate_ + k] = (k == 0 ? last_command_mps_ : 0.0) + amax * step_dt;
-    lo[row_length_ + k] = 0.0 - free_l[k];
+    lo[row_length_ + k] = -inf;
     hi[row_length_ + k] = ctl.limits.total_length_m - free_l[k];
+    lo[row_length_lo_ + k] = 0.0 - free_l[k];
+    hi[row_length_lo_ + k] = inf;
     lo[row_slack_lo_ + k] = required_[k] - free_l[k];
     hi[row_slack_lo_ + k] = inf;
     lo[row_slack_hi_ + k] = -inf;
@@ -150,16 +162,16 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     lo[row_box_ + k] = -vmax;
     hi[row_box_ + k] = vmax;
   }
-  lo[row_soft_] = lo[row_soft_ + 1] = 0.0;
-  hi[row_soft_] = hi[row_soft_ + 1] = inf;
+  lo[row_soft_] = lo[row_soft_ + 1] = lo[row_soft_ + 2] = 0.0;
+  hi[row_soft_] = hi[row_soft_ + 1] = hi[row_soft_ + 2] = inf;
 
   last_ = solver_.solve(g, lo, hi);
   double command;
   if (last_.status == QpResult::Status::kOptimal) {
     command = std::clamp(last_.x[0], -vmax, vmax);
   } else {
-    // No command satisfies the hard limits (l_t at or past an end while moving):
-    // brake towards zero speed as hard as allowed.
+    // Only the iteration limit can get here (every constraint that can conflict is
+    // soft): brake towards zero speed as hard as allowed.
     ++fallbacks_;
     spdlog::debug("tether MPC: QP {} at t = {:.3f} s; braking", to_string(last_.status), obs.t_s);
     const double step = amax * ctl.control_period_s;

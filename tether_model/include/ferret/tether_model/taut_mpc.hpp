@@ -27,6 +27,8 @@ class TautTetherMpc final : public TetherController {
     double weight_terminal = 5.0;     ///< extra slack weight on the last step (multiplier)
     double soft_linear_weight = 2000.0;     ///< exact-penalty weight of the soft slack bounds
     double soft_quadratic_weight = 20000.0;
+    double length_linear_weight = 1e5;     ///< penalty of l_t outside [0, L] (soft only to stay solvable)
+    double length_quadratic_weight = 1e6;
   };
 
   TautTetherMpc(Options options, std::shared_ptr<const RequiredLengthModel> model);
@@ -41,7 +43,7 @@ class TautTetherMpc final : public TetherController {
   [[nodiscard]] Eigen::VectorXd predicted_released_m() const;
   /// Required lengths the last step predicted (N values, k = 1..N).
   [[nodiscard]] const Eigen::VectorXd& predicted_required_m() const { return required_; }
-  /// Cycles where the QP was infeasible and the fallback (brake) was used.
+  /// Cycles where the QP failed (iteration limit) and the fallback (brake) was used.
   [[nodiscard]] int fallback_count() const { return fallbacks_; }
   [[nodiscard]] const Options& options() const { return options_; }
 
@@ -52,13 +54,13 @@ class TautTetherMpc final : public TetherController {
   std::shared_ptr<const RequiredLengthModel> model_;
   UgvPositionFilter filter_;
   DenseQpSolver solver_;
-  int n_ = 0;  ///< QP variables: N commands + 2 soft-constraint slacks
+  int n_ = 0;  ///< QP variables: N commands + 3 soft-constraint slacks (e_lo, e_hi, e_len)
   // l_k = l_free_k + Phi_l.row(k) u and v_k likewise: the condensed dynamics.
   Eigen::MatrixXd Phi_l_;
   Eigen::VectorXd free_l_from_l_, free_l_from_v_;
   Eigen::MatrixXd H_;
   // Constraint row blocks of C (see build()).
-  int row_rate_ = 0, row_length_ = 0, row_slack_lo_ = 0, row_slack_hi_ = 0, row_box_ = 0, row_soft_ = 0, rows_ = 0;
+  int row_rate_ = 0, row_length_ = 0, row_length_lo_ = 0, row_slack_lo_ = 0, row_slack_hi_ = 0, row_box_ = 0, row_soft_ = 0, rows_ = 0;
   Eigen::VectorXd required_;
   Eigen::VectorXd required_rate_;
   QpResult last_;
