@@ -31,6 +31,16 @@ TEST(TetherModeSwitcher, ModesFromReleasedLengthWithHysteresis) {
   EXPECT_DOUBLE_EQ(s.transitions()[3].released_m, 1.02);
 }
 
+TEST(TetherModeSwitcher, BoundariesFromTheMissionsTether) {
+  TetherParams tether;
+  tether.total_length_m = 8.0;
+  tether.entry_offset_m = 2.5;
+  TetherModeSwitcher s(TetherModeSwitcher::Options::from_mission(tether, 2.4));
+  EXPECT_DOUBLE_EQ(s.options().total_length_m, 8.0);
+  EXPECT_EQ(s.update(0.0, 2.4), TetherMode::kLowering);  // Z_W < l_t < l_0: still lowering
+  EXPECT_EQ(s.update(0.1, 2.52), TetherMode::kHiddenSpace);
+}
+
 TEST(TetherModeSwitcher, EncoderJitterAtABoundaryDoesNotToggle) {
   TetherModeSwitcher s(paper_options(), TetherMode::kHiddenSpace);
   for (int k = 0; k < 100; ++k) (void)s.update(k * 0.02, 1.0 + 0.015 * std::sin(k));

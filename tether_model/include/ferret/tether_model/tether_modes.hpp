@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ferret/urdf/mission_config.hpp"
+
 namespace ferret::tether {
 
 enum class TetherMode { kAerial, kLowering, kHiddenSpace };
@@ -33,6 +35,15 @@ class TetherModeSwitcher {
     double uav_height_m = 1.0;         ///< Z_W (height of the UAV's COM above the ground)
     double hysteresis_m = 0.02;        ///< half-width of the band around each boundary
     double aerial_tolerance_m = 0.005; ///< l_t at or below this counts as fully retracted
+
+    /// L and l_0 from the mission (MissionConfig::tether), Z_W from the flight.
+    [[nodiscard]] static Options from_mission(const TetherParams& tether, double uav_height_m) {
+      Options o;
+      o.total_length_m = tether.total_length_m;
+      o.entry_offset_m = tether.entry_offset_m;
+      o.uav_height_m = uav_height_m;
+      return o;
+    }
   };
 
   /// Throws std::invalid_argument for inconsistent options (l_0 > L, negative values).
