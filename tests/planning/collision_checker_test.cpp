@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "ferret/core/error.hpp"
+#include "ferret/planning/planning_world.hpp"
 #include "test_maps.hpp"
 
 namespace ferret {
@@ -78,6 +79,30 @@ TEST_P(Agreement, FastPathEqualsFclOnRandomPoses) {
 INSTANTIATE_TEST_SUITE_P(FieldResolutions, Agreement,
                          ::testing::Values(AgreementCase{"fine", 16'000'000}, AgreementCase{"coarse", 5'000}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// The ground-robot fast path (2D band field, floor cut, field region) agrees with
+// FCL too: poses on and off the floor, tilted and level, in and near obstacles.
+TEST(Agreement, GroundRobotMapEqualsFcl) {
+  const auto tree = test::hidden_space({{3, 4, 0, 6}, {7, 8, 2, 8}, {5.02, 5.33, 1.01, 1.29}}, {{9, 11, 1, 3}});
+  HiddenSpaceFrame space;
+  const auto map = ugv_collision_map(*tree, space);
+  Rng rng(9);
+  int disagreements = 0, collisions = 0, n = 0;
+  CollisionChecker checker(map, ugv_shape());
+  for (int k = 0; k < 6000; ++k) {
+    const bool level = k % 3 != 0;
+    const double z = level ? 0.0 : rng.uniform(-0.03, 0.08);
+    const Pose3 X = pose({rng.uniform(-0.3, 12.3), rng.uniform(-0.3, 8.3), z}, rng.uniform(-3.2, 3.2),
+                         level ? 0.0 : rng.uniform(-0.4, 0.4));
+    const bool exact = checker.in_collision_fcl(X);
+    disagreements += checker.in_collision(X) != exact;
+    collisions += exact;
+    ++n;
+  }
+  EXPECT_EQ(disagreements, 0);
+  EXPECT_GT(collisions, n / 10);
+  EXPECT_LT(checker.stats().fcl_calls, checker.stats().queries / 2);
+}
 
 TEST(CollisionMap, FieldIsALowerBoundOnTheTrueDistance) {
   octomap::OcTree tree(0.1);
