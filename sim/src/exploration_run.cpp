@@ -18,6 +18,7 @@ constexpr double kHeadingTolerance_rad = 0.15;
 constexpr double kLookahead_m = 0.3;
 constexpr double kStuckTime_s = 4.0;
 constexpr double kWideEscape_m = 4.0;
+constexpr double kFullDecision_s = 1.0;
 
 // Skid-steer follower of a waypoint path (pure pursuit with turn-in-place), with
 // velocity, acceleration and yaw-rate limits. It only ever enters cells that G
@@ -152,6 +153,7 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
   bool goal_is_revisit = false;
   int revisits = 0;
   bool decide_now = true;
+  double last_full_decision = 0.0;
   Pose2 progress_pose = pose;
   double progress_time = 0.0;
   const auto max_steps = static_cast<long>(std::ceil(settings.time_limit_s / dt));
@@ -181,8 +183,15 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
     }
 
     if (decide_now || step % decide_every == 0) {
-      decide_now = false;
       tracker.update(*grid);
+    }
+    // A decision cycle, unless the policy keeps its goal on the evidence of the maps
+    // (then the path from the last full cycle is still followed; a full cycle runs at
+    // least every kFullDecision_s to refresh it).
+    if (decide_now || (step % decide_every == 0 && (!goal || t - last_full_decision >= kFullDecision_s ||
+                                                     (!goal_is_revisit && !policy->keeps_goal(*objects, tracker))))) {
+      decide_now = false;
+      last_full_decision = t;
       const Cell robot_cell = geo.cell_at(pose.x_m, pose.y_m);
       planner.compute(*grid, robot_cell, GridPathPlanner::Traversal::kKnownFree, escape_m);
       const Pose2 X_WS = pose;  // sensors at the robot's origin, facing forward

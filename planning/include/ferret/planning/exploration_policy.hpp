@@ -78,6 +78,14 @@ class ExplorationPolicy {
   /// The last goal chosen was reached (or given up: unreachable, stuck). Policies that
   /// commit to a goal until then (Algorithm 1's "goto g*") release it here.
   virtual void goal_done() {}
+  /// True if choose() would return the goal it returned last, judged from the maps
+  /// alone (no path field): the caller may then skip the decision cycle. The default
+  /// (false) asks for a full decision every cycle.
+  [[nodiscard]] virtual bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const {
+    (void)objects;
+    (void)tracker;
+    return false;
+  }
 };
 
 using ExplorationPolicyFactory = std::function<std::unique_ptr<ExplorationPolicy>(const PolicyOptions&)>;

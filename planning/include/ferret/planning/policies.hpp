@@ -20,6 +20,9 @@ class NearestFrontierPolicy final : public ExplorationPolicy {
   [[nodiscard]] std::string_view name() const override { return "nearest"; }
   [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
   void goal_done() override { committed_.reset(); }
+  [[nodiscard]] bool keeps_goal(const ObjectMap&, const FrontierTracker& tracker) const override {
+    return committed_ && tracker.is_frontier(*committed_) && !tracker.blacklisted(*committed_);
+  }
 
  private:
   std::optional<Cell> committed_;
@@ -40,6 +43,10 @@ class RapidFrontierPolicy final : public ExplorationPolicy {
   void goal_done() override {
     committed_.reset();
     fallback_.goal_done();
+  }
+  [[nodiscard]] bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const override {
+    if (!committed_) return fallback_.keeps_goal(objects, tracker);
+    return tracker.is_frontier(committed_->cell) && !tracker.blacklisted(committed_->cell);
   }
 
   /// The rapid rule on F_v alone (none if F_v is empty).
@@ -70,6 +77,12 @@ class CdosPolicy final : public ExplorationPolicy {
     committed_.reset();
     baseline_.goal_done();
     fallback_.goal_done();
+  }
+  /// A curiosity goal is kept until reached; without one, the baseline's goal is kept
+  /// only while O holds no evidence (new evidence calls for a curiosity decision).
+  [[nodiscard]] bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const override {
+    if (committed_) return !tracker.blacklisted(committed_->cell);
+    return objects.evidence_cells().empty() && baseline_.keeps_goal(objects, tracker);
   }
 
  private:
