@@ -1,85 +1,80 @@
 // PNG figures of one search, like the paper's map figure: G, O with the object's
-// cells in yellow, and both together; frontiers green, the driven path blue.
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+// cells in yellow, and both together; frontiers green, the driven path blue. Drawn
+// with the mapping module's MapCanvas (scale bar included).
+#include <algorithm>
 #include <stdexcept>
 
-#include "ferret/core/atomic_file.hpp"
+#include "ferret/mapping/map_render.hpp"
 #include "ferret/sim/exploration_run.hpp"
 
 namespace ferret {
 namespace {
 
-constexpr int kScale = 4;  // pixels per cell
+const Rgb kFrontier{0, 190, 0}, kObject{255, 220, 0}, kEvidence{255, 140, 0}, kPath{0, 70, 210},
+    kTruthWall{215, 215, 215}, kTruthObject{220, 0, 0}, kSeenLow{255, 255, 255}, kSeenHigh{90, 90, 255};
 
-const cv::Vec3b kUnknown(160, 160, 160), kFree(255, 255, 255), kOccupied(0, 0, 0), kFrontier(0, 200, 0),
-    kObject(0, 230, 255), kTruthWall(215, 215, 215);
-
-cv::Mat blank(const GridGeometry& g) { return cv::Mat(g.height * kScale, g.width * kScale, CV_8UC3, kUnknown); }
-
-void fill(cv::Mat& img, const GridGeometry& g, Cell c, const cv::Vec3b& color) {
-  const int row = (g.height - 1 - c.j) * kScale, col = c.i * kScale;  // row 0 of the image is the top
-  img(cv::Rect(col, row, kScale, kScale)).setTo(cv::Scalar(color[0], color[1], color[2]));
-}
-
-cv::Point pixel(const GridGeometry& g, const Eigen::Vector2d& p) {
-  return {static_cast<int>((p.x() - g.origin_x_m) / g.resolution_m * kScale),
-          static_cast<int>((g.height - (p.y() - g.origin_y_m) / g.resolution_m) * kScale)};
-}
-
-void draw_grid(cv::Mat& img, const OccupancyMap2D& truth, const IrGrid& grid) {
-  const GridGeometry& g = grid.geometry();
-  for (int j = 0; j < g.height; ++j)
-    for (int i = 0; i < g.width; ++i) {
-      const Cell c{i, j};
-      switch (grid.label(c)) {
-        case GridLabel::kFree: fill(img, g, c, kFree); break;
-        case GridLabel::kOccupied: fill(img, g, c, kOccupied); break;
-        case GridLabel::kUnknown:
-          if (truth.at(c) != CellState::kFree) fill(img, g, c, kTruthWall);  // faint truth for orientation
-          break;
-      }
+// G as a map: free, occupied, unknown.
+OccupancyMap2D grid_as_map(const IrGrid& grid) {
+  OccupancyMap2D m;
+  m.geometry = grid.geometry();
+  m.cells.resize(m.geometry.size());
+  for (std::size_t idx = 0; idx < m.cells.size(); ++idx) {
+    switch (grid.label_at(idx)) {
+      case GridLabel::kFree: m.cells[idx] = CellState::kFree; break;
+      case GridLabel::kOccupied: m.cells[idx] = CellState::kOccupied; break;
+      case GridLabel::kUnknown: m.cells[idx] = CellState::kUnknown; break;
     }
-}
-
-void draw_objects(cv::Mat& img, const ObjectMap& objects, bool background) {
-  const GridGeometry& g = objects.geometry();
-  for (int j = 0; j < g.height; ++j)
-    for (int i = 0; i < g.width; ++i) {
-      const Cell c{i, j};
-      const std::size_t idx = g.index(c);
-      const double p = objects.probability_at(idx);
-      if (objects.label_of(p) == ObjectLabel::kObject) {
-        fill(img, g, c, kObject);
-      } else if (p > 0.5) {  // evidence below lambda2: orange, stronger with p
-        const double w = (p - 0.5) / (objects.options().lambda2 - 0.5);
-        fill(img, g, c, cv::Vec3b(0, static_cast<uchar>(200 - 80 * w), 255));
-      } else if (background && objects.observed(idx)) {
-        const auto shade = static_cast<uchar>(255 - 255 * std::clamp((0.5 - p) / 0.5, 0.0, 1.0) * 0.6);
-        fill(img, g, c, cv::Vec3b(255, shade, shade));  // blue-ish: seen, no object
-      }
-    }
-}
-
-void draw_overlay(cv::Mat& img, const GridGeometry& g, const Eigen::Vector2d& object_W, const EpisodeResult& r) {
-  for (const Cell& c : r.frontier) fill(img, g, c, kFrontier);
-  for (std::size_t k = 1; k < r.trajectory.size(); ++k)
-    cv::line(img, pixel(g, r.trajectory[k - 1].position()), pixel(g, r.trajectory[k].position()),
-             cv::Scalar(200, 60, 0), 2, cv::LINE_AA);
-  if (!r.trajectory.empty()) {
-    cv::circle(img, pixel(g, r.trajectory.front().position()), 6, cv::Scalar(200, 60, 0), 2, cv::LINE_AA);
-    const Pose2& last = r.trajectory.back();
-    cv::circle(img, pixel(g, last.position()), 5, cv::Scalar(200, 60, 0), cv::FILLED, cv::LINE_AA);
   }
-  cv::drawMarker(img, pixel(g, object_W), cv::Scalar(0, 0, 220), cv::MARKER_TILTED_CROSS, 14, 2);
+  return m;
 }
 
-void write_png(const std::filesystem::path& path, const cv::Mat& img) {
-  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    if (!cv::imwrite(tmp.string() + ".png", img)) throw std::runtime_error("cannot write " + path.string());
-    std::filesystem::rename(tmp.string() + ".png", tmp);
-  });
+// O's footprint as a map: cells the camera has measured are "free", the rest unknown.
+OccupancyMap2D observed_as_map(const ObjectMap& objects) {
+  OccupancyMap2D m;
+  m.geometry = objects.geometry();
+  m.cells.resize(m.geometry.size());
+  for (std::size_t idx = 0; idx < m.cells.size(); ++idx)
+    m.cells[idx] = objects.observed(idx) ? CellState::kFree : CellState::kUnknown;
+  return m;
+}
+
+void draw_truth_walls(MapCanvas& canvas, const OccupancyMap2D& truth, const IrGrid& grid) {
+  std::vector<Cell> hidden;  // walls G has not seen, faintly, for orientation
+  for (std::size_t idx = 0; idx < truth.cells.size(); ++idx)
+    if (truth.cells[idx] != CellState::kFree && grid.label_at(idx) == GridLabel::kUnknown)
+      hidden.push_back(truth.geometry.cell_of_index(idx));
+  canvas.draw_cells(truth.geometry, hidden, kTruthWall);
+}
+
+void draw_objects(MapCanvas& canvas, const ObjectMap& objects, bool seen_field) {
+  const GridGeometry& g = objects.geometry();
+  if (seen_field) {  // seen without the object: white (p = 0.5) to blue (p = 0)
+    std::vector<double> values(g.size(), -1.0);
+    for (std::size_t idx = 0; idx < values.size(); ++idx) {
+      const double p = objects.probability_at(idx);
+      if (objects.observed(idx) && p <= 0.5) values[idx] = (0.5 - p) / 0.5;
+    }
+    canvas.draw_field(g, values, kSeenLow, kSeenHigh, 0.8);
+  }
+  std::vector<Cell> object, evidence;
+  for (const std::size_t idx : objects.evidence_cells())
+    (objects.label_of(objects.probability_at(idx)) == ObjectLabel::kObject ? object : evidence)
+        .push_back(g.cell_of_index(idx));
+  canvas.draw_cells(g, evidence, kEvidence);
+  canvas.draw_cells(g, object, kObject);
+}
+
+void draw_run(MapCanvas& canvas, const GridGeometry& g, const Eigen::Vector2d& object_W, const EpisodeResult& r) {
+  canvas.draw_cells(g, r.frontier, kFrontier);
+  std::vector<Eigen::Vector2d> path;
+  path.reserve(r.trajectory.size());
+  for (const Pose2& p : r.trajectory) path.push_back(p.position());
+  canvas.draw_path(path, kPath);
+  if (!r.trajectory.empty()) {
+    canvas.draw_circle(r.trajectory.front().position(), 0.15, kPath);
+    canvas.draw_pose(r.trajectory.back(), kPath, 0.4);
+  }
+  canvas.draw_circle(object_W, 0.12, kTruthObject);
 }
 
 }  // namespace
@@ -88,18 +83,25 @@ void write_exploration_images(const OccupancyMap2D& truth, const Eigen::Vector2d
                               const std::filesystem::path& dir) {
   if (!r.grid || !r.objects) throw std::invalid_argument("write_exploration_images: the run was not recorded");
   const GridGeometry& g = r.grid->geometry();
-  cv::Mat img_g = blank(g), img_o = blank(g), img_go = blank(g);
-  draw_grid(img_g, truth, *r.grid);
-  draw_overlay(img_g, g, object_W, r);
+  const OccupancyMap2D g_map = grid_as_map(*r.grid);
+
+  MapCanvas img_g(g_map);
+  draw_truth_walls(img_g, truth, *r.grid);
+  draw_run(img_g, g, object_W, r);
+
+  MapCanvas img_o(observed_as_map(*r.objects));
   draw_objects(img_o, *r.objects, true);
-  draw_overlay(img_o, g, object_W, r);
-  draw_grid(img_go, truth, *r.grid);
+  draw_run(img_o, g, object_W, r);
+
+  MapCanvas img_go(g_map);
+  draw_truth_walls(img_go, truth, *r.grid);
   draw_objects(img_go, *r.objects, false);
-  draw_overlay(img_go, g, object_W, r);
+  draw_run(img_go, g, object_W, r);
+
   std::filesystem::create_directories(dir);
-  write_png(dir / "G.png", img_g);
-  write_png(dir / "O.png", img_o);
-  write_png(dir / "G_O.png", img_go);
+  img_g.save_png(dir / "G.png");
+  img_o.save_png(dir / "O.png");
+  img_go.save_png(dir / "G_O.png");
 }
 
 }  // namespace ferret
