@@ -14,7 +14,6 @@
 
 #include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/ompl_setup.hpp"
-#include "uav_problem.hpp"
 
 namespace ob = ompl::base;
 
@@ -80,8 +79,7 @@ UavPlanner::UavPlanner(std::shared_ptr<const CollisionMap> map, RobotShape shape
 
 UavPlanner::~UavPlanner() = default;
 
-std::shared_ptr<UavPlanner::Problem> UavPlanner::problem(const Waypoint& start, const Waypoint& goal) {
-  auto pr = std::make_shared<Problem>();
+std::shared_ptr<ob::SpaceInformation> UavPlanner::space_information() {
   auto r3 = std::make_shared<ob::RealVectorStateSpace>(3);
   ob::RealVectorBounds bounds(3);
   for (int a = 0; a < 3; ++a) {
@@ -92,26 +90,23 @@ std::shared_ptr<UavPlanner::Problem> UavPlanner::problem(const Waypoint& start, 
   auto space = std::make_shared<ob::CompoundStateSpace>();
   space->addSubspace(r3, 1.0);
   space->addSubspace(std::make_shared<ob::SO2StateSpace>(), 0.5);
-  pr->space = space;
-  pr->si = std::make_shared<ob::SpaceInformation>(space);
+  auto si = std::make_shared<ob::SpaceInformation>(space);
   CollisionChecker* checker = checker_.get();
   const Aabb3 fence = options_.geofence;
-  pr->si->setStateValidityChecker([checker, fence](const ob::State* s) {
+  si->setStateValidityChecker([checker, fence](const ob::State* s) {
     const Waypoint w = to_waypoint(s);
     return fence.contains(w.position()) && !checker->in_collision(w.pose());
   });
-  pr->si->setMotionValidator(std::make_shared<LinearMotionValidator>(pr->si, *checker, options_.resolution));
-  pr->si->setup();
-  pr->pdef = std::make_shared<ob::ProblemDefinition>(pr->si);
-  ob::ScopedState<> s(space), g(space);
-  from_waypoint(start, s.get());
-  from_waypoint(goal, g.get());
+  si->setMotionValidator(std::make_shared<LinearMotionValidator>(si, *checker, options_.resolution));
+  si->setup();
+  return si;
+}
+
+void UavPlanner::to_ompl_state(const Waypoint& w, ob::State* state) const {
+  from_waypoint(w, state);
   // OMPL's SO2 range differs from wrap_angle_rad's at +-pi: let the space normalise.
-  space->enforceBounds(s.get());
-  space->enforceBounds(g.get());
-  pr->pdef->setStartAndGoalStates(s, g);
-  pr->to_waypoint = to_waypoint;
-  return pr;
+  auto* so2 = state->as<ob::CompoundStateSpace::StateType>()->as<ob::SO2StateSpace::StateType>(1);
+  ob::SO2StateSpace().enforceBounds(so2);
 }
 
 UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
@@ -127,16 +122,21 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
     if (!options_.geofence.contains(w.position())) return fail(std::string(name) + " outside the geofence");
     if (checker_->in_collision(w.pose())) return fail(std::string(name) + " in collision");
   }
-  auto pr = problem(start, goal);
-  auto planner = make_ompl_planner(options_.planner, pr->si);
+  auto si = space_information();
+  auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+  ob::ScopedState<> s(si->getStateSpace()), g(si->getStateSpace());
+  to_ompl_state(start, s.get());
+  to_ompl_state(goal, g.get());
+  pdef->setStartAndGoalStates(s, g);
+  auto planner = make_ompl_planner(options_.planner, si);
   if (options_.range_m > 0.0 && planner->params().hasParam("range"))
     planner->params().setParam("range", std::to_string(options_.range_m));
-  planner->setProblemDefinition(pr->pdef);
+  planner->setProblemDefinition(pdef);
   planner->setup();
   const ob::PlannerStatus status = planner->solve(ob::timedPlannerTerminationCondition(options_.time_limit_s));
   if (status != ob::PlannerStatus::EXACT_SOLUTION) return fail("no path found within the time limit");
-  auto& path = *pr->pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
-  ompl::geometric::PathSimplifier simplifier(pr->si);
+  auto& path = *pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+  ompl::geometric::PathSimplifier simplifier(si);
   simplifier.simplify(path, options_.simplify_time_s);
   std::vector<Waypoint> states;
   for (const ob::State* s : path.getStates()) states.push_back(to_waypoint(s));

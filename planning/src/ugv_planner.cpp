@@ -116,26 +116,7 @@ Waypoint UgvPlanner::waypoint(const Pose2& X_WG) const {
   return w;
 }
 
-UgvPlan UgvPlanner::plan(const UgvPlanRequest& request) {
-  const auto t0 = std::chrono::steady_clock::now();
-  UgvPlan out;
-  const double max_taut = request.tether.total_length_m - request.tether.entry_offset_m;
-  TautTether tether(corners_, space_.p_WE);
-  for (const Eigen::Vector2d& p : request.driven) tether.move_to(p);
-  tether.move_to(request.start.position());
-  out.initial_wraps = tether.wrap_points();
-  auto fail = [&](std::string why) {
-    out.status = std::move(why);
-    out.planning_time_s = seconds_since(t0);
-    return out;
-  };
-  if (tether.length_m() > max_taut) return fail("the tether at the start already exceeds L - l_0");
-  const Waypoint start = waypoint(request.start), goal = waypoint(request.goal);
-  for (const auto& [w, name] : {std::pair{start, "start"}, std::pair{goal, "goal"}}) {
-    if (!in_plane_bounds(space_, w.x_m, w.y_m)) return fail(std::string(name) + " outside the hidden space");
-    if (checker_->in_collision(w.pose())) return fail(std::string(name) + " in collision");
-  }
-
+std::shared_ptr<ob::SpaceInformation> UgvPlanner::space_information() {
   auto space = std::make_shared<ob::SE2StateSpace>();
   ob::RealVectorBounds bounds(2);
   bounds.setLow(0, space_.lo_m.x());
@@ -151,6 +132,36 @@ UgvPlan UgvPlanner::plan(const UgvPlanRequest& request) {
   });
   si->setMotionValidator(std::make_shared<TurnDriveTurnValidator>(si, *this, options_.resolution));
   si->setup();
+  return si;
+}
+
+TautTether UgvPlanner::tether_at_start(const UgvPlanRequest& request) const {
+  TautTether tether(corners_, space_.p_WE);
+  for (const Eigen::Vector2d& p : request.driven) tether.move_to(p);
+  tether.move_to(request.start.position());
+  return tether;
+}
+
+UgvPlan UgvPlanner::plan(const UgvPlanRequest& request) {
+  const auto t0 = std::chrono::steady_clock::now();
+  UgvPlan out;
+  const double max_taut = request.tether.total_length_m - request.tether.entry_offset_m;
+  TautTether tether = tether_at_start(request);
+  out.initial_wraps = tether.wrap_points();
+  auto fail = [&](std::string why) {
+    out.status = std::move(why);
+    out.planning_time_s = seconds_since(t0);
+    return out;
+  };
+  if (tether.length_m() > max_taut) return fail("the tether at the start already exceeds L - l_0");
+  const Waypoint start = waypoint(request.start), goal = waypoint(request.goal);
+  for (const auto& [w, name] : {std::pair{start, "start"}, std::pair{goal, "goal"}}) {
+    if (!in_plane_bounds(space_, w.x_m, w.y_m)) return fail(std::string(name) + " outside the hidden space");
+    if (checker_->in_collision(w.pose())) return fail(std::string(name) + " in collision");
+  }
+
+  auto si = space_information();
+  auto space = si->getStateSpace();
   ob::ScopedState<ob::SE2StateSpace> s(space), g(space);
   s->setXY(start.x_m, start.y_m);
   s->setYaw(start.yaw_rad);

@@ -15,6 +15,11 @@
 #include "ferret/planning/motion_check.hpp"
 #include "ferret/planning/robot_shape.hpp"
 
+namespace ompl::base {
+class SpaceInformation;
+class State;
+}  // namespace ompl::base
+
 namespace ferret {
 
 struct UavPlannerOptions {
@@ -44,10 +49,12 @@ class UavPlanner {
   [[nodiscard]] CollisionChecker& checker() { return *checker_; }
   [[nodiscard]] const UavPlannerOptions& options() const { return options_; }
 
-  struct Problem;  ///< the OMPL setup, shared with bench-plan (uav_problem below)
-  /// The OMPL problem of a plan request (SpaceInformation with this planner's
-  /// validity checker and motion validator, start and goal).
-  [[nodiscard]] std::shared_ptr<Problem> problem(const Waypoint& start, const Waypoint& goal);
+  /// The OMPL setting the planner searches: R^3 x SO2 inside the geofence, this
+  /// planner's collision checker, straight-line motions checked at the validation
+  /// resolution (bench-plan runs OMPL's Benchmark on it). The planner must outlive it.
+  [[nodiscard]] std::shared_ptr<ompl::base::SpaceInformation> space_information();
+  /// Writes a waypoint into a state of space_information()'s space (yaw normalised).
+  void to_ompl_state(const Waypoint& w, ompl::base::State* state) const;
 
  private:
   std::shared_ptr<const CollisionMap> map_;

@@ -16,6 +16,10 @@
 #include "ferret/planning/robot_shape.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
 
+namespace ompl::base {
+class SpaceInformation;
+}
+
 namespace ferret {
 
 /// The hidden space the miniUGV plans in.
@@ -74,6 +78,14 @@ class UgvPlanner {
   /// The miniUGV's pose at the floor as a plan state.
   [[nodiscard]] Waypoint waypoint(const Pose2& X_WG) const;
   [[nodiscard]] CollisionChecker& checker() { return *checker_; }
+  [[nodiscard]] const UgvPlannerOptions& options() const { return options_; }
+
+  /// The OMPL setting the planner searches: SE2 over the hidden space, this planner's
+  /// collision checker as validity checker, the turn-drive-turn motion validator.
+  /// (bench-plan runs OMPL's Benchmark on it.) The planner must outlive it.
+  [[nodiscard]] std::shared_ptr<ompl::base::SpaceInformation> space_information();
+  /// The tether of a request with the robot at its start.
+  [[nodiscard]] TautTether tether_at_start(const UgvPlanRequest& request) const;
 
  private:
   UgvPlan finish(std::vector<Waypoint> nodes, const TautTether& tether0, double max_taut_m, double t0_s);
