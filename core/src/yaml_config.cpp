@@ -1,5 +1,6 @@
 #include "ferret/core/yaml_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -90,8 +91,14 @@ std::vector<MapReader> MapReader::child_list(std::string_view key) const {
 }
 
 void MapReader::allow_only(std::initializer_list<std::string_view> allowed) const {
+  std::vector<std::string> seen;
   for (const auto& entry : node_) {
     const auto key = entry.first.as<std::string>();
+    // yaml-cpp keeps both entries of a repeated key and looks up the first, so the
+    // second would be silently ignored.
+    if (std::find(seen.begin(), seen.end(), key) != seen.end())
+      throw InputError(source_, field_path(key), "each key once", "a repeated key");
+    seen.push_back(key);
     bool known = false;
     for (const auto a : allowed) known = known || a == key;
     if (!known) {

@@ -63,6 +63,18 @@ TEST(YamlConfig, UnknownKeyIsRejected) {
   }
 }
 
+TEST(YamlConfig, RepeatedKeyIsRejected) {
+  // yaml-cpp would keep the first value and silently drop the second.
+  const auto r = reader("lambda1: 0.1\nlambda2: 0.9\nlambda1: 0.2\n");
+  try {
+    r.allow_only({"lambda1", "lambda2"});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "lambda1");
+    EXPECT_NE(std::string(e.what()).find("each key once"), std::string::npos);
+  }
+}
+
 TEST(YamlConfig, SyntaxErrorReportsLine) {
   try {
     (void)load_string("a: [1, 2\nb: 3\n", "bad.yaml");

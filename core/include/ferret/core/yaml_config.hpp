@@ -83,8 +83,8 @@ class MapReader {
   /// Required sequence of mappings.
   [[nodiscard]] std::vector<MapReader> child_list(std::string_view key) const;
 
-  /// Throws InputError naming the first key not in `allowed`: catches typos that
-  /// would otherwise silently fall back to defaults.
+  /// Throws InputError naming the first key not in `allowed`, or a key given
+  /// twice: catches typos that would otherwise silently fall back to defaults.
   void allow_only(std::initializer_list<std::string_view> allowed) const;
 
   /// Throws InputError for `key` with the given expectation.
