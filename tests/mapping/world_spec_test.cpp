@@ -156,6 +156,7 @@ rubble:
 TEST(WorldSpec, BadInputNamesFileAndField) {
   expect_field("resolution_m: fine\nbounds_m: {min: [0, 0, 0], max: [1, 1, 1]}\n", "resolution_m", "a number");
   expect_field(with("colour: red\n"), "colour", "known key");
+  expect_field(with("drop_zone: {center_m: [1, 1], radius_m: 1}\n"), "drop_zone", "each key once");
   expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, -1, 1]}\n"), "boxes[0].size_m[1]", "> 0");
   expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, 1, 1], colour: red}\n"), "boxes[0].colour");
   expect_field(with("boxes:\n  - {center_m: [0], size_m: [1, 1, 1]}\n"), "boxes[0].center_m");
