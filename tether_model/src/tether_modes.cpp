@@ -82,13 +82,17 @@ double TouchdownGuard::tilt_rad(double roll_rad, double pitch_rad) {
 LoweringAction TouchdownGuard::update(double t_s, double roll_rad, double pitch_rad, double released_m) {
   const double tilt = tilt_rad(roll_rad, pitch_rad);
   const LoweringAction before = action_;
-  if (tilt >= options_.relift_tilt_rad) {
-    // A bad angle: lift (again) by relift_distance_m from here.
-    if (action_ != LoweringAction::kRelift) relift_target_m_ = std::max(0.0, released_m - options_.relift_distance_m);
+  if (tilt < options_.relift_tilt_rad) relift_armed_ = true;
+  if (action_ == LoweringAction::kRelift && released_m > relift_target_m_) {
+    // Finish the re-lift before judging the attitude again.
+    calm_since_s_ = -1.0;
+  } else if (tilt >= options_.relift_tilt_rad && relift_armed_) {
+    // A bad angle: lift by relift_distance_m from here. Lift once per bad spell: a
+    // robot still hanging at a bad angle afterwards is held, not lifted further.
+    relift_target_m_ = std::max(0.0, released_m - options_.relift_distance_m);
+    relift_armed_ = false;
     action_ = LoweringAction::kRelift;
     calm_since_s_ = -1.0;
-  } else if (action_ == LoweringAction::kRelift && released_m > relift_target_m_) {
-    // Finish the re-lift before judging the attitude again.
   } else if (tilt >= options_.pause_tilt_rad) {
     action_ = LoweringAction::kPause;
     calm_since_s_ = -1.0;

@@ -69,8 +69,9 @@ enum class LoweringAction { kLower, kPause, kRelift };
 
 /// Touchdown-angle check (paper sect. III, tether attachment): the miniUGV must
 /// touch down close to level. Tilt below pause_tilt_rad: keep lowering; between
-/// pause and relift: hold; above relift_tilt_rad: lift by relift_distance_m, then
-/// hold until the tilt has been back under the pause limit for settle_time_s.
+/// pause and relift: hold; above relift_tilt_rad: lift by relift_distance_m (once
+/// per bad spell), then hold until the tilt has been back under the pause limit for
+/// settle_time_s.
 class TouchdownGuard {
  public:
   struct Options {
@@ -101,6 +102,7 @@ class TouchdownGuard {
   double velocity_mps_ = 0.0;
   double relift_target_m_ = 0.0;
   double calm_since_s_ = -1.0;
+  bool relift_armed_ = true;  ///< re-armed once the tilt drops below the relift limit
 };
 
 }  // namespace ferret::tether
