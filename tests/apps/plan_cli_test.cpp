@@ -78,6 +78,19 @@ TEST(PlanCli, UavPlansAreDeterministicGivenTheSeed) {
   EXPECT_EQ(run_cli("validate --world " + world + " --plan " + dir / "t.json").exit_code, 0);
 }
 
+TEST(PlanCli, BenchPlanWritesOmplLogs) {
+  TempDir dir;
+  const auto r = run_cli("bench-plan --world " + kDetour + " --robots ugv --runs 2 --time-limit 0.2 --planners rrtconnect -o " +
+                         dir / "logs");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string log = slurp(dir / "logs/ugv_0.log");
+  EXPECT_NE(log.find("geometric_TetheredRRT"), std::string::npos);
+  EXPECT_NE(log.find("geometric_RRTConnect"), std::string::npos);
+  EXPECT_NE(log.find("2 runs"), std::string::npos) << log.substr(0, 400);
+  EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --robots boat -o " + dir / "x").exit_code, 2);
+  EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --planners nope -o " + dir / "x").exit_code, 2);
+}
+
 TEST(PlanCli, BadInputExitsTwo) {
   TempDir dir;
   const std::string out = " -o " + dir / "p.json";
