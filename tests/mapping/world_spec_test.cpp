@@ -157,6 +157,11 @@ TEST(WorldSpec, BadInputNamesFileAndField) {
   expect_field("resolution_m: fine\nbounds_m: {min: [0, 0, 0], max: [1, 1, 1]}\n", "resolution_m", "a number");
   expect_field(with("colour: red\n"), "colour", "known key");
   expect_field(with("drop_zone: {center_m: [1, 1], radius_m: 1}\n"), "drop_zone", "each key once");
+  std::string marker = kWorld;
+  marker.replace(marker.find("{id: 7, size_m: 0.2}"), 20, "{id: 50, size_m: 0.2}");
+  expect_field(marker, "hidden_spaces[0].marker.id", "[0, 49] of DICT_4X4_50");
+  marker.replace(marker.find("{id: 50, size_m: 0.2}"), 21, "{id: 7, size_m: 0.2, dictionary: DICT_9X9_5}");
+  expect_field(marker, "hidden_spaces[0].marker.dictionary");
   expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, -1, 1]}\n"), "boxes[0].size_m[1]", "> 0");
   expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, 1, 1], colour: red}\n"), "boxes[0].colour");
   expect_field(with("boxes:\n  - {center_m: [0], size_m: [1, 1, 1]}\n"), "boxes[0].center_m");
