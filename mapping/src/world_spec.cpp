@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -333,6 +335,29 @@ HiddenSpace parse_hidden_space(const MapReader& r, const GroundSpec& ground) {
   return h;
 }
 
+// Corners of a hidden space's outer footprint (interior plus walls) in plan.
+std::array<Eigen::Vector2d, 4> outer_corners(const HiddenSpace& h) {
+  const double hx = h.interior_size_m.x() / 2 + h.wall_thickness_m, hy = h.interior_size_m.y() / 2 + h.wall_thickness_m;
+  std::array<Eigen::Vector2d, 4> out;
+  int k = 0;
+  for (const double sx : {-hx, hx})
+    for (const double sy : {-hy, hy}) out[k++] = h.X_WH.position() + rotate({sx, sy}, h.X_WH.yaw_rad);
+  return out;
+}
+
+// Separating-axis test of two rectangles in plan.
+bool footprints_overlap(const HiddenSpace& a, const HiddenSpace& b) {
+  const auto ca = outer_corners(a), cb = outer_corners(b);
+  for (const double yaw : {a.X_WH.yaw_rad, b.X_WH.yaw_rad})
+    for (const Eigen::Vector2d& axis : {rotate({1, 0}, yaw), rotate({0, 1}, yaw)}) {
+      double amin = 1e300, amax = -1e300, bmin = 1e300, bmax = -1e300;
+      for (const auto& p : ca) amin = std::min(amin, axis.dot(p)), amax = std::max(amax, axis.dot(p));
+      for (const auto& p : cb) bmin = std::min(bmin, axis.dot(p)), bmax = std::max(bmax, axis.dot(p));
+      if (amax <= bmin || bmax <= amin) return false;
+    }
+  return true;
+}
+
 WorldObject parse_object(const MapReader& r, const WorldSpec& w) {
   r.allow_only({"name", "hidden_space", "position_m", "size_m", "yaw_deg"});
   WorldObject o;
@@ -492,6 +517,9 @@ WorldSpec parse_world_node(const YAML::Node& root, const std::string& source) {
     if (w.find_hidden_space(h.name) >= 0) hr.fail("name", "a name not used by another hidden space", "'" + h.name + "'");
     const Eigen::AlignedBox3d extent = h.outer_bounds_m();
     check_inside_bounds(w, hr, "center_m", extent.min(), extent.max());
+    for (const auto& other : w.hidden_spaces)
+      if (footprints_overlap(h, other))
+        hr.fail("center_m", fmt::format("a hidden space clear of '{}' (their walls overlap)", other.name));
     w.hidden_spaces.push_back(std::move(h));
   }
   for (const auto& orr : optional_list(r, "objects")) w.objects.push_back(parse_object(orr, w));

@@ -130,6 +130,14 @@ hidden_spaces:
   expect_field(tighter, "hidden_spaces[0].center_m", "inside bounds");
 }
 
+TEST(WorldSpec, RotatedNeighboursMayStandCloseWithoutOverlapping) {
+  // Rotated 45 deg, the annex's axis-aligned bounds reach into the cellar's, its walls do not.
+  EXPECT_NO_THROW((void)parse_world(std::string(kBase) + R"(  - {name: annex, center_m: [2.1, 0.2], yaw_deg: 45,
+     interior_size_m: [0.8, 0.8, 0.3], marker: {id: 2}, opening: {wall: +x, width_m: 0.15, height_m: 0.07}}
+)",
+                                    "w.yaml"));
+}
+
 TEST(WorldSpec, RubbleIsSeededAndKeepsClear) {
   const std::string rubble = R"(
 rubble:
@@ -200,6 +208,11 @@ hidden_spaces:
      opening: {wall: -x, width_m: 0.1, height_m: 0.07}}
 )",
                "hidden_spaces[0].center_m", "inside bounds");
+  // A second space whose walls cut the first one's (rotated: only the exact test sees it).
+  expect_field(std::string(kBase) + R"(  - {name: annex, center_m: [2.1, -1.0], yaw_deg: 45, interior_size_m: [1, 0.6, 0.3],
+     marker: {id: 2}, opening: {wall: +x, width_m: 0.15, height_m: 0.07}}
+)",
+               "hidden_spaces[1].center_m", "clear of 'cellar'");
   // Sloped ground rises into the interior unless the floor is raised.
   expect_field(R"(
 resolution_m: 0.05
