@@ -14,6 +14,7 @@ namespace ferret {
 namespace {
 
 constexpr double kPositionTolerance_m = 0.1;
+constexpr double kViewpointTolerance_m = 0.04;
 constexpr double kHeadingTolerance_rad = 0.15;
 constexpr double kLookahead_m = 0.3;
 constexpr double kStuckTime_s = 4.0;
@@ -49,7 +50,8 @@ class PathFollower {
     const Eigen::Vector2d goal = path_.back();
     const double to_goal = (goal - p).norm();
     double v_des = 0.0, w = 0.0;
-    if (to_goal < kPositionTolerance_m) {
+    // A goal with a heading is a viewpoint chosen for its line of sight: stand on it.
+    if (to_goal < (has_heading_ ? kViewpointTolerance_m : kPositionTolerance_m)) {
       v_mps = 0.0;
       if (!has_heading_) return true;
       const double e = wrap_angle_rad(heading_rad_ - pose.yaw_rad);
@@ -249,8 +251,9 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
     const bool reached = follower.step(pose, v_mps, *grid, dt);
     result.path_m += (pose.position() - before.position()).norm();
     if (reached) {
-      // A goal reached that is still frontier would be chosen again and again.
-      if (goal && tracker.is_frontier(goal->cell)) tracker.blacklist(goal->cell);
+      // A goal reached that is still frontier, or a viewpoint reached without finding
+      // the object, would be chosen again and again.
+      if (goal && (tracker.is_frontier(goal->cell) || goal->heading_rad)) tracker.blacklist(goal->cell);
       policy->goal_done();
       goal.reset();
       goal_is_revisit = false;
