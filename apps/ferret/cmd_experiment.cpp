@@ -24,6 +24,7 @@ struct Options {
   std::string config, out, shard = "0/1", plot_script;
   int jobs = 1;
   bool no_plots = false, quiet = false;
+  std::string planner = "grid";  // "ompl": cdos and rapid run as cdos+ompl, rapid+ompl
 };
 
 std::pair<int, int> parse_shard(const std::string& text) {
@@ -60,7 +61,13 @@ fs::path find_plot_script(const Options& o) {
 void run(const Options& o) {
   const auto [shard_index, shard_count] = parse_shard(o.shard);
   if (o.jobs < 1) throw InputError("ferret experiment", "--jobs", "an integer >= 1", std::to_string(o.jobs));
-  const ExperimentConfig config = load_experiment_config(o.config);
+  ExperimentConfig config = load_experiment_config(o.config);
+  if (o.planner != "grid" && o.planner != "ompl")
+    throw InputError("ferret experiment", "--planner", "grid or ompl", o.planner);
+  if (o.planner == "ompl")
+    for (auto* list : {&config.methods, &config.sweep_methods})
+      for (auto& m : *list)
+        if (m == "cdos" || m == "rapid") m += "+ompl";
 
   ExperimentOptions eo;
   eo.jobs = o.jobs;
@@ -106,6 +113,8 @@ const CommandRegistration kExperiment{"experiment", [](CLI::App& app) {
   sub->add_option("config", o->config, "Experiment YAML (docs/object_search.md)")->required();
   sub->add_option("--out", o->out, "Output directory")->required();
   sub->add_option("--jobs", o->jobs, "Worker threads")->capture_default_str();
+  sub->add_option("--planner", o->planner, "grid, or ompl: cdos and rapid with the OMPL frontier sampler")
+      ->capture_default_str();
   sub->add_option("--shard", o->shard, "Run slice I of N (groups g with g % N == I)")->capture_default_str();
   sub->add_option("--plot-script", o->plot_script, "Plot script (default: examples/plot_experiment.py)");
   sub->add_flag("--no-plots", o->no_plots, "Write the CSVs only");

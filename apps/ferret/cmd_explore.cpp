@@ -33,6 +33,7 @@ struct Options {
   double max_velocity_mps = 2, max_yaw_rate_radps = 2, time_limit_s = 300;
   std::string candidates = "fv";
   bool closest_approach = false;
+  std::string planner = "grid";  // "ompl": the frontier valid-state sampler with PRM (docs/planning.md)
 };
 
 std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& option,
@@ -85,6 +86,13 @@ void run(const Options& o) {
 
   ExplorationSettings s;
   s.method = o.method;
+  if (o.planner == "ompl") {
+    if (o.method != "cdos" && o.method != "rapid")
+      throw InputError("ferret explore", "--planner", "ompl with --method cdos or rapid", o.method);
+    s.method = o.method + "+ompl";  // the OMPL frontier policies of planning/frontier_sampler.hpp
+  } else if (o.planner != "grid") {
+    throw InputError("ferret explore", "--planner", "grid or ompl", o.planner);
+  }
   if (!o.mission.empty()) s.mission = load_mission_config(o.mission);
   s.sensors.camera_fov_rad = deg_to_rad(o.camera_fov_deg);
   s.sensors.ir_fov_rad = deg_to_rad(o.ir_fov_deg);
@@ -100,7 +108,7 @@ void run(const Options& o) {
 
   const EpisodeResult r = run_exploration(map, start, object, s, o.seed);
 
-  std::printf("method: %s\nfound: %s\ntime_s: %.2f\npath_m: %.2f\ndecisions: %d\nend: %s\n", o.method.c_str(),
+  std::printf("method: %s\nfound: %s\ntime_s: %.2f\npath_m: %.2f\ndecisions: %d\nend: %s\n", s.method.c_str(),
               r.found ? "yes" : "no", r.time_s, r.path_m, r.decisions, r.end_reason.c_str());
   if (o.out.empty()) return;
 
@@ -152,6 +160,8 @@ const CommandRegistration kExplore{"explore", [](CLI::App& app) {
   sub->add_option("--max-velocity", o->max_velocity_mps, "m/s")->capture_default_str();
   sub->add_option("--max-yaw-rate", o->max_yaw_rate_radps, "rad/s")->capture_default_str();
   sub->add_option("--time-limit", o->time_limit_s, "Simulated seconds before giving up")->capture_default_str();
+  sub->add_option("--planner", o->planner, "grid, or ompl: PRM with the frontier valid-state sampler (cdos, rapid)")
+      ->capture_default_str();
   sub->add_option("--cdos-candidates", o->candidates, "cdos: score fv (F_v) or fg (F_g)")->capture_default_str();
   sub->add_flag("--closest-approach", o->closest_approach, "cdos: d_{t+1} is the closest approach on the way");
   sub->callback([o] { run(*o); });
