@@ -1,0 +1,109 @@
+#pragma once
+// CDOS as an OMPL frontier valid-state sampler (an OMPL extension point, so OMPL
+// types appear here). The sampler draws miniUGV states (SE2) at frontier cells of
+// the IR grid G, each cell chosen in proportion to its weight: for `cdos` the
+// curiosity loss of the candidate (F_v first, F_g when F_v is empty; the rapid rule
+// where no cell has object evidence, as the CDOS policy does), for `rapid` a weight
+// that falls with the change of velocity the candidate asks (F_v) or its path
+// distance (F_g). A FrontierGoal region samples goals the same way.
+//
+// OMPL 1.5 calls a custom valid-state sampler only from planners that ask the
+// SpaceInformation for one (PRM, LazyPRM, SPARS, EST, BKPIECE1, SBL, STRIDE); RRT,
+// RRTConnect, RRT* and FMT ignore it (ompl#810). samples_drawn() lets a test prove
+// the sampler was called.
+
+#include <ompl/base/ValidStateSampler.h>
+#include <ompl/base/goals/GoalSampleableRegion.h>
+
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ferret/core/random.hpp"
+#include "ferret/planning/exploration_policy.hpp"
+
+namespace ferret {
+
+/// Frontier cells with sampling weights.
+struct FrontierCandidates {
+  GridGeometry geometry;
+  std::vector<Cell> cells;
+  std::vector<double> weights;  ///< > 0, same length as cells
+  std::vector<double> cumulative;  ///< prefix sums of weights (for drawing)
+  std::string rule;             ///< "curiosity", "rapid" or "nearest": what set the weights
+
+  void finalize();
+  [[nodiscard]] bool empty() const { return cells.empty(); }
+  /// Index drawn in proportion to the weights. @pre !empty()
+  [[nodiscard]] std::size_t draw(Rng& rng) const;
+  /// The candidate whose cell holds (x, y), or -1.
+  [[nodiscard]] int find(double x_m, double y_m) const;
+
+ private:
+  std::vector<int> by_cell_;  ///< grid index -> candidate index or -1
+};
+
+/// CDOS weights: curiosity loss over F_v (F_g when F_v is empty), sharpened so the
+/// largest loss dominates; the rapid weights where the losses are all zero.
+[[nodiscard]] FrontierCandidates cdos_candidates(const ExplorationState& state, const CuriosityOptions& options);
+/// Rapid weights: exp(-|v_max u(g) - v| / (0.25 v_max)) over F_v; where F_v is empty,
+/// exp(-path distance / 1 m) over F_g (nearest first).
+[[nodiscard]] FrontierCandidates rapid_candidates(const ExplorationState& state, double max_velocity_mps);
+
+class FrontierValidStateSampler : public ompl::base::ValidStateSampler {
+ public:
+  FrontierValidStateSampler(const ompl::base::SpaceInformation* si,
+                            std::shared_ptr<const FrontierCandidates> candidates, std::uint64_t seed,
+                            std::shared_ptr<std::atomic<std::size_t>> counter = nullptr);
+  /// A valid state at a frontier cell drawn by weight (uniform inside the cell, any
+  /// heading); false after `attempts_` invalid draws.
+  bool sample(ompl::base::State* state) override;
+  /// A valid frontier state within `distance` of `near`, by weight among those cells.
+  bool sampleNear(ompl::base::State* state, const ompl::base::State* near, double distance) override;
+
+ private:
+  bool fill(ompl::base::State* state, std::size_t k);
+  std::shared_ptr<const FrontierCandidates> candidates_;
+  Rng rng_;
+  std::shared_ptr<std::atomic<std::size_t>> counter_;
+};
+
+/// The allocator to register with SpaceInformation::setValidStateSamplerAllocator.
+/// `counter` (optional) counts the states the samplers drew.
+[[nodiscard]] ompl::base::ValidStateSamplerAllocator frontier_sampler_allocator(
+    std::shared_ptr<const FrontierCandidates> candidates, std::uint64_t seed,
+    std::shared_ptr<std::atomic<std::size_t>> counter = nullptr);
+
+/// The goal of a frontier plan: any state on a candidate cell; goals are sampled by weight.
+class FrontierGoal : public ompl::base::GoalSampleableRegion {
+ public:
+  FrontierGoal(const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const FrontierCandidates> candidates,
+               std::uint64_t seed);
+  double distanceGoal(const ompl::base::State* state) const override;
+  void sampleGoal(ompl::base::State* state) const override;
+  unsigned int maxSampleCount() const override;
+
+ private:
+  std::shared_ptr<const FrontierCandidates> candidates_;
+  mutable Rng rng_;
+};
+
+/// Where an OMPL frontier plan took the robot.
+struct FrontierPlan {
+  bool solved = false;
+  std::vector<Eigen::Vector2d> path_W;  ///< from the robot to the frontier
+  Cell goal;
+  double planning_time_s = 0.0;
+  std::size_t samples_drawn = 0;  ///< by the frontier sampler
+};
+
+/// Plans with PRM (which calls the frontier sampler) from the robot to a frontier
+/// over G's known-free, clear cells (within `escape_radius_m` of the robot, known free
+/// suffices, so a robot next to a wall can leave it).
+[[nodiscard]] FrontierPlan plan_to_frontier(const ExplorationState& state,
+                                            std::shared_ptr<const FrontierCandidates> candidates, double time_limit_s,
+                                            std::uint64_t seed, double escape_radius_m = 1.0);
+
+}  // namespace ferret

@@ -1,0 +1,225 @@
+#include "ferret/planning/frontier_sampler.hpp"
+
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/util/Console.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "ferret/planning/curiosity.hpp"
+
+namespace ob = ompl::base;
+
+namespace ferret {
+
+void FrontierCandidates::finalize() {
+  cumulative.resize(weights.size());
+  double sum = 0.0;
+  for (std::size_t k = 0; k < weights.size(); ++k) cumulative[k] = sum += weights[k];
+  by_cell_.assign(geometry.size(), -1);
+  for (std::size_t k = 0; k < cells.size(); ++k) by_cell_[geometry.index(cells[k])] = static_cast<int>(k);
+}
+
+std::size_t FrontierCandidates::draw(Rng& rng) const {
+  const double u = rng.uniform01() * cumulative.back();
+  const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), u);
+  return std::min<std::size_t>(static_cast<std::size_t>(it - cumulative.begin()), cells.size() - 1);
+}
+
+int FrontierCandidates::find(double x_m, double y_m) const {
+  const Cell c = geometry.cell_at(x_m, y_m);
+  return geometry.contains(c) ? by_cell_[geometry.index(c)] : -1;
+}
+
+namespace {
+
+FrontierCandidates rapid_weights(const ExplorationState& s, double max_velocity_mps) {
+  FrontierCandidates out;
+  out.geometry = s.grid.geometry();
+  const Eigen::Vector2d p = s.X_WG.position();
+  if (!s.frontiers.visible.empty()) {
+    Eigen::Vector2d v = s.v_W;
+    if (v.norm() < 0.05) v = 0.05 * Eigen::Vector2d(std::cos(s.X_WG.yaw_rad), std::sin(s.X_WG.yaw_rad));
+    for (const Cell& c : s.frontiers.visible) {
+      const Eigen::Vector2d to = out.geometry.center(c) - p;
+      const Eigen::Vector2d u = to.norm() > 1e-9 ? Eigen::Vector2d(to.normalized()) : Eigen::Vector2d(v.normalized());
+      out.cells.push_back(c);
+      out.weights.push_back(std::exp(-(max_velocity_mps * u - v).norm() / (0.25 * max_velocity_mps)));
+    }
+    out.rule = "rapid";
+  } else {
+    for (const Cell& c : s.frontiers.global) {
+      out.cells.push_back(c);
+      out.weights.push_back(std::exp(-static_cast<double>(s.paths.distance_m(c)) / 1.0));
+    }
+    out.rule = "nearest";
+  }
+  // Far candidates underflow to 0: keep every weight positive but tiny.
+  for (double& w : out.weights) w = std::max(w, 1e-12);
+  out.finalize();
+  return out;
+}
+
+}  // namespace
+
+FrontierCandidates rapid_candidates(const ExplorationState& s, double max_velocity_mps) {
+  return rapid_weights(s, max_velocity_mps);
+}
+
+FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOptions& options) {
+  const auto evidence = collect_evidence(s.objects);
+  const std::vector<Cell>& set = s.frontiers.visible.empty() ? s.frontiers.global : s.frontiers.visible;
+  if (!evidence.empty() && !set.empty()) {
+    const auto scored = score_frontiers(set, s.grid.geometry(), s.X_WG.position(), evidence, options);
+    double best = 0.0;
+    for (const auto& f : scored) best = std::max(best, f.loss);
+    if (best > 0.0) {
+      FrontierCandidates out;
+      out.geometry = s.grid.geometry();
+      for (const auto& f : scored) {
+        out.cells.push_back(f.cell);
+        // Sharpened: a candidate with 10% less loss than the best is 1/e as likely.
+        out.weights.push_back(std::max(std::exp((f.loss - best) / (0.1 * best)), 1e-12));
+      }
+      out.rule = "curiosity";
+      out.finalize();
+      return out;
+    }
+  }
+  return rapid_weights(s, 2.0);
+}
+
+FrontierValidStateSampler::FrontierValidStateSampler(const ob::SpaceInformation* si,
+                                                     std::shared_ptr<const FrontierCandidates> candidates,
+                                                     std::uint64_t seed,
+                                                     std::shared_ptr<std::atomic<std::size_t>> counter)
+    : ob::ValidStateSampler(si), candidates_(std::move(candidates)), rng_(seed), counter_(std::move(counter)) {
+  name_ = "frontier";
+}
+
+bool FrontierValidStateSampler::fill(ob::State* state, std::size_t k) {
+  const GridGeometry& g = candidates_->geometry;
+  const Eigen::Vector2d c = g.center(candidates_->cells[k]);
+  auto* se2 = state->as<ob::SE2StateSpace::StateType>();
+  se2->setXY(c.x() + rng_.uniform(-0.5, 0.5) * g.resolution_m, c.y() + rng_.uniform(-0.5, 0.5) * g.resolution_m);
+  se2->setYaw(rng_.uniform(-3.14159, 3.14159));
+  if (counter_) ++*counter_;
+  return si_->isValid(state);
+}
+
+bool FrontierValidStateSampler::sample(ob::State* state) {
+  if (candidates_->empty()) return false;
+  for (unsigned a = 0; a < attempts_; ++a)
+    if (fill(state, candidates_->draw(rng_))) return true;
+  return false;
+}
+
+bool FrontierValidStateSampler::sampleNear(ob::State* state, const ob::State* near, double distance) {
+  if (candidates_->empty()) return false;
+  const auto* n = near->as<ob::SE2StateSpace::StateType>();
+  const Eigen::Vector2d p(n->getX(), n->getY());
+  for (unsigned a = 0; a < attempts_; ++a) {
+    const std::size_t k = candidates_->draw(rng_);
+    if ((candidates_->geometry.center(candidates_->cells[k]) - p).norm() > distance) continue;
+    if (fill(state, k)) return true;
+  }
+  return false;
+}
+
+ob::ValidStateSamplerAllocator frontier_sampler_allocator(std::shared_ptr<const FrontierCandidates> candidates,
+                                                          std::uint64_t seed,
+                                                          std::shared_ptr<std::atomic<std::size_t>> counter) {
+  auto calls = std::make_shared<std::uint64_t>(0);
+  return [candidates, seed, counter, calls](const ob::SpaceInformation* si) -> ob::ValidStateSamplerPtr {
+    // Each allocated sampler gets its own stream, derived deterministically.
+    return std::make_shared<FrontierValidStateSampler>(si, candidates, derive_seed(seed, {(*calls)++}), counter);
+  };
+}
+
+FrontierGoal::FrontierGoal(const ob::SpaceInformationPtr& si, std::shared_ptr<const FrontierCandidates> candidates,
+                           std::uint64_t seed)
+    : ob::GoalSampleableRegion(si), candidates_(std::move(candidates)), rng_(derive_seed(seed, {0x60a1})) {
+  // Satisfied on a candidate cell: within half a cell diagonal of its centre.
+  setThreshold(0.75 * candidates_->geometry.resolution_m);
+}
+
+double FrontierGoal::distanceGoal(const ob::State* state) const {
+  const auto* se2 = state->as<ob::SE2StateSpace::StateType>();
+  if (candidates_->find(se2->getX(), se2->getY()) >= 0) return 0.0;
+  double best = std::numeric_limits<double>::infinity();
+  const Eigen::Vector2d p(se2->getX(), se2->getY());
+  for (const Cell& c : candidates_->cells) best = std::min(best, (candidates_->geometry.center(c) - p).norm());
+  return best;
+}
+
+void FrontierGoal::sampleGoal(ob::State* state) const {
+  const std::size_t k = candidates_->draw(rng_);
+  const Eigen::Vector2d c = candidates_->geometry.center(candidates_->cells[k]);
+  auto* se2 = state->as<ob::SE2StateSpace::StateType>();
+  se2->setXY(c.x(), c.y());
+  se2->setYaw(0.0);
+}
+
+unsigned int FrontierGoal::maxSampleCount() const { return static_cast<unsigned>(candidates_->cells.size()); }
+
+FrontierPlan plan_to_frontier(const ExplorationState& s, std::shared_ptr<const FrontierCandidates> candidates,
+                              double time_limit_s, std::uint64_t seed, double escape_radius_m) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FrontierPlan out;
+  if (!candidates || candidates->empty()) return out;
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);  // PRM reports every roadmap at "info"
+  const GridGeometry& g = s.grid.geometry();
+  auto space = std::make_shared<ob::SE2StateSpace>();
+  ob::RealVectorBounds bounds(2);
+  bounds.setLow(0, g.origin_x_m);
+  bounds.setHigh(0, g.origin_x_m + g.width_m());
+  bounds.setLow(1, g.origin_y_m);
+  bounds.setHigh(1, g.origin_y_m + g.height_m());
+  space->setBounds(bounds);
+  auto si = std::make_shared<ob::SpaceInformation>(space);
+  const Eigen::Vector2d robot = s.X_WG.position();
+  const IrGrid& grid = s.grid;
+  si->setStateValidityChecker([&grid, g, robot, escape_radius_m](const ob::State* st) {
+    const auto* se2 = st->as<ob::SE2StateSpace::StateType>();
+    const Cell c = g.cell_at(se2->getX(), se2->getY());
+    if (!g.contains(c)) return false;
+    const std::size_t idx = g.index(c);
+    if (grid.traversable(idx)) return true;
+    // Near the robot known free suffices (it may stand inside a wall's clearance).
+    return grid.label_at(idx) == GridLabel::kFree &&
+           (Eigen::Vector2d(se2->getX(), se2->getY()) - robot).norm() <= escape_radius_m;
+  });
+  // Checks every half cell along a motion.
+  si->setStateValidityCheckingResolution(0.5 * g.resolution_m / space->getMaximumExtent());
+  auto counter = std::make_shared<std::atomic<std::size_t>>(0);
+  si->setValidStateSamplerAllocator(frontier_sampler_allocator(candidates, seed, counter));
+  si->setup();
+  auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+  ob::ScopedState<ob::SE2StateSpace> start(space);
+  start->setXY(robot.x(), robot.y());
+  start->setYaw(s.X_WG.yaw_rad);
+  pdef->addStartState(start);
+  pdef->setGoal(std::make_shared<FrontierGoal>(si, candidates, seed));
+  ompl::geometric::PRM prm(si);
+  prm.setProblemDefinition(pdef);
+  prm.setup();
+  const ob::PlannerStatus status = prm.solve(ob::timedPlannerTerminationCondition(time_limit_s));
+  out.samples_drawn = counter->load();
+  out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (status != ob::PlannerStatus::EXACT_SOLUTION) return out;
+  auto& path = *pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+  for (const ob::State* st : path.getStates()) {
+    const auto* se2 = st->as<ob::SE2StateSpace::StateType>();
+    out.path_W.emplace_back(se2->getX(), se2->getY());
+  }
+  out.goal = g.cell_at(out.path_W.back().x(), out.path_W.back().y());
+  out.solved = candidates->find(out.path_W.back().x(), out.path_W.back().y()) >= 0;
+  return out;
+}
+
+}  // namespace ferret

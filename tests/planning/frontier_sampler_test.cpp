@@ -1,0 +1,122 @@
+#include "ferret/planning/frontier_sampler.hpp"
+
+#include <gtest/gtest.h>
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+
+#include "ferret/planning/ompl_setup.hpp"
+
+namespace ferret {
+namespace {
+
+namespace ob = ompl::base;
+
+// Three frontier cells of a 10 x 10 m grid at 0.5 m, weighted 1 : 2 : 7.
+std::shared_ptr<FrontierCandidates> three_frontiers() {
+  auto c = std::make_shared<FrontierCandidates>();
+  c->geometry = {0.0, 0.0, 0.5, 20, 20};
+  c->cells = {{2, 17}, {17, 17}, {17, 2}};
+  c->weights = {1.0, 2.0, 7.0};
+  c->rule = "test";
+  c->finalize();
+  return c;
+}
+
+ob::SpaceInformationPtr open_plane(const std::function<bool(double, double)>& valid) {
+  auto space = std::make_shared<ob::SE2StateSpace>();
+  ob::RealVectorBounds b(2);
+  b.setLow(0.0);
+  b.setHigh(10.0);
+  space->setBounds(b);
+  auto si = std::make_shared<ob::SpaceInformation>(space);
+  si->setStateValidityChecker([valid](const ob::State* s) {
+    const auto* se2 = s->as<ob::SE2StateSpace::StateType>();
+    return valid(se2->getX(), se2->getY());
+  });
+  si->setup();
+  return si;
+}
+
+TEST(FrontierCandidates, DrawsInProportionToTheWeights) {
+  const auto c = three_frontiers();
+  Rng rng(4);
+  int counts[3] = {0, 0, 0};
+  for (int k = 0; k < 20000; ++k) ++counts[c->draw(rng)];
+  EXPECT_NEAR(counts[0] / 20000.0, 0.1, 0.01);
+  EXPECT_NEAR(counts[1] / 20000.0, 0.2, 0.01);
+  EXPECT_NEAR(counts[2] / 20000.0, 0.7, 0.015);
+  EXPECT_EQ(c->find(8.7, 1.2), 2);
+  EXPECT_EQ(c->find(5.0, 5.0), -1);
+}
+
+TEST(FrontierSampler, StatesLieOnFrontierCellsAndSampleNearKeepsItsDistance) {
+  const auto c = three_frontiers();
+  auto si = open_plane([](double, double) { return true; });
+  auto counter = std::make_shared<std::atomic<std::size_t>>(0);
+  FrontierValidStateSampler sampler(si.get(), c, 3, counter);
+  ob::ScopedState<ob::SE2StateSpace> s(si->getStateSpace()), near(si->getStateSpace());
+  for (int k = 0; k < 200; ++k) {
+    ASSERT_TRUE(sampler.sample(s.get()));
+    EXPECT_GE(c->find(s->getX(), s->getY()), 0);
+  }
+  EXPECT_EQ(counter->load(), 200u);
+  near->setXY(1.0, 8.0);
+  near->setYaw(0);
+  for (int k = 0; k < 50; ++k) {
+    ASSERT_TRUE(sampler.sampleNear(s.get(), near.get(), 1.0));
+    EXPECT_EQ(c->find(s->getX(), s->getY()), 0);  // the only frontier within 1 m
+  }
+  // Frontier cells that are all invalid: the sampler gives up.
+  auto blocked = open_plane([](double, double) { return false; });
+  FrontierValidStateSampler none(blocked.get(), c, 3);
+  EXPECT_FALSE(none.sample(s.get()));
+}
+
+// Pitfall (ompl#810): only planners that allocate a valid-state sampler use ours.
+// PRM does, and finds its way to a frontier; RRTConnect never calls it.
+TEST(FrontierSampler, PrmCallsItRrtConnectDoesNot) {
+  seed_ompl_once(7);
+  const auto c = three_frontiers();
+  // A wall across y = 5 with a gap at x > 8: the frontiers up left need a detour.
+  auto si = open_plane([](double x, double y) { return !(y > 4.8 && y < 5.2 && x < 8.0); });
+  auto counter = std::make_shared<std::atomic<std::size_t>>(0);
+  si->setValidStateSamplerAllocator(frontier_sampler_allocator(c, 11, counter));
+  auto run = [&](ob::Planner& planner) {
+    auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+    ob::ScopedState<ob::SE2StateSpace> start(si->getStateSpace());
+    start->setXY(1.0, 1.0);
+    start->setYaw(0.0);
+    pdef->addStartState(start);
+    pdef->setGoal(std::make_shared<FrontierGoal>(si, c, 11));
+    planner.setProblemDefinition(pdef);
+    planner.setup();
+    const auto status = planner.solve(1.0);
+    return std::pair{status == ob::PlannerStatus::EXACT_SOLUTION, pdef};
+  };
+  ompl::geometric::RRTConnect rrt(si);
+  const auto [rrt_solved, rrt_pdef] = run(rrt);
+  EXPECT_TRUE(rrt_solved);
+  EXPECT_EQ(counter->load(), 0u);  // the trap: the sampler was never asked
+
+  ompl::geometric::PRM prm(si);
+  const auto [solved, pdef] = run(prm);
+  ASSERT_TRUE(solved);
+  EXPECT_GT(counter->load(), 0u);
+  auto& path = *pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+  const auto* last = path.getStates().back()->as<ob::SE2StateSpace::StateType>();
+  EXPECT_GE(c->find(last->getX(), last->getY()), 0);
+}
+
+TEST(FrontierSampler, OmplPoliciesAreRegistered) {
+  EXPECT_TRUE(has_exploration_policy("cdos+ompl"));
+  EXPECT_TRUE(has_exploration_policy("rapid+ompl"));
+  EXPECT_EQ(make_exploration_policy("rapid+ompl", PolicyOptions{})->name(), "rapid+ompl");
+}
+
+}  // namespace
+}  // namespace ferret
