@@ -1,6 +1,7 @@
 // `ferret tether-sim`: a miniUGV trajectory through the tether model and the winch
 // controller in closed loop.
-//   ferret tether-sim [--trajectory FILE] [--controller mpc|baseline] [--seed N] --out DIR
+//   ferret tether-sim [--trajectory FILE] [--controller mpc|baseline] [--seed N]
+//                     [--mission FILE] [--config FILE] [--horizon N] [--latency S] --out DIR
 // Prints slack RMS, maximum slack, over-tension events and the time the tether limit
 // was active; writes DIR/tether_<controller>.csv, .png (l_t, required length and
 // slack over time) and .json (the figures). docs/tether.md describes the files.
@@ -9,12 +10,14 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "command.hpp"
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/sim/tether_sim.hpp"
+#include "ferret/tether_model/feedforward_pid.hpp"
 #include "ferret/tether_model/taut_mpc.hpp"
 #include "ferret/urdf/mission_config.hpp"
 
@@ -24,41 +27,41 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-  std::string trajectory, controller = "mpc", out, mission;
+  std::string trajectory, controller = "mpc", out, mission, config;
   std::uint64_t seed = 1;
-  int horizon = 20;
-  double latency_s = 0.06;
+  std::optional<int> horizon;
+  std::optional<double> latency_s;
 };
 
 void run(const Options& o) {
   if (o.controller != "mpc" && o.controller != "baseline")
     throw InputError("ferret tether-sim", "--controller", "mpc or baseline", o.controller);
-  if (o.horizon < 2 || o.horizon > 200) throw InputError("ferret tether-sim", "--horizon", "an integer in [2, 200]",
-                                                         std::to_string(o.horizon));
-  if (!(o.latency_s >= 0.0 && o.latency_s <= 1.0))
-    throw InputError("ferret tether-sim", "--latency", "seconds in [0, 1]", std::to_string(o.latency_s));
+  if (o.horizon && (*o.horizon < 2 || *o.horizon > 200))
+    throw InputError("ferret tether-sim", "--horizon", "an integer in [2, 200]", std::to_string(*o.horizon));
+  if (o.latency_s && !(*o.latency_s >= 0.0 && *o.latency_s <= 1.0))
+    throw InputError("ferret tether-sim", "--latency", "seconds in [0, 1]", std::to_string(*o.latency_s));
   // All input is read and checked before anything is written.
   const MissionConfig mission = o.mission.empty() ? MissionConfig{} : load_mission_config(o.mission);
   const sim::TetherScenario scenario =
       o.trajectory.empty() ? sim::default_tether_scenario() : sim::load_tether_scenario(o.trajectory);
+  auto config = sim::TetherRunConfig::for_tether(mission.tether.total_length_m, mission.tether.entry_offset_m);
+  config.sim.control.ugv_max_speed_mps = mission.ugv_limits.max_velocity_mps;
+  config.mpc.control = config.baseline.control = config.sim.control;
+  if (!o.config.empty()) sim::apply_tether_run_config(o.config, config);
+  if (o.horizon) config.mpc.horizon = *o.horizon;
+  if (o.latency_s) config.sim.link_latency_s = *o.latency_s;
+  config.sim.seed = o.seed;
 
-  sim::TetherSimOptions options =
-      sim::TetherSimOptions::for_tether(mission.tether.total_length_m, mission.tether.entry_offset_m);
-  options.seed = o.seed;
-  options.link_latency_s = o.latency_s;
-  options.control.ugv_max_speed_mps = mission.ugv_limits.max_velocity_mps;
+  auto& options = config.sim;
   auto model = std::make_shared<tether::FixedWrapTether>(options.entry_offset_m, scenario.p_WE, scenario.wrap_points);
   std::unique_ptr<tether::TetherController> controller;
   const tether::TautTetherMpc* mpc_controller = nullptr;
   if (o.controller == "mpc") {
-    tether::TautTetherMpc::Options mpc;
-    mpc.control = options.control;
-    mpc.horizon = o.horizon;
-    auto owned = std::make_unique<tether::TautTetherMpc>(mpc, model);
+    auto owned = std::make_unique<tether::TautTetherMpc>(config.mpc, model);
     mpc_controller = owned.get();
     controller = std::move(owned);
   } else {
-    controller = tether::make_tether_controller("baseline", options.control, model);
+    controller = std::make_unique<tether::FeedForwardPid>(config.baseline, model);
   }
   const sim::TetherSimResult r = sim::run_tether_sim(scenario, options, *controller);
   const auto& m = r.metrics;
@@ -82,8 +85,9 @@ void run(const Options& o) {
   j["trajectory"] = o.trajectory.empty() ? "(built-in default)" : o.trajectory;
   j["controller"] = r.controller;
   j["seed"] = o.seed;
-  j["horizon"] = o.controller == "mpc" ? nlohmann::json(o.horizon) : nlohmann::json();
-  j["link_latency_s"] = o.latency_s;
+  j["config"] = o.config.empty() ? nlohmann::json() : nlohmann::json(o.config);
+  j["horizon"] = o.controller == "mpc" ? nlohmann::json(config.mpc.horizon) : nlohmann::json();
+  j["link_latency_s"] = options.link_latency_s;
   j["total_length_m"] = c.limits.total_length_m;
   j["entry_offset_m"] = options.entry_offset_m;
   j["metrics"] = {{"slack_rms_m", m.slack_rms_m},
@@ -109,8 +113,9 @@ const CommandRegistration kTetherSim{"tether-sim", [](CLI::App& app) {
   sub->add_option("--seed", o->seed, "seed of the sensor noise")->capture_default_str();
   sub->add_option("--out", o->out, "output directory")->required();
   sub->add_option("--mission", o->mission, "mission YAML with tether.total_length_m (L) and entry_offset_m (l_0)");
-  sub->add_option("--horizon", o->horizon, "MPC horizon (steps of 0.02 s)")->capture_default_str();
-  sub->add_option("--latency", o->latency_s, "link latency of the miniUGV's pose, seconds")->capture_default_str();
+  sub->add_option("--config", o->config, "YAML with controller and simulation settings (docs/tether.md)");
+  sub->add_option("--horizon", o->horizon, "MPC horizon in prediction steps (default 20 of 0.02 s)");
+  sub->add_option("--latency", o->latency_s, "link latency of the miniUGV's pose, seconds (default 0.06)");
   sub->callback([o] { run(*o); });
 }};
 

@@ -327,6 +327,64 @@ TetherSimOptions TetherSimOptions::for_tether(double total_length_m, double entr
   return o;
 }
 
+TetherRunConfig TetherRunConfig::for_tether(double total_length_m, double entry_offset_m) {
+  TetherRunConfig c;
+  c.sim = TetherSimOptions::for_tether(total_length_m, entry_offset_m);
+  c.mpc.control = c.sim.control;
+  c.baseline.control = c.sim.control;
+  return c;
+}
+
+void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig& c) {
+  const yaml::MapReader root(yaml::load_file(path), path.string());
+  root.allow_only({"control", "mpc", "baseline", "sim"});
+  auto& ctl = c.sim.control;
+  if (const auto r = root.optional_child("control")) {
+    r->allow_only({"slack_reference_m", "max_slack_m", "pose_filter_gain", "guard_n", "max_tension_n", "max_speed_mps",
+                   "max_acceleration_mps2"});
+    ctl.slack_reference_m = r->get_in_range_or("slack_reference_m", -0.1, 1.0, ctl.slack_reference_m);
+    ctl.max_slack_m = r->get_in_range_or("max_slack_m", 0.0, 10.0, ctl.max_slack_m);
+    ctl.pose_filter_gain = r->get_in_range_or("pose_filter_gain", 1e-3, 1.0, ctl.pose_filter_gain);
+    ctl.slack_estimator.guard_n = r->get_in_range_or("guard_n", 0.0, 1e3, ctl.slack_estimator.guard_n);
+    ctl.slack_estimator.tension.max_tension_n =
+        r->get_in_range_or("max_tension_n", 0.1, 1e4, ctl.slack_estimator.tension.max_tension_n);
+    ctl.limits.max_speed_mps = r->get_in_range_or("max_speed_mps", 1e-3, 10.0, ctl.limits.max_speed_mps);
+    ctl.limits.max_acceleration_mps2 =
+        r->get_in_range_or("max_acceleration_mps2", 1e-3, 100.0, ctl.limits.max_acceleration_mps2);
+    c.sim.winch.max_speed_mps = ctl.limits.max_speed_mps;
+    c.sim.winch.max_acceleration_mps2 = ctl.limits.max_acceleration_mps2;
+  }
+  if (const auto r = root.optional_child("mpc")) {
+    r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "weight_slack", "weight_command_rate",
+                   "weight_feedforward", "weight_terminal"});
+    auto& m = c.mpc;
+    m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
+    if (r->has("horizon") && r->get<double>("horizon") != m.horizon) r->fail("horizon", "an integer in [2, 200]");
+    m.prediction_dt_s = r->get_in_range_or("prediction_dt_s", 1e-3, 1.0, m.prediction_dt_s);
+    m.acceleration_time_s = r->get_in_range_or("acceleration_time_s", 0.0, 10.0, m.acceleration_time_s);
+    m.weight_slack = r->get_in_range_or("weight_slack", 0.0, 1e6, m.weight_slack);
+    m.weight_command_rate = r->get_in_range_or("weight_command_rate", 0.0, 1e6, m.weight_command_rate);
+    m.weight_feedforward = r->get_in_range_or("weight_feedforward", 1e-6, 1e6, m.weight_feedforward);
+    m.weight_terminal = r->get_in_range_or("weight_terminal", 0.0, 1e6, m.weight_terminal);
+  }
+  if (const auto r = root.optional_child("baseline")) {
+    r->allow_only({"kp_per_s", "ki_per_s2", "kd", "feedforward_gain"});
+    auto& b = c.baseline;
+    b.kp_per_s = r->get_in_range_or("kp_per_s", 0.0, 1e3, b.kp_per_s);
+    b.ki_per_s2 = r->get_in_range_or("ki_per_s2", 0.0, 1e4, b.ki_per_s2);
+    b.kd = r->get_in_range_or("kd", 0.0, 1e2, b.kd);
+    b.feedforward_gain = r->get_in_range_or("feedforward_gain", 0.0, 2.0, b.feedforward_gain);
+  }
+  if (const auto r = root.optional_child("sim")) {
+    r->allow_only({"link_latency_s", "pose_noise_m", "tension_noise_n"});
+    c.sim.link_latency_s = r->get_in_range_or("link_latency_s", 0.0, 1.0, c.sim.link_latency_s);
+    c.sim.pose_noise_m = r->get_in_range_or("pose_noise_m", 0.0, 1.0, c.sim.pose_noise_m);
+    c.sim.tension_noise_n = r->get_in_range_or("tension_noise_n", 0.0, 100.0, c.sim.tension_noise_n);
+  }
+  c.mpc.control = ctl;
+  c.baseline.control = ctl;
+}
+
 namespace {
 
 // The tether between the winch and the miniUGV, sliding freely over its wrap points

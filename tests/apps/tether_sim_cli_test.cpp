@@ -61,6 +61,26 @@ TEST(TetherSimCli, BadTrajectoryExitsTwoNamingLineAndFieldWithoutOutputs) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }
 
+TEST(TetherSimCli, ConfigFileSetsGainsAndABadOneExitsTwo) {
+  TempDir dir;
+  std::ofstream(dir / "slow.yaml") << "baseline: {kp_per_s: 1, ki_per_s2: 0}\nsim: {link_latency_s: 0.2}\n";
+  const auto tuned = run_cli("tether-sim --controller baseline --out '" + (dir / "a") + "'");
+  const auto detuned =
+      run_cli("tether-sim --controller baseline --config '" + (dir / "slow.yaml") + "' --out '" + (dir / "b") + "'");
+  ASSERT_EQ(tuned.exit_code, 0) << tuned.err;
+  ASSERT_EQ(detuned.exit_code, 0) << detuned.err;
+  const auto a = nlohmann::json::parse(std::ifstream(dir / "a/tether_baseline.json"));
+  const auto b = nlohmann::json::parse(std::ifstream(dir / "b/tether_baseline.json"));
+  EXPECT_EQ(b["link_latency_s"], 0.2);
+  EXPECT_GT(b["metrics"]["slack_rms_m"].get<double>(), 2.0 * a["metrics"]["slack_rms_m"].get<double>());
+
+  std::ofstream(dir / "bad.yaml") << "mpc: {weight_slack: -1}\n";
+  const auto bad = run_cli("tether-sim --config '" + (dir / "bad.yaml") + "' --out '" + (dir / "c") + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("mpc.weight_slack"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+}
+
 TEST(TetherSimCli, BadOptionsExitTwo) {
   TempDir dir;
   auto r = run_cli("tether-sim --controller bang-bang --out '" + dir.path().string() + "'");

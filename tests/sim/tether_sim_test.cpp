@@ -14,6 +14,7 @@ namespace ferret::sim {
 namespace {
 
 using ::testing::HasSubstr;
+using TautDefaults = tether::TautTetherMpc::Options;
 
 std::string write(const test::TempDir& dir, const std::string& name, const std::string& text) {
   const std::string path = dir / name;
@@ -126,6 +127,43 @@ TEST(TetherTrajectory, BrokenYamlFilesNameTheField) {
   write(dir, "g.yaml", "samples_csv: nowhere.csv\n");
   expect_input_error(dir / "nowhere.csv", "", "existing");
   EXPECT_THROW((void)load_tether_scenario(dir / "g.yaml"), InputError);
+}
+
+TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
+  test::TempDir dir;
+  auto config = TetherRunConfig::for_tether(12.0, 1.5);
+  EXPECT_EQ(config.mpc.control.limits.total_length_m, 12.0);
+  apply_tether_run_config(write(dir, "c.yaml", R"(control: {slack_reference_m: 0.01, max_speed_mps: 0.8}
+mpc: {horizon: 30, weight_slack: 50}
+baseline: {kp_per_s: 4, ki_per_s2: 2}
+sim: {link_latency_s: 0.1, pose_noise_m: 0.0}
+)"),
+                          config);
+  EXPECT_EQ(config.mpc.horizon, 30);
+  EXPECT_EQ(config.mpc.weight_slack, 50.0);
+  EXPECT_EQ(config.mpc.weight_command_rate, TautDefaults().weight_command_rate);
+  EXPECT_EQ(config.baseline.kp_per_s, 4.0);
+  EXPECT_EQ(config.baseline.control.slack_reference_m, 0.01);
+  EXPECT_EQ(config.mpc.control.limits.max_speed_mps, 0.8);
+  EXPECT_EQ(config.sim.winch.max_speed_mps, 0.8);  // the simulated servo gets the same limit
+  EXPECT_EQ(config.sim.link_latency_s, 0.1);
+  EXPECT_EQ(config.sim.pose_noise_m, 0.0);
+  EXPECT_EQ(config.mpc.control.limits.total_length_m, 12.0);
+
+  auto check = [&](const std::string& text, const std::string& field) {
+    const auto path = write(dir, "bad.yaml", text);
+    try {
+      apply_tether_run_config(path, config);
+      FAIL() << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), field) << text;
+    }
+  };
+  check("mpc: {horizon: 1}\n", "mpc.horizon");
+  check("mpc: {horizon: 20.5}\n", "mpc.horizon");
+  check("baseline: {kp: 3}\n", "baseline.kp");
+  check("control: {pose_filter_gain: 0}\n", "control.pose_filter_gain");
+  check("winch: {}\n", "winch");
 }
 
 TEST(ScriptedTrajectory, TrapezoidalSegmentsByHand) {

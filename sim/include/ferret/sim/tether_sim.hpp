@@ -11,8 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "ferret/tether_model/feedforward_pid.hpp"
 #include "ferret/tether_model/required_length.hpp"
 #include "ferret/tether_model/simulated_winch.hpp"
+#include "ferret/tether_model/taut_mpc.hpp"
 #include "ferret/tether_model/tether_controller.hpp"
 
 namespace ferret::sim {
@@ -83,6 +85,26 @@ struct TetherSimOptions {
   /// Consistent options for a tether of total length L and entry offset l_0.
   [[nodiscard]] static TetherSimOptions for_tether(double total_length_m, double entry_offset_m);
 };
+
+/// Everything `ferret tether-sim --config FILE` can set: the simulation and both
+/// controllers, starting from the defaults for a tether (L, l_0).
+struct TetherRunConfig {
+  TetherSimOptions sim;
+  tether::TautTetherMpc::Options mpc;
+  tether::FeedForwardPid::Options baseline;
+
+  /// Defaults for a tether of total length L and entry offset l_0 (controllers share sim.control).
+  [[nodiscard]] static TetherRunConfig for_tether(double total_length_m, double entry_offset_m);
+};
+
+/// Applies a YAML file with optional sections `control` (slack_reference_m,
+/// max_slack_m, pose_filter_gain, guard_n, max_tension_n, max_speed_mps,
+/// max_acceleration_mps2), `mpc` (horizon, prediction_dt_s, acceleration_time_s,
+/// weight_slack, weight_command_rate, weight_feedforward, weight_terminal), `baseline`
+/// (kp_per_s, ki_per_s2, kd, feedforward_gain) and `sim` (link_latency_s,
+/// pose_noise_m, tension_noise_n) on top of `config`. Unknown keys and values out of
+/// range are InputErrors naming the file and field.
+void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig& config);
 
 struct TetherSimSample {
   double t_s = 0.0;
