@@ -22,7 +22,8 @@ void BM_BuildWorld(benchmark::State& state, const std::string& file) {
   state.counters["leaves"] = static_cast<double>(leaves);
 }
 BENCHMARK_CAPTURE(BM_BuildWorld, small, std::string("small.yaml"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BuildWorld, default, std::string("default.yaml"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BuildWorld, default, std::string("default.yaml"))
+    ->Unit(benchmark::kMillisecond);
 
 void BM_SliceDefault(benchmark::State& state) {
   const auto tree = ferret::build_world_octree(ferret::load_world(kWorlds + "default.yaml"));
@@ -34,7 +35,8 @@ BENCHMARK(BM_SliceDefault)->Unit(benchmark::kMillisecond);
 
 void BM_LoadDefaultBt(benchmark::State& state) {
   const auto path = std::filesystem::temp_directory_path() / "ferret_bench_world_default.bt";
-  ferret::save_octree(*ferret::build_world_octree(ferret::load_world(kWorlds + "default.yaml")), path);
+  ferret::save_octree(*ferret::build_world_octree(ferret::load_world(kWorlds + "default.yaml")),
+                      path);
   for (auto _ : state) benchmark::DoNotOptimize(ferret::load_octree(path)->size());
   std::filesystem::remove(path);
 }

@@ -19,111 +19,144 @@ namespace ferret::cli {
 namespace {
 namespace fs = std::filesystem;
 
-void require_extension(const std::string& path, std::initializer_list<const char*> exts, const std::string& what) {
+void require_extension(const std::string& path, std::initializer_list<const char*> exts,
+                       const std::string& what) {
   const std::string ext = fs::path(path).extension().string();
   for (const char* e : exts)
     if (ext == e) return;
   throw InputError("-o", "", what, path);
 }
 
-std::string vec3(const Eigen::Vector3d& v) { return fmt::format("[{:.4g}, {:.4g}, {:.4g}]", v.x(), v.y(), v.z()); }
+std::string vec3(const Eigen::Vector3d& v) {
+  return fmt::format("[{:.4g}, {:.4g}, {:.4g}]", v.x(), v.y(), v.z());
+}
 
 void print_summary(const OctreeSummary& s) {
   std::cout << fmt::format("resolution_m: {}\n", s.resolution_m)
             << fmt::format("known_min_m: {}\nknown_max_m: {}\n", vec3(s.min_m), vec3(s.max_m))
-            << fmt::format("nodes: {}\nleaves: {}\noccupied_leaves: {}\nfree_leaves: {}\n", s.nodes, s.leaves,
-                           s.occupied_leaves, s.free_leaves)
-            << fmt::format("occupied_volume_m3: {:.3f}\nfree_volume_m3: {:.3f}\n", s.occupied_volume_m3,
-                           s.free_volume_m3)
+            << fmt::format("nodes: {}\nleaves: {}\noccupied_leaves: {}\nfree_leaves: {}\n", s.nodes,
+                           s.leaves, s.occupied_leaves, s.free_leaves)
+            << fmt::format("occupied_volume_m3: {:.3f}\nfree_volume_m3: {:.3f}\n",
+                           s.occupied_volume_m3, s.free_volume_m3)
             << fmt::format("memory_mib: {:.1f}\n", s.memory_bytes / 1048576.0);
 }
 
 void print_world(const WorldSpec& w) {
-  std::cout << fmt::format("world: {}\nbounds_m: {{min: {}, max: {}}}\n", w.name, vec3(w.bounds_min_m),
-                           vec3(w.bounds_max_m))
-            << fmt::format("boxes: {}\ncylinders: {}\nrubble_boxes: {}\n", w.boxes.size(), w.cylinders.size(),
-                           w.rubble.size());
+  std::cout << fmt::format("world: {}\nbounds_m: {{min: {}, max: {}}}\n", w.name,
+                           vec3(w.bounds_min_m), vec3(w.bounds_max_m))
+            << fmt::format("boxes: {}\ncylinders: {}\nrubble_boxes: {}\n", w.boxes.size(),
+                           w.cylinders.size(), w.rubble.size());
   std::cout << "hidden_spaces:\n";
   for (const auto& h : w.hidden_spaces) {
     const Eigen::Vector3d m = h.marker.X_WM.translation(), n = h.marker.X_WM.linear().col(2);
-    std::cout << fmt::format("  - name: {}\n    interior_size_m: {}\n    p_WE: {}\n    entry_yaw_deg: {:.1f}\n",
-                             h.name, vec3(h.interior_size_m), vec3(h.p_WE), rad_to_deg(h.entry_yaw_rad))
-              << fmt::format("    opening_m: [{}, {}]\n    marker: {{id: {}, size_m: {}, position_m: {}, normal: {}}}\n",
-                             h.opening_width_m, h.opening_height_m, h.marker.id, h.marker.size_m, vec3(m), vec3(n));
+    std::cout
+        << fmt::format(
+               "  - name: {}\n    interior_size_m: {}\n    p_WE: {}\n    entry_yaw_deg: {:.1f}\n",
+               h.name, vec3(h.interior_size_m), vec3(h.p_WE), rad_to_deg(h.entry_yaw_rad))
+        << fmt::format(
+               "    opening_m: [{}, {}]\n    marker: {{id: {}, size_m: {}, position_m: {}, normal: "
+               "{}}}\n",
+               h.opening_width_m, h.opening_height_m, h.marker.id, h.marker.size_m, vec3(m),
+               vec3(n));
   }
   std::cout << "objects:\n";
   for (const auto& o : w.objects)
     std::cout << fmt::format("  - {{name: {}, hidden_space: {}, p_WO: {}}}\n", o.name,
-                             o.hidden_space >= 0 ? w.hidden_spaces[o.hidden_space].name : "none", vec3(o.p_WO()));
+                             o.hidden_space >= 0 ? w.hidden_spaces[o.hidden_space].name : "none",
+                             vec3(o.p_WO()));
   if (w.drop_zone)
-    std::cout << fmt::format("drop_zone: {{center_m: [{}, {}], radius_m: {}}}\n", w.drop_zone->center_m.x(),
-                             w.drop_zone->center_m.y(), w.drop_zone->radius_m);
+    std::cout << fmt::format("drop_zone: {{center_m: [{}, {}], radius_m: {}}}\n",
+                             w.drop_zone->center_m.x(), w.drop_zone->center_m.y(),
+                             w.drop_zone->radius_m);
 }
 
-const CommandRegistration kWorld{"world", [](CLI::App& app) {
-  auto* world = app.add_subcommand("world", "Build 3D worlds (OctoMap) from YAML, slice them to 2D, summarise them");
-  world->require_subcommand(1);
+const CommandRegistration kWorld{
+    "world", [](CLI::App& app) {
+      auto* world = app.add_subcommand(
+          "world", "Build 3D worlds (OctoMap) from YAML, slice them to 2D, summarise them");
+      world->require_subcommand(1);
 
-  struct BuildArgs {
-    std::string input, output;
-  };
-  auto build_args = std::make_shared<BuildArgs>();
-  auto* build = world->add_subcommand("build", "Voxelize a world YAML into an OctoMap .bt or .ot file");
-  build->add_option("world", build_args->input, "world YAML")->required();
-  build->add_option("-o,--output", build_args->output, "output .bt (max-likelihood) or .ot (log-odds)")->required();
-  build->callback([build_args] {
-    require_extension(build_args->output, {".bt", ".ot"}, "an output path ending in .bt or .ot");
-    const auto t0 = std::chrono::steady_clock::now();
-    const WorldSpec w = load_world(build_args->input);
-    const auto tree = build_world_octree(w);
-    const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    save_octree(*tree, build_args->output);
-    const OctreeSummary s = summarize_octree(*tree);
-    std::cout << fmt::format("built '{}' in {:.2f} s: {} leaves ({} occupied, {} free) at {} m -> {}\n", w.name,
-                             build_s, s.leaves, s.occupied_leaves, s.free_leaves, s.resolution_m, build_args->output);
-  });
+      struct BuildArgs {
+        std::string input, output;
+      };
+      auto build_args = std::make_shared<BuildArgs>();
+      auto* build =
+          world->add_subcommand("build", "Voxelize a world YAML into an OctoMap .bt or .ot file");
+      build->add_option("world", build_args->input, "world YAML")->required();
+      build
+          ->add_option("-o,--output", build_args->output,
+                       "output .bt (max-likelihood) or .ot (log-odds)")
+          ->required();
+      build->callback([build_args] {
+        require_extension(build_args->output, {".bt", ".ot"},
+                          "an output path ending in .bt or .ot");
+        const auto t0 = std::chrono::steady_clock::now();
+        const WorldSpec w = load_world(build_args->input);
+        const auto tree = build_world_octree(w);
+        const double build_s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        save_octree(*tree, build_args->output);
+        const OctreeSummary s = summarize_octree(*tree);
+        std::cout << fmt::format(
+            "built '{}' in {:.2f} s: {} leaves ({} occupied, {} free) at {} m -> {}\n", w.name,
+            build_s, s.leaves, s.occupied_leaves, s.free_leaves, s.resolution_m,
+            build_args->output);
+      });
 
-  struct SliceArgs {
-    std::string input, output, space;
-    std::vector<double> window;
-    SliceOptions options;
-  };
-  auto slice_args = std::make_shared<SliceArgs>();
-  auto* slice = world->add_subcommand("slice", "Cut a 2D map_server map (YAML + PGM) out of a world at a height");
-  slice->add_option("map", slice_args->input, "OctoMap .bt/.ot, or a world YAML (built in memory)")->required();
-  slice->add_option("--z", slice_args->options.z_m, "height of the slice, m")->capture_default_str();
-  slice->add_option("--band", slice_args->options.half_band_m,
-                    "voxel layers within +-band of z count (occupied if any is)")
-      ->capture_default_str();
-  slice->add_option("--window", slice_args->window, "cut to x0,y0,x1,y1 (m)")->expected(4)->delimiter(',');
-  slice->add_option("--space", slice_args->space, "cut to a hidden space (and 0.5 m around it); world YAML input");
-  slice->add_option("-o,--output", slice_args->output, "output map_server YAML (the PGM is written beside it)")
-      ->required();
-  slice->callback([slice_args] {
-    require_extension(slice_args->output, {".yaml"}, "an output path ending in .yaml");
-    std::optional<WorldSpec> world;
-    const auto tree = load_or_build_octree(slice_args->input, &world);
-    SliceOptions options = slice_args->options;
-    options.window_m = requested_slice_window(slice_args->window, slice_args->space, world);
-    const OccupancyMap2D map = slice_octree(*tree, options);
-    save_map_server(map, slice_args->output);
-    std::cout << fmt::format("slice at z = {} m: {} x {} cells ({} occupied, {} free, {} unknown) -> {}\n",
-                             slice_args->options.z_m, map.geometry.width, map.geometry.height,
-                             map.count(CellState::kOccupied), map.count(CellState::kFree),
-                             map.count(CellState::kUnknown), slice_args->output);
-  });
+      struct SliceArgs {
+        std::string input, output, space;
+        std::vector<double> window;
+        SliceOptions options;
+      };
+      auto slice_args = std::make_shared<SliceArgs>();
+      auto* slice = world->add_subcommand(
+          "slice", "Cut a 2D map_server map (YAML + PGM) out of a world at a height");
+      slice
+          ->add_option("map", slice_args->input,
+                       "OctoMap .bt/.ot, or a world YAML (built in memory)")
+          ->required();
+      slice->add_option("--z", slice_args->options.z_m, "height of the slice, m")
+          ->capture_default_str();
+      slice
+          ->add_option("--band", slice_args->options.half_band_m,
+                       "voxel layers within +-band of z count (occupied if any is)")
+          ->capture_default_str();
+      slice->add_option("--window", slice_args->window, "cut to x0,y0,x1,y1 (m)")
+          ->expected(4)
+          ->delimiter(',');
+      slice->add_option("--space", slice_args->space,
+                        "cut to a hidden space (and 0.5 m around it); world YAML input");
+      slice
+          ->add_option("-o,--output", slice_args->output,
+                       "output map_server YAML (the PGM is written beside it)")
+          ->required();
+      slice->callback([slice_args] {
+        require_extension(slice_args->output, {".yaml"}, "an output path ending in .yaml");
+        std::optional<WorldSpec> world;
+        const auto tree = load_or_build_octree(slice_args->input, &world);
+        SliceOptions options = slice_args->options;
+        options.window_m = requested_slice_window(slice_args->window, slice_args->space, world);
+        const OccupancyMap2D map = slice_octree(*tree, options);
+        save_map_server(map, slice_args->output);
+        std::cout << fmt::format(
+            "slice at z = {} m: {} x {} cells ({} occupied, {} free, {} unknown) -> {}\n",
+            slice_args->options.z_m, map.geometry.width, map.geometry.height,
+            map.count(CellState::kOccupied), map.count(CellState::kFree),
+            map.count(CellState::kUnknown), slice_args->output);
+      });
 
-  auto info_input = std::make_shared<std::string>();
-  auto* info = world->add_subcommand("info", "Summarise a world YAML or an OctoMap file (YAML on stdout)");
-  info->add_option("file", *info_input, "world YAML, .bt or .ot")->required();
-  info->callback([info_input] {
-    std::optional<WorldSpec> spec;
-    const auto tree = load_or_build_octree(*info_input, &spec);
-    std::cout << fmt::format("file: {}\n", *info_input);
-    if (spec) print_world(*spec);
-    print_summary(summarize_octree(*tree));
-  });
-}};
+      auto info_input = std::make_shared<std::string>();
+      auto* info = world->add_subcommand(
+          "info", "Summarise a world YAML or an OctoMap file (YAML on stdout)");
+      info->add_option("file", *info_input, "world YAML, .bt or .ot")->required();
+      info->callback([info_input] {
+        std::optional<WorldSpec> spec;
+        const auto tree = load_or_build_octree(*info_input, &spec);
+        std::cout << fmt::format("file: {}\n", *info_input);
+        if (spec) print_world(*spec);
+        print_summary(summarize_octree(*tree));
+      });
+    }};
 
 }  // namespace
 }  // namespace ferret::cli

@@ -36,7 +36,9 @@ std::string read_binary_file(const fs::path& path, const char* what) {
 std::string printable(std::string_view bytes) {
   std::string out;
   for (const char c : bytes.substr(0, 16))
-    out += std::isprint(static_cast<unsigned char>(c)) ? std::string(1, c) : fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+    out += std::isprint(static_cast<unsigned char>(c))
+               ? std::string(1, c)
+               : fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
   return "'" + out + "'";
 }
 
@@ -44,7 +46,8 @@ std::string printable(std::string_view bytes) {
 // decimal numbers; every failure names the field being read.
 class PgmReader {
  public:
-  PgmReader(std::string data, std::string source) : data_(std::move(data)), source_(std::move(source)) {}
+  PgmReader(std::string data, std::string source)
+      : data_(std::move(data)), source_(std::move(source)) {}
 
   [[nodiscard]] std::string_view data() const { return data_; }
   [[nodiscard]] std::size_t pos() const { return pos_; }
@@ -70,7 +73,8 @@ class PgmReader {
     skip_space_and_comments();
     const std::string expected = fmt::format("an integer in [{}, {}]", lo, hi);
     if (at_end()) fail(field, expected, "end of file (truncated)");
-    if (!std::isdigit(static_cast<unsigned char>(peek()))) fail(field, expected, printable(data_.substr(pos_, 8)));
+    if (!std::isdigit(static_cast<unsigned char>(peek())))
+      fail(field, expected, printable(data_.substr(pos_, 8)));
     std::uint64_t value = 0;
     while (!at_end() && std::isdigit(static_cast<unsigned char>(peek()))) {
       value = value * 10 + static_cast<std::uint64_t>(peek() - '0');
@@ -81,7 +85,8 @@ class PgmReader {
     return value;
   }
 
-  [[noreturn]] void fail(const std::string& field, const std::string& expected, const std::string& got) const {
+  [[noreturn]] void fail(const std::string& field, const std::string& expected,
+                         const std::string& got) const {
     throw InputError(source_, field, expected, got);
   }
 
@@ -98,11 +103,13 @@ std::uint8_t scale_to_byte(std::uint64_t v, std::uint64_t maxval) {
 GreyImage read_with_opencv(const fs::path& path) {
   const cv::Mat img = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
   if (img.empty())
-    throw InputError(path.string(), "", "an image OpenCV can read (PGM, PNG, ...)", "unreadable or corrupt");
+    throw InputError(path.string(), "", "an image OpenCV can read (PGM, PNG, ...)",
+                     "unreadable or corrupt");
   if (img.depth() != CV_8U && img.depth() != CV_16U)
     throw InputError(path.string(), "", "an 8- or 16-bit image", "another pixel depth");
   if (static_cast<std::uint64_t>(img.cols) * static_cast<std::uint64_t>(img.rows) > kMaxPixels)
-    throw InputError(path.string(), "", fmt::format("at most {} pixels", kMaxPixels), "a larger image");
+    throw InputError(path.string(), "", fmt::format("at most {} pixels", kMaxPixels),
+                     "a larger image");
   const int channels = img.channels();
   // Grey+alpha and BGRA: the alpha channel does not count towards the grey value.
   const int colour = (channels == 2 || channels == 4) ? channels - 1 : channels;
@@ -149,18 +156,22 @@ GreyImage read_pgm(const fs::path& path) {
   PgmReader in(read_binary_file(path, "a readable PGM file"), path.string());
   const std::string_view data = in.data();
   if (data.size() < 2 || data[0] != 'P' || (data[1] != '5' && data[1] != '2'))
-    in.fail("magic", "'P5' (binary PGM) or 'P2' (ASCII PGM)", data.empty() ? "an empty file" : printable(data.substr(0, 2)));
+    in.fail("magic", "'P5' (binary PGM) or 'P2' (ASCII PGM)",
+            data.empty() ? "an empty file" : printable(data.substr(0, 2)));
   const bool binary = data[1] == '5';
   in.skip(2);
   if (in.at_end() || !std::isspace(static_cast<unsigned char>(in.peek())))
-    in.fail("magic", "whitespace after the magic number", in.at_end() ? "end of file (truncated)" : printable(data.substr(2, 4)));
+    in.fail("magic", "whitespace after the magic number",
+            in.at_end() ? "end of file (truncated)" : printable(data.substr(2, 4)));
   const auto width = in.number("header.width", 1, kMaxSide);
   const auto height = in.number("header.height", 1, kMaxSide);
   if (width * height > kMaxPixels)
-    in.fail("header.height", fmt::format("at most {} pixels in all", kMaxPixels), fmt::format("{} x {}", width, height));
+    in.fail("header.height", fmt::format("at most {} pixels in all", kMaxPixels),
+            fmt::format("{} x {}", width, height));
   const auto maxval = in.number("header.maxval", 1, 65535);
   const std::uint64_t samples = width * height;
-  GreyImage out{static_cast<int>(width), static_cast<int>(height), std::vector<std::uint8_t>(samples)};
+  GreyImage out{static_cast<int>(width), static_cast<int>(height),
+                std::vector<std::uint8_t>(samples)};
 
   if (binary) {
     // Exactly one whitespace byte separates maxval from the raster.
@@ -172,13 +183,18 @@ GreyImage read_pgm(const fs::path& path) {
     const std::uint64_t needed = samples * bytes_per_sample;
     const std::uint64_t available = data.size() - in.pos();
     if (available < needed)
-      in.fail("pixels", fmt::format("{} x {} = {} samples ({} bytes)", width, height, samples, needed),
+      in.fail("pixels",
+              fmt::format("{} x {} = {} samples ({} bytes)", width, height, samples, needed),
               fmt::format("only {} bytes: truncated", available));
     const auto* raster = reinterpret_cast<const unsigned char*>(data.data() + in.pos());
     for (std::uint64_t k = 0; k < samples; ++k) {
       // 16-bit samples are big-endian (Netpbm).
-      const std::uint64_t v = bytes_per_sample == 1 ? raster[k] : (std::uint64_t{raster[2 * k]} << 8) | raster[2 * k + 1];
-      if (v > maxval) in.fail(fmt::format("pixels[{}]", k), fmt::format("a sample <= maxval {}", maxval), std::to_string(v));
+      const std::uint64_t v = bytes_per_sample == 1
+                                  ? raster[k]
+                                  : (std::uint64_t{raster[2 * k]} << 8) | raster[2 * k + 1];
+      if (v > maxval)
+        in.fail(fmt::format("pixels[{}]", k), fmt::format("a sample <= maxval {}", maxval),
+                std::to_string(v));
       out.pixels[k] = scale_to_byte(v, maxval);
     }
   } else {
@@ -197,7 +213,8 @@ void write_pgm(const GreyImage& image, const fs::path& path) {
   write_file_atomically(path, [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     out << "P5\n" << image.width << ' ' << image.height << "\n255\n";
-    out.write(reinterpret_cast<const char*>(image.pixels.data()), static_cast<std::streamsize>(image.pixels.size()));
+    out.write(reinterpret_cast<const char*>(image.pixels.data()),
+              static_cast<std::streamsize>(image.pixels.size()));
     out.close();
     if (!out) throw InputError(path.string(), "", "a writable file");
   });
@@ -205,29 +222,33 @@ void write_pgm(const GreyImage& image, const fs::path& path) {
 
 MapServerMeta load_map_server_meta(const fs::path& yaml_path) {
   const yaml::MapReader r(yaml::load_file(yaml_path), yaml_path.string());
-  r.allow_only({"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode"});
+  r.allow_only(
+      {"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode"});
   MapServerMeta meta;
   const auto image = r.get<std::string>("image");
   if (image.empty()) r.fail("image", "a non-empty image path");
   meta.image = image;
   meta.resolution_m = r.get<double>("resolution");
   if (!std::isfinite(meta.resolution_m) || meta.resolution_m <= 0.0)
-    r.fail("resolution", "a number > 0 (metres per cell)", yaml::internal::describe(r.node()["resolution"]));
+    r.fail("resolution", "a number > 0 (metres per cell)",
+           yaml::internal::describe(r.node()["resolution"]));
   const auto origin = r.get_list<double>("origin", 3);
   meta.origin_x_m = origin[0];
   meta.origin_y_m = origin[1];
   meta.origin_yaw_rad = origin[2];
-  if (!std::isfinite(origin[0]) || !std::isfinite(origin[1]))
-    r.fail("origin", "finite x and y");
+  if (!std::isfinite(origin[0]) || !std::isfinite(origin[1])) r.fail("origin", "finite x and y");
   if (origin[2] != 0.0)
     throw InputError(r.source(), "origin[2]", "a yaw of 0 (rotated maps are not supported)",
                      fmt::format("{}", origin[2]));
   if (r.has("negate")) {
     // map_server writes negate as 0/1; YAML booleans are accepted too.
     const std::string v = r.get<std::string>("negate");
-    if (v == "0" || v == "false" || v == "False") meta.negate = false;
-    else if (v == "1" || v == "true" || v == "True") meta.negate = true;
-    else r.fail("negate", "0, 1, true or false", "'" + v + "'");
+    if (v == "0" || v == "false" || v == "False")
+      meta.negate = false;
+    else if (v == "1" || v == "true" || v == "True")
+      meta.negate = true;
+    else
+      r.fail("negate", "0, 1, true or false", "'" + v + "'");
   }
   meta.occupied_thresh = r.get_in_range_or("occupied_thresh", 0.0, 1.0, meta.occupied_thresh);
   meta.free_thresh = r.get_in_range_or("free_thresh", 0.0, 1.0, meta.free_thresh);
@@ -236,21 +257,25 @@ MapServerMeta load_map_server_meta(const fs::path& yaml_path) {
            fmt::format("{}", meta.free_thresh));
   meta.mode = r.get_or<std::string>("mode", "trinary");
   if (meta.mode != "trinary")
-    r.fail("mode", "'trinary' (scale and raw maps hold graded values, which a three-state map cannot keep)",
+    r.fail("mode",
+           "'trinary' (scale and raw maps hold graded values, which a three-state map cannot keep)",
            "'" + meta.mode + "'");
   return meta;
 }
 
 OccupancyMap2D load_map_server(const fs::path& yaml_path) {
   const MapServerMeta meta = load_map_server_meta(yaml_path);
-  const fs::path image_path = meta.image.is_absolute() ? meta.image : yaml_path.parent_path() / meta.image;
+  const fs::path image_path =
+      meta.image.is_absolute() ? meta.image : yaml_path.parent_path() / meta.image;
   std::error_code ec;
   if (!fs::is_regular_file(image_path, ec))
     throw InputError(yaml_path.string(), "image", "an existing image file", image_path.string());
-  const GreyImage img = has_extension(image_path, ".pgm") ? read_pgm(image_path) : read_with_opencv(image_path);
+  const GreyImage img =
+      has_extension(image_path, ".pgm") ? read_pgm(image_path) : read_with_opencv(image_path);
 
   OccupancyMap2D map;
-  map.geometry = GridGeometry{meta.origin_x_m, meta.origin_y_m, meta.resolution_m, img.width, img.height};
+  map.geometry =
+      GridGeometry{meta.origin_x_m, meta.origin_y_m, meta.resolution_m, img.width, img.height};
   map.cells.resize(map.geometry.size());
   for (int row = 0; row < img.height; ++row) {
     const int j = img.height - 1 - row;  // image row 0 is the top of the map
@@ -258,8 +283,10 @@ OccupancyMap2D load_map_server(const fs::path& yaml_path) {
       const double v = img.pixels[static_cast<std::size_t>(row) * img.width + i];
       const double occupancy = meta.negate ? v / 255.0 : (255.0 - v) / 255.0;
       CellState s = CellState::kUnknown;
-      if (occupancy > meta.occupied_thresh) s = CellState::kOccupied;
-      else if (occupancy < meta.free_thresh) s = CellState::kFree;
+      if (occupancy > meta.occupied_thresh)
+        s = CellState::kOccupied;
+      else if (occupancy < meta.free_thresh)
+        s = CellState::kFree;
       map.at({i, j}) = s;
     }
   }
@@ -271,13 +298,16 @@ void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path) {
     throw InputError(yaml_path.string(), "", "an output path ending in .yaml");
   const GridGeometry& g = map.geometry;
   if (g.width <= 0 || g.height <= 0 || map.cells.size() != g.size())
-    throw InputError(yaml_path.string(), "", "a non-empty map whose cell count matches its geometry");
+    throw InputError(yaml_path.string(), "",
+                     "a non-empty map whose cell count matches its geometry");
   GreyImage img{g.width, g.height, std::vector<std::uint8_t>(g.size())};
   for (int j = 0; j < g.height; ++j) {
     for (int i = 0; i < g.width; ++i) {
       const CellState s = map.at({i, j});
       img.pixels[static_cast<std::size_t>(g.height - 1 - j) * g.width + i] =
-          s == CellState::kOccupied ? 0 : s == CellState::kFree ? 254 : 205;
+          s == CellState::kOccupied ? 0
+          : s == CellState::kFree   ? 254
+                                    : 205;
     }
   }
   fs::path pgm_path = yaml_path;
@@ -285,12 +315,14 @@ void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path) {
   write_pgm(img, pgm_path);
   std::string name = pgm_path.filename().string();
   std::string quoted = "\"";
-  for (const char c : name) quoted += (c == '"' || c == '\\') ? std::string{'\\', c} : std::string(1, c);
+  for (const char c : name)
+    quoted += (c == '"' || c == '\\') ? std::string{'\\', c} : std::string(1, c);
   quoted += '"';
   // fmt's "{}" prints the shortest text that reads back as the same double.
-  write_text_atomically(yaml_path, fmt::format("image: {}\nmode: trinary\nresolution: {}\norigin: [{}, {}, 0]\n"
-                                               "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
-                                               quoted, g.resolution_m, g.origin_x_m, g.origin_y_m));
+  write_text_atomically(
+      yaml_path, fmt::format("image: {}\nmode: trinary\nresolution: {}\norigin: [{}, {}, 0]\n"
+                             "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+                             quoted, g.resolution_m, g.origin_x_m, g.origin_y_m));
 }
 
 }  // namespace ferret

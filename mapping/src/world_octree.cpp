@@ -20,9 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kTreeDepth = 16;        // OctoMap's fixed depth
-constexpr int kKeyOffset = 1 << 15;   // key of the voxel whose lower corner is 0
-constexpr double kTol_m = 1e-9;       // same face tolerance as the primitives' contains()
+constexpr int kTreeDepth = 16;       // OctoMap's fixed depth
+constexpr int kKeyOffset = 1 << 15;  // key of the voxel whose lower corner is 0
+constexpr double kTol_m = 1e-9;      // same face tolerance as the primitives' contains()
 
 // ---------------------------------------------------------------------------------
 // Building
@@ -53,8 +53,8 @@ Relation relate(const OrientedBox& b, const CentreBox& r) {
   const Eigen::Vector2d u{c, s}, v{-s, c};
   const double hu = b.size_m.x() / 2 + kTol_m, hv = b.size_m.y() / 2 + kTol_m;
   const Eigen::Vector2d bc = b.center_m.head<2>();
-  const std::array<Eigen::Vector2d, 4> box_xy{bc + hu * u + hv * v, bc + hu * u - hv * v, bc - hu * u + hv * v,
-                                              bc - hu * u - hv * v};
+  const std::array<Eigen::Vector2d, 4> box_xy{bc + hu * u + hv * v, bc + hu * u - hv * v,
+                                              bc - hu * u + hv * v, bc - hu * u - hv * v};
   const auto r_xy = r.xy_corners();
   for (const Eigen::Vector2d& axis : {Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1), u, v})
     if (!overlap_on(axis, r_xy, box_xy)) return Relation::kOutside;
@@ -68,7 +68,8 @@ Relation relate(const OrientedBox& b, const CentreBox& r) {
 }
 
 Relation relate(const VerticalCylinder& cyl, const CentreBox& r) {
-  const double z0 = cyl.base_z_m - kTol_m, z1 = cyl.base_z_m + cyl.height_m + kTol_m, rad = cyl.radius_m + kTol_m;
+  const double z0 = cyl.base_z_m - kTol_m, z1 = cyl.base_z_m + cyl.height_m + kTol_m,
+               rad = cyl.radius_m + kTol_m;
   if (r.lo.z() > z1 || r.hi.z() < z0) return Relation::kOutside;
   const Eigen::Vector2d nearest = cyl.center_m.cwiseMax(r.lo.head<2>()).cwiseMin(r.hi.head<2>());
   if ((nearest - cyl.center_m).norm() > rad) return Relation::kOutside;
@@ -112,15 +113,18 @@ class WorldVoxelizer {
     res_ = world.resolution_m;
     for (int a = 0; a < 3; ++a) {
       // Keys whose voxel centres lie within the bounds.
-      kmin_[a] = static_cast<long>(std::ceil(world.bounds_min_m[a] / res_ - 0.5 - 1e-9)) + kKeyOffset;
-      kmax_[a] = static_cast<long>(std::floor(world.bounds_max_m[a] / res_ - 0.5 + 1e-9)) + kKeyOffset;
+      kmin_[a] =
+          static_cast<long>(std::ceil(world.bounds_min_m[a] / res_ - 0.5 - 1e-9)) + kKeyOffset;
+      kmax_[a] =
+          static_cast<long>(std::floor(world.bounds_max_m[a] / res_ - 0.5 + 1e-9)) + kKeyOffset;
     }
     boxes_ = world.solid_boxes();
     occupied_ = tree.getClampingThresMaxLog();
     free_ = tree.getClampingThresMinLog();
     // Candidate index -1 is the ground, [0, boxes) boxes, then cylinders.
     std::vector<int> all{-1};
-    for (std::size_t i = 0; i < boxes_.size() + world.cylinders.size(); ++i) all.push_back(static_cast<int>(i));
+    for (std::size_t i = 0; i < boxes_.size() + world.cylinders.size(); ++i)
+      all.push_back(static_cast<int>(i));
     candidates_.assign(kTreeDepth + 2, {});
     candidates_[0] = std::move(all);
   }
@@ -142,7 +146,8 @@ class WorldVoxelizer {
   }
 
   // Classifies a cube of keys [k0, k0 + n) and writes the solids that cut it to `out`.
-  State classify(const std::array<long, 3>& k0, long n, const std::vector<int>& cands, std::vector<int>& out) const {
+  State classify(const std::array<long, 3>& k0, long n, const std::vector<int>& cands,
+                 std::vector<int>& out) const {
     bool inside_bounds = true;
     for (int a = 0; a < 3; ++a) {
       if (k0[a] > kmax_[a] || k0[a] + n - 1 < kmin_[a]) return State::kUnknown;
@@ -174,11 +179,12 @@ class WorldVoxelizer {
       if (s == State::kUnknown) continue;
       octomap::OcTreeNode* child = tree_.createNodeChild(node, i);
       if (tree_.size() > options_.max_nodes)
-        throw InputError(world_.source.string(), "resolution_m",
-                         fmt::format("a resolution coarse enough for at most {} tree nodes (about {} MB); "
-                                     "sloped ground and tilted faces cost a leaf a voxel of surface",
-                                     options_.max_nodes, options_.max_nodes * 50 / 1000000),
-                         fmt::format("{}", world_.resolution_m));
+        throw InputError(
+            world_.source.string(), "resolution_m",
+            fmt::format("a resolution coarse enough for at most {} tree nodes (about {} MB); "
+                        "sloped ground and tilted faces cost a leaf a voxel of surface",
+                        options_.max_nodes, options_.max_nodes * 50 / 1000000),
+            fmt::format("{}", world_.resolution_m));
       if (s == State::kMixed) {
         fill(child, kc, half, depth + 1, child_cands);
         child->updateOccupancyChildren();
@@ -203,7 +209,8 @@ class WorldVoxelizer {
 
 std::string slurp(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in || fs::is_directory(path)) throw InputError(path.string(), "", "a readable OctoMap file", "cannot open");
+  if (!in || fs::is_directory(path))
+    throw InputError(path.string(), "", "a readable OctoMap file", "cannot open");
   std::ostringstream data;
   data << in.rdbuf();
   return std::move(data).str();
@@ -221,8 +228,10 @@ struct OctreeHeader {
 OctreeHeader parse_header(const std::string& bytes, const std::string& source, bool binary) {
   const std::string magic = binary ? "# Octomap OcTree binary file" : "# Octomap OcTree file";
   if (bytes.compare(0, magic.size(), magic) != 0)
-    throw InputError(source, "header", "a first line '" + magic + "'",
-                     bytes.empty() ? "an empty file" : "'" + bytes.substr(0, std::min<std::size_t>(bytes.find('\n'), 40)) + "'");
+    throw InputError(
+        source, "header", "a first line '" + magic + "'",
+        bytes.empty() ? "an empty file"
+                      : "'" + bytes.substr(0, std::min<std::size_t>(bytes.find('\n'), 40)) + "'");
   OctreeHeader h;
   bool have_size = false, have_res = false;
   std::size_t pos = bytes.find('\n');
@@ -245,26 +254,30 @@ OctreeHeader parse_header(const std::string& bytes, const std::string& source, b
       return h;
     }
     line >> value;
-    if (value.empty() || (line >> extra)) throw InputError(source, "header." + key, "one value", "'" + line.str() + "'");
+    if (value.empty() || (line >> extra))
+      throw InputError(source, "header." + key, "one value", "'" + line.str() + "'");
     if (key == "id") {
       h.id = value == "1" ? "OcTree" : value;  // "1" is OctoMap's deprecated id of OcTree
       if (h.id != "OcTree") throw InputError(source, "header.id", "OcTree", "'" + value + "'");
     } else if (key == "size") {
       const auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), h.size);
       if (ec != std::errc() || p != value.data() + value.size())
-        throw InputError(source, "header.size", "a node count (non-negative integer)", "'" + value + "'");
+        throw InputError(source, "header.size", "a node count (non-negative integer)",
+                         "'" + value + "'");
       have_size = true;
     } else if (key == "res") {
       char* endp = nullptr;
       h.resolution_m = std::strtod(value.c_str(), &endp);
-      if (*endp != '\0' || !std::isfinite(h.resolution_m) || h.resolution_m <= 0 || h.resolution_m > 1000)
+      if (*endp != '\0' || !std::isfinite(h.resolution_m) || h.resolution_m <= 0 ||
+          h.resolution_m > 1000)
         throw InputError(source, "header.res", "a resolution in (0, 1000] m", "'" + value + "'");
       have_res = true;
     } else {
       throw InputError(source, "header", "id, size, res or data lines", "'" + key + "'");
     }
   }
-  throw InputError(source, "header", "a 'data' line ending the header", "none (truncated or not an OctoMap file)");
+  throw InputError(source, "header", "a 'data' line ending the header",
+                   "none (truncated or not an OctoMap file)");
 }
 
 // Walks the serialized node structure exactly as OctoMap will read it, without
@@ -272,17 +285,20 @@ OctreeHeader parse_header(const std::string& bytes, const std::string& source, b
 // number of nodes. Binary (.bt) nodes are two bytes of 2-bit child codes (01
 // occupied leaf, 10 free leaf, 11 inner); full (.ot) nodes are a float log-odds
 // and a byte of child-exists bits.
-std::uint64_t validate_nodes(const std::string& bytes, std::size_t pos, const std::string& source, bool binary) {
+std::uint64_t validate_nodes(const std::string& bytes, std::size_t pos, const std::string& source,
+                             bool binary) {
   std::uint64_t nodes = 1;
   std::vector<int> pending;  // inner children still to read, one entry a depth
   auto read_node = [&](int depth) {
     const std::size_t need = binary ? 2 : sizeof(float) + 1;
     if (pos + need > bytes.size())
-      throw InputError(source, "data", fmt::format("{} more bytes for a node at depth {}", need, depth),
+      throw InputError(source, "data",
+                       fmt::format("{} more bytes for a node at depth {}", need, depth),
                        fmt::format("end of file at byte {} (truncated)", bytes.size()));
     int inner = 0, children = 0;
     if (binary) {
-      const auto lo = static_cast<unsigned char>(bytes[pos]), hi = static_cast<unsigned char>(bytes[pos + 1]);
+      const auto lo = static_cast<unsigned char>(bytes[pos]),
+                 hi = static_cast<unsigned char>(bytes[pos + 1]);
       for (int i = 0; i < 8; ++i) {
         const unsigned byte = i < 4 ? lo : hi;
         const unsigned code = (byte >> ((i % 4) * 2)) & 3u;
@@ -293,16 +309,18 @@ std::uint64_t validate_nodes(const std::string& bytes, std::size_t pos, const st
       float value = 0;
       std::memcpy(&value, bytes.data() + pos, sizeof(float));
       if (!std::isfinite(value))
-        throw InputError(source, fmt::format("data (byte {})", pos), "a finite log-odds value", "NaN or infinity");
+        throw InputError(source, fmt::format("data (byte {})", pos), "a finite log-odds value",
+                         "NaN or infinity");
       const auto mask = static_cast<unsigned char>(bytes[pos + sizeof(float)]);
       children = inner = std::popcount(mask);
     }
     if (binary && children == 0)
-      throw InputError(source, fmt::format("data (byte {})", pos), "an inner node with at least one child",
-                       "a node without children");
+      throw InputError(source, fmt::format("data (byte {})", pos),
+                       "an inner node with at least one child", "a node without children");
     if (inner > 0 && depth >= kTreeDepth - (binary ? 1 : 0))
       throw InputError(source, fmt::format("data (byte {})", pos),
-                       fmt::format("a tree at most {} levels deep", kTreeDepth), "deeper nodes (corrupt file)");
+                       fmt::format("a tree at most {} levels deep", kTreeDepth),
+                       "deeper nodes (corrupt file)");
     nodes += static_cast<std::uint64_t>(children);
     pos += need;
     pending.push_back(inner);
@@ -317,7 +335,8 @@ std::uint64_t validate_nodes(const std::string& bytes, std::size_t pos, const st
     read_node(static_cast<int>(pending.size()));
   }
   if (pos != bytes.size())
-    throw InputError(source, "data", "the file to end after the tree", fmt::format("{} trailing bytes", bytes.size() - pos));
+    throw InputError(source, "data", "the file to end after the tree",
+                     fmt::format("{} trailing bytes", bytes.size() - pos));
   return nodes;
 }
 
@@ -325,7 +344,8 @@ bool has_ext(const fs::path& p, std::string_view ext) { return p.extension() == 
 
 }  // namespace
 
-std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world, const WorldBuildOptions& options) {
+std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world,
+                                                    const WorldBuildOptions& options) {
   auto tree = std::make_unique<BuildableOcTree>(world.resolution_m);
   WorldVoxelizer(world, options, *tree).run();
   // The conservative cube tests can split a cube whose children all agree; merge them.
@@ -349,18 +369,23 @@ std::unique_ptr<octomap::OcTree> load_octree(const fs::path& path) {
   }
   const std::uint64_t nodes = validate_nodes(bytes, h.data_offset, path.string(), binary);
   if (nodes != h.size)
-    throw InputError(path.string(), "header.size", fmt::format("the number of nodes in the data ({})", nodes),
+    throw InputError(path.string(), "header.size",
+                     fmt::format("the number of nodes in the data ({})", nodes),
                      std::to_string(h.size));
   std::istringstream in(bytes);
   in.seekg(static_cast<std::streamoff>(h.data_offset));
-  if (binary) tree->readBinaryData(in);
-  else tree->readData(in);
+  if (binary)
+    tree->readBinaryData(in);
+  else
+    tree->readData(in);
   if (tree->size() != h.size)
-    throw InputError(path.string(), "data", fmt::format("{} nodes", h.size), std::to_string(tree->size()));
+    throw InputError(path.string(), "data", fmt::format("{} nodes", h.size),
+                     std::to_string(tree->size()));
   return tree;
 }
 
-std::unique_ptr<octomap::OcTree> load_or_build_octree(const fs::path& path, std::optional<WorldSpec>* world) {
+std::unique_ptr<octomap::OcTree> load_or_build_octree(const fs::path& path,
+                                                      std::optional<WorldSpec>* world) {
   if (world != nullptr) world->reset();
   if (has_ext(path, ".yaml") || has_ext(path, ".yml")) {
     WorldSpec spec = load_world(path);
@@ -383,31 +408,38 @@ void save_octree(const octomap::OcTree& tree, const fs::path& path) {
     // debug chatter to stderr; the resolution keeps all its digits.
     out << (binary ? "# Octomap OcTree binary file\n" : "# Octomap OcTree file\n")
         << "# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
-        << fmt::format("id {}\nsize {}\nres {}\ndata\n", tree.getTreeType(), tree.size(), tree.getResolution());
-    if (binary) tree.writeBinaryData(out);
-    else tree.writeData(out);
+        << fmt::format("id {}\nsize {}\nres {}\ndata\n", tree.getTreeType(), tree.size(),
+                       tree.getResolution());
+    if (binary)
+      tree.writeBinaryData(out);
+    else
+      tree.writeData(out);
     out.close();
     if (!out) throw InputError(path.string(), "", "a writable file");
   });
 }
 
-Eigen::Vector4d hidden_space_window(const WorldSpec& world, const std::string& name, double margin_m,
-                                    const std::string& option) {
+Eigen::Vector4d hidden_space_window(const WorldSpec& world, const std::string& name,
+                                    double margin_m, const std::string& option) {
   const int index = world.find_hidden_space(name);
   if (index < 0) {
     std::string names;
     for (const auto& h : world.hidden_spaces) names += (names.empty() ? "" : ", ") + h.name;
-    throw InputError(option, "", fmt::format("the name of a hidden space of {} ({})", world.source.string(),
-                                             names.empty() ? "it has none" : "one of: " + names),
+    throw InputError(option, "",
+                     fmt::format("the name of a hidden space of {} ({})", world.source.string(),
+                                 names.empty() ? "it has none" : "one of: " + names),
                      "'" + name + "'");
   }
   const Eigen::AlignedBox3d b = world.hidden_spaces[index].outer_bounds_m();
-  return {b.min().x() - margin_m, b.min().y() - margin_m, b.max().x() + margin_m, b.max().y() + margin_m};
+  return {b.min().x() - margin_m, b.min().y() - margin_m, b.max().x() + margin_m,
+          b.max().y() + margin_m};
 }
 
-std::optional<Eigen::Vector4d> requested_slice_window(const std::vector<double>& window, const std::string& space,
+std::optional<Eigen::Vector4d> requested_slice_window(const std::vector<double>& window,
+                                                      const std::string& space,
                                                       const std::optional<WorldSpec>& world) {
-  if (!window.empty() && !space.empty()) throw InputError("--space", "", "either --space or --window, not both");
+  if (!window.empty() && !space.empty())
+    throw InputError("--space", "", "either --space or --window, not both");
   if (!window.empty()) {
     if (window.size() != 4) throw InputError("--window", "", "four numbers x0,y0,x1,y1");
     return Eigen::Vector4d(window[0], window[1], window[2], window[3]);
@@ -427,9 +459,12 @@ OccupancyMap2D slice_octree(const octomap::OcTree& tree, const SliceOptions& opt
   tree.getMetricMax(x1, y1, z1);
   if (options.window_m) {
     const Eigen::Vector4d& w = *options.window_m;
-    if (!w.allFinite() || w[2] <= w[0] || w[3] <= w[1] || w[0] >= x1 || w[2] <= x0 || w[1] >= y1 || w[3] <= y0)
-      throw InputError("--window", "", fmt::format("x0 < x1 and y0 < y1 overlapping the known extent [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}]",
-                                                   x0, x1, y0, y1),
+    if (!w.allFinite() || w[2] <= w[0] || w[3] <= w[1] || w[0] >= x1 || w[2] <= x0 || w[1] >= y1 ||
+        w[3] <= y0)
+      throw InputError("--window", "",
+                       fmt::format("x0 < x1 and y0 < y1 overlapping the known extent [{:.4g}, "
+                                   "{:.4g}] x [{:.4g}, {:.4g}]",
+                                   x0, x1, y0, y1),
                        fmt::format("[{}, {}, {}, {}]", w[0], w[1], w[2], w[3]));
     // Whole voxels: the cells the window touches (a window edge on a voxel edge,
     // up to rounding, does not pull in the next voxel).
@@ -439,13 +474,16 @@ OccupancyMap2D slice_octree(const octomap::OcTree& tree, const SliceOptions& opt
     y1 = std::min(y1, std::ceil(w[3] / res - 1e-9) * res);
   }
   octomap::OcTreeKey kmin, kmax;
-  if (!tree.coordToKeyChecked(x0 + res / 2, y0 + res / 2, options.z_m - options.half_band_m, kmin) ||
+  if (!tree.coordToKeyChecked(x0 + res / 2, y0 + res / 2, options.z_m - options.half_band_m,
+                              kmin) ||
       !tree.coordToKeyChecked(x1 - res / 2, y1 - res / 2, options.z_m + options.half_band_m, kmax))
-    throw InputError("--z", "", fmt::format("a height within the tree's key range (+-{} m)", 32767 * res),
+    throw InputError("--z", "",
+                     fmt::format("a height within the tree's key range (+-{} m)", 32767 * res),
                      fmt::format("{}", options.z_m));
   OccupancyMap2D map;
-  map.geometry = GridGeometry{tree.keyToCoord(kmin[0]) - res / 2, tree.keyToCoord(kmin[1]) - res / 2, res,
-                              kmax[0] - kmin[0] + 1, kmax[1] - kmin[1] + 1};
+  map.geometry =
+      GridGeometry{tree.keyToCoord(kmin[0]) - res / 2, tree.keyToCoord(kmin[1]) - res / 2, res,
+                   kmax[0] - kmin[0] + 1, kmax[1] - kmin[1] + 1};
   const int layers = kmax[2] - kmin[2] + 1;
   std::vector<std::uint8_t> occupied(map.geometry.size(), 0);
   std::vector<int> free_layers(map.geometry.size(), 0);
@@ -464,13 +502,15 @@ OccupancyMap2D slice_octree(const octomap::OcTree& tree, const SliceOptions& opt
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int i = lo[0]; i <= hi[0]; ++i) {
         const std::size_t idx = map.geometry.index({i - kmin[0], j - kmin[1]});
-        if (occ) occupied[idx] = 1;
-        else free_layers[idx] += hi[2] - lo[2] + 1;
+        if (occ)
+          occupied[idx] = 1;
+        else
+          free_layers[idx] += hi[2] - lo[2] + 1;
       }
   }
   map.cells.resize(map.geometry.size());
   for (std::size_t k = 0; k < map.cells.size(); ++k)
-    map.cells[k] = occupied[k] ? CellState::kOccupied
+    map.cells[k] = occupied[k]                ? CellState::kOccupied
                    : free_layers[k] == layers ? CellState::kFree
                                               : CellState::kUnknown;
   return map;

@@ -27,9 +27,12 @@ Eigen::Vector2d rotate(const Eigen::Vector2d& v, double yaw_rad) {
 }
 
 // An axis-aligned box in the frame H of a hidden space, as a world OrientedBox.
-OrientedBox box_in_h(const HiddenSpace& h, double x0, double x1, double y0, double y1, double z0, double z1) {
-  const Eigen::Vector2d c_W = h.X_WH.position() + rotate({(x0 + x1) / 2, (y0 + y1) / 2}, h.X_WH.yaw_rad);
-  return OrientedBox{{c_W.x(), c_W.y(), h.floor_z_m + (z0 + z1) / 2}, {x1 - x0, y1 - y0, z1 - z0}, h.X_WH.yaw_rad};
+OrientedBox box_in_h(const HiddenSpace& h, double x0, double x1, double y0, double y1, double z0,
+                     double z1) {
+  const Eigen::Vector2d c_W =
+      h.X_WH.position() + rotate({(x0 + x1) / 2, (y0 + y1) / 2}, h.X_WH.yaw_rad);
+  return OrientedBox{
+      {c_W.x(), c_W.y(), h.floor_z_m + (z0 + z1) / 2}, {x1 - x0, y1 - y0, z1 - z0}, h.X_WH.yaw_rad};
 }
 
 Eigen::Vector3d to_h(const HiddenSpace& h, const Eigen::Vector3d& p_W) {
@@ -40,10 +43,14 @@ Eigen::Vector3d to_h(const HiddenSpace& h, const Eigen::Vector3d& p_W) {
 // Outward unit normal of the opening wall, and the along-wall axis, in H.
 Eigen::Vector2d wall_normal_h(WallSide side) {
   switch (side) {
-    case WallSide::kPlusX: return {1, 0};
-    case WallSide::kMinusX: return {-1, 0};
-    case WallSide::kPlusY: return {0, 1};
-    case WallSide::kMinusY: return {0, -1};
+    case WallSide::kPlusX:
+      return {1, 0};
+    case WallSide::kMinusX:
+      return {-1, 0};
+    case WallSide::kPlusY:
+      return {0, 1};
+    case WallSide::kMinusY:
+      return {0, -1};
   }
   return {1, 0};
 }
@@ -63,12 +70,14 @@ Pose3 pose_from_axes(const Eigen::Vector3d& p, const Eigen::Vector3d& x, const E
 
 bool OrientedBox::contains(const Eigen::Vector3d& p_W) const {
   const Eigen::Vector2d d = rotate(p_W.head<2>() - center_m.head<2>(), -yaw_rad);
-  return std::abs(d.x()) <= size_m.x() / 2 + kFaceTolerance_m && std::abs(d.y()) <= size_m.y() / 2 + kFaceTolerance_m &&
+  return std::abs(d.x()) <= size_m.x() / 2 + kFaceTolerance_m &&
+         std::abs(d.y()) <= size_m.y() / 2 + kFaceTolerance_m &&
          std::abs(p_W.z() - center_m.z()) <= size_m.z() / 2 + kFaceTolerance_m;
 }
 
 bool VerticalCylinder::contains(const Eigen::Vector3d& p_W) const {
-  return (p_W.head<2>() - center_m).norm() <= radius_m + kFaceTolerance_m && p_W.z() >= base_z_m - kFaceTolerance_m &&
+  return (p_W.head<2>() - center_m).norm() <= radius_m + kFaceTolerance_m &&
+         p_W.z() >= base_z_m - kFaceTolerance_m &&
          p_W.z() <= base_z_m + height_m + kFaceTolerance_m;
 }
 
@@ -127,8 +136,8 @@ Eigen::AlignedBox3d HiddenSpace::outer_bounds_m() const {
   for (const auto& s : solids()) {
     // Half extents of the yawed box along the world axes.
     const double c = std::abs(std::cos(s.yaw_rad)), sn = std::abs(std::sin(s.yaw_rad));
-    const Eigen::Vector3d half{(c * s.size_m.x() + sn * s.size_m.y()) / 2, (sn * s.size_m.x() + c * s.size_m.y()) / 2,
-                               s.size_m.z() / 2};
+    const Eigen::Vector3d half{(c * s.size_m.x() + sn * s.size_m.y()) / 2,
+                               (sn * s.size_m.x() + c * s.size_m.y()) / 2, s.size_m.z() / 2};
     out.extend(s.center_m - half);
     out.extend(s.center_m + half);
   }
@@ -245,12 +254,14 @@ void place_marker(HiddenSpace& h, const MapReader& m) {
   marker.dictionary = m.get_or<std::string>("dictionary", marker.dictionary);
   const int ids = dictionary_size(marker.dictionary);
   if (ids == 0)
-    m.fail("dictionary", "an OpenCV ArUco dictionary (DICT_4X4_50 ... DICT_7X7_1000, DICT_ARUCO_ORIGINAL, "
-                         "DICT_APRILTAG_16h5/25h9/36h10/36h11)",
+    m.fail("dictionary",
+           "an OpenCV ArUco dictionary (DICT_4X4_50 ... DICT_7X7_1000, DICT_ARUCO_ORIGINAL, "
+           "DICT_APRILTAG_16h5/25h9/36h10/36h11)",
            "'" + marker.dictionary + "'");
   marker.id = m.get<int>("id");
   if (marker.id < 0 || marker.id >= ids)
-    m.fail("id", fmt::format("an id in [0, {}] of {}", ids - 1, marker.dictionary), std::to_string(marker.id));
+    m.fail("id", fmt::format("an id in [0, {}] of {}", ids - 1, marker.dictionary),
+           std::to_string(marker.id));
   marker.size_m = positive_or(m, "size_m", marker.size_m);
   const Eigen::Vector3d up_W = Eigen::Vector3d::UnitZ();
   const Eigen::Vector2d n2 = rotate(wall_normal_h(h.opening_wall), h.X_WH.yaw_rad);
@@ -267,7 +278,8 @@ void place_marker(HiddenSpace& h, const MapReader& m) {
                             Eigen::AngleAxisd(deg_to_rad(rpy.y()), Eigen::Vector3d::UnitY()) *
                             Eigen::AngleAxisd(deg_to_rad(rpy.x()), Eigen::Vector3d::UnitX()))
                                .toRotationMatrix();
-    if (m.has("placement")) m.fail("placement", "no placement when position_m and rpy_deg are given");
+    if (m.has("placement"))
+      m.fail("placement", "no placement when position_m and rpy_deg are given");
     return;
   }
   const std::string placement = m.get_or<std::string>("placement", "wall");
@@ -275,7 +287,8 @@ void place_marker(HiddenSpace& h, const MapReader& m) {
     // Upright on the outer face, centred in the wall above the opening.
     const double room = lz + t - h.opening_height_m;
     if (s > room)
-      m.fail("size_m", fmt::format("a marker that fits the {:.3f} m of wall above the opening", room),
+      m.fail("size_m",
+             fmt::format("a marker that fits the {:.3f} m of wall above the opening", room),
              fmt::format("{}", s));
     const Eigen::Vector3d p = h.p_WE + n_W * kStandOff_m + up_W * (h.opening_height_m + room / 2);
     marker.X_WM = pose_from_axes(p, up_W.cross(n_W), up_W, n_W);
@@ -293,8 +306,8 @@ void place_marker(HiddenSpace& h, const MapReader& m) {
 }
 
 HiddenSpace parse_hidden_space(const MapReader& r, const GroundSpec& ground) {
-  r.allow_only({"name", "center_m", "yaw_deg", "floor_z_m", "interior_size_m", "wall_thickness_m", "opening",
-                "marker"});
+  r.allow_only({"name", "center_m", "yaw_deg", "floor_z_m", "interior_size_m", "wall_thickness_m",
+                "opening", "marker"});
   HiddenSpace h;
   h.name = r.get<std::string>("name");
   const auto c = vec<2>(r, "center_m");
@@ -310,7 +323,8 @@ HiddenSpace parse_hidden_space(const MapReader& r, const GroundSpec& ground) {
   h.opening_offset_m = finite_or(o, "offset_m", 0.0);
   const double wall_len = wall_is_x(h.opening_wall) ? h.interior_size_m.y() : h.interior_size_m.x();
   if (std::abs(h.opening_offset_m) + h.opening_width_m / 2 > wall_len / 2)
-    o.fail("width_m", fmt::format("an opening within the {} m interior wall (with offset_m)", wall_len),
+    o.fail("width_m",
+           fmt::format("an opening within the {} m interior wall (with offset_m)", wall_len),
            fmt::format("{}", h.opening_width_m));
   if (h.opening_height_m > h.interior_size_m.z())
     o.fail("height_m", fmt::format("at most the interior height {}", h.interior_size_m.z()),
@@ -321,13 +335,15 @@ HiddenSpace parse_hidden_space(const MapReader& r, const GroundSpec& ground) {
     for (const double sy : {-hy, hy}) {
       const Eigen::Vector3d p = h.to_world({sx, sy, 0});
       if (ground.height_at(p.x(), p.y()) > h.floor_z_m + 1e-6)
-        r.fail("floor_z_m", "a floor at or above the ground under the whole interior",
-               fmt::format("{} (ground reaches {:.3f})", h.floor_z_m, ground.height_at(p.x(), p.y())));
+        r.fail(
+            "floor_z_m", "a floor at or above the ground under the whole interior",
+            fmt::format("{} (ground reaches {:.3f})", h.floor_z_m, ground.height_at(p.x(), p.y())));
     }
   // Entry E: bottom centre of the opening on the outer face; entering heads along -n.
   const Eigen::Vector2d n = wall_normal_h(h.opening_wall);
   const double reach = (wall_is_x(h.opening_wall) ? hx : hy) + h.wall_thickness_m;
-  const Eigen::Vector2d along = wall_is_x(h.opening_wall) ? Eigen::Vector2d{0, 1} : Eigen::Vector2d{1, 0};
+  const Eigen::Vector2d along =
+      wall_is_x(h.opening_wall) ? Eigen::Vector2d{0, 1} : Eigen::Vector2d{1, 0};
   const Eigen::Vector2d e_H = n * reach + along * h.opening_offset_m;
   h.p_WE = h.to_world({e_H.x(), e_H.y(), 0});
   h.entry_yaw_rad = wrap_angle_rad(h.X_WH.yaw_rad + std::atan2(-n.y(), -n.x()));
@@ -337,11 +353,13 @@ HiddenSpace parse_hidden_space(const MapReader& r, const GroundSpec& ground) {
 
 // Corners of a hidden space's outer footprint (interior plus walls) in plan.
 std::array<Eigen::Vector2d, 4> outer_corners(const HiddenSpace& h) {
-  const double hx = h.interior_size_m.x() / 2 + h.wall_thickness_m, hy = h.interior_size_m.y() / 2 + h.wall_thickness_m;
+  const double hx = h.interior_size_m.x() / 2 + h.wall_thickness_m,
+               hy = h.interior_size_m.y() / 2 + h.wall_thickness_m;
   std::array<Eigen::Vector2d, 4> out;
   int k = 0;
   for (const double sx : {-hx, hx})
-    for (const double sy : {-hy, hy}) out[k++] = h.X_WH.position() + rotate({sx, sy}, h.X_WH.yaw_rad);
+    for (const double sy : {-hy, hy})
+      out[k++] = h.X_WH.position() + rotate({sx, sy}, h.X_WH.yaw_rad);
   return out;
 }
 
@@ -351,8 +369,10 @@ bool footprints_overlap(const HiddenSpace& a, const HiddenSpace& b) {
   for (const double yaw : {a.X_WH.yaw_rad, b.X_WH.yaw_rad})
     for (const Eigen::Vector2d& axis : {rotate({1, 0}, yaw), rotate({0, 1}, yaw)}) {
       double amin = 1e300, amax = -1e300, bmin = 1e300, bmax = -1e300;
-      for (const auto& p : ca) amin = std::min(amin, axis.dot(p)), amax = std::max(amax, axis.dot(p));
-      for (const auto& p : cb) bmin = std::min(bmin, axis.dot(p)), bmax = std::max(bmax, axis.dot(p));
+      for (const auto& p : ca)
+        amin = std::min(amin, axis.dot(p)), amax = std::max(amax, axis.dot(p));
+      for (const auto& p : cb)
+        bmin = std::min(bmin, axis.dot(p)), bmax = std::max(bmax, axis.dot(p));
       if (amax <= bmin || bmax <= amin) return false;
     }
   return true;
@@ -368,17 +388,22 @@ WorldObject parse_object(const MapReader& r, const WorldSpec& w) {
   if (r.has("hidden_space")) {
     const auto hs = r.get<std::string>("hidden_space");
     o.hidden_space = w.find_hidden_space(hs);
-    if (o.hidden_space < 0) r.fail("hidden_space", "the name of a hidden space listed above", "'" + hs + "'");
+    if (o.hidden_space < 0)
+      r.fail("hidden_space", "the name of a hidden space listed above", "'" + hs + "'");
     const HiddenSpace& h = w.hidden_spaces[o.hidden_space];
     // position_m is in the space's frame H; the object rests on its floor.
-    o.box = OrientedBox{h.to_world({xy.x(), xy.y(), size.z() / 2}), size, wrap_angle_rad(h.X_WH.yaw_rad + yaw)};
+    o.box = OrientedBox{h.to_world({xy.x(), xy.y(), size.z() / 2}), size,
+                        wrap_angle_rad(h.X_WH.yaw_rad + yaw)};
     const double r_xy = size.head<2>().norm() / 2;
-    if (std::abs(xy.x()) + r_xy > h.interior_size_m.x() / 2 || std::abs(xy.y()) + r_xy > h.interior_size_m.y() / 2 ||
-        size.z() > h.interior_size_m.z())
-      r.fail("position_m", fmt::format("an object wholly inside hidden space '{}' (interior {} x {} m, centred at 0)",
-                                       h.name, h.interior_size_m.x(), h.interior_size_m.y()));
+    if (std::abs(xy.x()) + r_xy > h.interior_size_m.x() / 2 ||
+        std::abs(xy.y()) + r_xy > h.interior_size_m.y() / 2 || size.z() > h.interior_size_m.z())
+      r.fail("position_m",
+             fmt::format(
+                 "an object wholly inside hidden space '{}' (interior {} x {} m, centred at 0)",
+                 h.name, h.interior_size_m.x(), h.interior_size_m.y()));
   } else {
-    o.box = OrientedBox{{xy.x(), xy.y(), w.ground.height_at(xy.x(), xy.y()) + size.z() / 2}, size, yaw};
+    o.box =
+        OrientedBox{{xy.x(), xy.y(), w.ground.height_at(xy.x(), xy.y()) + size.z() / 2}, size, yaw};
   }
   return o;
 }
@@ -388,15 +413,18 @@ RubbleSpec parse_rubble(const MapReader& r) {
   RubbleSpec s;
   s.seed = r.get<std::uint64_t>("seed");
   s.count = r.get<int>("count");
-  if (s.count < 0 || s.count > 100000) r.fail("count", "an integer in [0, 100000]", std::to_string(s.count));
+  if (s.count < 0 || s.count > 100000)
+    r.fail("count", "an integer in [0, 100000]", std::to_string(s.count));
   const MapReader region = r.child("region_m");
   region.allow_only({"min", "max"});
   s.region_min_m = vec<2>(region, "min");
   s.region_max_m = vec<2>(region, "max");
-  if ((s.region_max_m.array() <= s.region_min_m.array()).any()) region.fail("max", "a corner above and right of min");
+  if ((s.region_max_m.array() <= s.region_min_m.array()).any())
+    region.fail("max", "a corner above and right of min");
   s.size_min_m = positive_vec<3>(r, "size_min_m");
   s.size_max_m = positive_vec<3>(r, "size_max_m");
-  if ((s.size_max_m.array() < s.size_min_m.array()).any()) r.fail("size_max_m", "sizes >= size_min_m");
+  if ((s.size_max_m.array() < s.size_min_m.array()).any())
+    r.fail("size_max_m", "sizes >= size_min_m");
   s.clearance_m = r.get_or<double>("clearance_m", s.clearance_m);
   if (!std::isfinite(s.clearance_m) || s.clearance_m < 0) r.fail("clearance_m", "a number >= 0");
   return s;
@@ -404,7 +432,8 @@ RubbleSpec parse_rubble(const MapReader& r) {
 
 // Seeded rubble: boxes drawn uniformly in the region, resting on the ground,
 // redrawn when they would crowd a hidden space or the drop zone.
-std::vector<OrientedBox> generate_rubble(const WorldSpec& w, const RubbleSpec& s, const std::string& field) {
+std::vector<OrientedBox> generate_rubble(const WorldSpec& w, const RubbleSpec& s,
+                                         const std::string& field) {
   Rng rng(s.seed);
   std::vector<OrientedBox> out;
   const double slope = std::abs(w.ground.slope_x) + std::abs(w.ground.slope_y);
@@ -415,7 +444,8 @@ std::vector<OrientedBox> generate_rubble(const WorldSpec& w, const RubbleSpec& s
       const double my = h.interior_size_m.y() / 2 + h.wall_thickness_m + s.clearance_m + radius;
       if (std::abs(p.x()) < mx && std::abs(p.y()) < my) return true;
     }
-    return w.drop_zone && (c - w.drop_zone->center_m).norm() < w.drop_zone->radius_m + s.clearance_m + radius;
+    return w.drop_zone &&
+           (c - w.drop_zone->center_m).norm() < w.drop_zone->radius_m + s.clearance_m + radius;
   };
   constexpr int kTriesPerBox = 200;
   for (int k = 0; k < s.count; ++k) {
@@ -438,23 +468,25 @@ std::vector<OrientedBox> generate_rubble(const WorldSpec& w, const RubbleSpec& s
       placed = true;
     }
     if (!placed)
-      throw InputError(w.source.string(), field + ".count",
-                       fmt::format("a region with room for {} boxes clear of hidden spaces and the drop zone", s.count),
-                       fmt::format("only {} fit", out.size()));
+      throw InputError(
+          w.source.string(), field + ".count",
+          fmt::format("a region with room for {} boxes clear of hidden spaces and the drop zone",
+                      s.count),
+          fmt::format("only {} fit", out.size()));
   }
   return out;
 }
 
-void check_inside_bounds(const WorldSpec& w, const MapReader& r, std::string_view key, const Eigen::Vector3d& lo,
-                         const Eigen::Vector3d& hi) {
+void check_inside_bounds(const WorldSpec& w, const MapReader& r, std::string_view key,
+                         const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   if ((lo.array() < w.bounds_min_m.array()).any() || (hi.array() > w.bounds_max_m.array()).any())
     r.fail(key, "geometry inside bounds_m");
 }
 
 WorldSpec parse_world_node(const YAML::Node& root, const std::string& source) {
   const MapReader r(root, source);
-  r.allow_only({"name", "resolution_m", "bounds_m", "ground", "boxes", "cylinders", "hidden_spaces", "objects",
-                "drop_zone", "rubble"});
+  r.allow_only({"name", "resolution_m", "bounds_m", "ground", "boxes", "cylinders", "hidden_spaces",
+                "objects", "drop_zone", "rubble"});
   WorldSpec w;
   w.source = source;
   w.name = r.get_or<std::string>("name", std::filesystem::path(source).stem().string());
@@ -465,14 +497,17 @@ WorldSpec parse_world_node(const YAML::Node& root, const std::string& source) {
   w.bounds_max_m = vec<3>(b, "max");
   for (int i = 0; i < 3; ++i)
     if (w.bounds_max_m[i] <= w.bounds_min_m[i] + w.resolution_m)
-      throw InputError(source, fmt::format("bounds_m.max[{}]", i), "more than one voxel above bounds_m.min",
+      throw InputError(source, fmt::format("bounds_m.max[{}]", i),
+                       "more than one voxel above bounds_m.min",
                        fmt::format("{}", w.bounds_max_m[i]));
   // OctoMap keys are 16 bit: coordinates must stay within [-2^15, 2^15 - 1] voxels (octomap#289).
   const double key_limit_m = 32767.0 * w.resolution_m;
   for (const char* corner : {"min", "max"}) {
     const Eigen::Vector3d& v = std::string(corner) == "min" ? w.bounds_min_m : w.bounds_max_m;
     if (v.cwiseAbs().maxCoeff() >= key_limit_m)
-      b.fail(corner, fmt::format("coordinates within +-{} m (OctoMap's key range at this resolution)", key_limit_m));
+      b.fail(corner,
+             fmt::format("coordinates within +-{} m (OctoMap's key range at this resolution)",
+                         key_limit_m));
   }
 
   if (const auto g = r.optional_child("ground")) {
@@ -497,7 +532,8 @@ WorldSpec parse_world_node(const YAML::Node& root, const std::string& source) {
     } else if (c.size() == 3) {
       box.center_m = {c[0], c[1], c[2]};
     } else {
-      br.fail("center_m", "[x, y] (resting on the ground) or [x, y, z]", fmt::format("{} values", c.size()));
+      br.fail("center_m", "[x, y] (resting on the ground) or [x, y, z]",
+              fmt::format("{} values", c.size()));
     }
     if (!box.center_m.allFinite()) br.fail("center_m", "finite numbers");
     w.boxes.push_back(box);
@@ -514,12 +550,14 @@ WorldSpec parse_world_node(const YAML::Node& root, const std::string& source) {
   const auto spaces = optional_list(r, "hidden_spaces");
   for (const auto& hr : spaces) {
     HiddenSpace h = parse_hidden_space(hr, w.ground);
-    if (w.find_hidden_space(h.name) >= 0) hr.fail("name", "a name not used by another hidden space", "'" + h.name + "'");
+    if (w.find_hidden_space(h.name) >= 0)
+      hr.fail("name", "a name not used by another hidden space", "'" + h.name + "'");
     const Eigen::AlignedBox3d extent = h.outer_bounds_m();
     check_inside_bounds(w, hr, "center_m", extent.min(), extent.max());
     for (const auto& other : w.hidden_spaces)
       if (footprints_overlap(h, other))
-        hr.fail("center_m", fmt::format("a hidden space clear of '{}' (their walls overlap)", other.name));
+        hr.fail("center_m",
+                fmt::format("a hidden space clear of '{}' (their walls overlap)", other.name));
     w.hidden_spaces.push_back(std::move(h));
   }
   for (const auto& orr : optional_list(r, "objects")) w.objects.push_back(parse_object(orr, w));

@@ -13,14 +13,17 @@ namespace ferret::test {
 namespace {
 using ::testing::HasSubstr;
 
-void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void write(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
 
 TEST(RenderCli, MapServerMapToPng) {
   TempDir dir;
   // 2 x 1 map: occupied, free. 50 px a cell, no scale bar: pixel colours are exact.
   write(dir / "m.pgm", std::string("P5\n2 1\n255\n") + std::string{'\x00', '\xfe'});
   write(dir / "m.yaml", "image: m.pgm\nresolution: 0.5\norigin: [0, 0, 0]\n");
-  const auto r = run_cli("render " + (dir / "m.yaml") + " -o " + (dir / "out.png") + " --scale 50 --no-scale-bar");
+  const auto r = run_cli("render " + (dir / "m.yaml") + " -o " + (dir / "out.png") +
+                         " --scale 50 --no-scale-bar");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const RgbImage img = read_rgb_image(dir / "out.png");
   ASSERT_EQ(img.width, 100);
@@ -36,7 +39,8 @@ TEST(RenderCli, WorldYamlAndOctreeSlices) {
   EXPECT_THAT(a.out, HasSubstr("240 x 240 cells at 4 px/cell"));
   ASSERT_EQ(run_cli("world build examples/worlds/small.yaml -o " + (dir / "w.bt")).exit_code, 0);
   // Above the 7.5 cm opening the cellar's wall is closed: its opening cell is black.
-  const auto b = run_cli("render " + (dir / "w.bt") + " --z 0.1 --scale 1 --no-scale-bar -o " + (dir / "b.png"));
+  const auto b = run_cli("render " + (dir / "w.bt") + " --z 0.1 --scale 1 --no-scale-bar -o " +
+                         (dir / "b.png"));
   ASSERT_EQ(b.exit_code, 0) << b.err;
   const RgbImage img = read_rgb_image(dir / "b.png");
   ASSERT_EQ(img.width, 240);

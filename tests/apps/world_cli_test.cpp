@@ -15,7 +15,9 @@ using ::testing::HasSubstr;
 
 const std::string kSmall = "examples/worlds/small.yaml";
 
-void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void write(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
 std::string read(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
@@ -42,7 +44,7 @@ TEST(WorldCli, BuildSliceInfo) {
   EXPECT_EQ(m.state_at(-0.55, -1.3), CellState::kOccupied);  // cellar wall
   EXPECT_EQ(m.state_at(-0.55, -1.0), CellState::kFree);      // its opening
   EXPECT_EQ(m.state_at(0.5, -1.0), CellState::kFree);        // its interior
-  EXPECT_EQ(dir.count(), 3u);  // w.bt, s.yaml, s.pgm
+  EXPECT_EQ(dir.count(), 3u);                                // w.bt, s.yaml, s.pgm
 }
 
 TEST(WorldCli, OtOutputAndSliceStraightFromYaml) {
@@ -50,7 +52,8 @@ TEST(WorldCli, OtOutputAndSliceStraightFromYaml) {
   ASSERT_EQ(run_cli("world build " + kSmall + " -o " + (dir / "w.ot")).exit_code, 0);
   EXPECT_EQ(read(dir / "w.ot").rfind("# Octomap OcTree file\n", 0), 0u);
   ASSERT_EQ(run_cli("world slice " + kSmall + " --z 0.2 -o " + (dir / "a.yaml")).exit_code, 0);
-  ASSERT_EQ(run_cli("world slice " + (dir / "w.ot") + " --z 0.2 -o " + (dir / "b.yaml")).exit_code, 0);
+  ASSERT_EQ(run_cli("world slice " + (dir / "w.ot") + " --z 0.2 -o " + (dir / "b.yaml")).exit_code,
+            0);
   EXPECT_TRUE(load_map_server(dir / "a.yaml") == load_map_server(dir / "b.yaml"));
   const auto info = run_cli("world info " + kSmall);
   EXPECT_THAT(info.out, HasSubstr("p_WE: [-0.6, -1, 0]"));
@@ -84,7 +87,8 @@ TEST(WorldCli, BadWorldYamlExitsTwoNamingFieldWithoutOutput) {
       {"resolution_m: 0.1\nbounds_m: {min: [0, 0, 0], max: [2, 2, 2]}\n"
        "boxes:\n  - {center_m: [1, 1], size_m: [0.5, -0.5, 0.5]}\n",
        "boxes[0].size_m[1]"},
-      {"resolution_m: 0.1\nbounds_m: {min: [0, 0, 0], max: [2, 2, 2]}\ncylinders:\n  - {center_m: [1, 1], radius_m: "
+      {"resolution_m: 0.1\nbounds_m: {min: [0, 0, 0], max: [2, 2, 2]}\ncylinders:\n  - {center_m: "
+       "[1, 1], radius_m: "
        "0.2, height_m: tall}\n",
        "cylinders[0].height_m"},
       {"resolution_m: 0.1\nbounds_m: [0, 0, 0]\n", "bounds_m"},
@@ -105,9 +109,11 @@ TEST(WorldCli, TruncatedOrGarbageBtExitsTwoWithoutOutput) {
   ASSERT_EQ(run_cli("world build " + kSmall + " -o " + (dir / "w.bt")).exit_code, 0);
   const std::string bytes = read(dir / "w.bt");
   write(dir / "cut.bt", bytes.substr(0, bytes.size() / 2));
-  write(dir / "junk.bt", "# Octomap OcTree binary file\nid OcTree\nsize 99\nres 0.1\ndata\n" + std::string(500, '\xff'));
+  write(dir / "junk.bt", "# Octomap OcTree binary file\nid OcTree\nsize 99\nres 0.1\ndata\n" +
+                             std::string(500, '\xff'));
   for (const std::string name : {"cut.bt", "junk.bt"}) {
-    for (const std::string& cmd : {"world slice " + (dir / name) + " -o " + (dir / "s.yaml"), "world info " + (dir / name)}) {
+    for (const std::string& cmd : {"world slice " + (dir / name) + " -o " + (dir / "s.yaml"),
+                                   "world info " + (dir / name)}) {
       const auto r = run_cli(cmd);
       EXPECT_EQ(r.exit_code, 2) << cmd;
       EXPECT_THAT(r.err, HasSubstr(name + ": data")) << r.err;

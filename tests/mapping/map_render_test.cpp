@@ -103,10 +103,10 @@ TEST(MapCanvas, WorldAnnotationsMarkObjectsAndDropZone) {
     const Eigen::Vector2d p = canvas.to_pixel({x, y});
     return img.at(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
   };
-  EXPECT_TRUE(same(pixel(1.0, -0.7), Rgb{220, 20, 20}));    // the canister
-  EXPECT_TRUE(same(pixel(-2.0, -2.5), Rgb{255, 140, 0}));   // bottom of the drop zone's circle
-  EXPECT_TRUE(same(pixel(-0.601, -1.0), Rgb{30, 80, 230})); // the cellar's marker
-  EXPECT_TRUE(same(pixel(-0.3, -1.0), Rgb{0, 160, 0}));     // the entry heading, into the cellar
+  EXPECT_TRUE(same(pixel(1.0, -0.7), Rgb{220, 20, 20}));     // the canister
+  EXPECT_TRUE(same(pixel(-2.0, -2.5), Rgb{255, 140, 0}));    // bottom of the drop zone's circle
+  EXPECT_TRUE(same(pixel(-0.601, -1.0), Rgb{30, 80, 230}));  // the cellar's marker
+  EXPECT_TRUE(same(pixel(-0.3, -1.0), Rgb{0, 160, 0}));      // the entry heading, into the cellar
 }
 
 TEST(MapServerImage, PngThroughOpenCv) {

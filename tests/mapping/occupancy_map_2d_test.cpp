@@ -10,8 +10,8 @@
 
 namespace ferret {
 namespace {
-using ::testing::HasSubstr;
 using test::TempDir;
+using ::testing::HasSubstr;
 
 void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
@@ -98,7 +98,8 @@ TEST(OccupancyMap2D, SaveLoadRoundTrip) {
   TempDir dir;
   GridGeometry g{-3.125, 7.3, 0.05, 7, 5};
   OccupancyMap2D map = OccupancyMap2D::filled(g, CellState::kUnknown);
-  for (std::size_t k = 0; k < map.cells.size(); ++k) map.cells[k] = static_cast<CellState>(k * 7 % 3);
+  for (std::size_t k = 0; k < map.cells.size(); ++k)
+    map.cells[k] = static_cast<CellState>(k * 7 % 3);
   save_map_server(map, dir / "out.yaml");
   EXPECT_TRUE(std::filesystem::exists(dir / "out.pgm"));
   const OccupancyMap2D back = load_map_server(dir / "out.yaml");
@@ -162,7 +163,8 @@ TEST(OccupancyMap2D, TruncatedAndBrokenPgmHeaders) {
 TEST(OccupancyMap2D, EveryTruncationOfAPgmIsDetected) {
   TempDir dir;
   const std::string p = dir / "m.pgm";
-  const std::string binary = std::string("P5\n# c\n3 2\n255\n") + std::string{'\x00', '\xfe', '\xcd', '\x59', '\x5a', '\xce'};
+  const std::string binary = std::string("P5\n# c\n3 2\n255\n") +
+                             std::string{'\x00', '\xfe', '\xcd', '\x59', '\x5a', '\xce'};
   const std::string ascii = "P2\n3 2\n255\n0 254 205\n89 90 206\n";
   for (const std::string& full : {binary, ascii}) {
     write_bytes(p, full);

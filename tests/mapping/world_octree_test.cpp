@@ -14,8 +14,8 @@
 
 namespace ferret {
 namespace {
-using ::testing::HasSubstr;
 using test::TempDir;
+using ::testing::HasSubstr;
 
 const std::string kSmallWorld = std::string(FERRET_SOURCE_DIR) + "/examples/worlds/small.yaml";
 
@@ -56,20 +56,20 @@ octomap::OcTree* SmallWorld::tree_ = nullptr;
 
 TEST_F(SmallWorld, HandPickedVoxels) {
   const auto& t = *tree_;
-  EXPECT_EQ(voxel_at(t, -0.55, -1.3, 0.15), Voxel::kOccupied);  // cellar wall
-  EXPECT_EQ(voxel_at(t, 0.5, -1.0, 0.15), Voxel::kFree);        // cellar interior
-  EXPECT_EQ(voxel_at(t, 0.5, -1.0, 0.35), Voxel::kOccupied);    // roof
-  EXPECT_EQ(voxel_at(t, -0.55, -1.0, 0.03), Voxel::kFree);      // in the opening
-  EXPECT_EQ(voxel_at(t, -0.55, -1.0, 0.09), Voxel::kOccupied);  // lintel (opening is 7.5 cm)
-  EXPECT_EQ(voxel_at(t, -0.55, -0.91, 0.03), Voxel::kOccupied); // beside the 15 cm opening
-  EXPECT_EQ(voxel_at(t, 0.0, 0.0, -0.1), Voxel::kOccupied);     // ground
-  EXPECT_EQ(voxel_at(t, 0.0, 0.0, 0.0125), Voxel::kFree);       // first layer above ground
-  EXPECT_EQ(voxel_at(t, 0.0, 0.0, -0.0125), Voxel::kOccupied);  // last layer of ground
-  EXPECT_EQ(voxel_at(t, 2.0, 2.0, 0.4), Voxel::kOccupied);      // post
-  EXPECT_EQ(voxel_at(t, 2.25, 2.0, 0.4), Voxel::kFree);         // beside the post (r = 0.2)
-  EXPECT_EQ(voxel_at(t, 1.0, -0.7, 0.0125), Voxel::kOccupied);  // the canister
-  EXPECT_EQ(voxel_at(t, 0.0, 0.0, 1.2), Voxel::kUnknown);       // above the ceiling
-  EXPECT_EQ(voxel_at(t, 3.5, 0.0, 0.5), Voxel::kUnknown);       // beyond the bounds
+  EXPECT_EQ(voxel_at(t, -0.55, -1.3, 0.15), Voxel::kOccupied);   // cellar wall
+  EXPECT_EQ(voxel_at(t, 0.5, -1.0, 0.15), Voxel::kFree);         // cellar interior
+  EXPECT_EQ(voxel_at(t, 0.5, -1.0, 0.35), Voxel::kOccupied);     // roof
+  EXPECT_EQ(voxel_at(t, -0.55, -1.0, 0.03), Voxel::kFree);       // in the opening
+  EXPECT_EQ(voxel_at(t, -0.55, -1.0, 0.09), Voxel::kOccupied);   // lintel (opening is 7.5 cm)
+  EXPECT_EQ(voxel_at(t, -0.55, -0.91, 0.03), Voxel::kOccupied);  // beside the 15 cm opening
+  EXPECT_EQ(voxel_at(t, 0.0, 0.0, -0.1), Voxel::kOccupied);      // ground
+  EXPECT_EQ(voxel_at(t, 0.0, 0.0, 0.0125), Voxel::kFree);        // first layer above ground
+  EXPECT_EQ(voxel_at(t, 0.0, 0.0, -0.0125), Voxel::kOccupied);   // last layer of ground
+  EXPECT_EQ(voxel_at(t, 2.0, 2.0, 0.4), Voxel::kOccupied);       // post
+  EXPECT_EQ(voxel_at(t, 2.25, 2.0, 0.4), Voxel::kFree);          // beside the post (r = 0.2)
+  EXPECT_EQ(voxel_at(t, 1.0, -0.7, 0.0125), Voxel::kOccupied);   // the canister
+  EXPECT_EQ(voxel_at(t, 0.0, 0.0, 1.2), Voxel::kUnknown);        // above the ceiling
+  EXPECT_EQ(voxel_at(t, 3.5, 0.0, 0.5), Voxel::kUnknown);        // beyond the bounds
 }
 
 TEST_F(SmallWorld, EveryVoxelAgreesWithGroundTruthAtItsCentre) {
@@ -78,7 +78,8 @@ TEST_F(SmallWorld, EveryVoxelAgreesWithGroundTruthAtItsCentre) {
   const double res = tree_->getResolution();
   int checked = 0;
   for (int k = 0; k < 20000; ++k) {
-    const octomap::OcTreeKey key = tree_->coordToKey(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-0.2, 1.0));
+    const octomap::OcTreeKey key =
+        tree_->coordToKey(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-0.2, 1.0));
     const octomap::point3d c = tree_->keyToCoord(key);
     const Eigen::Vector3d p(c.x(), c.y(), c.z());
     const Voxel v = voxel_at(*tree_, p.x(), p.y(), p.z());
@@ -86,7 +87,8 @@ TEST_F(SmallWorld, EveryVoxelAgreesWithGroundTruthAtItsCentre) {
       EXPECT_EQ(v, Voxel::kUnknown);
       continue;
     }
-    ASSERT_EQ(v, world_->is_solid(p) ? Voxel::kOccupied : Voxel::kFree) << p.transpose() << " res " << res;
+    ASSERT_EQ(v, world_->is_solid(p) ? Voxel::kOccupied : Voxel::kFree)
+        << p.transpose() << " res " << res;
     ++checked;
   }
   EXPECT_GT(checked, 19000);
@@ -118,7 +120,8 @@ bool connected(const OccupancyMap2D& m, const Eigen::Vector2d& from, const Eigen
     if (!m.is_free(c) || seen[m.geometry.index(c)]) continue;
     seen[m.geometry.index(c)] = 1;
     if (c == goal) return true;
-    for (const Cell d : {Cell{1, 0}, Cell{-1, 0}, Cell{0, 1}, Cell{0, -1}}) queue.push_back({c.i + d.i, c.j + d.j});
+    for (const Cell d : {Cell{1, 0}, Cell{-1, 0}, Cell{0, 1}, Cell{0, -1}})
+      queue.push_back({c.i + d.i, c.j + d.j});
   }
   return false;
 }
@@ -142,7 +145,8 @@ TEST(DefaultWorld, BothHiddenSpacesAreEnteredOnlyThroughTheirOpenings) {
     EXPECT_DOUBLE_EQ(h.opening_width_m, 0.15);
     EXPECT_DOUBLE_EQ(h.opening_height_m, 0.07);
     const Eigen::Vector2d into(std::cos(h.entry_yaw_rad), std::sin(h.entry_yaw_rad));
-    const Eigen::Vector2d outside = h.p_WE.head<2>() - 0.4 * into, inside = h.p_WE.head<2>() + 0.6 * into;
+    const Eigen::Vector2d outside = h.p_WE.head<2>() - 0.4 * into,
+                          inside = h.p_WE.head<2>() + 0.6 * into;
     auto slice = [&](double z) {
       SliceOptions o = at_z(z);
       o.window_m = hidden_space_window(w, h.name, 0.5, "test");
@@ -176,7 +180,8 @@ TEST_F(SmallWorld, SliceMatchesVoxels) {
 
 TEST_F(SmallWorld, WindowCutsTheSliceOnVoxelEdges) {
   const OccupancyMap2D full = slice_octree(*tree_, at_z(0.03, 0.0));
-  const OccupancyMap2D m = slice_octree(*tree_, windowed(0.03, Eigen::Vector4d(-1.01, -2.0, 0.0, -0.5)));
+  const OccupancyMap2D m =
+      slice_octree(*tree_, windowed(0.03, Eigen::Vector4d(-1.01, -2.0, 0.0, -0.5)));
   EXPECT_NEAR(m.geometry.origin_x_m, -1.025, 1e-9);  // widened to the voxel edge below -1.01
   EXPECT_NEAR(m.geometry.origin_y_m, -2.0, 1e-9);
   EXPECT_EQ(m.geometry.width, 41);
@@ -286,7 +291,8 @@ TEST_F(SmallWorld, TruncatedAndGarbageOctreeFilesAreInputErrors) {
     const std::size_t data = bytes.find("\ndata\n") + 6;
     ASSERT_GT(bytes.size(), data + 100);
     // Truncated anywhere in the data, including one byte short.
-    for (const std::size_t cut : {data + 1, data + 50, (data + bytes.size()) / 2, bytes.size() - 1}) {
+    for (const std::size_t cut :
+         {data + 1, data + 50, (data + bytes.size()) / 2, bytes.size() - 1}) {
       write_all(bad, bytes.substr(0, cut));
       expect_bad_octree(bad, "data");
     }
@@ -322,8 +328,8 @@ TEST_F(SmallWorld, MutatedOctreeFilesLoadOrFailCleanly) {
     int loaded = 0, rejected = 0;
     for (int k = 0; k < 150; ++k) {
       std::string mutated = bytes;
-      const auto at = static_cast<std::size_t>(rng.uniform_int(static_cast<std::int64_t>(data),
-                                                               static_cast<std::int64_t>(bytes.size()) - 1));
+      const auto at = static_cast<std::size_t>(rng.uniform_int(
+          static_cast<std::int64_t>(data), static_cast<std::int64_t>(bytes.size()) - 1));
       mutated[at] = static_cast<char>(mutated[at] ^ static_cast<char>(rng.uniform_int(1, 255)));
       write_all(bad, mutated);
       try {
@@ -356,7 +362,8 @@ TEST(OctreeFiles, BadHeadersNameTheField) {
   check(magic + "id OcTree\nres 0.1\ndata\n", "header.size");
   check(magic + "id OcTree\nsize 5\nres 0.1\n", "header");
   // A header promising 4 billion nodes over 2 bytes of data.
-  check(magic + "id OcTree\nsize 4000000000\nres 0.1\ndata\n" + std::string{'\x01', '\x00'}, "header.size");
+  check(magic + "id OcTree\nsize 4000000000\nres 0.1\ndata\n" + std::string{'\x01', '\x00'},
+        "header.size");
   check(magic + "id OcTree\nsize 1\nres 0.1\ndata\n", "data");
   // The .ot header is a different first line.
   write_all(dir / "x.ot", magic + "id OcTree\nsize 0\nres 0.1\ndata\n");

@@ -31,7 +31,8 @@ drop_zone: {center_m: [-2, -2], radius_m: 0.5}
 
 std::string with(const std::string& extra) { return kWorld + extra; }
 
-void expect_field(const std::string& yaml, const std::string& field, const std::string& expected_part = "") {
+void expect_field(const std::string& yaml, const std::string& field,
+                  const std::string& expected_part = "") {
   try {
     (void)parse_world(yaml, "w.yaml");
     FAIL() << "expected InputError at " << field;
@@ -72,18 +73,18 @@ TEST(WorldSpec, HiddenSpaceEntryMarkerAndObject) {
 TEST(WorldSpec, GroundTruthGeometry) {
   const WorldSpec w = parse_world(kWorld, "w.yaml");
   const HiddenSpace& h = w.hidden_spaces[0];
-  EXPECT_TRUE(w.is_solid({-0.55, -1.3, 0.15}));    // -x wall beside the opening
-  EXPECT_FALSE(w.is_solid({0.5, -1.0, 0.15}));     // interior
-  EXPECT_FALSE(w.is_solid({-0.55, -1.0, 0.03}));   // through the opening
-  EXPECT_TRUE(w.is_solid({-0.55, -1.0, 0.1}));     // lintel above the opening
-  EXPECT_TRUE(w.is_solid({-0.55, -0.9, 0.03}));    // just beside the 15 cm opening
-  EXPECT_TRUE(w.is_solid({0.5, -1.0, 0.35}));      // roof
-  EXPECT_TRUE(w.is_solid({1.55, -1.0, 0.15}));     // +x wall
-  EXPECT_TRUE(w.is_solid({0.5, -0.35, 0.15}));     // +y wall
-  EXPECT_TRUE(w.is_solid({0.0, 0.0, -0.1}));       // ground
+  EXPECT_TRUE(w.is_solid({-0.55, -1.3, 0.15}));   // -x wall beside the opening
+  EXPECT_FALSE(w.is_solid({0.5, -1.0, 0.15}));    // interior
+  EXPECT_FALSE(w.is_solid({-0.55, -1.0, 0.03}));  // through the opening
+  EXPECT_TRUE(w.is_solid({-0.55, -1.0, 0.1}));    // lintel above the opening
+  EXPECT_TRUE(w.is_solid({-0.55, -0.9, 0.03}));   // just beside the 15 cm opening
+  EXPECT_TRUE(w.is_solid({0.5, -1.0, 0.35}));     // roof
+  EXPECT_TRUE(w.is_solid({1.55, -1.0, 0.15}));    // +x wall
+  EXPECT_TRUE(w.is_solid({0.5, -0.35, 0.15}));    // +y wall
+  EXPECT_TRUE(w.is_solid({0.0, 0.0, -0.1}));      // ground
   EXPECT_FALSE(w.is_solid({0.0, 0.0, 0.5}));
-  EXPECT_FALSE(w.is_solid({0.0, 0.0, -0.5}));      // below the bounds: not known
-  EXPECT_TRUE(w.is_solid({1.0, -0.7, 0.02}));      // the object
+  EXPECT_FALSE(w.is_solid({0.0, 0.0, -0.5}));  // below the bounds: not known
+  EXPECT_TRUE(w.is_solid({1.0, -0.7, 0.02}));  // the object
   EXPECT_TRUE(h.interior_contains({0.5, -1.0, 0.15}));
   EXPECT_TRUE(h.interior_contains({-0.55, -1.0, 0.03}));
   EXPECT_FALSE(h.interior_contains({-0.55, -1.0, 0.1}));
@@ -132,10 +133,11 @@ hidden_spaces:
 
 TEST(WorldSpec, RotatedNeighboursMayStandCloseWithoutOverlapping) {
   // Rotated 45 deg, the annex's axis-aligned bounds reach into the cellar's, its walls do not.
-  EXPECT_NO_THROW((void)parse_world(std::string(kBase) + R"(  - {name: annex, center_m: [2.1, 0.2], yaw_deg: 45,
+  EXPECT_NO_THROW(
+      (void)parse_world(std::string(kBase) + R"(  - {name: annex, center_m: [2.1, 0.2], yaw_deg: 45,
      interior_size_m: [0.8, 0.8, 0.3], marker: {id: 2}, opening: {wall: +x, width_m: 0.15, height_m: 0.07}}
 )",
-                                    "w.yaml"));
+                        "w.yaml"));
 }
 
 TEST(WorldSpec, RubbleIsSeededAndKeepsClear) {
@@ -153,7 +155,8 @@ rubble:
     const auto& c = a.rubble[i].center_m;
     const double r = a.rubble[i].size_m.head<2>().norm() / 2;
     // Clear of the enclosure (x in [-0.6, 1.6], y in [-1.7, -0.3]) by 0.2 m.
-    const bool near_space = c.x() > -0.8 - r && c.x() < 1.8 + r && c.y() > -1.9 - r && c.y() < -0.1 + r;
+    const bool near_space =
+        c.x() > -0.8 - r && c.x() < 1.8 + r && c.y() > -1.9 - r && c.y() < -0.1 + r;
     EXPECT_FALSE(near_space) << i;
     EXPECT_GT((c.head<2>() - a.drop_zone->center_m).norm(), 0.7 + r - 1e-9);
     EXPECT_NEAR(c.z(), a.rubble[i].size_m.z() / 2, 1e-12);  // resting on flat ground
@@ -162,28 +165,39 @@ rubble:
 }
 
 TEST(WorldSpec, BadInputNamesFileAndField) {
-  expect_field("resolution_m: fine\nbounds_m: {min: [0, 0, 0], max: [1, 1, 1]}\n", "resolution_m", "a number");
+  expect_field("resolution_m: fine\nbounds_m: {min: [0, 0, 0], max: [1, 1, 1]}\n", "resolution_m",
+               "a number");
   expect_field(with("colour: red\n"), "colour", "known key");
   expect_field(with("drop_zone: {center_m: [1, 1], radius_m: 1}\n"), "drop_zone", "each key once");
   std::string marker = kWorld;
   marker.replace(marker.find("{id: 7, size_m: 0.2}"), 20, "{id: 50, size_m: 0.2}");
   expect_field(marker, "hidden_spaces[0].marker.id", "[0, 49] of DICT_4X4_50");
-  marker.replace(marker.find("{id: 50, size_m: 0.2}"), 21, "{id: 7, size_m: 0.2, dictionary: DICT_9X9_5}");
+  marker.replace(marker.find("{id: 50, size_m: 0.2}"), 21,
+                 "{id: 7, size_m: 0.2, dictionary: DICT_9X9_5}");
   expect_field(marker, "hidden_spaces[0].marker.dictionary");
-  expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, -1, 1]}\n"), "boxes[0].size_m[1]", "> 0");
-  expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, 1, 1], colour: red}\n"), "boxes[0].colour");
+  expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, -1, 1]}\n"), "boxes[0].size_m[1]",
+               "> 0");
+  expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, 1, 1], colour: red}\n"),
+               "boxes[0].colour");
   expect_field(with("boxes:\n  - {center_m: [0], size_m: [1, 1, 1]}\n"), "boxes[0].center_m");
   expect_field(with("boxes: 3\n"), "boxes", "a list of mappings");
-  expect_field(with("cylinders:\n  - {center_m: [0, 0], radius_m: -0.2, height_m: 1}\n"), "cylinders[0].radius_m");
+  expect_field(with("cylinders:\n  - {center_m: [0, 0], radius_m: -0.2, height_m: 1}\n"),
+               "cylinders[0].radius_m");
   const std::string base(kBase);
-  expect_field(base + "objects:\n  - {name: x, hidden_space: nowhere, position_m: [0, 0], size_m: [0.1, 0.1, 0.1]}\n",
+  expect_field(base +
+                   "objects:\n  - {name: x, hidden_space: nowhere, position_m: [0, 0], size_m: "
+                   "[0.1, 0.1, 0.1]}\n",
                "objects[0].hidden_space");
-  expect_field(base + "objects:\n  - {name: x, hidden_space: cellar, position_m: [0.99, 0], size_m: [0.1, 0.1, 0.1]}\n",
+  expect_field(base +
+                   "objects:\n  - {name: x, hidden_space: cellar, position_m: [0.99, 0], size_m: "
+                   "[0.1, 0.1, 0.1]}\n",
                "objects[0].position_m", "wholly inside");
   expect_field(base + "drop_zone: {center_m: [0, 0], radius_m: 0}\n", "drop_zone.radius_m");
   // 0.01 m voxels reach only +-327.67 m.
-  expect_field("resolution_m: 0.01\nbounds_m: {min: [-400, 0, 0], max: [1, 1, 1]}\n", "bounds_m.min", "key range");
-  expect_field("resolution_m: 0.1\nbounds_m: {min: [0, 0, 0], max: [1, -1, 1]}\n", "bounds_m.max[1]");
+  expect_field("resolution_m: 0.01\nbounds_m: {min: [-400, 0, 0], max: [1, 1, 1]}\n",
+               "bounds_m.min", "key range");
+  expect_field("resolution_m: 0.1\nbounds_m: {min: [0, 0, 0], max: [1, -1, 1]}\n",
+               "bounds_m.max[1]");
   expect_field(R"(
 resolution_m: 0.05
 bounds_m: {min: [-3, -3, -1], max: [3, 3, 1]}
@@ -209,10 +223,12 @@ hidden_spaces:
 )",
                "hidden_spaces[0].center_m", "inside bounds");
   // A second space whose walls cut the first one's (rotated: only the exact test sees it).
-  expect_field(std::string(kBase) + R"(  - {name: annex, center_m: [2.1, -1.0], yaw_deg: 45, interior_size_m: [1, 0.6, 0.3],
+  expect_field(
+      std::string(kBase) +
+          R"(  - {name: annex, center_m: [2.1, -1.0], yaw_deg: 45, interior_size_m: [1, 0.6, 0.3],
      marker: {id: 2}, opening: {wall: +x, width_m: 0.15, height_m: 0.07}}
 )",
-               "hidden_spaces[1].center_m", "clear of 'cellar'");
+      "hidden_spaces[1].center_m", "clear of 'cellar'");
   // Sloped ground rises into the interior unless the floor is raised.
   expect_field(R"(
 resolution_m: 0.05
@@ -223,9 +239,10 @@ hidden_spaces:
      opening: {wall: -x, width_m: 0.1, height_m: 0.07}}
 )",
                "hidden_spaces[0].floor_z_m");
-  expect_field(with("rubble:\n  - {seed: 1, count: 50, region_m: {min: [-2.2, -2.2], max: [-1.8, -1.8]},"
-                    " size_min_m: [0.1, 0.1, 0.1], size_max_m: [0.2, 0.2, 0.2]}\n"),
-               "rubble[0].count", "room for 50");
+  expect_field(
+      with("rubble:\n  - {seed: 1, count: 50, region_m: {min: [-2.2, -2.2], max: [-1.8, -1.8]},"
+           " size_min_m: [0.1, 0.1, 0.1], size_max_m: [0.2, 0.2, 0.2]}\n"),
+      "rubble[0].count", "room for 50");
 }
 
 }  // namespace

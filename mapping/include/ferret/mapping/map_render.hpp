@@ -40,7 +40,8 @@ struct RgbImage {
 };
 
 struct RenderOptions {
-  int pixels_per_cell = 0;      ///< 0: the smallest integer making the longer side >= min_size_px (at most 16)
+  int pixels_per_cell =
+      0;  ///< 0: the smallest integer making the longer side >= min_size_px (at most 16)
   int min_size_px = 800;
   double grid_spacing_m = 0.0;  ///< > 0: light grid lines every this many metres
   bool scale_bar = true;        ///< a labelled bar in the lower-left corner
@@ -59,12 +60,15 @@ class MapCanvas {
   /// A polyline through world points.
   void draw_path(const std::vector<Eigen::Vector2d>& points_W, Rgb color, int thickness_px = 2);
   /// Fills cells of a grid (which need not be the map's) blended with `alpha` in [0, 1].
-  void draw_cells(const GridGeometry& grid, const std::vector<Cell>& cells, Rgb color, double alpha = 1.0);
+  void draw_cells(const GridGeometry& grid, const std::vector<Cell>& cells, Rgb color,
+                  double alpha = 1.0);
   /// Colours each cell of a grid by a value in [0, 1] between two colours (e.g. the
   /// object map's probabilities); cells whose value is outside [0, 1] are skipped.
-  void draw_field(const GridGeometry& grid, const std::vector<double>& values, Rgb low, Rgb high, double alpha = 0.7);
+  void draw_field(const GridGeometry& grid, const std::vector<double>& values, Rgb low, Rgb high,
+                  double alpha = 0.7);
   void draw_point(const Eigen::Vector2d& p_W, Rgb color, int radius_px = 4);
-  void draw_circle(const Eigen::Vector2d& center_W, double radius_m, Rgb color, int thickness_px = 2);
+  void draw_circle(const Eigen::Vector2d& center_W, double radius_m, Rgb color,
+                   int thickness_px = 2);
   /// A pose as a dot with a heading line `length_m` long.
   void draw_pose(const Pose2& X_W, Rgb color, double length_m = 0.5);
   void draw_text(const Eigen::Vector2d& p_W, const std::string& text, Rgb color);

@@ -23,7 +23,9 @@ struct OccupancyMap2D {
 
   [[nodiscard]] CellState at(Cell c) const { return cells[geometry.index(c)]; }
   [[nodiscard]] CellState& at(Cell c) { return cells[geometry.index(c)]; }
-  [[nodiscard]] bool is_free(Cell c) const { return geometry.contains(c) && at(c) == CellState::kFree; }
+  [[nodiscard]] bool is_free(Cell c) const {
+    return geometry.contains(c) && at(c) == CellState::kFree;
+  }
   /// State of the cell holding a world point; kUnknown outside the grid.
   [[nodiscard]] CellState state_at(double x_m, double y_m) const {
     const Cell c = geometry.cell_at(x_m, y_m);

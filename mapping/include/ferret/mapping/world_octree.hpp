@@ -3,6 +3,8 @@
 // .bt (max-likelihood) and .ot (full probabilities) files, and sliced into 2D
 // map_server maps. docs/maps_and_worlds.md has the rules.
 
+#include <octomap/OcTree.h>
+
 #include <Eigen/Core>
 #include <cstddef>
 #include <filesystem>
@@ -10,7 +12,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-#include <octomap/OcTree.h>
 
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/mapping/world_spec.hpp"
@@ -29,8 +30,8 @@ struct WorldBuildOptions {
   /// exhausting memory: about 50 bytes a node, so 60 million is about 3 GB.
   std::size_t max_nodes = 60'000'000;
 };
-[[nodiscard]] std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world,
-                                                                  const WorldBuildOptions& options = {});
+[[nodiscard]] std::unique_ptr<octomap::OcTree> build_world_octree(
+    const WorldSpec& world, const WorldBuildOptions& options = {});
 
 /// Loads a .bt or .ot OcTree (chosen by extension). The file's structure is
 /// validated before OctoMap reads it (OctoMap 1.9.7 recurses without a depth
@@ -46,8 +47,8 @@ void save_octree(const octomap::OcTree& tree, const std::filesystem::path& path)
 /// The world at `path` as an OcTree: a .bt/.ot file is loaded, a world YAML
 /// (.yaml/.yml) is parsed and built; then `world`, when given, receives the
 /// parsed world (and is reset for OctoMap files).
-[[nodiscard]] std::unique_ptr<octomap::OcTree> load_or_build_octree(const std::filesystem::path& path,
-                                                                    std::optional<WorldSpec>* world = nullptr);
+[[nodiscard]] std::unique_ptr<octomap::OcTree> load_or_build_octree(
+    const std::filesystem::path& path, std::optional<WorldSpec>* world = nullptr);
 
 /// Options of a 2D slice.
 struct SliceOptions {
@@ -61,15 +62,15 @@ struct SliceOptions {
 /// The plan window [x0, y0, x1, y1] around the enclosure of the hidden space
 /// `name`, widened by `margin_m`: to slice or render just that space. Throws
 /// InputError naming `option` (e.g. "--space") when the world has no such space.
-[[nodiscard]] Eigen::Vector4d hidden_space_window(const WorldSpec& world, const std::string& name, double margin_m,
-                                                  const std::string& option);
+[[nodiscard]] Eigen::Vector4d hidden_space_window(const WorldSpec& world, const std::string& name,
+                                                  double margin_m, const std::string& option);
 
 /// The window a user asked for on the command line: `window` holds x0, y0, x1, y1
 /// (or nothing), `space` names a hidden space of `world` (0.5 m margin), or
 /// neither (no window). Errors name --window and --space.
-[[nodiscard]] std::optional<Eigen::Vector4d> requested_slice_window(const std::vector<double>& window,
-                                                                    const std::string& space,
-                                                                    const std::optional<WorldSpec>& world);
+[[nodiscard]] std::optional<Eigen::Vector4d> requested_slice_window(
+    const std::vector<double>& window, const std::string& space,
+    const std::optional<WorldSpec>& world);
 
 /// A 2D map of the voxel layers at a height: a cell is occupied when any voxel of
 /// its column in the band is occupied, free when all of them are known free, and
@@ -80,7 +81,8 @@ struct SliceOptions {
 /// What `ferret world info` prints.
 struct OctreeSummary {
   double resolution_m = 0.0;
-  Eigen::Vector3d min_m = Eigen::Vector3d::Zero(), max_m = Eigen::Vector3d::Zero();  ///< known extent
+  Eigen::Vector3d min_m = Eigen::Vector3d::Zero(),
+                  max_m = Eigen::Vector3d::Zero();  ///< known extent
   std::size_t nodes = 0, leaves = 0, occupied_leaves = 0, free_leaves = 0;
   double occupied_volume_m3 = 0.0, free_volume_m3 = 0.0;
   std::size_t memory_bytes = 0;

@@ -43,7 +43,9 @@ struct GroundSpec {
   double slope_x = 0.0;  ///< dz/dx
   double slope_y = 0.0;  ///< dz/dy
 
-  [[nodiscard]] double height_at(double x_m, double y_m) const { return height_m + slope_x * x_m + slope_y * y_m; }
+  [[nodiscard]] double height_at(double x_m, double y_m) const {
+    return height_m + slope_x * x_m + slope_y * y_m;
+  }
 };
 
 /// Which wall of a hidden space holds the opening, in the space's own frame
@@ -65,8 +67,8 @@ struct ArucoMarker {
 /// is centred on the interior in plan, at floor height, x along the space.
 struct HiddenSpace {
   std::string name;
-  Pose2 X_WH;                 ///< interior centre and heading in plan
-  double floor_z_m = 0.0;     ///< interior floor height (world z)
+  Pose2 X_WH;              ///< interior centre and heading in plan
+  double floor_z_m = 0.0;  ///< interior floor height (world z)
   Eigen::Vector3d interior_size_m{12.0, 8.0, 0.4};
   double wall_thickness_m = 0.1;
   WallSide opening_wall = WallSide::kMinusX;
@@ -74,8 +76,9 @@ struct HiddenSpace {
   double opening_height_m = 0.07;
   double opening_offset_m = 0.0;  ///< along the wall from its centre (towards +y or +x of H)
   ArucoMarker marker;
-  Eigen::Vector3d p_WE = Eigen::Vector3d::Zero();  ///< entry: bottom centre of the opening, outer face
-  double entry_yaw_rad = 0.0;                      ///< heading that drives from E into the interior
+  Eigen::Vector3d p_WE =
+      Eigen::Vector3d::Zero();  ///< entry: bottom centre of the opening, outer face
+  double entry_yaw_rad = 0.0;   ///< heading that drives from E into the interior
 
   /// The solids of the enclosure (roof, walls with the opening cut out), as boxes.
   [[nodiscard]] std::vector<OrientedBox> solids() const;
