@@ -66,33 +66,34 @@ void run(const RenderArgs& a) {
                            img.width, img.height, a.output);
 }
 
-const CommandRegistration kRender{
-    "render", [](CLI::App& app) {
-      auto args = std::make_shared<RenderArgs>();
-      auto* sub = app.add_subcommand("render",
-                                     "Draw a map to PNG: occupied black, free white, unknown grey "
-                                     "(map_server YAML, world YAML, .bt, .ot)");
-      sub->add_option("map", args->input, "map_server YAML, world YAML, or OctoMap .bt/.ot")
-          ->required();
-      sub->add_option("-o,--output", args->output, "output PNG")->required();
-      sub->add_option("--z", args->slice.z_m, "slice height for 3D maps, m")->capture_default_str();
-      sub->add_option("--band", args->slice.half_band_m, "slice half band for 3D maps, m")
-          ->capture_default_str();
-      sub->add_option("--window", args->window, "3D maps: cut to x0,y0,x1,y1 (m)")
-          ->expected(4)
-          ->delimiter(',');
-      sub->add_option("--space", args->space,
-                      "world YAML: cut to a hidden space (and 0.5 m around it)");
-      sub->add_option("--scale", args->render.pixels_per_cell,
-                      "pixels per cell (0: at least 800 px a side)")
-          ->capture_default_str();
-      sub->add_option("--grid", args->render.grid_spacing_m, "grid line spacing, m (0: none)")
-          ->capture_default_str();
-      sub->add_flag("!--no-scale-bar", args->render.scale_bar, "leave out the scale bar");
-      sub->add_flag("!--no-annotations", args->annotate,
-                    "leave out a world's entries, markers, objects, drop zone");
-      sub->callback([args] { run(*args); });
-    }};
+void setup(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  auto* sub = app.add_subcommand("render",
+                                 "Draw a map to PNG: occupied black, free white, unknown grey "
+                                 "(map_server YAML, world YAML, .bt, .ot)");
+  sub->add_option("map", args->input, "map_server YAML, world YAML, or OctoMap .bt/.ot")
+      ->required();
+  sub->add_option("-o,--output", args->output, "output PNG")->required();
+  sub->add_option("--z", args->slice.z_m, "slice height for 3D maps, m")->capture_default_str();
+  sub->add_option("--band", args->slice.half_band_m, "slice half band for 3D maps, m")
+      ->capture_default_str();
+  sub->add_option("--window", args->window, "3D maps: cut to x0,y0,x1,y1 (m)")
+      ->expected(4)
+      ->delimiter(',');
+  sub->add_option("--space", args->space,
+                  "world YAML: cut to a hidden space (and 0.5 m around it)");
+  sub->add_option("--scale", args->render.pixels_per_cell,
+                  "pixels per cell (0: at least 800 px a side)")
+      ->capture_default_str();
+  sub->add_option("--grid", args->render.grid_spacing_m, "grid line spacing, m (0: none)")
+      ->capture_default_str();
+  sub->add_flag("!--no-scale-bar", args->render.scale_bar, "leave out the scale bar");
+  sub->add_flag("!--no-annotations", args->annotate,
+                "leave out a world's entries, markers, objects, drop zone");
+  sub->callback([args] { run(*args); });
+}
+
+const CommandRegistration kRender{"render", setup};
 
 }  // namespace
 }  // namespace ferret::cli

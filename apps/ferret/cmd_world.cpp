@@ -70,93 +70,95 @@ void print_world(const WorldSpec& w) {
                              w.drop_zone->radius_m);
 }
 
-const CommandRegistration kWorld{
-    "world", [](CLI::App& app) {
-      auto* world = app.add_subcommand(
-          "world", "Build 3D worlds (OctoMap) from YAML, slice them to 2D, summarise them");
-      world->require_subcommand(1);
+void add_build(CLI::App& world) {
+  struct Args {
+    std::string input, output;
+  };
+  auto args = std::make_shared<Args>();
+  auto* build =
+      world.add_subcommand("build", "Voxelize a world YAML into an OctoMap .bt or .ot file");
+  build->add_option("world", args->input, "world YAML")->required();
+  build->add_option("-o,--output", args->output, "output .bt (max-likelihood) or .ot (log-odds)")
+      ->required();
+  build->callback([args] {
+    require_extension(args->output, {".bt", ".ot"}, "an output path ending in .bt or .ot");
+    const auto t0 = std::chrono::steady_clock::now();
+    const WorldSpec w = load_world(args->input);
+    const auto tree = build_world_octree(w);
+    const double build_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    save_octree(*tree, args->output);
+    const OctreeSummary s = summarize_octree(*tree);
+    std::cout << fmt::format(
+        "built '{}' in {:.2f} s: {} leaves ({} occupied, {} free) at {} m -> {}\n", w.name, build_s,
+        s.leaves, s.occupied_leaves, s.free_leaves, s.resolution_m, args->output);
+  });
+}
 
-      struct BuildArgs {
-        std::string input, output;
-      };
-      auto build_args = std::make_shared<BuildArgs>();
-      auto* build =
-          world->add_subcommand("build", "Voxelize a world YAML into an OctoMap .bt or .ot file");
-      build->add_option("world", build_args->input, "world YAML")->required();
-      build
-          ->add_option("-o,--output", build_args->output,
-                       "output .bt (max-likelihood) or .ot (log-odds)")
-          ->required();
-      build->callback([build_args] {
-        require_extension(build_args->output, {".bt", ".ot"},
-                          "an output path ending in .bt or .ot");
-        const auto t0 = std::chrono::steady_clock::now();
-        const WorldSpec w = load_world(build_args->input);
-        const auto tree = build_world_octree(w);
-        const double build_s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        save_octree(*tree, build_args->output);
-        const OctreeSummary s = summarize_octree(*tree);
-        std::cout << fmt::format(
-            "built '{}' in {:.2f} s: {} leaves ({} occupied, {} free) at {} m -> {}\n", w.name,
-            build_s, s.leaves, s.occupied_leaves, s.free_leaves, s.resolution_m,
-            build_args->output);
-      });
+void add_slice(CLI::App& world) {
+  struct Args {
+    std::string input, output, space;
+    std::vector<double> window;
+    SliceOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  auto* slice = world.add_subcommand(
+      "slice", "Cut a 2D map_server map (YAML + PGM) out of a world at a height");
+  slice->add_option("map", args->input, "OctoMap .bt/.ot, or a world YAML (built in memory)")
+      ->required();
+  slice->add_option("--z", args->options.z_m, "height of the slice, m")->capture_default_str();
+  slice
+      ->add_option("--band", args->options.half_band_m,
+                   "voxel layers within +-band of z count (occupied if any is)")
+      ->capture_default_str();
+  slice->add_option("--window", args->window, "cut to x0,y0,x1,y1 (m)")
+      ->expected(4)
+      ->delimiter(',');
+  slice->add_option("--space", args->space,
+                    "cut to a hidden space (and 0.5 m around it); world YAML input");
+  slice
+      ->add_option("-o,--output", args->output,
+                   "output map_server YAML (the PGM is written beside it)")
+      ->required();
+  slice->callback([args] {
+    require_extension(args->output, {".yaml"}, "an output path ending in .yaml");
+    std::optional<WorldSpec> spec;
+    const auto tree = load_or_build_octree(args->input, &spec);
+    SliceOptions options = args->options;
+    options.window_m = requested_slice_window(args->window, args->space, spec);
+    const OccupancyMap2D map = slice_octree(*tree, options);
+    save_map_server(map, args->output);
+    std::cout << fmt::format(
+        "slice at z = {} m: {} x {} cells ({} occupied, {} free, {} unknown) -> {}\n", options.z_m,
+        map.geometry.width, map.geometry.height, map.count(CellState::kOccupied),
+        map.count(CellState::kFree), map.count(CellState::kUnknown), args->output);
+  });
+}
 
-      struct SliceArgs {
-        std::string input, output, space;
-        std::vector<double> window;
-        SliceOptions options;
-      };
-      auto slice_args = std::make_shared<SliceArgs>();
-      auto* slice = world->add_subcommand(
-          "slice", "Cut a 2D map_server map (YAML + PGM) out of a world at a height");
-      slice
-          ->add_option("map", slice_args->input,
-                       "OctoMap .bt/.ot, or a world YAML (built in memory)")
-          ->required();
-      slice->add_option("--z", slice_args->options.z_m, "height of the slice, m")
-          ->capture_default_str();
-      slice
-          ->add_option("--band", slice_args->options.half_band_m,
-                       "voxel layers within +-band of z count (occupied if any is)")
-          ->capture_default_str();
-      slice->add_option("--window", slice_args->window, "cut to x0,y0,x1,y1 (m)")
-          ->expected(4)
-          ->delimiter(',');
-      slice->add_option("--space", slice_args->space,
-                        "cut to a hidden space (and 0.5 m around it); world YAML input");
-      slice
-          ->add_option("-o,--output", slice_args->output,
-                       "output map_server YAML (the PGM is written beside it)")
-          ->required();
-      slice->callback([slice_args] {
-        require_extension(slice_args->output, {".yaml"}, "an output path ending in .yaml");
-        std::optional<WorldSpec> world;
-        const auto tree = load_or_build_octree(slice_args->input, &world);
-        SliceOptions options = slice_args->options;
-        options.window_m = requested_slice_window(slice_args->window, slice_args->space, world);
-        const OccupancyMap2D map = slice_octree(*tree, options);
-        save_map_server(map, slice_args->output);
-        std::cout << fmt::format(
-            "slice at z = {} m: {} x {} cells ({} occupied, {} free, {} unknown) -> {}\n",
-            slice_args->options.z_m, map.geometry.width, map.geometry.height,
-            map.count(CellState::kOccupied), map.count(CellState::kFree),
-            map.count(CellState::kUnknown), slice_args->output);
-      });
+void add_info(CLI::App& world) {
+  auto input = std::make_shared<std::string>();
+  auto* info =
+      world.add_subcommand("info", "Summarise a world YAML or an OctoMap file (YAML on stdout)");
+  info->add_option("file", *input, "world YAML, .bt or .ot")->required();
+  info->callback([input] {
+    std::optional<WorldSpec> spec;
+    const auto tree = load_or_build_octree(*input, &spec);
+    std::cout << fmt::format("file: {}\n", *input);
+    if (spec) print_world(*spec);
+    print_summary(summarize_octree(*tree));
+  });
+}
 
-      auto info_input = std::make_shared<std::string>();
-      auto* info = world->add_subcommand(
-          "info", "Summarise a world YAML or an OctoMap file (YAML on stdout)");
-      info->add_option("file", *info_input, "world YAML, .bt or .ot")->required();
-      info->callback([info_input] {
-        std::optional<WorldSpec> spec;
-        const auto tree = load_or_build_octree(*info_input, &spec);
-        std::cout << fmt::format("file: {}\n", *info_input);
-        if (spec) print_world(*spec);
-        print_summary(summarize_octree(*tree));
-      });
-    }};
+void setup(CLI::App& app) {
+  auto* world = app.add_subcommand(
+      "world", "Build 3D worlds (OctoMap) from YAML, slice them to 2D, summarise them");
+  world->require_subcommand(1);
+  add_build(*world);
+  add_slice(*world);
+  add_info(*world);
+}
+
+const CommandRegistration kWorld{"world", setup};
 
 }  // namespace
 }  // namespace ferret::cli
