@@ -351,22 +351,21 @@ HiddenSpace parse_hidden_space(const MapReader& r, const GroundSpec& ground) {
   return h;
 }
 
-// Corners of a hidden space's outer footprint (interior plus walls) in plan.
-std::array<Eigen::Vector2d, 4> outer_corners(const HiddenSpace& h) {
-  const double hx = h.interior_size_m.x() / 2 + h.wall_thickness_m,
-               hy = h.interior_size_m.y() / 2 + h.wall_thickness_m;
+// Corners of a box in plan.
+std::array<Eigen::Vector2d, 4> plan_corners(const OrientedBox& b) {
   std::array<Eigen::Vector2d, 4> out;
   int k = 0;
-  for (const double sx : {-hx, hx})
-    for (const double sy : {-hy, hy})
-      out[k++] = h.X_WH.position() + rotate({sx, sy}, h.X_WH.yaw_rad);
+  for (const double sx : {-0.5, 0.5})
+    for (const double sy : {-0.5, 0.5})
+      out[k++] = b.center_m.head<2>() + rotate({sx * b.size_m.x(), sy * b.size_m.y()}, b.yaw_rad);
   return out;
 }
 
-// Separating-axis test of two rectangles in plan.
-bool footprints_overlap(const HiddenSpace& a, const HiddenSpace& b) {
-  const auto ca = outer_corners(a), cb = outer_corners(b);
-  for (const double yaw : {a.X_WH.yaw_rad, b.X_WH.yaw_rad})
+// Separating-axis test of two boxes that share the vertical axis; touching is not overlapping.
+bool boxes_overlap(const OrientedBox& a, const OrientedBox& b) {
+  if (std::abs(a.center_m.z() - b.center_m.z()) >= (a.size_m.z() + b.size_m.z()) / 2) return false;
+  const auto ca = plan_corners(a), cb = plan_corners(b);
+  for (const double yaw : {a.yaw_rad, b.yaw_rad})
     for (const Eigen::Vector2d& axis : {rotate({1, 0}, yaw), rotate({0, 1}, yaw)}) {
       double amin = 1e300, amax = -1e300, bmin = 1e300, bmax = -1e300;
       for (const auto& p : ca)
@@ -376,6 +375,23 @@ bool footprints_overlap(const HiddenSpace& a, const HiddenSpace& b) {
       if (amax <= bmin || bmax <= amin) return false;
     }
   return true;
+}
+
+bool box_meets_cylinder(const OrientedBox& b, const VerticalCylinder& c) {
+  if (b.center_m.z() + b.size_m.z() / 2 <= c.base_z_m ||
+      b.center_m.z() - b.size_m.z() / 2 >= c.base_z_m + c.height_m)
+    return false;
+  const Eigen::Vector2d d = rotate(c.center_m - b.center_m.head<2>(), -b.yaw_rad);
+  const Eigen::Vector2d half = b.size_m.head<2>() / 2;
+  return (d - d.cwiseMax(-half).cwiseMin(half)).norm() < c.radius_m;
+}
+
+// The whole enclosure (interior and walls) as one box.
+OrientedBox outer_box(const HiddenSpace& h) {
+  const double t = h.wall_thickness_m;
+  const Eigen::Vector3d size = h.interior_size_m + Eigen::Vector3d::Constant(2 * t);
+  return OrientedBox{
+      {h.X_WH.x_m, h.X_WH.y_m, h.floor_z_m + h.interior_size_m.z() / 2}, size, h.X_WH.yaw_rad};
 }
 
 WorldObject parse_object(const MapReader& r, const WorldSpec& w) {
@@ -555,12 +571,22 @@ WorldSpec parse_world_node(const YAML::Node& root, const std::string& source) {
     const Eigen::AlignedBox3d extent = h.outer_bounds_m();
     check_inside_bounds(w, hr, "center_m", extent.min(), extent.max());
     for (const auto& other : w.hidden_spaces)
-      if (footprints_overlap(h, other))
+      if (boxes_overlap(outer_box(h), outer_box(other)))
         hr.fail("center_m",
                 fmt::format("a hidden space clear of '{}' (their walls overlap)", other.name));
     w.hidden_spaces.push_back(std::move(h));
   }
-  for (const auto& orr : optional_list(r, "objects")) w.objects.push_back(parse_object(orr, w));
+  for (const auto& orr : optional_list(r, "objects")) {
+    w.objects.push_back(parse_object(orr, w));
+    // An object buried in an obstacle could never be reached.
+    const OrientedBox& o = w.objects.back().box;
+    for (std::size_t i = 0; i < w.boxes.size(); ++i)
+      if (boxes_overlap(o, w.boxes[i]))
+        orr.fail("position_m", fmt::format("an object clear of boxes[{}]", i));
+    for (std::size_t i = 0; i < w.cylinders.size(); ++i)
+      if (box_meets_cylinder(o, w.cylinders[i]))
+        orr.fail("position_m", fmt::format("an object clear of cylinders[{}]", i));
+  }
   if (const auto d = r.optional_child("drop_zone")) {
     d->allow_only({"center_m", "radius_m"});
     w.drop_zone = DropZone{vec<2>(*d, "center_m"), positive(*d, "radius_m")};

@@ -193,6 +193,19 @@ TEST(WorldSpec, BadInputNamesFileAndField) {
                    "[0.1, 0.1, 0.1]}\n",
                "objects[0].position_m", "wholly inside");
   expect_field(base + "drop_zone: {center_m: [0, 0], radius_m: 0}\n", "drop_zone.radius_m");
+  // The object at world (1.0, -0.7) inside debris, then inside a post.
+  const std::string object =
+      "objects:\n  - {name: x, hidden_space: cellar, position_m: [0.5, 0.3], size_m: [0.06, 0.06, "
+      "0.05]}\n";
+  expect_field(
+      base + "boxes:\n  - {center_m: [1.1, -0.7], size_m: [0.2, 0.2, 0.1], yaw_deg: 45}\n" + object,
+      "objects[0].position_m", "clear of boxes[0]");
+  expect_field(
+      base + "cylinders:\n  - {center_m: [0.93, -0.7], radius_m: 0.05, height_m: 0.3}\n" + object,
+      "objects[0].position_m", "clear of cylinders[0]");
+  EXPECT_NO_THROW((void)parse_world(
+      base + "boxes:\n  - {center_m: [1.2, -0.7], size_m: [0.2, 0.2, 0.1], yaw_deg: 45}\n" + object,
+      "w.yaml"));
   // 0.01 m voxels reach only +-327.67 m.
   expect_field("resolution_m: 0.01\nbounds_m: {min: [-400, 0, 0], max: [1, 1, 1]}\n",
                "bounds_m.min", "key range");
