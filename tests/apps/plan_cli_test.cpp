@@ -91,6 +91,16 @@ TEST(PlanCli, BenchPlanWritesOmplLogs) {
   EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --planners nope -o " + dir / "x").exit_code, 2);
 }
 
+TEST(PlanCli, ExploreWithTheOmplFrontierPlanner) {
+  const auto r = run_cli("explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --method cdos --planner ompl");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("method: cdos+ompl"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("found: yes"), std::string::npos) << r.out;
+  EXPECT_EQ(run_cli("explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --planner tree").exit_code, 2);
+  EXPECT_EQ(run_cli("explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --method nearest "
+                    "--planner ompl").exit_code, 2);
+}
+
 TEST(PlanCli, BadInputExitsTwo) {
   TempDir dir;
   const std::string out = " -o " + dir / "p.json";
