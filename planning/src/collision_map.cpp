@@ -249,18 +249,29 @@ bool BandField::rect_free(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) 
 
 double DistanceField::lower_bound_m(const Eigen::Vector3d& p) const {
   if (empty) return std::numeric_limits<double>::infinity();
-  const std::ptrdiff_t idx = cell_index(p);
-  if (idx < 0) {
+  // One pass: the cell of p, and p's offset from the cell's centre (in cells).
+  const double inv = 1.0 / cell_m;
+  std::ptrdiff_t idx = 0, stride = 1;
+  double off2 = 0.0;
+  bool inside = true;
+  for (int a = 0; a < 3; ++a) {
+    const double rel = (p[a] - origin_m[a]) * inv;
+    const double f = std::floor(rel);
+    inside = inside && f >= 0 && f < dims[a];
+    idx += static_cast<std::ptrdiff_t>(f) * stride;
+    stride *= dims[a];
+    off2 += (rel - f - 0.5) * (rel - f - 0.5);
+  }
+  if (!inside) {
     if (!covers_all) return 0.0;
     // Everything occupied lies inside the grid: the distance to the grid box bounds it.
     const Eigen::Vector3d hi = origin_m + dims.cast<double>() * cell_m;
     return (origin_m - p).cwiseMax(p - hi).cwiseMax(0.0).norm();
   }
   // |p - occupied| >= |centre(c) - centre(o)| - |p - centre(c)| - half diagonal of o.
-  const Eigen::Vector3d rel = (p - origin_m) / cell_m;
-  const Eigen::Vector3d centre = origin_m + cell_m * (rel.array().floor() + 0.5).matrix();
-  return std::max(0.0, cell_m * (dist[static_cast<std::size_t>(idx)] / kUnitsPerCell - 0.5 * std::sqrt(3.0)) -
-                           (p - centre).norm() - 1e-9);
+  constexpr double kHalfDiagonal = 0.8660254037844386;
+  return std::max(0.0, cell_m * (dist[static_cast<std::size_t>(idx)] / kUnitsPerCell - kHalfDiagonal - std::sqrt(off2)) -
+                           1e-9);
 }
 
 bool DistanceField::sphere_free(const Eigen::Vector3d& c, double r) const {
