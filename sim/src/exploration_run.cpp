@@ -92,11 +92,11 @@ class PathFollower {
       // precisely from the centre of the current cell along the path's segments.
       v = 0.0;
       next = p;
-      if (precise_ == 0) {
-        path_.insert(path_.begin() + static_cast<std::ptrdiff_t>(next_), g.center(g.cell_at(p.x(), p.y())));
-        precise_ = 3;
-      }
+      const Eigen::Vector2d centre = g.center(g.cell_at(p.x(), p.y()));
+      if ((path_[next_] - centre).norm() > 1e-9) path_.insert(path_.begin() + static_cast<std::ptrdiff_t>(next_), centre);
+      precise_ = 3;
     }
+    if (precise_ > 0 && v > 0 && (target - next).norm() < 1e-3 + 0.5 * v * dt) next = target;  // land exactly
     pose = {next.x(), next.y(), yaw};
     v_mps = v;
     return false;
