@@ -21,6 +21,14 @@ Registry& registry() {
     // The built-in table: one line a policy.
     reg->factories["cdos"] = [](const PolicyOptions& o) { return std::make_unique<CdosPolicy>(o, false); };
     reg->factories["cdos-literal"] = [](const PolicyOptions& o) { return std::make_unique<CdosPolicy>(o, true); };
+    reg->factories["cdos-fg"] = [](PolicyOptions o) {  // CDOS scoring all of F_g
+      o.cdos_candidates_global = true;
+      return std::make_unique<CdosPolicy>(o, false, "cdos-fg");
+    };
+    reg->factories["cdos-closest"] = [](PolicyOptions o) {  // d_{t+1} at the closest approach
+      o.curiosity.closest_approach = true;
+      return std::make_unique<CdosPolicy>(o, false, "cdos-closest");
+    };
     reg->factories["rapid"] = [](const PolicyOptions& o) { return std::make_unique<RapidFrontierPolicy>(o); };
     reg->factories["nearest"] = [](const PolicyOptions& o) { return std::make_unique<NearestFrontierPolicy>(o); };
     reg->factories["oracle"] = [](const PolicyOptions& o) { return std::make_unique<OraclePolicy>(o); };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace ferret {
 namespace {
@@ -81,8 +82,8 @@ std::optional<ExplorationGoal> RapidFrontierPolicy::choose(const ExplorationStat
   return fallback_.choose(s);
 }
 
-CdosPolicy::CdosPolicy(const PolicyOptions& options, bool literal)
-    : options_(options), literal_(literal), baseline_(options) {
+CdosPolicy::CdosPolicy(const PolicyOptions& options, bool literal, std::string name)
+    : options_(options), literal_(literal), name_(std::move(name)), baseline_(options) {
   if (literal_) {
     options_.curiosity.use_labels = true;
     options_.curiosity.cap_prediction = false;

@@ -33,7 +33,7 @@ TEST_P(EveryMethod, FindsTheObjectBehindThePartition) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Policies, EveryMethod,
-                         ::testing::Values("cdos", "cdos-literal", "rapid", "nearest", "oracle"));
+                         ::testing::Values("cdos", "cdos-literal", "cdos-fg", "cdos-closest", "rapid", "nearest", "oracle"));
 
 TEST(ExplorationRun, SameSeedSameRunAndTheOracleIsFastest) {
   const auto map = test::small_hidden_space();

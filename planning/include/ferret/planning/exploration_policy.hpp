@@ -4,6 +4,8 @@
 // sensors and motion; they differ only in the goal they choose. Built in:
 //   cdos          curiosity-driven object search, the reading of ARCHITECTURE.md
 //   cdos-literal  the paper's section IV read to the letter (for comparison)
+//   cdos-fg       cdos scoring all of F_g instead of F_v
+//   cdos-closest  cdos with d_{t+1} the closest approach on the straight drive to g
 //   rapid         rapid frontier (Cieslewski et al. 2017), the paper's baseline
 //   nearest       classic nearest reachable frontier (Yamauchi 1997)
 //   oracle        knows the object; drives towards the nearest pose that sees it

@@ -3,6 +3,7 @@
 // and docs/object_search.md for the behaviour of each).
 
 #include <optional>
+#include <string>
 
 #include "ferret/planning/exploration_policy.hpp"
 
@@ -70,8 +71,11 @@ class RapidFrontierPolicy final : public ExplorationPolicy {
 ///    F_g (Algorithm 1).
 class CdosPolicy final : public ExplorationPolicy {
  public:
-  CdosPolicy(const PolicyOptions& options, bool literal);
-  [[nodiscard]] std::string_view name() const override { return literal_ ? "cdos-literal" : "cdos"; }
+  /// @param name  the registered name (variants with other PolicyOptions, e.g. "cdos-fg")
+  CdosPolicy(const PolicyOptions& options, bool literal, std::string name = {});
+  [[nodiscard]] std::string_view name() const override {
+    return !name_.empty() ? std::string_view(name_) : literal_ ? "cdos-literal" : "cdos";
+  }
   [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
   void goal_done() override {
     committed_.reset();
@@ -90,6 +94,7 @@ class CdosPolicy final : public ExplorationPolicy {
 
   PolicyOptions options_;
   bool literal_;
+  std::string name_;
   RapidFrontierPolicy baseline_;  ///< where curiosity is silent
   NearestFrontierPolicy fallback_;
   /// A curiosity goal is driven to before deciding again (Algorithm 1: "goto g*");
