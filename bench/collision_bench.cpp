@@ -9,7 +9,8 @@
 // miniUGV at random poses on the floor of the house_void hidden space; and the poses
 // the planners actually ask about: the UAV planner on 20 approaches in the default
 // world, the miniUGV planner on 20 problems in the 12 x 8 m cellar of
-// examples/scenarios/tether_detour.yaml.
+// examples/scenarios/tether_detour.yaml; both again with the robots' URDF shapes
+// (urdf/models/m100.urdf, 14 parts; miniugv.urdf, 6 parts), as `ferret plan` uses them.
 
 #include <benchmark/benchmark.h>
 #include <fcl/geometry/octree/octree.h>
@@ -30,6 +31,7 @@
 #include "ferret/planning/ompl_setup.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/planning/uav_planner.hpp"
+#include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {
 namespace {
@@ -99,6 +101,12 @@ struct QuerySet {
   std::vector<Pose3> poses;
 };
 
+// The shipped URDFs' collision shapes (14 parts for the M100, 6 for the miniUGV).
+RobotShape urdf_shape(const char* model, PlanRobot robot) {
+  const RobotShape s = robot_shape_from_description(load_robot_description(find_model(model)));
+  return plan_robot_shape(robot, 0.0, &s);
+}
+
 QuerySet make_set(const std::string& name) {
   const World& w = world();
   QuerySet q;
@@ -111,28 +119,30 @@ QuerySet make_set(const std::string& name) {
                      .toRotationMatrix();
     return X;
   };
-  if (name == "uav_planner") {
-    q.shape = uav_shape();
+  if (name == "uav_planner" || name == "uav_urdf_planner") {
+    q.shape = name == "uav_planner" ? uav_shape() : urdf_shape("m100.urdf", PlanRobot::kUav);
     q.map = w.map;
     q.plain_tree = w.tree;
     seed_ompl_once(1);
     UavPlannerOptions opt;
     opt.geofence = {{-29.5, -29.5, 0.5}, {29.5, 29.5, 7.5}};
-    UavPlanner planner(w.map, uav_shape(), opt);
+    UavPlanner planner(w.map, q.shape, opt);
     planner.checker().record_queries(&q.poses);
     const auto problems = uav_approach_problems(w.spec, planner.checker(), opt.geofence, 20, 1);
     q.poses.clear();
     for (const auto& p : problems) (void)planner.plan(p.start, p.goal);
     return q;
   }
-  if (name == "ugv_planner") {
+  if (name == "ugv_planner" || name == "ugv_urdf_planner") {
     static const PlanningWorld cellar =
         load_planning_world(std::string(FERRET_SOURCE_DIR) + "/examples/scenarios/tether_detour.yaml");
     const HiddenSpaceFrame f = hidden_space_frame(cellar.spec->hidden_spaces.at(0));
-    q.shape = ugv_shape();
+    q.shape = name == "ugv_planner" ? ugv_shape() : urdf_shape("miniugv.urdf", PlanRobot::kUgv);
     q.map = ugv_collision_map(*cellar.tree, f);
     q.plain_tree = std::shared_ptr<const octomap::OcTree>(q.map, &q.map->tree());
-    UgvPlanner planner(q.map, f);
+    UgvPlannerOptions opt;
+    opt.shape = q.shape;
+    UgvPlanner planner(q.map, f, {}, opt);
     const auto problems = ugv_problems(planner, 20, 1);
     planner.checker().record_queries(&q.poses);
     for (const auto& p : problems) {
@@ -214,7 +224,8 @@ void BM_PlainFcl(benchmark::State& state, const std::string& name) {
 }  // namespace ferret
 
 int main(int argc, char** argv) {
-  for (const std::string name : {"uav", "uav_with_ugv", "ugv", "uav_planner", "ugv_planner"}) {
+  for (const std::string name : {"uav", "uav_with_ugv", "ugv", "uav_planner", "ugv_planner", "uav_urdf_planner",
+                                 "ugv_urdf_planner"}) {
     benchmark::RegisterBenchmark(("ferret/" + name).c_str(), ferret::BM_Ferret, name);
     benchmark::RegisterBenchmark(("plain_fcl/" + name).c_str(), ferret::BM_PlainFcl, name);
   }

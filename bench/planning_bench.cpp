@@ -9,6 +9,7 @@
 // ugv_cellar: 100 random start/goal pairs (>= 3 m apart) in the 12 x 8 m cellar of
 //   examples/scenarios/tether_detour.yaml, 14 m of tether budget; TetheredRRT, 1 s limit.
 // ugv_detour: the scenario's infeasible-shortest-path problem, 20 seeds.
+// Robots: the collision shapes of urdf/models/m100.urdf and miniugv.urdf.
 
 #include <benchmark/benchmark.h>
 
@@ -22,9 +23,16 @@
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/planning/uav_planner.hpp"
 #include "ferret/planning/ugv_planner.hpp"
+#include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {
 namespace {
+
+// The shipped URDFs' collision shapes, as `ferret plan` uses them.
+RobotShape urdf_shape(const char* model, PlanRobot robot) {
+  const RobotShape s = robot_shape_from_description(load_robot_description(find_model(model)));
+  return plan_robot_shape(robot, 0.0, &s);
+}
 
 void report(benchmark::State& state, std::vector<double> times_ms, int solved, int total, int invalid) {
   std::sort(times_ms.begin(), times_ms.end());
@@ -45,8 +53,9 @@ void BM_UavApproach(benchmark::State& state) {
   const auto map = CollisionMap::build(*world.tree);
   UavPlannerOptions opt;
   opt.geofence = {{-29.5, -29.5, 0.5}, {29.5, 29.5, 7.5}};
-  UavPlanner planner(map, uav_shape(), opt);
-  CollisionChecker exact(map, uav_shape());
+  const RobotShape shape = urdf_shape("m100.urdf", PlanRobot::kUav);
+  UavPlanner planner(map, shape, opt);
+  CollisionChecker exact(map, shape);
   const auto problems = uav_approach_problems(*world.spec, planner.checker(), opt.geofence, 100, 1);
   for (auto _ : state) {
     std::vector<double> times_ms;
@@ -88,13 +97,15 @@ int validate_ugv(const UgvPlan& plan, const Cellar& c, UgvPlanner& planner, cons
   ValidationOptions v;
   v.resolution = default_resolution(PlanRobot::kUgv);
   v.geofence = ugv_policy_bounds(c.frame);
-  CollisionChecker exact(c.map, ugv_shape());
+  CollisionChecker exact(c.map, *planner.options().shape);
   return validate_plan(file, exact, planner.corners(), v) ? 1 : 0;
 }
 
 void BM_UgvCellar(benchmark::State& state) {
   const Cellar c;
-  UgvPlanner planner(c.map, c.frame);
+  UgvPlannerOptions opt;
+  opt.shape = urdf_shape("miniugv.urdf", PlanRobot::kUgv);
+  UgvPlanner planner(c.map, c.frame, {}, opt);
   const auto problems = ugv_problems(planner, 100, 1);
   const TetherParams tether{15.0, 1.0};
   for (auto _ : state) {
@@ -124,6 +135,7 @@ void BM_UgvDetour(benchmark::State& state) {
     for (std::uint64_t seed = 1; seed <= 20; ++seed) {
       UgvPlannerOptions opt;
       opt.seed = seed;
+      opt.shape = urdf_shape("miniugv.urdf", PlanRobot::kUgv);
       UgvPlanner planner(c.map, c.frame, {}, opt);
       UgvPlanRequest req;
       req.driven = {{1.0, 6.5}, {10.0, 6.5}};

@@ -20,12 +20,13 @@
 #include "ferret/planning/uav_planner.hpp"
 #include "ferret/planning/ugv_planner.hpp"
 #include "ferret/urdf/mission_config.hpp"
+#include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {
 namespace {
 
 struct Common {
-  std::string world, output, config;
+  std::string world, output, config, robot;
   double time_limit_s = 1.0;
   std::uint64_t seed = 1;
 };
@@ -34,11 +35,27 @@ void add_common(CLI::App* sub, Common& c) {
   sub->add_option("--world", c.world, "world YAML, .bt or .ot")->required();
   sub->add_option("-o,--output", c.output, "plan JSON to write")->required();
   sub->add_option("--config", c.config, "mission YAML (motion limits, tether L and l_0)");
+  sub->add_option("--robot", c.robot,
+                  "robot URDF for the collision shapes (default: urdf/models/m100.urdf or miniugv.urdf; "
+                  "\"builtin\" for ferret's simple shapes)");
   sub->add_option("--time-limit", c.time_limit_s, "planning time limit, seconds")->capture_default_str();
   sub->add_option("--seed", c.seed, "random seed")->capture_default_str();
 }
 
 MissionConfig mission(const Common& c) { return c.config.empty() ? MissionConfig{} : load_mission_config(c.config); }
+
+// The collision shapes: the robot's URDF (the shipped model by default), or the
+// built-in shapes. Returns the URDF path recorded in the plan ("" for built-in).
+std::string robot_model(const Common& c, const char* default_model, const MissionConfig& config,
+                        RobotKind expected, std::optional<RobotShape>& shape) {
+  if (c.robot == "builtin") return {};
+  const std::filesystem::path path = c.robot.empty() ? find_model(default_model) : std::filesystem::path(c.robot);
+  const RobotDescription robot = load_robot_description(path, config);
+  if (robot.kind != expected)
+    throw InputError("--robot", "", fmt::format("a URDF of a {}", to_string(expected)), path.string());
+  shape = robot_shape_from_description(robot);
+  return std::filesystem::absolute(path).lexically_normal().string();
+}
 
 void check_time_limit(const Common& c) {
   if (!(c.time_limit_s > 0.0 && c.time_limit_s <= 3600.0))
@@ -123,12 +140,16 @@ void run_uav(const UavArgs& a) {
   if (unknown == UnknownPolicy::kOccupied) map_opt.bounds = opt.geofence;
   const auto map = CollisionMap::build(*world.tree, map_opt);
   const PlanRobot robot = a.tether_length_m ? PlanRobot::kUavWithUgv : PlanRobot::kUav;
-  UavPlanner planner(map, plan_robot_shape(robot, a.tether_length_m.value_or(0.0)), opt);
+  std::optional<RobotShape> urdf_shape;
+  const std::string model = robot_model(a.common, "m100.urdf", config, RobotKind::kUav, urdf_shape);
+  UavPlanner planner(map, plan_robot_shape(robot, a.tether_length_m.value_or(0.0), urdf_shape ? &*urdf_shape : nullptr),
+                     opt);
   const UavPlan result = planner.plan(start, goal);
   if (!result.solved) throw CheckFailed("no UAV path: " + result.status);
 
   PlanFile plan;
   plan.robot = robot;
+  plan.robot_model = model;
   plan.released_length_m = a.tether_length_m.value_or(0.0);
   plan.states = result.states;
   plan.unknown_policy = unknown;
@@ -205,7 +226,10 @@ void run_ugv(const UgvArgs& a) {
     throw InputError("--bounds", "", "the hidden space's x0,y0,x1,y1 (or a world YAML whose hidden space holds --from)");
 
   const auto map = ugv_collision_map(*world.tree, space);
+  std::optional<RobotShape> urdf_shape;
+  const std::string model = robot_model(a.common, "miniugv.urdf", config, RobotKind::kUgv, urdf_shape);
   UgvPlannerOptions opt;
+  if (urdf_shape) opt.shape = plan_robot_shape(PlanRobot::kUgv, 0.0, &*urdf_shape);
   opt.time_limit_s = a.common.time_limit_s;
   opt.seed = a.common.seed;
   opt.max_velocity_mps = config.ugv_limits.max_velocity_mps;
@@ -221,6 +245,7 @@ void run_ugv(const UgvArgs& a) {
 
   PlanFile plan;
   plan.robot = PlanRobot::kUgv;
+  plan.robot_model = model;
   plan.states = result.states;
   plan.tether = PlanTether{space.p_WE, result.initial_wraps, tether.total_length_m, tether.entry_offset_m};
   plan.unknown_policy = UnknownPolicy::kOccupied;

@@ -28,8 +28,10 @@ struct ValidateArgs {
 void run(const ValidateArgs& a) {
   PlanFile plan = load_plan(a.plan);
   const MissionConfig config = a.config.empty() ? MissionConfig{} : load_mission_config(a.config);
+  // The robot's shapes: --robot, else the URDF the plan was made with, else built-in.
   std::optional<RobotDescription> urdf;
-  if (!a.robot.empty()) urdf = load_robot_description(a.robot, config);
+  if (!a.robot.empty() && a.robot != "builtin") urdf = load_robot_description(a.robot, config);
+  else if (a.robot.empty() && !plan.robot_model.empty()) urdf = load_robot_description(plan.robot_model, config);
   if (!plan.robot_known) {
     if (!urdf) throw InputError("--robot", "", "a URDF for a CSV plan (it does not say which robot it is)");
     plan.robot = urdf->kind == RobotKind::kUgv ? PlanRobot::kUgv : PlanRobot::kUav;
@@ -83,7 +85,7 @@ void run(const ValidateArgs& a) {
   const MotionLimits& limits = urdf ? urdf->limits : (plan.robot == PlanRobot::kUgv ? config.ugv_limits : config.uav_limits);
   opt.max_velocity_mps = plan.max_velocity_mps.value_or(limits.max_velocity_mps);
   opt.max_yaw_rate_radps = plan.max_yaw_rate_radps.value_or(limits.max_yaw_rate_radps);
-  if (urdf || !a.config.empty()) {  // the robot's own limits win over what the plan claims
+  if ((!a.robot.empty() && a.robot != "builtin") || !a.config.empty()) {  // given limits win over the plan's
     opt.max_velocity_mps = limits.max_velocity_mps;
     opt.max_yaw_rate_radps = limits.max_yaw_rate_radps;
   }
@@ -119,7 +121,8 @@ const CommandRegistration kValidate{"validate", [](CLI::App& app) {
   auto* cmd = app.add_subcommand("validate", "Check a plan (JSON or CSV t,x,y,z,yaw) against a world");
   cmd->add_option("--world", args->world, "world YAML, .bt or .ot")->required();
   cmd->add_option("--plan", args->plan, "plan JSON or CSV")->required();
-  cmd->add_option("--robot", args->robot, "robot URDF (required for CSV plans; default: ferret's built-in shapes)");
+  cmd->add_option("--robot", args->robot,
+                  "robot URDF (required for CSV plans; default: the plan's robot_model, else \"builtin\" shapes)");
   cmd->add_option("--config", args->config, "mission YAML (motion limits, tether L and l_0)");
   cmd->add_option("--tether-max", args->tether_max_m, "taut tether budget L - l_0, m (default: the plan's)");
   cmd->add_option("--entry", args->entry, "tether entry x,y for plans without a tether section");

@@ -116,6 +116,11 @@ struct CollisionChecker::Impl {
   };
   std::vector<Part> parts;
   std::unique_ptr<fcl::CollisionObjectd> tree_object;
+  // The whole robot: its bounding box corners and a ball around it, in B. Most
+  // queries are cleared by these alone, whatever the number of parts.
+  std::array<Eigen::Vector3d, 8> robot_corners;
+  Eigen::Vector3d robot_center_B = Eigen::Vector3d::Zero();
+  double robot_radius_m = 0.0;
 
   bool fcl_collides(Part& part, const Pose3& X_WS) {
     part.object->setTransform(X_WS);
@@ -140,10 +145,41 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const CollisionMap> map, Robo
     impl_->parts.push_back({p.X_BS, p.bounding_radius_m(), std::move(spheres), std::move(groups), std::move(inner), corners,
                             std::make_unique<fcl::CollisionObjectd>(fcl_geometry(p))});
   }
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const auto& part : impl_->parts)
+    for (const Eigen::Vector3d& c : part.corners) {
+      lo = lo.cwiseMin(part.X_BS * c);
+      hi = hi.cwiseMax(part.X_BS * c);
+    }
+  if (impl_->parts.empty()) lo = hi = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 8; ++c)
+    impl_->robot_corners[c] = Eigen::Vector3d(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
+  impl_->robot_center_B = 0.5 * (lo + hi);
+  for (const auto& part : impl_->parts)
+    impl_->robot_radius_m = std::max(impl_->robot_radius_m, (part.X_BS.translation() - impl_->robot_center_B).norm() +
+                                                                part.bounding_radius_m);
   set_map(std::move(map));
 }
 
 CollisionChecker::~CollisionChecker() = default;
+
+namespace {
+// Ground robots: a box (8 corners in S, placed by X_WS) that lies vertically inside
+// the band is free when no occupied column lies under its footprint: its bounding
+// rectangle for small footprints, the disc through its farthest corner for large ones.
+bool band_box_free(const BandField& band, const std::array<Eigen::Vector3d, 8>& corners, const Pose3& X_WS) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const Eigen::Vector3d& c : corners) {
+    const Eigen::Vector3d w = X_WS * c;
+    lo = lo.cwiseMin(w);
+    hi = hi.cwiseMax(w);
+  }
+  if (!(lo.z() > band.z_lo + 1e-9 && hi.z() < band.z_hi - 1e-9)) return false;
+  if ((hi.head<2>() - lo.head<2>()).maxCoeff() < 32 * band.cell_m) return band.rect_free(lo.head<2>(), hi.head<2>());
+  const Eigen::Vector2d c = X_WS.translation().head<2>();
+  return band.disc_free(c, std::hypot(std::max(c.x() - lo.x(), hi.x() - c.x()), std::max(c.y() - lo.y(), hi.y() - c.y())));
+}
+}  // namespace
 
 void CollisionChecker::set_map(std::shared_ptr<const CollisionMap> map) {
   map_ = std::move(map);
@@ -163,34 +199,20 @@ bool CollisionChecker::in_collision(const Pose3& X_WB) {
   if (recorder_) recorder_->push_back(X_WB);
   const DistanceField& field = map_->data().field;
   const std::optional<BandField>& band = map_->data().band;
-  // First the cheap certainties of every part, then FCL for the undecided ones.
+  // The whole robot at once.
+  if ((band && band_box_free(*band, impl_->robot_corners, X_WB)) ||
+      field.sphere_free(X_WB * impl_->robot_center_B, impl_->robot_radius_m)) {
+    stats_.fast_free += impl_->parts.size();
+    return false;
+  }
+  // Then the cheap certainties of every part, then FCL for the undecided ones.
   std::uint64_t undecided = 0;  // bit k: part k needs FCL (shapes have few parts)
   for (std::size_t k = 0; k < impl_->parts.size(); ++k) {
     auto& part = impl_->parts[k];
     const Pose3 X_WS = X_WB * part.X_BS;
-    // For ground robots: the footprint circle against the band's columns. Then one
-    // ball around the whole part, then the small balls that cover it.
-    bool free = false;
-    if (band) {
-      Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-      for (const Eigen::Vector3d& c : part.corners) {
-        const Eigen::Vector3d w = X_WS * c;
-        lo = lo.cwiseMin(w);
-        hi = hi.cwiseMax(w);
-      }
-      if (lo.z() > band->z_lo + 1e-9 && hi.z() < band->z_hi - 1e-9) {
-        const Eigen::Vector2d c = X_WS.translation().head<2>();
-        // Small footprints: no occupied column under the footprint's bounding
-        // rectangle. Large ones: the disc through its farthest corner.
-        if ((hi.head<2>() - lo.head<2>()).maxCoeff() < 32 * band->cell_m) {
-          free = band->rect_free(lo.head<2>(), hi.head<2>());
-        } else {
-          const double r =
-              std::hypot(std::max(c.x() - lo.x(), hi.x() - c.x()), std::max(c.y() - lo.y(), hi.y() - c.y()));
-          free = band->disc_free(c, r);
-        }
-      }
-    }
+    // For ground robots: the footprint against the band's columns. Then one ball
+    // around the whole part, then the small balls that cover it.
+    bool free = band && band_box_free(*band, part.corners, X_WS);
     if (!free) free = field.sphere_free(X_WS.translation(), part.bounding_radius_m);
     if (!free) {
       free = true;

@@ -84,6 +84,7 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
     if (l.contains("max_velocity_mps")) plan.max_velocity_mps = r.number_at(l, "max_velocity_mps", "limits.");
     if (l.contains("max_yaw_rate_radps")) plan.max_yaw_rate_radps = r.number_at(l, "max_yaw_rate_radps", "limits.");
   }
+  if (doc.contains("robot_model")) plan.robot_model = r.string_at(doc, "robot_model", "");
   if (doc.contains("released_length_m")) {
     plan.released_length_m = r.number_at(doc, "released_length_m", "");
     if (plan.released_length_m < 0) throw InputError(source, "released_length_m", "a length >= 0");
@@ -195,6 +196,7 @@ std::string plan_to_json(const PlanFile& plan) {
   doc["version"] = 1;
   doc["robot"] = to_string(plan.robot);
   doc["frame"] = plan.frame;
+  if (!plan.robot_model.empty()) doc["robot_model"] = plan.robot_model;
   doc["planner"] = {{"name", plan.planner}, {"planning_time_s", plan.planning_time_s}, {"seed", plan.seed},
                     {"world", plan.world}};
   if (plan.unknown_policy) doc["unknown_policy"] = to_string(*plan.unknown_policy);

@@ -142,10 +142,11 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
   for (const ob::State* s : path.getStates()) states.push_back(to_waypoint(s));
   assign_times(states, options_.max_velocity_mps, options_.max_yaw_rate_radps);
   // Simplified paths can touch invalid regions (OMPL #221, #1292): check every
-  // segment again with FCL alone.
+  // segment again at the validation resolution, with the checker (same answers as
+  // FCL) or, on request, with FCL alone.
   for (std::size_t k = 1; k < states.size(); ++k) {
     if (!options_.geofence.contains(states[k].position()) ||
-        first_collision(*checker_, states[k - 1], states[k], options_.resolution, /*exact=*/true))
+        first_collision(*checker_, states[k - 1], states[k], options_.resolution, options_.final_check_fcl_only))
       return fail("final path failed exact validation");
   }
   out.solved = true;

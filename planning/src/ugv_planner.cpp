@@ -101,7 +101,7 @@ int replay_tether(TautTether& tether, std::vector<Waypoint>& states, double max_
 UgvPlanner::UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space,
                        const UgvGeometry& ugv, const UgvPlannerOptions& options)
     : map_(std::move(map)), space_(space), ugv_(ugv), options_(options) {
-  checker_ = std::make_unique<CollisionChecker>(map_, ugv_shape(ugv_));
+  checker_ = std::make_unique<CollisionChecker>(map_, options_.shape ? *options_.shape : ugv_shape(ugv_));
   corners_ = tether_corners_from_map(*map_, space_, ugv_);
 }
 
@@ -237,10 +237,11 @@ UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether
     out.status = "final path exceeds the tether length";
     return out;
   }
-  // Re-validate with FCL alone, at the resolution `ferret validate` uses (simplified
-  // paths can touch invalid regions when checks are coarse, OMPL #221).
+  // Re-validate the executed poses at the resolution `ferret validate` uses
+  // (simplified paths can touch invalid regions when checks are coarse, OMPL #221),
+  // with the checker (same answers as FCL) or, on request, with FCL alone.
   for (std::size_t k = 1; k < dense.size(); ++k) {
-    if (first_collision(*checker_, dense[k - 1], dense[k], options_.resolution, /*exact=*/true) ||
+    if (first_collision(*checker_, dense[k - 1], dense[k], options_.resolution, options_.final_check_fcl_only) ||
         !in_plane_bounds(space_, dense[k].x_m, dense[k].y_m)) {
       out.status = "final path failed exact validation";
       return out;

@@ -57,7 +57,9 @@ void expect_valid(UgvPlanner& planner, const UgvPlan& plan, const TetherParams& 
 
 TEST(UgvPlanner, PlansAroundObstaclesWithinTheTether) {
   const auto map = hidden_map({{3, 4, 0, 6}, {7, 8, 2, 8}});
-  UgvPlanner planner(map, frame());
+  UgvPlannerOptions opt;
+  opt.final_check_fcl_only = true;
+  UgvPlanner planner(map, frame(), {}, opt);
   UgvPlanRequest req;
   req.start = {1.0, 4.0, 0.0};
   req.goal = {11.0, 4.0, 1.5};

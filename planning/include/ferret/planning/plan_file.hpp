@@ -34,6 +34,9 @@ struct PlanFile {
   std::optional<UnknownPolicy> unknown_policy;
   std::optional<Aabb3> bounds;        ///< the geofence (UAV) or hidden-space bounds (miniUGV)
   std::optional<double> max_velocity_mps, max_yaw_rate_radps;
+  /// The URDF whose collision shapes the plan was made with; empty: ferret's
+  /// built-in shapes (robot_shape.hpp). `ferret validate` checks with the same.
+  std::string robot_model;
   // What made it (informational).
   std::string planner;
   double planning_time_s = 0.0;

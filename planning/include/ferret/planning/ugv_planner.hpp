@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,9 +37,15 @@ struct UgvPlannerOptions {
   double time_limit_s = 1.0;
   CheckResolution resolution;    ///< motion checks (same as `ferret validate`)
   int shortcut_rounds = 2;       ///< tether-aware shortcutting passes
+  /// Re-check the final path with FCL alone instead of the checker (whose answers
+  /// equal FCL's, 10-25x faster); `ferret validate` always uses FCL alone.
+  bool final_check_fcl_only = false;
   std::uint64_t seed = 1;
   double max_velocity_mps = 2.0;     ///< for time stamps (MissionConfig::ugv_limits)
   double max_yaw_rate_radps = 2.0;
+  /// The collision shape (e.g. from the URDF, planning_world.hpp's plan_robot_shape);
+  /// empty: ugv_shape() of the geometry.
+  std::optional<RobotShape> shape;
 };
 
 struct UgvPlanRequest {
