@@ -71,7 +71,8 @@ FrontierCandidates rapid_candidates(const ExplorationState& s, double max_veloci
   return rapid_weights(s, max_velocity_mps);
 }
 
-FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOptions& options) {
+FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOptions& options,
+                                   double max_velocity_mps) {
   const auto evidence = collect_evidence(s.objects);
   const std::vector<Cell>& set = s.frontiers.visible.empty() ? s.frontiers.global : s.frontiers.visible;
   if (!evidence.empty() && !set.empty()) {
@@ -91,7 +92,7 @@ FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOpt
       return out;
     }
   }
-  return rapid_weights(s, 2.0);
+  return rapid_weights(s, max_velocity_mps);
 }
 
 FrontierValidStateSampler::FrontierValidStateSampler(const ob::SpaceInformation* si,

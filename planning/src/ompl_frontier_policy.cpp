@@ -30,7 +30,7 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
     }
     committed_.reset();
     auto candidates = std::make_shared<FrontierCandidates>(
-        cdos_ ? cdos_candidates(s, options_.curiosity) : rapid_candidates(s, options_.max_velocity_mps));
+        cdos_ ? cdos_candidates(s, options_.curiosity, options_.max_velocity_mps) : rapid_candidates(s, options_.max_velocity_mps));
     if (candidates->empty()) return std::nullopt;
     const FrontierPlan plan = plan_to_frontier(s, candidates, kPlanTime_s, derive_seed(7, {decisions_++}));
     ExplorationGoal goal;

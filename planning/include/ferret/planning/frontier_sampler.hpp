@@ -47,7 +47,8 @@ struct FrontierCandidates {
 
 /// CDOS weights: curiosity loss over F_v (F_g when F_v is empty), sharpened so the
 /// largest loss dominates; the rapid weights where the losses are all zero.
-[[nodiscard]] FrontierCandidates cdos_candidates(const ExplorationState& state, const CuriosityOptions& options);
+[[nodiscard]] FrontierCandidates cdos_candidates(const ExplorationState& state, const CuriosityOptions& options,
+                                                 double max_velocity_mps = 2.0);
 /// Rapid weights: exp(-|v_max u(g) - v| / (0.25 v_max)) over F_v; where F_v is empty,
 /// exp(-path distance / 1 m) over F_g (nearest first).
 [[nodiscard]] FrontierCandidates rapid_candidates(const ExplorationState& state, double max_velocity_mps);
