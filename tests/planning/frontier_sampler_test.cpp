@@ -9,6 +9,8 @@
 #include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
+#include <algorithm>
+
 #include "ferret/planning/ompl_setup.hpp"
 
 namespace ferret {
@@ -110,6 +112,73 @@ TEST(FrontierSampler, PrmCallsItRrtConnectDoesNot) {
   auto& path = *pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
   const auto* last = path.getStates().back()->as<ob::SE2StateSpace::StateType>();
   EXPECT_GE(c->find(last->getX(), last->getY()), 0);
+}
+
+// A 4 x 2 m room at 0.05 m, left half seen free, right half unknown: the frontier
+// is the column x = 1.975 (the setting of policy_test.cpp).
+struct Room {
+  GridGeometry geo{0.0, 0.0, 0.05, 80, 40};
+  IrGrid grid{geo, {}};
+  ObjectMap objects{geo, {}};
+  FrontierTracker tracker{geo};
+  GridPathPlanner paths{geo};
+  FrontierSets sets;
+  Pose2 pose{0.5, 1.0, 0.0};
+
+  Room() {
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 40; ++i) grid.update_cell({i, j}, false);
+    tracker.update(grid);
+    paths.compute(grid, geo.cell_at(pose.x_m, pose.y_m), GridPathPlanner::Traversal::kKnownFree);
+    sets = tracker.extract(paths.distances_m(), pose, deg_to_rad(60), 4.0);
+  }
+  ExplorationState state() const {
+    return {grid, objects, tracker, sets, paths, pose, Eigen::Vector2d::Zero(), deg_to_rad(60), 4.0, std::nullopt};
+  }
+};
+
+std::size_t heaviest(const FrontierCandidates& c) {
+  return static_cast<std::size_t>(std::max_element(c.weights.begin(), c.weights.end()) - c.weights.begin());
+}
+
+TEST(FrontierWeights, RapidAndCdosWeighTheFrontier) {
+  Room r;
+  const auto options = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  ASSERT_FALSE(r.sets.visible.empty());
+  // At rest, facing +x: the rapid weight peaks straight ahead (y = 1).
+  const FrontierCandidates rapid = rapid_candidates(r.state(), 2.0);
+  EXPECT_EQ(rapid.rule, "rapid");
+  EXPECT_EQ(rapid.cells.size(), r.sets.visible.size());
+  EXPECT_NEAR(r.geo.center(rapid.cells[heaviest(rapid)]).y(), 1.0, 0.05);
+  // Without object evidence CDOS weighs as rapid does.
+  const FrontierCandidates same = cdos_candidates(r.state(), options.curiosity);
+  EXPECT_EQ(same.rule, "rapid");
+  EXPECT_EQ(same.weights, rapid.weights);
+  // A weak detection at (3, 1.8): the curiosity weights peak level with it.
+  const Eigen::Vector2d object{3.0, 1.8};
+  CameraFrame frame;
+  frame.view = {r.pose, 4.0, {}};
+  const Eigen::Vector2d to = object - r.pose.position();
+  frame.detections = {{std::atan2(to.y(), to.x()), to.norm(), 1.0 / to.norm()}};
+  r.objects.integrate_frame(frame);
+  const FrontierCandidates curious = cdos_candidates(r.state(), options.curiosity);
+  EXPECT_EQ(curious.rule, "curiosity");
+  const std::size_t best = heaviest(curious);
+  EXPECT_DOUBLE_EQ(curious.weights[best], 1.0);  // exp(0): the largest loss
+  EXPECT_NEAR(r.geo.center(curious.cells[best]).y(), object.y(), 0.03);
+  // The loss ranks the cells: the far end of the visible frontier weighs less.
+  EXPECT_LT(curious.weights.front(), 1.0);
+}
+
+TEST(FrontierWeights, PrmPlansFromTheRobotToAFrontier) {
+  Room r;
+  auto c = std::make_shared<FrontierCandidates>(rapid_candidates(r.state(), 2.0));
+  const FrontierPlan plan = plan_to_frontier(r.state(), c, 1.0, 3);
+  ASSERT_TRUE(plan.solved);
+  EXPECT_GT(plan.samples_drawn, 0u);
+  EXPECT_TRUE(plan.path_W.front().isApprox(r.pose.position()));
+  EXPECT_GE(c->find(plan.path_W.back().x(), plan.path_W.back().y()), 0);
+  EXPECT_EQ(plan.goal.i, 39);
 }
 
 TEST(FrontierSampler, OmplPoliciesAreRegistered) {
