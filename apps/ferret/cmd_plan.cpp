@@ -54,7 +54,7 @@ std::string robot_model(const Common& c, const char* default_model, const Missio
   if (robot.kind != expected)
     throw InputError("--robot", "", fmt::format("a URDF of a {}", to_string(expected)), path.string());
   shape = robot_shape_from_description(robot);
-  return std::filesystem::absolute(path).lexically_normal().string();
+  return path.lexically_normal().string();
 }
 
 void check_time_limit(const Common& c) {

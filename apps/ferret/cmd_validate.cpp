@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -31,7 +32,12 @@ void run(const ValidateArgs& a) {
   // The robot's shapes: --robot, else the URDF the plan was made with, else built-in.
   std::optional<RobotDescription> urdf;
   if (!a.robot.empty() && a.robot != "builtin") urdf = load_robot_description(a.robot, config);
-  else if (a.robot.empty() && !plan.robot_model.empty()) urdf = load_robot_description(plan.robot_model, config);
+  else if (a.robot.empty() && !plan.robot_model.empty()) {
+    // A model path written relative to another directory: the shipped model of that name.
+    std::filesystem::path model = plan.robot_model;
+    if (!std::filesystem::exists(model)) model = find_model(model.filename().string());
+    urdf = load_robot_description(model, config);
+  }
   if (!plan.robot_known) {
     if (!urdf) throw InputError("--robot", "", "a URDF for a CSV plan (it does not say which robot it is)");
     plan.robot = urdf->kind == RobotKind::kUgv ? PlanRobot::kUgv : PlanRobot::kUav;

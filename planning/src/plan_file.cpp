@@ -144,6 +144,7 @@ PlanFile parse_csv(const std::string& text, const std::string& source) {
   std::istringstream in(text);
   std::string line;
   int line_no = 0;
+  bool seen_content = false;
   while (std::getline(in, line)) {
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -152,9 +153,11 @@ PlanFile parse_csv(const std::string& text, const std::string& source) {
     std::stringstream ss(line);
     for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
     const std::string where = "line " + std::to_string(line_no);
-    if (plan.states.empty() && line_no == 1 && line.find_first_of("tT") != std::string::npos &&
-        line.find_first_of("0123456789") == std::string::npos)
-      continue;  // header
+    if (!seen_content && line.find_first_of("0123456789") == std::string::npos) {
+      seen_content = true;
+      continue;  // the header: the first line that is not a comment, without numbers
+    }
+    seen_content = true;
     if (cells.size() != 5) throw InputError(source, where, "5 comma-separated numbers: t,x,y,z,yaw", line);
     double v[5];
     for (int k = 0; k < 5; ++k) {

@@ -104,6 +104,23 @@ TEST(ValidateCli, PlanOfAWorldItHasNotSeen) {
   EXPECT_NE(r.out.find("collision"), std::string::npos) << r.out;
 }
 
+// The shipped example plans say what docs/planning.md says they do.
+TEST(ValidateCli, ExamplePlans) {
+  EXPECT_EQ(run_cli("validate --world " + kDetour + " --plan examples/plans/detour_ugv.json").exit_code, 0);
+  EXPECT_EQ(run_cli("validate --world examples/worlds/default.yaml --plan examples/plans/approach_uav.json").exit_code, 0);
+  const auto wall = run_cli("validate --world " + kDetour + " --plan examples/plans/through_block_ugv.csv"
+                            " --robot urdf/models/miniugv.urdf --entry -0.1,4");
+  EXPECT_EQ(wall.exit_code, 1);
+  EXPECT_NE(wall.out.find("collision"), std::string::npos) << wall.out;
+  const auto fast = run_cli("validate --world examples/worlds/default.yaml --plan examples/plans/too_fast_uav.csv"
+                            " --robot urdf/models/m100.urdf");
+  EXPECT_EQ(fast.exit_code, 1);
+  EXPECT_NE(fast.out.find("too fast"), std::string::npos) << fast.out;
+  const auto tether = run_cli("validate --world " + kDetour + " --plan examples/plans/tether_too_long_ugv.json");
+  EXPECT_EQ(tether.exit_code, 1);
+  EXPECT_NE(tether.out.find("tether too long"), std::string::npos) << tether.out;
+}
+
 TEST(ValidateCli, BadPlanFilesExitTwo) {
   TempDir dir;
   const std::vector<std::pair<std::string, std::string>> bad{

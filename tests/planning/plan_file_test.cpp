@@ -58,6 +58,8 @@ TEST(PlanFile, CsvWithAndWithoutHeader) {
   EXPECT_EQ(a.states[1].x_m, 2.0);
   const PlanFile b = parse_plan("# comment\n0,1,2,3,0.5\r\n", "b.csv");
   EXPECT_EQ(b.states.size(), 1u);
+  const PlanFile c = parse_plan("# comment\n\ntime,x,y,z,heading\n0,1,2,3,0.5\n", "c.csv");
+  EXPECT_EQ(c.states.size(), 1u);
 }
 
 void expect_error(const std::string& text, const std::string& field, const std::string& expected_part) {
@@ -89,6 +91,7 @@ TEST(PlanFile, BadFilesNameTheFieldAndTheExpectation) {
   expect_error(replace("\"entry\": [", "\"entry\": [1, "), "tether.entry", "a list of 2 numbers");
   expect_error(replace("\"unknown_policy\": \"occupied\"", "\"unknown_policy\": \"maybe\""), "unknown_policy", "\"free\" or");
   expect_error("t,x,y,z,yaw\n0,1,2,3\n", "line 2", "t,x,y,z,yaw");
+  expect_error("0,1,2,3,0\nt,x,y,z,yaw\n", "line 2", "t,x,y,z,yaw");  // a header only comes first
   expect_error("0,1,2,3,abc\n", "line 1", "t,x,y,z,yaw");
   expect_error("0,1,2,3,nan\n", "line 1", "t,x,y,z,yaw");
   EXPECT_THROW((void)load_plan("/nonexistent/plan.json"), InputError);
