@@ -10,6 +10,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/planning/planning_world.hpp"
+#include "ferret/urdf/robot_description.hpp"
 #include "test_maps.hpp"
 
 namespace ferret {
@@ -102,6 +103,27 @@ TEST(Agreement, GroundRobotMapEqualsFcl) {
   EXPECT_EQ(disagreements, 0);
   EXPECT_GT(collisions, n / 10);
   EXPECT_LT(checker.stats().fcl_calls, checker.stats().queries / 2);
+}
+
+// The robots' URDF shapes (14 and 6 parts, rotated cylinders) agree with FCL too.
+TEST(Agreement, UrdfShapesEqualFcl) {
+  const auto map = CollisionMap::build(*cluttered_room(17));
+  Rng rng(21);
+  for (const char* model : {"m100.urdf", "miniugv.urdf"}) {
+    const RobotShape urdf = robot_shape_from_description(load_robot_description(find_model(model)));
+    CollisionChecker checker(map, urdf);
+    int disagreements = 0, collisions = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const Pose3 X = pose({rng.uniform(-3.3, 3.3), rng.uniform(-3.3, 3.3), rng.uniform(-0.1, 3.2)},
+                           rng.uniform(-3.2, 3.2), rng.uniform(-0.3, 0.3));
+      const bool exact = checker.in_collision_fcl(X);
+      disagreements += checker.in_collision(X) != exact;
+      collisions += exact;
+    }
+    EXPECT_EQ(disagreements, 0) << model;
+    EXPECT_GT(collisions, 100) << model;
+    EXPECT_LT(collisions, 1900) << model;
+  }
 }
 
 TEST(CollisionMap, FieldIsALowerBoundOnTheTrueDistance) {
