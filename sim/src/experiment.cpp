@@ -31,6 +31,12 @@ std::vector<std::string> read_methods(const yaml::MapReader& r, std::string_view
   return methods;
 }
 
+int read_count(const yaml::MapReader& r, std::string_view key, int fallback) {
+  const int n = r.get_or<int>(key, fallback);
+  if (n < 1 || n > 100000) r.fail(key, "an integer in [1, 100000]", std::to_string(n));
+  return n;
+}
+
 std::vector<double> read_fovs(const yaml::MapReader& r, std::string_view key) {
   const auto values = r.get_list<double>(key);
   for (std::size_t k = 0; k < values.size(); ++k)
@@ -167,7 +173,7 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
   c.source = path;
   const fs::path base = path.parent_path();
   c.seed = r.get_or<std::uint64_t>("seed", 1);
-  c.objects_per_zone = static_cast<int>(r.get_in_range_or("objects_per_zone", 1, 100000, 20));
+  c.objects_per_zone = read_count(r, "objects_per_zone", 20);
   c.methods = read_methods(r, "methods");
   if (r.has("mission")) c.base.mission = load_mission_config(base / r.get<std::string>("mission"));
   c.base.time_limit_s = r.get_in_range_or("time_limit_s", 1, 1e6, 300);
@@ -201,7 +207,7 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
     if (sw->has("camera_fov_deg")) c.sweep_camera_fov_deg = read_fovs(*sw, "camera_fov_deg");
     if (sw->has("ir_fov_deg")) c.sweep_ir_fov_deg = read_fovs(*sw, "ir_fov_deg");
     if (sw->has("methods")) c.sweep_methods = read_methods(*sw, "methods");
-    c.sweep_objects_per_zone = static_cast<int>(sw->get_in_range_or("objects_per_zone", 1, 100000, c.objects_per_zone));
+    c.sweep_objects_per_zone = read_count(*sw, "objects_per_zone", c.objects_per_zone);
   }
   return c;
 }

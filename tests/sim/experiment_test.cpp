@@ -58,6 +58,8 @@ TEST(Experiment, BadConfigsNameTheField) {
   expect_input_error(s.config("      1: [2.0, 0.2, 2.4, 1.5]\n"), "maps[0].zones.1");  // inside the wall: no free cell
   expect_input_error(s.config(kZones, "sensors: {camera_fov_deg: -5}\n"), "sensors.camera_fov_deg");
   expect_input_error(s.config(kZones, "colour: red\n"), "colour");
+  expect_input_error(s.config(kZones, "sweeps: {objects_per_zone: 2.5}\n"), "sweeps.objects_per_zone");
+  expect_input_error(s.config(kZones, "sweeps: {objects_per_zone: 0}\n"), "sweeps.objects_per_zone");
   {
     std::ofstream out(s.dir.path() / "exp.yaml");
     out << "methods: [cdos, random]\nmaps:\n  - {name: a, map: nowhere.yaml, start: [0.5, 1, 0], zones: {1: [1, 1, 2, 2]}}\n";
