@@ -25,7 +25,7 @@ IrGrid::IrGrid(GridGeometry geometry, Options options)
         options.clamp_min > 0 && options.clamp_min < 0.5 && options.clamp_max > 0.5 && options.clamp_max < 1))
     throw std::invalid_argument("IrGrid: hit must be in (0.5, 1), miss in (0, 0.5), clamps around 0.5");
   const int r = static_cast<int>(std::ceil(options.clearance_m / geometry.resolution_m));
-  const double r2 = std::pow(options.clearance_m / geometry.resolution_m, 2);
+  const double r2 = std::pow(options.clearance_m / geometry.resolution_m, 2) + 1e-9;  // 0.15 / 0.05 is 2.9999...
   for (int dj = -r; dj <= r; ++dj)
     for (int di = -r; di <= r; ++di)
       if (di * di + dj * dj <= r2) inflation_offsets_.push_back({di, dj});

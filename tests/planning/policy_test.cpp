@@ -162,3 +162,52 @@ TEST(GridPathPlanner, DistancesDetoursAndUnreachableCells) {
 
 }  // namespace
 }  // namespace ferret
+
+namespace ferret {
+namespace {
+
+TEST(Policy, RapidKeepsItsGoalWhileItIsAFrontierAndCdosDropsTheBaselineForEvidence) {
+  World w;
+  auto rapid = make_exploration_policy("rapid", options());
+  const auto first = rapid->choose(w.state());
+  ASSERT_TRUE(first);
+  EXPECT_TRUE(rapid->keeps_goal(w.objects, w.tracker));
+  w.v = {0.0, 2.0};  // a new velocity would change the rapid choice, but the goal is kept
+  EXPECT_EQ(rapid->choose(w.state())->cell, first->cell);
+  // Resolved (no longer a frontier): a new goal.
+  for (int j = 0; j < 40; ++j) w.grid.update_cell({40, j}, false);
+  w.refresh();
+  EXPECT_FALSE(rapid->keeps_goal(w.objects, w.tracker));
+  rapid->goal_done();
+  EXPECT_FALSE(rapid->keeps_goal(w.objects, w.tracker));
+
+  World u;
+  auto cdos = make_exploration_policy("cdos", options());
+  ASSERT_EQ(cdos->choose(u.state())->reason, "rapid");
+  EXPECT_TRUE(cdos->keeps_goal(u.objects, u.tracker));
+  u.objects.fuse(u.geo.cell_at(3.0, 1.5), 0.6);  // evidence appears: decide again
+  EXPECT_FALSE(cdos->keeps_goal(u.objects, u.tracker));
+}
+
+TEST(GridPathPlanner, ARobotInsideTheClearanceBandCanLeaveItButNeverStopsInIt) {
+  const GridGeometry geo{0.0, 0.0, 0.05, 60, 40};
+  IrGrid::Options o;
+  o.clearance_m = 0.15;
+  IrGrid g(geo, o);
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 60; ++i) g.update_cell({i, j}, false);
+  for (int j = 0; j < 40; ++j) g.update_cell({30, j}, true);  // a wall at x = 1.5 .. 1.55
+  const Cell robot = geo.cell_at(1.43, 1.0);                   // 7 cm from it: inside the band
+  GridPathPlanner p(geo);
+  p.compute(g, robot, GridPathPlanner::Traversal::kKnownFree);
+  EXPECT_FALSE(p.reachable(geo.cell_at(0.5, 1.0)));  // no escape band: stuck
+  p.compute(g, robot, GridPathPlanner::Traversal::kKnownFree, 1.0);
+  EXPECT_TRUE(p.reachable(geo.cell_at(0.5, 1.0)));
+  EXPECT_FALSE(p.reachable(geo.cell_at(1.40, 1.5)));  // band cells are crossed, never goals
+  const auto path = p.path_to(geo.cell_at(0.5, 1.0));
+  ASSERT_GE(path.size(), 2u);
+  EXPECT_LT(path[1].x(), 1.36);  // leaves the band straight away
+}
+
+}  // namespace
+}  // namespace ferret
