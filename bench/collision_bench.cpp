@@ -51,7 +51,7 @@ const World& world() {
     World w;
     w.spec = load_world(std::string(FERRET_SOURCE_DIR) + "/examples/worlds/default.yaml");
     w.tree = build_world_octree(w.spec);
-    w.map = CollisionMap::build(*w.tree);
+    w.map = CollisionMap::build(*w.tree, uav_map_options(w.spec));
     w.house = hidden_space_frame(w.spec.hidden_spaces.at(0));
     w.ugv_map = ugv_collision_map(*w.tree, w.house);
     return w;

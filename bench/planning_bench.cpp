@@ -50,7 +50,7 @@ void report(benchmark::State& state, std::vector<double> times_ms, int solved, i
 void BM_UavApproach(benchmark::State& state) {
   seed_ompl_once(1);
   const PlanningWorld world = load_planning_world(std::string(FERRET_SOURCE_DIR) + "/examples/worlds/default.yaml");
-  const auto map = CollisionMap::build(*world.tree);
+  const auto map = CollisionMap::build(*world.tree, uav_map_options(world.spec));
   UavPlannerOptions opt;
   opt.geofence = {{-29.5, -29.5, 0.5}, {29.5, 29.5, 7.5}};
   const RobotShape shape = urdf_shape("m100.urdf", PlanRobot::kUav);

@@ -81,7 +81,7 @@ void run(const Args& a) {
   const fs::path dir(a.output_dir);
 
   if (std::find(robots.begin(), robots.end(), "uav") != robots.end()) {
-    const auto map = CollisionMap::build(*world.tree);
+    const auto map = CollisionMap::build(*world.tree, uav_map_options(world.spec));
     UavPlannerOptions opt;
     const WorldSpec& w = *world.spec;
     opt.geofence = {{w.bounds_min_m.x() + 0.5, w.bounds_min_m.y() + 0.5, std::max(w.bounds_min_m.z(), 0.0) + 0.5},

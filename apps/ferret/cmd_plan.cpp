@@ -135,10 +135,7 @@ void run_uav(const UavArgs& a) {
   opt.max_yaw_rate_radps = config.uav_limits.max_yaw_rate_radps;
   seed_ompl_once(a.common.seed);
 
-  CollisionMapOptions map_opt;
-  map_opt.unknown = unknown;
-  if (unknown == UnknownPolicy::kOccupied) map_opt.bounds = opt.geofence;
-  const auto map = CollisionMap::build(*world.tree, map_opt);
+  const auto map = CollisionMap::build(*world.tree, uav_map_options(world.spec, unknown, opt.geofence));
   const PlanRobot robot = a.tether_length_m ? PlanRobot::kUavWithUgv : PlanRobot::kUav;
   std::optional<RobotShape> urdf_shape;
   const std::string model = robot_model(a.common, "m100.urdf", config, RobotKind::kUav, urdf_shape);

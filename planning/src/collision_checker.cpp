@@ -89,6 +89,13 @@ std::vector<Eigen::Vector3d> inner_points(const ShapePart& p,
     }
     if (inside && c.norm() > 1e-12) out.push_back(c);
   }
+  if (p.kind == ShapePart::Kind::kBox) {
+    // The corners pulled 2 % towards the centre: strictly inside, so a voxel holding
+    // one overlaps the box with positive volume (a box dipping into the ground).
+    for (int c = 0; c < 8; ++c)
+      out.push_back(0.49 * Eigen::Vector3d((c & 1 ? 1 : -1) * p.box_size_m.x(), (c & 2 ? 1 : -1) * p.box_size_m.y(),
+                                           (c & 4 ? 1 : -1) * p.box_size_m.z()));
+  }
   return out;
 }
 

@@ -60,6 +60,19 @@ std::shared_ptr<const CollisionMap> ugv_collision_map(const octomap::OcTree& tre
   return CollisionMap::build(tree, opt);
 }
 
+CollisionMapOptions uav_map_options(const std::optional<WorldSpec>& world, UnknownPolicy unknown,
+                                    const std::optional<Aabb3>& fence) {
+  CollisionMapOptions opt;
+  opt.unknown = unknown;
+  if (unknown == UnknownPolicy::kOccupied) opt.bounds = fence;
+  if (world && world->ground.slope_x == 0.0 && world->ground.slope_y == 0.0) {
+    // The ground's voxels end at its height only when it lies on a voxel boundary.
+    const double cells = world->ground.height_m / world->resolution_m;
+    if (std::abs(cells - std::round(cells)) < 1e-9) opt.field_floor_cut_z = world->ground.height_m;
+  }
+  return opt;
+}
+
 RobotShape plan_robot_shape(PlanRobot robot, double released_length_m, const RobotShape* urdf_shape,
                             const UgvGeometry& ugv) {
   if (!urdf_shape) {

@@ -41,6 +41,7 @@ bool raw_fcl_box_collides(const octomap::OcTree& source, const Eigen::Vector3d& 
 struct AgreementCase {
   const char* name;
   std::size_t max_field_cells;
+  bool floor_cut = false;  ///< leave the room's floor (top at z = 0) out of the field
 };
 
 class Agreement : public ::testing::TestWithParam<AgreementCase> {};
@@ -51,6 +52,7 @@ TEST_P(Agreement, FastPathEqualsFclOnRandomPoses) {
   const auto source = cluttered_room(11);
   CollisionMapOptions opt;
   opt.max_field_cells = GetParam().max_field_cells;
+  if (GetParam().floor_cut) opt.field_floor_cut_z = 0.0;
   const auto map = CollisionMap::build(*source, opt);
   const std::vector<RobotShape> shapes{uav_shape(), uav_with_suspended_ugv_shape(1.2), ugv_shape()};
   Rng rng(5);
@@ -78,7 +80,8 @@ TEST_P(Agreement, FastPathEqualsFclOnRandomPoses) {
 }
 
 INSTANTIATE_TEST_SUITE_P(FieldResolutions, Agreement,
-                         ::testing::Values(AgreementCase{"fine", 16'000'000}, AgreementCase{"coarse", 5'000}),
+                         ::testing::Values(AgreementCase{"fine", 16'000'000}, AgreementCase{"coarse", 5'000},
+                                           AgreementCase{"floor_cut", 16'000'000, true}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 // The ground-robot fast path (2D band field, floor cut, field region) agrees with

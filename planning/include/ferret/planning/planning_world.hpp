@@ -44,6 +44,14 @@ struct PlanningWorld {
                                                                     const HiddenSpaceFrame& space,
                                                                     const UgvGeometry& ugv = {});
 
+/// Snapshot options for the UAV in a world: unknown space by `unknown` (inside
+/// `fence` when occupied); with flat ground (a world YAML without slope), the ground
+/// is left out of the distance field (field_floor_cut_z), so parts above it are
+/// cleared by the clearance to everything else.
+[[nodiscard]] CollisionMapOptions uav_map_options(const std::optional<WorldSpec>& world,
+                                                  UnknownPolicy unknown = UnknownPolicy::kFree,
+                                                  const std::optional<Aabb3>& fence = std::nullopt);
+
 /// The shape a plan's robot is checked with: from a URDF when given (a miniUGV's
 /// shapes lifted by `ugv.ground_clearance_m`, so wheels resting on floor voxels do not
 /// touch them), otherwise ferret's defaults (robot_shape.hpp); for kUavWithUgv the
