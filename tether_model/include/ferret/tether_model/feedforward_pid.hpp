@@ -16,9 +16,9 @@ class FeedForwardPid final : public TetherController {
  public:
   struct Options {
     TautControlOptions control;
-    double kp_per_s = 10.0;    ///< m/s of command per m of slack error
-    double ki_per_s2 = 16.0;   ///< m/s of command per m*s of integrated error
-    double kd = 0.0;           ///< m/s of command per m/s of error rate
+    double kp_per_s = 16.0;    ///< m/s of command per m of slack error
+    double ki_per_s2 = 128.0;  ///< m/s of command per m*s of integrated error
+    double kd = 0.05;          ///< m/s of command per m/s of error rate
     double feedforward_gain = 1.0;
     double integral_limit_m_s = 0.2;
   };
