@@ -15,6 +15,7 @@
 
 #include "command.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/planning/benchmark_problems.hpp"
 #include "ferret/planning/ompl_setup.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/planning/uav_planner.hpp"
@@ -86,13 +87,16 @@ Waypoint xyz_yaw(const std::string& text, const std::string& option) {
 
 struct UavArgs {
   Common common;
-  std::string from, to, geofence, altitude, unknown = "free", planner = "rrtconnect";
+  std::string from, to, approach, geofence, altitude, unknown = "free", planner = "rrtconnect";
   std::optional<double> tether_length_m;
 };
 
 void run_uav(const UavArgs& a) {
   check_time_limit(a.common);
-  const Waypoint start = xyz_yaw(a.from, "--from"), goal = xyz_yaw(a.to, "--to");
+  if (a.to.empty() == a.approach.empty())
+    throw InputError("--to", "", "either --to x,y,z,yaw or --approach HIDDEN_SPACE (not both)");
+  const Waypoint start = xyz_yaw(a.from, "--from");
+  Waypoint goal = a.to.empty() ? Waypoint{} : xyz_yaw(a.to, "--to");
   if (a.tether_length_m && !(*a.tether_length_m >= 0.0 && *a.tether_length_m <= 100.0))
     throw InputError("--tether-length", "", "a released length in [0, 100] m", std::to_string(*a.tether_length_m));
   const UnknownPolicy unknown = parse_unknown_policy(a.unknown, "--unknown");
@@ -104,6 +108,11 @@ void run_uav(const UavArgs& a) {
   }
   const MissionConfig config = mission(a.common);
   const PlanningWorld world = load_planning_world(a.common.world);
+  if (!a.approach.empty()) {
+    const int index = world.spec ? world.spec->find_hidden_space(a.approach) : -1;
+    if (index < 0) throw InputError("--approach", "", "a hidden space of the world YAML " + a.common.world, a.approach);
+    goal = approach_hover_pose(world.spec->hidden_spaces[static_cast<std::size_t>(index)]);
+  }
 
   UavPlannerOptions opt;
   // Geofence: the world's bounds (YAML) or the map's known extent, unless given.
@@ -267,7 +276,9 @@ const CommandRegistration kPlan{"plan", [](CLI::App& app) {
   auto* uav = plan->add_subcommand("uav", "UAV in x, y, z, yaw inside a geofence and altitude band");
   add_common(uav, ua->common);
   uav->add_option("--from", ua->from, "start x,y,z,yaw (m, rad)")->required();
-  uav->add_option("--to", ua->to, "goal x,y,z,yaw (m, rad)")->required();
+  uav->add_option("--to", ua->to, "goal x,y,z,yaw (m, rad)");
+  uav->add_option("--approach", ua->approach,
+                  "goal: the hover pose 1 m in front of this hidden space's opening, 1.5 m up, facing it");
   uav->add_option("--tether-length", ua->tether_length_m,
                   "plan with the miniUGV hanging on this much released tether (m)");
   uav->add_option("--geofence", ua->geofence, "x0,y0,x1,y1 (default: the world's bounds)");

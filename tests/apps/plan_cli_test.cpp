@@ -78,6 +78,22 @@ TEST(PlanCli, UavPlansAreDeterministicGivenTheSeed) {
   EXPECT_EQ(run_cli("validate --world " + world + " --plan " + dir / "t.json").exit_code, 0);
 }
 
+TEST(PlanCli, UavApproachToAHiddenSpace) {
+  TempDir dir;
+  const auto r = run_cli("plan uav --world examples/worlds/default.yaml --from -20,-20,3,0 --approach house_void -o " +
+                         dir / "a.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // house_void's entry is at (-6.85, 7) in its +x wall: the hover pose is 1 m out,
+  // 1.5 m above the floor, facing the opening (yaw pi).
+  const auto goal = nlohmann::json::parse(slurp(dir / "a.json"))["states"].back();
+  EXPECT_NEAR(goal["x_m"].get<double>(), -5.85, 1e-9);
+  EXPECT_NEAR(goal["y_m"].get<double>(), 7.0, 1e-9);
+  EXPECT_NEAR(goal["z_m"].get<double>(), 1.5, 1e-9);
+  EXPECT_NEAR(std::abs(goal["yaw_rad"].get<double>()), M_PI, 1e-9);
+  EXPECT_EQ(run_cli("plan uav --world examples/worlds/default.yaml --from -20,-20,3,0 -o " + dir / "b.json").exit_code,
+            2);  // neither --to nor --approach
+}
+
 TEST(PlanCli, BenchPlanWritesOmplLogs) {
   TempDir dir;
   const auto r = run_cli("bench-plan --world " + kDetour + " --robots ugv --runs 2 --time-limit 0.2 --planners rrtconnect -o " +
