@@ -29,12 +29,14 @@ namespace {
 // The robot mid-search: it has driven from the start (1, 4) to (2.2, 4) and turned a
 // little towards an object in zone 2 that its camera has seen from afar.
 struct Scene {
-  OccupancyMap2D truth = load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/sparse.yaml");
+  OccupancyMap2D truth =
+      load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/sparse.yaml");
   Eigen::Vector2d object{3.6, 5.4};
   SensorOptions sensors;
   HiddenSpaceSim sim{truth, object, sensors, 1};
   IrGrid grid{truth.geometry, {}};
-  ObjectMap objects{truth.geometry, ObjectMap::Options::from(ObjectSearchParams{}, sensors.camera_range_m)};
+  ObjectMap objects{truth.geometry,
+                    ObjectMap::Options::from(ObjectSearchParams{}, sensors.camera_range_m)};
   FrontierTracker tracker{truth.geometry};
   GridPathPlanner planner{truth.geometry};
   Pose2 pose{2.2, 4.0, 0.3};
@@ -56,7 +58,8 @@ struct Scene {
 
 void decision_cycle(benchmark::State& state, const char* method) {
   Scene scene;
-  const PolicyOptions options = PolicyOptions::from(MissionConfig{}, scene.sensors.camera_range_m, 2.0);
+  const PolicyOptions options =
+      PolicyOptions::from(MissionConfig{}, scene.sensors.camera_range_m, 2.0);
   auto policy = make_exploration_policy(method, options);
   std::size_t evidence = 0, visible = 0;
   double t = 2.0;
@@ -68,9 +71,17 @@ void decision_cycle(benchmark::State& state, const char* method) {
     const Cell robot = scene.truth.geometry.cell_at(scene.pose.x_m, scene.pose.y_m);
     scene.planner.compute(scene.grid, robot, GridPathPlanner::Traversal::kKnownFree, 1.0);
     const FrontierSets sets =
-        scene.tracker.extract(scene.planner.distances_m(), scene.pose, scene.sensors.ir_fov_rad, scene.sensors.ir_range_m);
-    const ExplorationState s{scene.grid, scene.objects, scene.tracker, sets, scene.planner, scene.pose,
-                             Eigen::Vector2d(1.0, 0.3), scene.sensors.ir_fov_rad, scene.sensors.ir_range_m,
+        scene.tracker.extract(scene.planner.distances_m(), scene.pose, scene.sensors.ir_fov_rad,
+                              scene.sensors.ir_range_m);
+    const ExplorationState s{scene.grid,
+                             scene.objects,
+                             scene.tracker,
+                             sets,
+                             scene.planner,
+                             scene.pose,
+                             Eigen::Vector2d(1.0, 0.3),
+                             scene.sensors.ir_fov_rad,
+                             scene.sensors.ir_range_m,
                              std::nullopt};
     policy->goal_done();  // choose afresh every cycle
     auto goal = policy->choose(s);
@@ -104,10 +115,11 @@ int main(int argc, char** argv) {
   ferret::MedianReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   const auto& m = reporter.medians;
-  const auto cdos = m.find("decision_cycle/cdos/repeats:15"), rapid = m.find("decision_cycle/rapid/repeats:15");
+  const auto cdos = m.find("decision_cycle/cdos/repeats:15"),
+             rapid = m.find("decision_cycle/rapid/repeats:15");
   if (cdos != m.end() && rapid != m.end())
-    std::printf("median decision cycle: cdos %.1f us, rapid %.1f us, ratio cdos/rapid %.2f\n", cdos->second,
-                rapid->second, cdos->second / rapid->second);
+    std::printf("median decision cycle: cdos %.1f us, rapid %.1f us, ratio cdos/rapid %.2f\n",
+                cdos->second, rapid->second, cdos->second / rapid->second);
   benchmark::Shutdown();
   return 0;
 }

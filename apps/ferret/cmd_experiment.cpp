@@ -34,7 +34,8 @@ std::pair<int, int> parse_shard(const std::string& text) {
     std::size_t u1 = 0, u2 = 0;
     const int i = std::stoi(text.substr(0, slash), &u1);
     const int n = std::stoi(text.substr(slash + 1), &u2);
-    if (u1 != slash || u2 != text.size() - slash - 1 || n < 1 || i < 0 || i >= n) throw std::invalid_argument(text);
+    if (u1 != slash || u2 != text.size() - slash - 1 || n < 1 || i < 0 || i >= n)
+      throw std::invalid_argument(text);
     return {i, n};
   } catch (const std::exception&) {
     throw InputError("ferret experiment", "--shard", "I/N with integers 0 <= I < N", text);
@@ -43,9 +44,13 @@ std::pair<int, int> parse_shard(const std::string& text) {
 
 std::string format_duration(double s) {
   char buf[32];
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s / 3600), static_cast<int>(s / 60) % 60);
-  else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
-  else std::snprintf(buf, sizeof buf, "%.0fs", s);
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s / 3600),
+                  static_cast<int>(s / 60) % 60);
+  else if (s >= 60)
+    std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%.0fs", s);
   return buf;
 }
 
@@ -60,7 +65,8 @@ fs::path find_plot_script(const Options& o) {
 
 void run(const Options& o) {
   const auto [shard_index, shard_count] = parse_shard(o.shard);
-  if (o.jobs < 1) throw InputError("ferret experiment", "--jobs", "an integer >= 1", std::to_string(o.jobs));
+  if (o.jobs < 1)
+    throw InputError("ferret experiment", "--jobs", "an integer >= 1", std::to_string(o.jobs));
   ExperimentConfig config = load_experiment_config(o.config);
   if (o.planner != "grid" && o.planner != "ompl")
     throw InputError("ferret experiment", "--planner", "grid or ompl", o.planner);
@@ -89,38 +95,47 @@ void run(const Options& o) {
       std::fflush(stderr);
     };
   run_experiment(config, o.out, eo);
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("wrote %s (runs.csv, summary.csv%s%s) in %s\n", o.out.c_str(),
               config.sweep_camera_fov_deg.empty() ? "" : ", sweep_camera_fov.csv",
-              config.sweep_ir_fov_deg.empty() ? "" : ", sweep_ir_fov.csv", format_duration(elapsed).c_str());
+              config.sweep_ir_fov_deg.empty() ? "" : ", sweep_ir_fov.csv",
+              format_duration(elapsed).c_str());
 
   if (o.no_plots || shard_count > 1) return;
   const fs::path script = find_plot_script(o);
   if (script.empty()) {
-    std::fprintf(stderr, "ferret: warning: examples/plot_experiment.py not found; no plots drawn\n");
+    std::fprintf(stderr,
+                 "ferret: warning: examples/plot_experiment.py not found; no plots drawn\n");
     return;
   }
   // Debian's python3 has python3-matplotlib; a python3 earlier on PATH (pyenv, venv) may not.
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
   const std::string cmd = python + " '" + script.string() + "' '" + o.out + "'";
   if (std::system(cmd.c_str()) != 0)
-    std::fprintf(stderr, "ferret: warning: plotting failed (%s); the CSVs are complete\n", cmd.c_str());
+    std::fprintf(stderr, "ferret: warning: plotting failed (%s); the CSVs are complete\n",
+                 cmd.c_str());
 }
 
-const CommandRegistration kExperiment{"experiment", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("experiment", "Run the object-search experiment of a config (CDOS vs. baselines)");
-  sub->add_option("config", o->config, "Experiment YAML (docs/object_search.md)")->required();
-  sub->add_option("--out", o->out, "Output directory")->required();
-  sub->add_option("--jobs", o->jobs, "Worker threads")->capture_default_str();
-  sub->add_option("--planner", o->planner, "grid, or ompl: cdos and rapid with the OMPL frontier sampler")
-      ->capture_default_str();
-  sub->add_option("--shard", o->shard, "Run slice I of N (groups g with g % N == I)")->capture_default_str();
-  sub->add_option("--plot-script", o->plot_script, "Plot script (default: examples/plot_experiment.py)");
-  sub->add_flag("--no-plots", o->no_plots, "Write the CSVs only");
-  sub->add_flag("--quiet", o->quiet, "No progress line");
-  sub->callback([o] { run(*o); });
-}};
+const CommandRegistration kExperiment{
+    "experiment", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      auto* sub = app.add_subcommand(
+          "experiment", "Run the object-search experiment of a config (CDOS vs. baselines)");
+      sub->add_option("config", o->config, "Experiment YAML (docs/object_search.md)")->required();
+      sub->add_option("--out", o->out, "Output directory")->required();
+      sub->add_option("--jobs", o->jobs, "Worker threads")->capture_default_str();
+      sub->add_option("--planner", o->planner,
+                      "grid, or ompl: cdos and rapid with the OMPL frontier sampler")
+          ->capture_default_str();
+      sub->add_option("--shard", o->shard, "Run slice I of N (groups g with g % N == I)")
+          ->capture_default_str();
+      sub->add_option("--plot-script", o->plot_script,
+                      "Plot script (default: examples/plot_experiment.py)");
+      sub->add_flag("--no-plots", o->no_plots, "Write the CSVs only");
+      sub->add_flag("--quiet", o->quiet, "No progress line");
+      sub->callback([o] { run(*o); });
+    }};
 
 }  // namespace
 }  // namespace ferret::cli

@@ -4,11 +4,10 @@
 // Prints the time to find, the path length and the number of decisions; with --out,
 // writes G.png, O.png, G_O.png (the paper's map figure) and log.json.
 
-#include <nlohmann/json.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,11 +32,12 @@ struct Options {
   double max_velocity_mps = 2, max_yaw_rate_radps = 2, time_limit_s = 300;
   std::string candidates = "fv";
   bool closest_approach = false;
-  std::string planner = "grid";  // "ompl": the frontier valid-state sampler with PRM (docs/planning.md)
+  std::string planner =
+      "grid";  // "ompl": the frontier valid-state sampler with PRM (docs/planning.md)
 };
 
-std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& option,
-                                  const std::string& what) {
+std::vector<double> parse_numbers(const std::string& text, std::size_t count,
+                                  const std::string& option, const std::string& what) {
   std::vector<double> values;
   std::stringstream in(text);
   std::string item;
@@ -55,7 +55,8 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
 }
 
 void check_positive(double value, const char* option) {
-  if (!(value > 0)) throw InputError("ferret explore", option, "a number > 0", std::to_string(value));
+  if (!(value > 0))
+    throw InputError("ferret explore", option, "a number > 0", std::to_string(value));
 }
 
 void run(const Options& o) {
@@ -68,13 +69,17 @@ void run(const Options& o) {
   }
   if (o.candidates != "fv" && o.candidates != "fg")
     throw InputError("ferret explore", "--cdos-candidates", "fv or fg", o.candidates);
-  for (const auto& [v, name] : {std::pair{o.camera_fov_deg, "--camera-fov"}, {o.ir_fov_deg, "--ir-fov"},
-                                {o.camera_range_m, "--camera-range"}, {o.ir_range_m, "--ir-range"},
-                                {o.max_velocity_mps, "--max-velocity"}, {o.max_yaw_rate_radps, "--max-yaw-rate"},
+  for (const auto& [v, name] : {std::pair{o.camera_fov_deg, "--camera-fov"},
+                                {o.ir_fov_deg, "--ir-fov"},
+                                {o.camera_range_m, "--camera-range"},
+                                {o.ir_range_m, "--ir-range"},
+                                {o.max_velocity_mps, "--max-velocity"},
+                                {o.max_yaw_rate_radps, "--max-yaw-rate"},
                                 {o.time_limit_s, "--time-limit"}})
     check_positive(v, name);
   if (o.camera_fov_deg >= 360 || o.ir_fov_deg >= 360)
-    throw InputError("ferret explore", "--camera-fov/--ir-fov", "a field of view below 360 degrees");
+    throw InputError("ferret explore", "--camera-fov/--ir-fov",
+                     "a field of view below 360 degrees");
 
   const OccupancyMap2D map = load_map_server(o.map);
   const Pose2 start{start_v[0], start_v[1], start_v[2]};
@@ -82,7 +87,8 @@ void run(const Options& o) {
   if (!map.is_free(map.geometry.cell_at(start.x_m, start.y_m)))
     throw InputError("ferret explore", "--start", "a position on a free cell of " + o.map, o.start);
   if (!map.is_free(map.geometry.cell_at(object.x(), object.y())))
-    throw InputError("ferret explore", "--object", "a position on a free cell of " + o.map, o.object);
+    throw InputError("ferret explore", "--object", "a position on a free cell of " + o.map,
+                     o.object);
 
   ExplorationSettings s;
   s.method = o.method;
@@ -108,8 +114,9 @@ void run(const Options& o) {
 
   const EpisodeResult r = run_exploration(map, start, object, s, o.seed);
 
-  std::printf("method: %s\nfound: %s\ntime_s: %.2f\npath_m: %.2f\ndecisions: %d\nend: %s\n", s.method.c_str(),
-              r.found ? "yes" : "no", r.time_s, r.path_m, r.decisions, r.end_reason.c_str());
+  std::printf("method: %s\nfound: %s\ntime_s: %.2f\npath_m: %.2f\ndecisions: %d\nend: %s\n",
+              s.method.c_str(), r.found ? "yes" : "no", r.time_s, r.path_m, r.decisions,
+              r.end_reason.c_str());
   if (o.out.empty()) return;
 
   const fs::path out(o.out);
@@ -120,11 +127,15 @@ void run(const Options& o) {
   log["seed"] = o.seed;
   log["start"] = {start.x_m, start.y_m, start.yaw_rad};
   log["object"] = {object.x(), object.y()};
-  log["sensors"] = {{"camera_fov_deg", o.camera_fov_deg}, {"camera_range_m", o.camera_range_m},
-                    {"ir_fov_deg", o.ir_fov_deg}, {"ir_range_m", o.ir_range_m}};
-  log["robot"] = {{"max_velocity_mps", o.max_velocity_mps}, {"max_yaw_rate_radps", o.max_yaw_rate_radps}};
-  log["result"] = {{"found", r.found},       {"time_s", r.time_s},   {"path_m", r.path_m},
-                   {"decisions", r.decisions}, {"end", r.end_reason}, {"found_at", {r.found_W.x(), r.found_W.y()}}};
+  log["sensors"] = {{"camera_fov_deg", o.camera_fov_deg},
+                    {"camera_range_m", o.camera_range_m},
+                    {"ir_fov_deg", o.ir_fov_deg},
+                    {"ir_range_m", o.ir_range_m}};
+  log["robot"] = {{"max_velocity_mps", o.max_velocity_mps},
+                  {"max_yaw_rate_radps", o.max_yaw_rate_radps}};
+  log["result"] = {{"found", r.found},    {"time_s", r.time_s},
+                   {"path_m", r.path_m},  {"decisions", r.decisions},
+                   {"end", r.end_reason}, {"found_at", {r.found_W.x(), r.found_W.y()}}};
   auto& decisions = log["decisions"] = nlohmann::json::array();
   for (const auto& d : r.decision_log)
     decisions.push_back({{"t_s", d.time_s},
@@ -139,33 +150,41 @@ void run(const Options& o) {
   for (std::size_t k = 0; k < r.trajectory.size(); k += 2)
     trajectory.push_back({r.trajectory[k].x_m, r.trajectory[k].y_m, r.trajectory[k].yaw_rad});
   write_text_atomically(out / "log.json", log.dump(1) + "\n");
-  std::printf("wrote: %s %s %s %s\n", (out / "G.png").c_str(), (out / "O.png").c_str(), (out / "G_O.png").c_str(),
-              (out / "log.json").c_str());
+  std::printf("wrote: %s %s %s %s\n", (out / "G.png").c_str(), (out / "O.png").c_str(),
+              (out / "G_O.png").c_str(), (out / "log.json").c_str());
 }
 
-const CommandRegistration kExplore{"explore", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("explore", "Simulate one object search in a hidden-space map");
-  sub->add_option("--map", o->map, "Hidden space, map_server YAML")->required();
-  sub->add_option("--start", o->start, "Start pose x,y,yaw (m, m, rad)")->required();
-  sub->add_option("--object", o->object, "Object position x,y (m)")->required();
-  sub->add_option("--method", o->method, "cdos, cdos-literal, rapid, nearest or oracle")->capture_default_str();
-  sub->add_option("--seed", o->seed, "Seed of the sensor noise")->capture_default_str();
-  sub->add_option("--out", o->out, "Directory for G.png, O.png, G_O.png and log.json");
-  sub->add_option("--mission", o->mission, "Mission YAML (curiosity and object-search constants)");
-  sub->add_option("--camera-fov", o->camera_fov_deg, "Camera fov alpha (deg)")->capture_default_str();
-  sub->add_option("--ir-fov", o->ir_fov_deg, "IR fov beta (deg)")->capture_default_str();
-  sub->add_option("--camera-range", o->camera_range_m, "D_cam (m)")->capture_default_str();
-  sub->add_option("--ir-range", o->ir_range_m, "D_IR (m)")->capture_default_str();
-  sub->add_option("--max-velocity", o->max_velocity_mps, "m/s")->capture_default_str();
-  sub->add_option("--max-yaw-rate", o->max_yaw_rate_radps, "rad/s")->capture_default_str();
-  sub->add_option("--time-limit", o->time_limit_s, "Simulated seconds before giving up")->capture_default_str();
-  sub->add_option("--planner", o->planner, "grid, or ompl: PRM with the frontier valid-state sampler (cdos, rapid)")
-      ->capture_default_str();
-  sub->add_option("--cdos-candidates", o->candidates, "cdos: score fv (F_v) or fg (F_g)")->capture_default_str();
-  sub->add_flag("--closest-approach", o->closest_approach, "cdos: d_{t+1} is the closest approach on the way");
-  sub->callback([o] { run(*o); });
-}};
+const CommandRegistration kExplore{
+    "explore", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      auto* sub = app.add_subcommand("explore", "Simulate one object search in a hidden-space map");
+      sub->add_option("--map", o->map, "Hidden space, map_server YAML")->required();
+      sub->add_option("--start", o->start, "Start pose x,y,yaw (m, m, rad)")->required();
+      sub->add_option("--object", o->object, "Object position x,y (m)")->required();
+      sub->add_option("--method", o->method, "cdos, cdos-literal, rapid, nearest or oracle")
+          ->capture_default_str();
+      sub->add_option("--seed", o->seed, "Seed of the sensor noise")->capture_default_str();
+      sub->add_option("--out", o->out, "Directory for G.png, O.png, G_O.png and log.json");
+      sub->add_option("--mission", o->mission,
+                      "Mission YAML (curiosity and object-search constants)");
+      sub->add_option("--camera-fov", o->camera_fov_deg, "Camera fov alpha (deg)")
+          ->capture_default_str();
+      sub->add_option("--ir-fov", o->ir_fov_deg, "IR fov beta (deg)")->capture_default_str();
+      sub->add_option("--camera-range", o->camera_range_m, "D_cam (m)")->capture_default_str();
+      sub->add_option("--ir-range", o->ir_range_m, "D_IR (m)")->capture_default_str();
+      sub->add_option("--max-velocity", o->max_velocity_mps, "m/s")->capture_default_str();
+      sub->add_option("--max-yaw-rate", o->max_yaw_rate_radps, "rad/s")->capture_default_str();
+      sub->add_option("--time-limit", o->time_limit_s, "Simulated seconds before giving up")
+          ->capture_default_str();
+      sub->add_option("--planner", o->planner,
+                      "grid, or ompl: PRM with the frontier valid-state sampler (cdos, rapid)")
+          ->capture_default_str();
+      sub->add_option("--cdos-candidates", o->candidates, "cdos: score fv (F_v) or fg (F_g)")
+          ->capture_default_str();
+      sub->add_flag("--closest-approach", o->closest_approach,
+                    "cdos: d_{t+1} is the closest approach on the way");
+      sub->callback([o] { run(*o); });
+    }};
 
 }  // namespace
 }  // namespace ferret::cli

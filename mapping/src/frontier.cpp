@@ -60,7 +60,8 @@ void FrontierTracker::blacklist(Cell c) {
   for (int dj = -r; dj <= r; ++dj)
     for (int di = -r; di <= r; ++di) {
       const Cell n{c.i + di, c.j + dj};
-      if (geometry_.contains(n) && (geometry_.center(n) - p).norm() <= options_.blacklist_radius_m + 1e-9)
+      if (geometry_.contains(n) &&
+          (geometry_.center(n) - p).norm() <= options_.blacklist_radius_m + 1e-9)
         blacklist_[geometry_.index(n)] = 1;
     }
 }

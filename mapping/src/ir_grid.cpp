@@ -21,11 +21,14 @@ IrGrid::IrGrid(GridGeometry geometry, Options options)
       free_stamp_(geometry.size(), 0) {
   if (geometry.width <= 0 || geometry.height <= 0 || geometry.resolution_m <= 0)
     throw std::invalid_argument("IrGrid: empty grid geometry");
-  if (!(options.prob_hit > 0.5 && options.prob_hit < 1 && options.prob_miss > 0 && options.prob_miss < 0.5 &&
-        options.clamp_min > 0 && options.clamp_min < 0.5 && options.clamp_max > 0.5 && options.clamp_max < 1))
-    throw std::invalid_argument("IrGrid: hit must be in (0.5, 1), miss in (0, 0.5), clamps around 0.5");
+  if (!(options.prob_hit > 0.5 && options.prob_hit < 1 && options.prob_miss > 0 &&
+        options.prob_miss < 0.5 && options.clamp_min > 0 && options.clamp_min < 0.5 &&
+        options.clamp_max > 0.5 && options.clamp_max < 1))
+    throw std::invalid_argument(
+        "IrGrid: hit must be in (0.5, 1), miss in (0, 0.5), clamps around 0.5");
   const int r = static_cast<int>(std::ceil(options.clearance_m / geometry.resolution_m));
-  const double r2 = std::pow(options.clearance_m / geometry.resolution_m, 2) + 1e-9;  // 0.15 / 0.05 is 2.9999...
+  const double r2 =
+      std::pow(options.clearance_m / geometry.resolution_m, 2) + 1e-9;  // 0.15 / 0.05 is 2.9999...
   for (int dj = -r; dj <= r; ++dj)
     for (int di = -r; di <= r; ++di)
       if (di * di + dj * dj <= r2) inflation_offsets_.push_back({di, dj});

@@ -8,7 +8,8 @@
 
 namespace ferret {
 
-ObjectMap::Options ObjectMap::Options::from(const ObjectSearchParams& params, double camera_range_m) {
+ObjectMap::Options ObjectMap::Options::from(const ObjectSearchParams& params,
+                                            double camera_range_m) {
   Options o;
   o.lambda1 = params.lambda1;
   o.lambda2 = params.lambda2;
@@ -34,9 +35,11 @@ ObjectMap::ObjectMap(GridGeometry geometry, Options options)
       stamp_(geometry.size(), 0) {
   if (geometry.width <= 0 || geometry.height <= 0 || geometry.resolution_m <= 0)
     throw std::invalid_argument("ObjectMap: empty grid geometry");
-  if (!(options.lambda1 > 0 && options.lambda1 < 0.5 && options.lambda2 > 0.5 && options.lambda2 < 1))
+  if (!(options.lambda1 > 0 && options.lambda1 < 0.5 && options.lambda2 > 0.5 &&
+        options.lambda2 < 1))
     throw std::invalid_argument("ObjectMap: need 0 < lambda1 < 0.5 < lambda2 < 1");
-  if (!(options.conf_floor >= 0.5 && options.conf_floor <= options.conf_cap && options.conf_cap < 1))
+  if (!(options.conf_floor >= 0.5 && options.conf_floor <= options.conf_cap &&
+        options.conf_cap < 1))
     throw std::invalid_argument("ObjectMap: need 0.5 <= conf_floor <= conf_cap < 1");
   if (!(options.miss_likelihood > 0 && options.miss_likelihood <= 0.5))
     throw std::invalid_argument("ObjectMap: need 0 < miss_likelihood <= 0.5");
@@ -61,9 +64,12 @@ ObjectLabel ObjectMap::label_of(double p) const {
 
 double ObjectMap::labelled_probability(double p) const {
   switch (label_of(p)) {
-    case ObjectLabel::kFree: return 0.0;
-    case ObjectLabel::kUnknown: return 0.5;
-    case ObjectLabel::kObject: return p;
+    case ObjectLabel::kFree:
+      return 0.0;
+    case ObjectLabel::kUnknown:
+      return 0.5;
+    case ObjectLabel::kObject:
+      return p;
   }
   return p;
 }
@@ -88,7 +94,8 @@ void ObjectMap::fuse(Cell c, double p_measurement) {
 bool ObjectMap::new_viewpoint(std::size_t idx, const Pose2& X_WC, double time_s) const {
   if (!options_.gate_viewpoints || !observed(idx)) return true;
   if (time_s - last_time_[idx] >= options_.max_period_s) return true;
-  if (std::hypot(X_WC.x_m - last_x_[idx], X_WC.y_m - last_y_[idx]) >= options_.min_move_m) return true;
+  if (std::hypot(X_WC.x_m - last_x_[idx], X_WC.y_m - last_y_[idx]) >= options_.min_move_m)
+    return true;
   return std::abs(wrap_angle_rad(X_WC.yaw_rad - last_yaw_[idx])) >= options_.min_turn_rad;
 }
 
@@ -116,7 +123,8 @@ void ObjectMap::integrate_frame(const CameraFrame& frame) {
     for (int dj = -r; dj <= r; ++dj)
       for (int di = -r; di <= r; ++di) {
         const Cell c{c0.i + di, c0.j + dj};
-        if (!geometry_.contains(c) || (geometry_.center(c) - p).norm() > options_.object_radius_m + 1e-9)
+        if (!geometry_.contains(c) ||
+            (geometry_.center(c) - p).norm() > options_.object_radius_m + 1e-9)
           continue;
         const std::size_t idx = geometry_.index(c);
         if (stamp_[idx] == frame_id_) continue;
@@ -147,7 +155,8 @@ void ObjectMap::integrate_frame(const CameraFrame& frame) {
 std::optional<Cell> ObjectMap::found_cell() const {
   std::optional<std::size_t> best;
   for (const std::size_t idx : evidence_)
-    if (probability_at(idx) > options_.lambda2 && (!best || log_odds_[idx] > log_odds_[*best])) best = idx;
+    if (probability_at(idx) > options_.lambda2 && (!best || log_odds_[idx] > log_odds_[*best]))
+      best = idx;
   if (!best) return std::nullopt;
   return geometry_.cell_of_index(*best);
 }

@@ -14,7 +14,8 @@ double relabel(double p, const CuriosityOptions& o) {
 }
 
 // Distance from q to the segment a-b.
-double segment_distance(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+double segment_distance(const Eigen::Vector2d& q, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
   const double len2 = ab.squaredNorm();
   const double t = len2 > 0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
@@ -61,14 +62,15 @@ std::vector<EvidenceCell> collect_evidence(const ObjectMap& objects) {
   std::vector<EvidenceCell> out;
   out.reserve(cells.size());
   for (const std::size_t idx : cells)
-    out.push_back({objects.geometry().center(objects.geometry().cell_of_index(idx)), objects.probability_at(idx),
-                   objects.last_confidence(idx)});
+    out.push_back({objects.geometry().center(objects.geometry().cell_of_index(idx)),
+                   objects.probability_at(idx), objects.last_confidence(idx)});
   return out;
 }
 
 const EvidenceCell& strongest_evidence(std::span<const EvidenceCell> evidence) {
-  return *std::max_element(evidence.begin(), evidence.end(),
-                           [](const auto& a, const auto& b) { return a.probability < b.probability; });
+  return *std::max_element(evidence.begin(), evidence.end(), [](const auto& a, const auto& b) {
+    return a.probability < b.probability;
+  });
 }
 
 double curiosity_loss(const Eigen::Vector2d& p_W_goal, const Eigen::Vector2d& p_W_robot,
@@ -76,7 +78,8 @@ double curiosity_loss(const Eigen::Vector2d& p_W_goal, const Eigen::Vector2d& p_
   double loss = 0.0;
   for (const auto& e : evidence) {
     const double d_t = (e.p_W - p_W_robot).norm();
-    const double d_next = o.closest_approach ? segment_distance(e.p_W, p_W_robot, p_W_goal) : (e.p_W - p_W_goal).norm();
+    const double d_next = o.closest_approach ? segment_distance(e.p_W, p_W_robot, p_W_goal)
+                                             : (e.p_W - p_W_goal).norm();
     const double conf = predicted_confidence(e.last_confidence, d_t, d_next, o);
     if (conf <= 0.0) continue;
     const double p_next = fuse_probability(e.probability, conf);
@@ -87,8 +90,10 @@ double curiosity_loss(const Eigen::Vector2d& p_W_goal, const Eigen::Vector2d& p_
   return loss;
 }
 
-std::vector<ScoredFrontier> score_frontiers(std::span<const Cell> candidates, const GridGeometry& geometry,
-                                            const Eigen::Vector2d& p_W_robot, std::span<const EvidenceCell> evidence,
+std::vector<ScoredFrontier> score_frontiers(std::span<const Cell> candidates,
+                                            const GridGeometry& geometry,
+                                            const Eigen::Vector2d& p_W_robot,
+                                            std::span<const EvidenceCell> evidence,
                                             const CuriosityOptions& options) {
   std::vector<ScoredFrontier> out;
   out.reserve(candidates.size());

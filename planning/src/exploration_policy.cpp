@@ -19,8 +19,12 @@ Registry& registry() {
   static Registry* r = [] {
     auto* reg = new Registry;
     // The built-in table: one line a policy.
-    reg->factories["cdos"] = [](const PolicyOptions& o) { return std::make_unique<CdosPolicy>(o, false); };
-    reg->factories["cdos-literal"] = [](const PolicyOptions& o) { return std::make_unique<CdosPolicy>(o, true); };
+    reg->factories["cdos"] = [](const PolicyOptions& o) {
+      return std::make_unique<CdosPolicy>(o, false);
+    };
+    reg->factories["cdos-literal"] = [](const PolicyOptions& o) {
+      return std::make_unique<CdosPolicy>(o, true);
+    };
     reg->factories["cdos-fg"] = [](PolicyOptions o) {  // CDOS scoring all of F_g
       o.cdos_candidates_global = true;
       return std::make_unique<CdosPolicy>(o, false, "cdos-fg");
@@ -29,16 +33,23 @@ Registry& registry() {
       o.curiosity.closest_approach = true;
       return std::make_unique<CdosPolicy>(o, false, "cdos-closest");
     };
-    reg->factories["rapid"] = [](const PolicyOptions& o) { return std::make_unique<RapidFrontierPolicy>(o); };
-    reg->factories["nearest"] = [](const PolicyOptions& o) { return std::make_unique<NearestFrontierPolicy>(o); };
-    reg->factories["oracle"] = [](const PolicyOptions& o) { return std::make_unique<OraclePolicy>(o); };
+    reg->factories["rapid"] = [](const PolicyOptions& o) {
+      return std::make_unique<RapidFrontierPolicy>(o);
+    };
+    reg->factories["nearest"] = [](const PolicyOptions& o) {
+      return std::make_unique<NearestFrontierPolicy>(o);
+    };
+    reg->factories["oracle"] = [](const PolicyOptions& o) {
+      return std::make_unique<OraclePolicy>(o);
+    };
     return reg;
   }();
   return *r;
 }
 }  // namespace
 
-PolicyOptions PolicyOptions::from(const MissionConfig& mission, double camera_range_m, double max_velocity_mps) {
+PolicyOptions PolicyOptions::from(const MissionConfig& mission, double camera_range_m,
+                                  double max_velocity_mps) {
   PolicyOptions o;
   o.curiosity = CuriosityOptions::from(mission, camera_range_m);
   o.max_velocity_mps = max_velocity_mps;
@@ -66,20 +77,23 @@ bool has_exploration_policy(std::string_view name) {
   return r.factories.find(name) != r.factories.end();
 }
 
-std::unique_ptr<ExplorationPolicy> make_exploration_policy(std::string_view name, const PolicyOptions& options) {
+std::unique_ptr<ExplorationPolicy> make_exploration_policy(std::string_view name,
+                                                           const PolicyOptions& options) {
   ExplorationPolicyFactory factory;
   {
     auto& r = registry();
     std::lock_guard lock(r.mutex);
     const auto it = r.factories.find(name);
-    if (it == r.factories.end()) throw std::out_of_range("unknown exploration policy: " + std::string(name));
+    if (it == r.factories.end())
+      throw std::out_of_range("unknown exploration policy: " + std::string(name));
     factory = it->second;
   }
   return factory(options);
 }
 
 std::optional<ExplorationGoal> viewing_goal(const IrGrid& grid, const FrontierTracker& tracker,
-                                            const GridPathPlanner& paths, const Eigen::Vector2d& target_W,
+                                            const GridPathPlanner& paths,
+                                            const Eigen::Vector2d& target_W,
                                             double view_distance_m) {
   const GridGeometry& g = grid.geometry();
   const Cell t = g.cell_at(target_W.x(), target_W.y());

@@ -24,8 +24,8 @@ GridPathPlanner::GridPathPlanner(GridGeometry geometry)
 
 bool GridPathPlanner::crossable(std::size_t idx) const { return crossable_[idx] != 0; }
 
-void GridPathPlanner::compute(const IrGrid& grid, Cell start, Traversal traversal, double escape_radius_m,
-                              std::span<const std::uint8_t> blocked) {
+void GridPathPlanner::compute(const IrGrid& grid, Cell start, Traversal traversal,
+                              double escape_radius_m, std::span<const std::uint8_t> blocked) {
   start_ = start;
   std::fill(cost_.begin(), cost_.end(), -1);
   std::fill(distance_m_.begin(), distance_m_.end(), kUnreachable);
@@ -47,7 +47,8 @@ void GridPathPlanner::compute(const IrGrid& grid, Cell start, Traversal traversa
     auto band_ok = [&](std::size_t idx) {
       if (crossable_[idx]) return false;
       const GridLabel label = grid.label_at(idx);
-      const bool ok = traversal == Traversal::kKnownFree ? label == GridLabel::kFree : label != GridLabel::kOccupied;
+      const bool ok = traversal == Traversal::kKnownFree ? label == GridLabel::kFree
+                                                         : label != GridLabel::kOccupied;
       return ok && (blocked.empty() || !blocked[idx]);
     };
     // Flood from the start through crossable and band cells (the robot may stand on
@@ -128,7 +129,8 @@ bool GridPathPlanner::line_of_sight(Cell a, Cell b) const {
 std::vector<Eigen::Vector2d> GridPathPlanner::path_to(Cell goal) const {
   if (!reachable(goal)) return {};
   std::vector<Cell> cells;
-  for (std::int32_t idx = static_cast<std::int32_t>(geometry_.index(goal)); idx >= 0; idx = parent_[idx])
+  for (std::int32_t idx = static_cast<std::int32_t>(geometry_.index(goal)); idx >= 0;
+       idx = parent_[idx])
     cells.push_back(geometry_.cell_of_index(static_cast<std::size_t>(idx)));
   std::reverse(cells.begin(), cells.end());
   // Shortcut: from each anchor jump to the furthest following cell still in line of sight.

@@ -50,19 +50,22 @@ std::optional<ExplorationGoal> NearestFrontierPolicy::choose(const ExplorationSt
   return goal;
 }
 
-std::optional<ExplorationGoal> RapidFrontierPolicy::choose_visible(const ExplorationState& s, double max_velocity_mps) {
+std::optional<ExplorationGoal> RapidFrontierPolicy::choose_visible(const ExplorationState& s,
+                                                                   double max_velocity_mps) {
   if (s.frontiers.visible.empty()) return std::nullopt;
   // At rest every direction asks the same change |v_max u|: a small velocity along
   // the heading makes the current heading break the tie.
   Eigen::Vector2d v = s.v_W;
-  if (v.norm() < 0.05) v = 0.05 * Eigen::Vector2d(std::cos(s.X_WG.yaw_rad), std::sin(s.X_WG.yaw_rad));
+  if (v.norm() < 0.05)
+    v = 0.05 * Eigen::Vector2d(std::cos(s.X_WG.yaw_rad), std::sin(s.X_WG.yaw_rad));
   const GridGeometry& g = s.grid.geometry();
   const Eigen::Vector2d p = s.X_WG.position();
   std::optional<ExplorationGoal> best;
   for (const Cell& c : s.frontiers.visible) {
     const Eigen::Vector2d to = g.center(c) - p;
     const double dist = to.norm();
-    const Eigen::Vector2d u = dist > 1e-9 ? Eigen::Vector2d(to / dist) : Eigen::Vector2d(v.normalized());
+    const Eigen::Vector2d u =
+        dist > 1e-9 ? Eigen::Vector2d(to / dist) : Eigen::Vector2d(v.normalized());
     const double change = (max_velocity_mps * u - v).norm();
     if (!best || change < best->score - 1e-12) {
       best = ExplorationGoal{};
@@ -92,7 +95,8 @@ CdosPolicy::CdosPolicy(const PolicyOptions& options, bool literal, std::string n
 }
 
 std::optional<ExplorationGoal> CdosPolicy::choose(const ExplorationState& s) {
-  if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell)) return committed_;
+  if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell))
+    return committed_;
   committed_.reset();
   auto goal = choose_fresh(s);
   if (goal && goal->reason == "curiosity") {
@@ -104,8 +108,10 @@ std::optional<ExplorationGoal> CdosPolicy::choose(const ExplorationState& s) {
 
 std::optional<ExplorationGoal> CdosPolicy::choose_fresh(const ExplorationState& s) {
   const auto evidence = collect_evidence(s.objects);
-  if (!literal_ && evidence.empty()) return baseline_.choose(s);  // no evidence: choose as the baseline does
-  const auto& candidates = options_.cdos_candidates_global ? s.frontiers.global : s.frontiers.visible;
+  if (!literal_ && evidence.empty())
+    return baseline_.choose(s);  // no evidence: choose as the baseline does
+  const auto& candidates =
+      options_.cdos_candidates_global ? s.frontiers.global : s.frontiers.visible;
   if (candidates.empty()) return fallback_.choose(s);  // Algorithm 1: F_v empty -> nearest in F_g
   const GridGeometry& g = s.grid.geometry();
   const Eigen::Vector2d p = s.X_WG.position();
@@ -113,14 +119,17 @@ std::optional<ExplorationGoal> CdosPolicy::choose_fresh(const ExplorationState& 
   // argmax L(C) (paper eq. (action_select)). Ties: the confidence floor makes the
   // predicted gain flat beyond eta / conf_floor of the evidence, so cdos breaks ties
   // towards the strongest evidence (what the loss says without the floor).
-  if (literal_ && std::all_of(scored.begin(), scored.end(), [](const auto& sf) { return sf.loss <= 1e-12; }))
+  if (literal_ &&
+      std::all_of(scored.begin(), scored.end(), [](const auto& sf) { return sf.loss <= 1e-12; }))
     return baseline_.choose(s);  // the paper gives no rule: the baseline's
-  const Eigen::Vector2d tie_anchor = literal_ || evidence.empty() ? p : strongest_evidence(evidence).p_W;
+  const Eigen::Vector2d tie_anchor =
+      literal_ || evidence.empty() ? p : strongest_evidence(evidence).p_W;
   const ScoredFrontier* best = nullptr;
   double best_dist = 0.0;
   for (const auto& sf : scored) {
     const double dist = (sf.p_W - tie_anchor).norm();
-    if (!best || sf.loss > best->loss + 1e-12 || (std::abs(sf.loss - best->loss) <= 1e-12 && dist < best_dist)) {
+    if (!best || sf.loss > best->loss + 1e-12 ||
+        (std::abs(sf.loss - best->loss) <= 1e-12 && dist < best_dist)) {
       best = &sf;
       best_dist = dist;
     }
@@ -145,7 +154,8 @@ std::optional<ExplorationGoal> OraclePolicy::choose(const ExplorationState& s) {
   if (!planner_) planner_.emplace(s.grid.geometry());
   const double escape_m = s.grid.options().clearance_m + 2 * s.grid.geometry().resolution_m;
   planner_->compute(s.grid, s.paths.start(), GridPathPlanner::Traversal::kNotOccupied, escape_m);
-  auto goal = viewing_goal(s.grid, s.tracker, *planner_, *s.oracle_object_W, options_.view_distance_m);
+  auto goal =
+      viewing_goal(s.grid, s.tracker, *planner_, *s.oracle_object_W, options_.view_distance_m);
   if (!goal) return fallback_.choose(s);
   goal->path_W = planner_->path_to(goal->cell);
   goal->reason = "oracle";

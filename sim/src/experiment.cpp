@@ -27,7 +27,8 @@ std::vector<std::string> read_methods(const yaml::MapReader& r, std::string_view
   for (const auto& n : exploration_policy_names()) names += (names.empty() ? "" : ", ") + n;
   for (std::size_t k = 0; k < methods.size(); ++k)
     if (!has_exploration_policy(methods[k]))
-      throw InputError(r.source(), r.field_path(key) + "[" + std::to_string(k) + "]", "one of " + names, methods[k]);
+      throw InputError(r.source(), r.field_path(key) + "[" + std::to_string(k) + "]",
+                       "one of " + names, methods[k]);
   return methods;
 }
 
@@ -52,7 +53,8 @@ bool clear_cell(const OccupancyMap2D& map, Cell c, double clearance_m) {
   const int r = static_cast<int>(std::ceil(clearance_m / g.resolution_m));
   for (int dj = -r; dj <= r; ++dj)
     for (int di = -r; di <= r; ++di) {
-      if ((di * di + dj * dj) * g.resolution_m * g.resolution_m > clearance_m * clearance_m) continue;
+      if ((di * di + dj * dj) * g.resolution_m * g.resolution_m > clearance_m * clearance_m)
+        continue;
       if (!map.is_free({c.i + di, c.j + dj})) return false;
     }
   return true;
@@ -65,7 +67,8 @@ std::vector<Cell> zone_cells(const OccupancyMap2D& map, const ZoneSpec& zone, do
   for (int j = std::max(0, lo.j); j <= std::min(g.height - 1, hi.j); ++j)
     for (int i = std::max(0, lo.i); i <= std::min(g.width - 1, hi.i); ++i) {
       const Eigen::Vector2d p = g.center({i, j});
-      if (p.x() < zone.xmin_m || p.x() > zone.xmax_m || p.y() < zone.ymin_m || p.y() > zone.ymax_m) continue;
+      if (p.x() < zone.xmin_m || p.x() > zone.xmax_m || p.y() < zone.ymin_m || p.y() > zone.ymax_m)
+        continue;
       if (clear_cell(map, {i, j}, clearance_m)) cells.push_back({i, j});
     }
   return cells;
@@ -81,13 +84,16 @@ ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double cl
   try {
     m.map = load_map_server(m.map_path);
   } catch (const InputError& e) {
-    r.fail("map", "a readable map_server YAML (" + std::string(e.what()) + ")", m.map_path.string());
+    r.fail("map", "a readable map_server YAML (" + std::string(e.what()) + ")",
+           m.map_path.string());
   }
   const auto start = r.get_list<double>("start", 3);
   m.start = {start[0], start[1], start[2]};
   if (!m.map.is_free(m.map.geometry.cell_at(m.start.x_m, m.start.y_m)))
     r.fail("start", "a pose on a free cell of the map");
-  if (!r.has("zones")) r.fail("zones", "a mapping of zone ids 1..N to [xmin, ymin, xmax, ymax] (required field missing)");
+  if (!r.has("zones"))
+    r.fail("zones",
+           "a mapping of zone ids 1..N to [xmin, ymin, xmax, ymax] (required field missing)");
   const YAML::Node zones = r.node()["zones"];
   if (!zones.IsMap() || zones.size() == 0)
     r.fail("zones", "a mapping of zone ids 1..N to [xmin, ymin, xmax, ymax]");
@@ -105,23 +111,25 @@ ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double cl
     }
     const auto rect = zr.get_list<double>(key, 4);
     ZoneSpec z{id, rect[0], rect[1], rect[2], rect[3]};
-    if (!(z.xmin_m < z.xmax_m && z.ymin_m < z.ymax_m)) zr.fail(key, "[xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax");
+    if (!(z.xmin_m < z.xmax_m && z.ymin_m < z.ymax_m))
+      zr.fail(key, "[xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax");
     const GridGeometry& g = m.map.geometry;
-    if (z.xmin_m < g.origin_x_m || z.ymin_m < g.origin_y_m || z.xmax_m > g.origin_x_m + g.width_m() ||
-        z.ymax_m > g.origin_y_m + g.height_m()) {
+    if (z.xmin_m < g.origin_x_m || z.ymin_m < g.origin_y_m ||
+        z.xmax_m > g.origin_x_m + g.width_m() || z.ymax_m > g.origin_y_m + g.height_m()) {
       std::ostringstream bounds;
       bounds << "a rectangle inside the map [" << g.origin_x_m << ", " << g.origin_y_m << ", "
              << g.origin_x_m + g.width_m() << ", " << g.origin_y_m + g.height_m() << "]";
       zr.fail(key, bounds.str());
     }
     if (zone_cells(m.map, z, clearance_m).empty())
-      zr.fail(key, "a zone with free cells at least " + std::to_string(clearance_m) + " m from obstacles");
+      zr.fail(key, "a zone with free cells at least " + std::to_string(clearance_m) +
+                       " m from obstacles");
     by_id[id] = z;
   }
   for (int id = 1; id <= static_cast<int>(by_id.size()); ++id)
     if (!by_id.count(id))
-      zr.fail(std::to_string(id), "zones numbered 1.." + std::to_string(by_id.size()) + " without gaps (zone " +
-                                      std::to_string(id) + " missing)");
+      zr.fail(std::to_string(id), "zones numbered 1.." + std::to_string(by_id.size()) +
+                                      " without gaps (zone " + std::to_string(id) + " missing)");
   for (const auto& [id, z] : by_id) m.zones.push_back(z);
   return m;
 }
@@ -136,9 +144,10 @@ std::string format_double(double v) {
 
 // Student t quantile at 0.975 for df degrees of freedom.
 double t975(int df) {
-  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
-                                 2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
-                                 2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
+  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
+                                 2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
+                                 2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
+                                 2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
   if (df <= 0) return 0.0;
   if (df <= 30) return table[df - 1];
   return 1.96 + 2.4 / df;  // within 0.01 of the exact value beyond 30
@@ -161,14 +170,15 @@ MeanCi mean_ci95(const std::vector<double>& values) {
   double ss = 0.0;
   for (const double v : values) ss += (v - out.mean) * (v - out.mean);
   const double sd = std::sqrt(ss / static_cast<double>(values.size() - 1));
-  out.ci95 = t975(static_cast<int>(values.size()) - 1) * sd / std::sqrt(static_cast<double>(values.size()));
+  out.ci95 = t975(static_cast<int>(values.size()) - 1) * sd /
+             std::sqrt(static_cast<double>(values.size()));
   return out;
 }
 
 ExperimentConfig load_experiment_config(const fs::path& path) {
   const yaml::MapReader r(yaml::load_file(path), path.string());
-  r.allow_only({"seed", "objects_per_zone", "methods", "robot", "sensors", "maps", "sweeps", "mission",
-                "time_limit_s", "object_clearance_m"});
+  r.allow_only({"seed", "objects_per_zone", "methods", "robot", "sensors", "maps", "sweeps",
+                "mission", "time_limit_s", "object_clearance_m"});
   ExperimentConfig c;
   c.source = path;
   const fs::path base = path.parent_path();
@@ -212,14 +222,16 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
   return c;
 }
 
-std::vector<Eigen::Vector2d> sample_zone_objects(const OccupancyMap2D& map, const ZoneSpec& zone, int count,
-                                                 double clearance_m, std::uint64_t seed) {
+std::vector<Eigen::Vector2d> sample_zone_objects(const OccupancyMap2D& map, const ZoneSpec& zone,
+                                                 int count, double clearance_m,
+                                                 std::uint64_t seed) {
   const auto cells = zone_cells(map, zone, clearance_m);
   std::vector<Eigen::Vector2d> out;
   if (cells.empty()) return out;
   Rng rng(seed);
   for (int k = 0; k < count; ++k) {
-    const auto idx = static_cast<std::size_t>(rng.uniform_int(0, static_cast<std::int64_t>(cells.size()) - 1));
+    const auto idx =
+        static_cast<std::size_t>(rng.uniform_int(0, static_cast<std::int64_t>(cells.size()) - 1));
     out.push_back(map.geometry.center(cells[idx]));
   }
   return out;
@@ -228,17 +240,19 @@ std::vector<Eigen::Vector2d> sample_zone_objects(const OccupancyMap2D& map, cons
 std::vector<RunSpec> plan_runs(const ExperimentConfig& c) {
   std::vector<RunSpec> runs;
   std::size_t group = 0;
-  const double cam_deg = rad_to_deg(c.base.sensors.camera_fov_rad), ir_deg = rad_to_deg(c.base.sensors.ir_fov_rad);
+  const double cam_deg = rad_to_deg(c.base.sensors.camera_fov_rad),
+               ir_deg = rad_to_deg(c.base.sensors.ir_fov_rad);
   const int most = std::max(c.objects_per_zone, c.sweep_objects_per_zone);
-  auto add = [&](const std::string& experiment, const std::vector<std::string>& methods, int objects, double cam,
-                 double ir) {
+  auto add = [&](const std::string& experiment, const std::vector<std::string>& methods,
+                 int objects, double cam, double ir) {
     for (std::size_t m = 0; m < c.maps.size(); ++m) {
       const auto& map = c.maps[m];
       const std::uint64_t map_hash = stable_hash(map.name.c_str());
       for (const auto& zone : map.zones) {
         // The same objects for every method and sweep: seeded by (seed, map, zone).
-        const auto objects_W = sample_zone_objects(map.map, zone, most, c.object_clearance_m,
-                                                   derive_seed(c.seed, {map_hash, static_cast<std::uint64_t>(zone.id)}));
+        const auto objects_W = sample_zone_objects(
+            map.map, zone, most, c.object_clearance_m,
+            derive_seed(c.seed, {map_hash, static_cast<std::uint64_t>(zone.id)}));
         for (const auto& method : methods) {
           for (int k = 0; k < objects; ++k) {
             RunSpec s;
@@ -250,7 +264,8 @@ std::vector<RunSpec> plan_runs(const ExperimentConfig& c) {
             s.camera_fov_deg = cam;
             s.ir_fov_deg = ir;
             s.object_W = objects_W[static_cast<std::size_t>(k)];
-            s.seed = derive_seed(c.seed, {map_hash, static_cast<std::uint64_t>(zone.id), static_cast<std::uint64_t>(k)});
+            s.seed = derive_seed(c.seed, {map_hash, static_cast<std::uint64_t>(zone.id),
+                                          static_cast<std::uint64_t>(k)});
             s.group = group;
             runs.push_back(s);
           }
@@ -260,17 +275,22 @@ std::vector<RunSpec> plan_runs(const ExperimentConfig& c) {
     }
   };
   add("main", c.methods, c.objects_per_zone, cam_deg, ir_deg);
-  for (const double a : c.sweep_camera_fov_deg) add("camera_fov", c.sweep_methods, c.sweep_objects_per_zone, a, ir_deg);
-  for (const double b : c.sweep_ir_fov_deg) add("ir_fov", c.sweep_methods, c.sweep_objects_per_zone, cam_deg, b);
+  for (const double a : c.sweep_camera_fov_deg)
+    add("camera_fov", c.sweep_methods, c.sweep_objects_per_zone, a, ir_deg);
+  for (const double b : c.sweep_ir_fov_deg)
+    add("ir_fov", c.sweep_methods, c.sweep_objects_per_zone, cam_deg, b);
   return runs;
 }
 
-void run_experiment(const ExperimentConfig& c, const fs::path& out_dir, const ExperimentOptions& options) {
-  if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count)
+void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
+                    const ExperimentOptions& options) {
+  if (options.shard_count < 1 || options.shard_index < 0 ||
+      options.shard_index >= options.shard_count)
     throw InputError("--shard", "", "I/N with 0 <= I < N");
   std::vector<RunSpec> runs;
   for (const auto& s : plan_runs(c))
-    if (static_cast<int>(s.group % static_cast<std::size_t>(options.shard_count)) == options.shard_index)
+    if (static_cast<int>(s.group % static_cast<std::size_t>(options.shard_count)) ==
+        options.shard_index)
       runs.push_back(s);
 
   std::vector<Outcome> outcomes(runs.size());
@@ -286,8 +306,8 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir, const Ex
       settings.sensors.camera_fov_rad = deg_to_rad(s.camera_fov_deg);
       settings.sensors.ir_fov_rad = deg_to_rad(s.ir_fov_deg);
       try {
-        outcomes[k].result = run_exploration(c.maps[s.map_index].map, c.maps[s.map_index].start, s.object_W,
-                                             settings, s.seed);
+        outcomes[k].result = run_exploration(c.maps[s.map_index].map, c.maps[s.map_index].start,
+                                             s.object_W, settings, s.seed);
         outcomes[k].done = true;
       } catch (...) {
         std::lock_guard lock(progress_mutex);
@@ -307,22 +327,25 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir, const Ex
   if (failure) std::rethrow_exception(failure);
 
   std::ostringstream runs_csv;
-  runs_csv << "experiment,map,zone,object,method,camera_fov_deg,ir_fov_deg,seed,object_x,object_y,found,time_s,"
+  runs_csv << "experiment,map,zone,object,method,camera_fov_deg,ir_fov_deg,seed,object_x,object_y,"
+              "found,time_s,"
               "path_m,decisions,end\n";
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const RunSpec& s = runs[k];
     const EpisodeResult& r = outcomes[k].result;
-    runs_csv << s.experiment << ',' << c.maps[s.map_index].name << ',' << s.zone << ',' << s.object_index << ','
-             << s.method << ',' << format_double(s.camera_fov_deg) << ',' << format_double(s.ir_fov_deg) << ','
-             << s.seed << ',' << format_double(s.object_W.x()) << ',' << format_double(s.object_W.y()) << ','
-             << (r.found ? 1 : 0) << ',' << format_double(r.time_s) << ',' << format_double(r.path_m) << ','
-             << r.decisions << ',' << r.end_reason << '\n';
+    runs_csv << s.experiment << ',' << c.maps[s.map_index].name << ',' << s.zone << ','
+             << s.object_index << ',' << s.method << ',' << format_double(s.camera_fov_deg) << ','
+             << format_double(s.ir_fov_deg) << ',' << s.seed << ',' << format_double(s.object_W.x())
+             << ',' << format_double(s.object_W.y()) << ',' << (r.found ? 1 : 0) << ','
+             << format_double(r.time_s) << ',' << format_double(r.path_m) << ',' << r.decisions
+             << ',' << r.end_reason << '\n';
   }
 
   // One summary row a group, in plan order.
   std::ostringstream summary, sweep_cam, sweep_ir;
   summary << kSummaryHeader << '\n';
-  const char* sweep_header = "map,zone,method,camera_fov_deg,ir_fov_deg,runs,found,mean_time_s,ci95_time_s,mean_path_m\n";
+  const char* sweep_header =
+      "map,zone,method,camera_fov_deg,ir_fov_deg,runs,found,mean_time_s,ci95_time_s,mean_path_m\n";
   sweep_cam << sweep_header;
   sweep_ir << sweep_header;
   for (std::size_t k = 0; k < runs.size();) {
@@ -339,10 +362,12 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir, const Ex
     const RunSpec& s = runs[k];
     const MeanCi t = mean_ci95(times), p = mean_ci95(paths);
     std::ostringstream stats;
-    stats << (end - k) << ',' << times.size() << ',' << format_double(t.mean) << ',' << format_double(t.ci95) << ','
-          << format_double(p.mean) << '\n';
-    const std::string key = c.maps[s.map_index].name + "," + std::to_string(s.zone) + "," + s.method + ",";
-    const std::string fovs = format_double(s.camera_fov_deg) + "," + format_double(s.ir_fov_deg) + ",";
+    stats << (end - k) << ',' << times.size() << ',' << format_double(t.mean) << ','
+          << format_double(t.ci95) << ',' << format_double(p.mean) << '\n';
+    const std::string key =
+        c.maps[s.map_index].name + "," + std::to_string(s.zone) + "," + s.method + ",";
+    const std::string fovs =
+        format_double(s.camera_fov_deg) + "," + format_double(s.ir_fov_deg) + ",";
     if (s.experiment == "main") summary << key << stats.str();
     if (s.experiment == "camera_fov") sweep_cam << key << fovs << stats.str();
     if (s.experiment == "ir_fov") sweep_ir << key << fovs << stats.str();
@@ -351,8 +376,10 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir, const Ex
   fs::create_directories(out_dir);
   write_text_atomically(out_dir / "runs.csv", runs_csv.str());
   write_text_atomically(out_dir / "summary.csv", summary.str());
-  if (!c.sweep_camera_fov_deg.empty()) write_text_atomically(out_dir / "sweep_camera_fov.csv", sweep_cam.str());
-  if (!c.sweep_ir_fov_deg.empty()) write_text_atomically(out_dir / "sweep_ir_fov.csv", sweep_ir.str());
+  if (!c.sweep_camera_fov_deg.empty())
+    write_text_atomically(out_dir / "sweep_camera_fov.csv", sweep_cam.str());
+  if (!c.sweep_ir_fov_deg.empty())
+    write_text_atomically(out_dir / "sweep_ir_fov.csv", sweep_ir.str());
 }
 
 }  // namespace ferret

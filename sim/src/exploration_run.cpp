@@ -76,8 +76,9 @@ class PathFollower {
     w = std::clamp(4.0 * e, -robot_.max_yaw_rate_radps, robot_.max_yaw_rate_radps);
     if (std::abs(e) < (precise_ > 0 ? 0.03 : 0.6)) {
       v_des = robot_.max_velocity_mps * std::cos(e);
-      v_des = std::min(v_des, std::sqrt(2.0 * robot_.max_acceleration_mps2 * to_goal));  // stop at the goal
-      if (precise_ > 0) v_des = std::min(v_des, to.norm() / dt);  // land on the waypoint
+      v_des = std::min(
+          v_des, std::sqrt(2.0 * robot_.max_acceleration_mps2 * to_goal));  // stop at the goal
+      if (precise_ > 0) v_des = std::min(v_des, to.norm() / dt);            // land on the waypoint
     }
     const double dv = robot_.max_acceleration_mps2 * dt;
     double v = std::clamp(v_des, v_mps - 2 * dv, v_mps + dv);  // brake harder than accelerate
@@ -86,17 +87,20 @@ class PathFollower {
     Eigen::Vector2d next = p + v * dt * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
     const GridGeometry& g = grid.geometry();
     const Cell c = g.cell_at(next.x(), next.y());
-    const bool same_cell = c == g.cell_at(p.x(), p.y());  // a noisy hit may have marked the robot's own cell
+    const bool same_cell =
+        c == g.cell_at(p.x(), p.y());  // a noisy hit may have marked the robot's own cell
     if (!g.contains(c) || (grid.label(c) != GridLabel::kFree && !same_cell)) {
       // Not known free (a corner cut, or space the IR has not seen): stop, and go on
       // precisely from the centre of the current cell along the path's segments.
       v = 0.0;
       next = p;
       const Eigen::Vector2d centre = g.center(g.cell_at(p.x(), p.y()));
-      if ((path_[next_] - centre).norm() > 1e-9) path_.insert(path_.begin() + static_cast<std::ptrdiff_t>(next_), centre);
+      if ((path_[next_] - centre).norm() > 1e-9)
+        path_.insert(path_.begin() + static_cast<std::ptrdiff_t>(next_), centre);
       precise_ = 3;
     }
-    if (precise_ > 0 && v > 0 && (target - next).norm() < 1e-3 + 0.5 * v * dt) next = target;  // land exactly
+    if (precise_ > 0 && v > 0 && (target - next).norm() < 1e-3 + 0.5 * v * dt)
+      next = target;  // land exactly
     pose = {next.x(), next.y(), yaw};
     v_mps = v;
     return false;
@@ -105,7 +109,7 @@ class PathFollower {
  private:
   RobotOptions robot_;
   std::vector<Eigen::Vector2d> path_;
-  int precise_ = 0;  ///< waypoints left to follow precisely after a blocked step
+  int precise_ = 0;           ///< waypoints left to follow precisely after a blocked step
   bool has_heading_ = false;  // (not std::optional: GCC 12 warns falsely about it here)
   double heading_rad_ = 0.0;
   std::size_t next_ = 0;
@@ -113,8 +117,9 @@ class PathFollower {
 
 }  // namespace
 
-EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, const Eigen::Vector2d& object_W,
-                              const ExplorationSettings& settings, std::uint64_t seed) {
+EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start,
+                              const Eigen::Vector2d& object_W, const ExplorationSettings& settings,
+                              std::uint64_t seed) {
   if (!has_exploration_policy(settings.method))
     throw std::invalid_argument("unknown exploration method: " + settings.method);
   const GridGeometry& geo = truth.geometry;
@@ -128,16 +133,18 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
   IrGrid::Options grid_options;
   grid_options.clearance_m = settings.robot.clearance_m;
   auto grid = std::make_shared<IrGrid>(geo, grid_options);
-  auto object_options = ObjectMap::Options::from(settings.mission.object_search, sensors.camera_range_m);
+  auto object_options =
+      ObjectMap::Options::from(settings.mission.object_search, sensors.camera_range_m);
   object_options.object_radius_m = sensors.object_radius_m;
   auto objects = std::make_shared<ObjectMap>(geo, object_options);
   FrontierTracker tracker(geo);
   GridPathPlanner planner(geo);
 
-  PolicyOptions policy_options =
-      PolicyOptions::from(settings.mission, sensors.camera_range_m, settings.robot.max_velocity_mps);
+  PolicyOptions policy_options = PolicyOptions::from(settings.mission, sensors.camera_range_m,
+                                                     settings.robot.max_velocity_mps);
   policy_options.cdos_candidates_global = settings.cdos_candidates_global;
   policy_options.curiosity.closest_approach = settings.cdos_closest_approach;
+  policy_options.seed = derive_seed(seed, {stable_hash("policy")});  // the OMPL frontier policies
   auto policy = make_exploration_policy(settings.method, policy_options);
 
   EpisodeResult result;
@@ -147,9 +154,12 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
   PathFollower follower(settings.robot);
 
   const double dt = 1.0 / sensors.ir_rate_hz;
-  const int camera_every = std::max(1, static_cast<int>(std::lround(sensors.ir_rate_hz / sensors.camera_rate_hz)));
-  const int decide_every = std::max(1, static_cast<int>(std::lround(settings.decision_period_s / dt)));
-  const double escape_m = std::max(settings.robot.escape_radius_m, settings.robot.clearance_m + 2 * geo.resolution_m);
+  const int camera_every =
+      std::max(1, static_cast<int>(std::lround(sensors.ir_rate_hz / sensors.camera_rate_hz)));
+  const int decide_every =
+      std::max(1, static_cast<int>(std::lround(settings.decision_period_s / dt)));
+  const double escape_m =
+      std::max(settings.robot.escape_radius_m, settings.robot.clearance_m + 2 * geo.resolution_m);
 
   std::optional<ExplorationGoal> goal;
   bool goal_is_revisit = false;
@@ -173,7 +183,8 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
       objects->integrate_frame(sim.camera_frame(pose, t));
       if (const auto cell = objects->found_cell()) {
         result.found_W = geo.center(*cell);
-        const bool right = (result.found_W - object_W).norm() <= sensors.object_radius_m + 2 * geo.resolution_m;
+        const bool right =
+            (result.found_W - object_W).norm() <= sensors.object_radius_m + 2 * geo.resolution_m;
         result.found = right;
         finish(right ? "found" : "false_find", t);
         break;
@@ -190,18 +201,29 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
     // A decision cycle, unless the policy keeps its goal on the evidence of the maps
     // (then the path from the last full cycle is still followed; a full cycle runs at
     // least every kFullDecision_s to refresh it).
-    if (decide_now || (step % decide_every == 0 && (!goal || t - last_full_decision >= kFullDecision_s ||
-                                                     (!goal_is_revisit && !policy->keeps_goal(*objects, tracker))))) {
+    if (decide_now || (step % decide_every == 0 &&
+                       (!goal || t - last_full_decision >= kFullDecision_s ||
+                        (!goal_is_revisit && !policy->keeps_goal(*objects, tracker))))) {
       decide_now = false;
       last_full_decision = t;
       const Cell robot_cell = geo.cell_at(pose.x_m, pose.y_m);
       planner.compute(*grid, robot_cell, GridPathPlanner::Traversal::kKnownFree, escape_m);
       const Pose2 X_WS = pose;  // sensors at the robot's origin, facing forward
-      const FrontierSets sets = tracker.extract(planner.distances_m(), X_WS, sensors.ir_fov_rad, sensors.ir_range_m);
-      const Eigen::Vector2d v_W = v_mps * Eigen::Vector2d(std::cos(pose.yaw_rad), std::sin(pose.yaw_rad));
+      const FrontierSets sets =
+          tracker.extract(planner.distances_m(), X_WS, sensors.ir_fov_rad, sensors.ir_range_m);
+      const Eigen::Vector2d v_W =
+          v_mps * Eigen::Vector2d(std::cos(pose.yaw_rad), std::sin(pose.yaw_rad));
       if (!(goal && goal_is_revisit)) {
-        ExplorationState state{*grid, *objects, tracker, sets, planner, pose, v_W, sensors.ir_fov_rad,
-                               sensors.ir_range_m, std::nullopt};
+        ExplorationState state{*grid,
+                               *objects,
+                               tracker,
+                               sets,
+                               planner,
+                               pose,
+                               v_W,
+                               sensors.ir_fov_rad,
+                               sensors.ir_range_m,
+                               std::nullopt};
         if (policy->needs_oracle()) state.oracle_object_W = object_W;
         goal = policy->choose(state);
         goal_is_revisit = false;
@@ -209,9 +231,18 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
           // Nothing reachable: perhaps the robot is boxed in by the clearance of walls
           // it has just seen. Look again with the clearance waived further out.
           planner.compute(*grid, robot_cell, GridPathPlanner::Traversal::kKnownFree, kWideEscape_m);
-          const FrontierSets wide = tracker.extract(planner.distances_m(), X_WS, sensors.ir_fov_rad, sensors.ir_range_m);
-          ExplorationState again{*grid, *objects, tracker, wide, planner, pose, v_W, sensors.ir_fov_rad,
-                                 sensors.ir_range_m, state.oracle_object_W};
+          const FrontierSets wide =
+              tracker.extract(planner.distances_m(), X_WS, sensors.ir_fov_rad, sensors.ir_range_m);
+          ExplorationState again{*grid,
+                                 *objects,
+                                 tracker,
+                                 wide,
+                                 planner,
+                                 pose,
+                                 v_W,
+                                 sensors.ir_fov_rad,
+                                 sensors.ir_range_m,
+                                 state.oracle_object_W};
           goal = policy->choose(again);
         }
         if (!goal) {
@@ -242,8 +273,9 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
           follower.set_path(std::move(path), goal->heading_rad);
         }
         if (settings.record && goal)
-          result.decision_log.push_back({t, pose, goal->p_W, goal->reason, goal->score, sets.global.size(),
-                                         sets.visible.size(), objects->evidence_cells().size()});
+          result.decision_log.push_back({t, pose, goal->p_W, goal->reason, goal->score,
+                                         sets.global.size(), sets.visible.size(),
+                                         objects->evidence_cells().size()});
       }
     }
 
@@ -253,7 +285,8 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
     if (reached) {
       // A goal reached that is still frontier, or a viewpoint reached without finding
       // the object, would be chosen again and again.
-      if (goal && (tracker.is_frontier(goal->cell) || goal->heading_rad)) tracker.blacklist(goal->cell);
+      if (goal && (tracker.is_frontier(goal->cell) || goal->heading_rad))
+        tracker.blacklist(goal->cell);
       policy->goal_done();
       goal.reset();
       goal_is_revisit = false;
@@ -279,7 +312,8 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start, c
 
   if (settings.record) {
     tracker.update(*grid);
-    for (const std::size_t idx : tracker.frontier_cells()) result.frontier.push_back(geo.cell_of_index(idx));
+    for (const std::size_t idx : tracker.frontier_cells())
+      result.frontier.push_back(geo.cell_of_index(idx));
     result.grid = grid;
     result.objects = objects;
   }

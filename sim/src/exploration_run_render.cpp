@@ -11,7 +11,8 @@ namespace ferret {
 namespace {
 
 const Rgb kFrontier{0, 190, 0}, kObject{255, 220, 0}, kEvidence{255, 140, 0}, kPath{0, 70, 210},
-    kTruthWall{215, 215, 215}, kTruthObject{220, 0, 0}, kSeenLow{255, 255, 255}, kSeenHigh{90, 90, 255};
+    kTruthWall{215, 215, 215}, kTruthObject{220, 0, 0}, kSeenLow{255, 255, 255},
+    kSeenHigh{90, 90, 255};
 
 // G as a map: free, occupied, unknown.
 OccupancyMap2D grid_as_map(const IrGrid& grid) {
@@ -20,9 +21,15 @@ OccupancyMap2D grid_as_map(const IrGrid& grid) {
   m.cells.resize(m.geometry.size());
   for (std::size_t idx = 0; idx < m.cells.size(); ++idx) {
     switch (grid.label_at(idx)) {
-      case GridLabel::kFree: m.cells[idx] = CellState::kFree; break;
-      case GridLabel::kOccupied: m.cells[idx] = CellState::kOccupied; break;
-      case GridLabel::kUnknown: m.cells[idx] = CellState::kUnknown; break;
+      case GridLabel::kFree:
+        m.cells[idx] = CellState::kFree;
+        break;
+      case GridLabel::kOccupied:
+        m.cells[idx] = CellState::kOccupied;
+        break;
+      case GridLabel::kUnknown:
+        m.cells[idx] = CellState::kUnknown;
+        break;
     }
   }
   return m;
@@ -64,7 +71,8 @@ void draw_objects(MapCanvas& canvas, const ObjectMap& objects, bool seen_field) 
   canvas.draw_cells(g, object, kObject);
 }
 
-void draw_run(MapCanvas& canvas, const GridGeometry& g, const Eigen::Vector2d& object_W, const EpisodeResult& r) {
+void draw_run(MapCanvas& canvas, const GridGeometry& g, const Eigen::Vector2d& object_W,
+              const EpisodeResult& r) {
   canvas.draw_cells(g, r.frontier, kFrontier);
   std::vector<Eigen::Vector2d> path;
   path.reserve(r.trajectory.size());
@@ -79,9 +87,10 @@ void draw_run(MapCanvas& canvas, const GridGeometry& g, const Eigen::Vector2d& o
 
 }  // namespace
 
-void write_exploration_images(const OccupancyMap2D& truth, const Eigen::Vector2d& object_W, const EpisodeResult& r,
-                              const std::filesystem::path& dir) {
-  if (!r.grid || !r.objects) throw std::invalid_argument("write_exploration_images: the run was not recorded");
+void write_exploration_images(const OccupancyMap2D& truth, const Eigen::Vector2d& object_W,
+                              const EpisodeResult& r, const std::filesystem::path& dir) {
+  if (!r.grid || !r.objects)
+    throw std::invalid_argument("write_exploration_images: the run was not recorded");
   const GridGeometry& g = r.grid->geometry();
   const OccupancyMap2D g_map = grid_as_map(*r.grid);
 

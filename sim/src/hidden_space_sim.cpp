@@ -14,19 +14,25 @@ int beams_for(double fov_rad, double range_m, double resolution_m) {
 double beam_bearing(int k, int n, double fov_rad) { return -fov_rad / 2 + fov_rad * k / (n - 1); }
 }  // namespace
 
-HiddenSpaceSim::HiddenSpaceSim(const OccupancyMap2D& truth, const Eigen::Vector2d& object_W, SensorOptions options,
-                               std::uint64_t seed)
+HiddenSpaceSim::HiddenSpaceSim(const OccupancyMap2D& truth, const Eigen::Vector2d& object_W,
+                               SensorOptions options, std::uint64_t seed)
     : truth_(truth), object_W_(object_W), options_(options), rng_(seed) {
-  if (truth.cells.size() != truth.geometry.size()) throw std::invalid_argument("HiddenSpaceSim: malformed truth map");
+  if (truth.cells.size() != truth.geometry.size())
+    throw std::invalid_argument("HiddenSpaceSim: malformed truth map");
   const double res = truth.geometry.resolution_m;
-  ir_beams_ = options.ir_beams > 0 ? options.ir_beams : beams_for(options.ir_fov_rad, options.ir_range_m, res);
-  camera_beams_ =
-      options.camera_beams > 0 ? options.camera_beams : beams_for(options.camera_fov_rad, options.camera_range_m, res);
+  ir_beams_ = options.ir_beams > 0 ? options.ir_beams
+                                   : beams_for(options.ir_fov_rad, options.ir_range_m, res);
+  camera_beams_ = options.camera_beams > 0
+                      ? options.camera_beams
+                      : beams_for(options.camera_fov_rad, options.camera_range_m, res);
 }
 
-bool HiddenSpaceSim::blocks(Cell c) const { return !truth_.geometry.contains(c) || truth_.at(c) != CellState::kFree; }
+bool HiddenSpaceSim::blocks(Cell c) const {
+  return !truth_.geometry.contains(c) || truth_.at(c) != CellState::kFree;
+}
 
-double HiddenSpaceSim::cast(const Eigen::Vector2d& from, double angle_rad, double max_range_m) const {
+double HiddenSpaceSim::cast(const Eigen::Vector2d& from, double angle_rad,
+                            double max_range_m) const {
   const Eigen::Vector2d dir(std::cos(angle_rad), std::sin(angle_rad));
   double hit = max_range_m;
   bool inside = false;
@@ -64,8 +70,10 @@ RangeScan HiddenSpaceSim::ir_scan(const Pose2& X_WS) {
     const double bearing = beam_bearing(k, ir_beams_, options_.ir_fov_rad);
     const double range = cast(p, X_WS.yaw_rad + bearing, options_.ir_range_m);
     const double noise = rng_.normal(0.0, options_.ir_noise_m);
-    if (rng_.bernoulli(options_.ir_dropout)) continue;  // drawn for every beam: same stream either way
-    scan.beams.push_back({bearing, range < options_.ir_range_m ? std::max(0.0, range + noise) : options_.ir_range_m});
+    if (rng_.bernoulli(options_.ir_dropout))
+      continue;  // drawn for every beam: same stream either way
+    scan.beams.push_back({bearing, range < options_.ir_range_m ? std::max(0.0, range + noise)
+                                                               : options_.ir_range_m});
   }
   return scan;
 }
@@ -97,8 +105,8 @@ CameraFrame HiddenSpaceSim::camera_frame(const Pose2& X_WC, double time_s) {
   if (width_px < 1.0) return frame;
   const double gamma = width_px / options_.object_size_m;  // pixels per metre
   const double d_measured = f / gamma;                     // d = k_c / gamma
-  frame.detections.push_back(
-      {bearing + bearing_noise, d_measured, std::max(0.0, options_.eta_m / d_measured + conf_noise)});
+  frame.detections.push_back({bearing + bearing_noise, d_measured,
+                              std::max(0.0, options_.eta_m / d_measured + conf_noise)});
   return frame;
 }
 

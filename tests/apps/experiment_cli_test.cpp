@@ -17,8 +17,10 @@ struct ExperimentDir {
   ExperimentDir() { save_map_server(small_hidden_space(), dir.path() / "room.yaml"); }
   std::string config(const std::string& zones, const std::string& extra = "") const {
     std::ofstream out(dir.path() / "exp.yaml");
-    out << "seed: 2\nobjects_per_zone: 2\nmethods: [cdos, rapid, oracle]\n" << extra
-        << "maps:\n  - name: room\n    map: room.yaml\n    start: [0.5, 1.0, 0.0]\n    zones:\n" << zones;
+    out << "seed: 2\nobjects_per_zone: 2\nmethods: [cdos, rapid, oracle]\n"
+        << extra
+        << "maps:\n  - name: room\n    map: room.yaml\n    start: [0.5, 1.0, 0.0]\n    zones:\n"
+        << zones;
     return (dir.path() / "exp.yaml").string();
   }
 };
@@ -35,12 +37,14 @@ std::string slurp(const std::filesystem::path& p) {
 TEST(ExperimentCli, WritesTheCsvsWithTheExactSummaryHeader) {
   ExperimentDir s;
   const std::string out = s.dir / "out";
-  const auto r = run_cli("experiment " + s.config(kZones, "sweeps: {ir_fov_deg: [20, 40], objects_per_zone: 1}\n") +
+  const auto r = run_cli("experiment " +
+                         s.config(kZones, "sweeps: {ir_fov_deg: [20, 40], objects_per_zone: 1}\n") +
                          " --out " + out + " --jobs 2 --no-plots");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("runs/s"));  // the progress line
   const std::string summary = slurp(std::filesystem::path(out) / "summary.csv");
-  EXPECT_EQ(summary.substr(0, summary.find('\n')), "map,zone,method,runs,found,mean_time_s,ci95_time_s,mean_path_m");
+  EXPECT_EQ(summary.substr(0, summary.find('\n')),
+            "map,zone,method,runs,found,mean_time_s,ci95_time_s,mean_path_m");
   EXPECT_THAT(summary, HasSubstr("room,2,oracle,2,2,"));
   const std::string runs = slurp(std::filesystem::path(out) / "runs.csv");
   EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 1 + 2 * 3 * 2 + 2 * 2 * 2 * 1);
@@ -55,19 +59,23 @@ TEST(ExperimentCli, BadConfigsExitTwoNamingTheFieldAndWriteNothing) {
     std::string zones, extra, field;
   };
   const Case cases[] = {
-      {"      1: [1.0, 0.5, 1.8, 1.5]\n      3: [2.8, 0.4, 4.6, 1.4]\n", "", "maps[0].zones.2"},  // missing zone
-      {"      1: [1.0, 0.5, 1.8, 1.5]\n      2: [2.8, 0.4, 7.0, 1.4]\n", "", "maps[0].zones.2"},  // outside
+      {"      1: [1.0, 0.5, 1.8, 1.5]\n      3: [2.8, 0.4, 4.6, 1.4]\n", "",
+       "maps[0].zones.2"},  // missing zone
+      {"      1: [1.0, 0.5, 1.8, 1.5]\n      2: [2.8, 0.4, 7.0, 1.4]\n", "",
+       "maps[0].zones.2"},  // outside
       {kZones, "time_limit_s: -1\n", "time_limit_s"},
   };
   for (const auto& c : cases) {
-    const auto r = run_cli("experiment " + s.config(c.zones, c.extra) + " --out " + (s.dir / "out"));
+    const auto r =
+        run_cli("experiment " + s.config(c.zones, c.extra) + " --out " + (s.dir / "out"));
     EXPECT_EQ(r.exit_code, 2) << c.field;
     EXPECT_THAT(r.err, HasSubstr(c.field));
     EXPECT_FALSE(std::filesystem::exists(s.dir / "out"));
   }
   {
     std::ofstream out(s.dir.path() / "exp.yaml");
-    out << "methods: [cdos]\nmaps:\n  - {name: a, map: nowhere.yaml, start: [0.5, 1, 0], zones: {1: [1, 1, 2, 2]}}\n";
+    out << "methods: [cdos]\nmaps:\n  - {name: a, map: nowhere.yaml, start: [0.5, 1, 0], zones: "
+           "{1: [1, 1, 2, 2]}}\n";
   }
   auto r = run_cli("experiment " + (s.dir / "exp.yaml") + " --out " + (s.dir / "out"));
   EXPECT_EQ(r.exit_code, 2);

@@ -21,7 +21,8 @@ struct Room {
 TEST(ExploreCli, FindsTheObjectAndWritesTheFigureAndLog) {
   Room room;
   const std::string out = room.dir / "out";
-  const auto r = run_cli("explore --map " + room.map + " --start 0.5,1,0 --object 3.2,0.8 --method cdos --seed 1 --out " + out);
+  const auto r = run_cli("explore --map " + room.map +
+                         " --start 0.5,1,0 --object 3.2,0.8 --method cdos --seed 1 --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("found: yes"));
   EXPECT_THAT(r.out, HasSubstr("path_m: "));
@@ -35,14 +36,16 @@ TEST(ExploreCli, FindsTheObjectAndWritesTheFigureAndLog) {
   EXPECT_FALSE(log["decisions"].empty());
   EXPECT_FALSE(log["trajectory"].empty());
   // Same seed, same run.
-  const auto again = run_cli("explore --map " + room.map + " --start 0.5,1,0 --object 3.2,0.8 --method cdos --seed 1");
+  const auto again = run_cli("explore --map " + room.map +
+                             " --start 0.5,1,0 --object 3.2,0.8 --method cdos --seed 1");
   EXPECT_EQ(again.out.substr(0, again.out.find("wrote")), r.out.substr(0, r.out.find("wrote")));
 }
 
 TEST(ExploreCli, BadInputExitsTwoNamingTheOption) {
   Room room;
   const std::string base = "explore --map " + room.map + " ";
-  auto r = run_cli(base + "--start 2.2,0.5,0 --object 3.2,0.8 --out " + (room.dir / "o"));  // in the partition
+  auto r = run_cli(base + "--start 2.2,0.5,0 --object 3.2,0.8 --out " +
+                   (room.dir / "o"));  // in the partition
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("--start"));
   EXPECT_FALSE(std::filesystem::exists(room.dir / "o"));

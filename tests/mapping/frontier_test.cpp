@@ -42,7 +42,8 @@ TEST(Frontier, IncrementalUpdateMatchesRebuild) {
   full.rebuild(g);
   EXPECT_EQ(inc.frontier_count(), full.frontier_count());
   for (int j = 0; j < 10; ++j)
-    for (int i = 0; i < 20; ++i) EXPECT_EQ(inc.is_frontier({i, j}), full.is_frontier({i, j})) << i << "," << j;
+    for (int i = 0; i < 20; ++i)
+      EXPECT_EQ(inc.is_frontier({i, j}), full.is_frontier({i, j})) << i << "," << j;
   EXPECT_TRUE(inc.is_frontier({10, 3}));
   EXPECT_FALSE(inc.is_frontier({9, 4}));
 }
@@ -52,7 +53,8 @@ TEST(Frontier, VisibleSetIsTheGlobalSetInsideTheFieldOfView) {
   FrontierTracker t(geometry());
   t.update(g);
   const auto reach = all_reachable();
-  // Sensor at (0.05, 0.55) facing +x, 30 degree fov: frontier x = 0.95, |dy| <= 0.88 tan(15) ~ 0.24.
+  // Sensor at (0.05, 0.55) facing +x, 30 degree fov: frontier x = 0.95, |dy| <= 0.88 tan(15) ~
+  // 0.24.
   const auto sets = t.extract(reach, {0.05, 0.55, 0.0}, deg_to_rad(30), 4.0);
   EXPECT_EQ(sets.global.size(), 10u);
   ASSERT_EQ(sets.visible.size(), 5u);

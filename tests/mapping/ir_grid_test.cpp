@@ -87,8 +87,8 @@ TEST(IrGrid, InflationTracksOccupiedCellsWithinClearance) {
   const auto idx = [&](Cell c) { return g.geometry().index(c); };
   EXPECT_TRUE(g.traversable(idx({10, 10})));
   g.update_cell({12, 10}, true);
-  EXPECT_FALSE(g.traversable(idx({10, 10})));  // 2 cells away
-  EXPECT_TRUE(g.traversable(idx({9, 10})));    // 3 cells away
+  EXPECT_FALSE(g.traversable(idx({10, 10})));                  // 2 cells away
+  EXPECT_TRUE(g.traversable(idx({9, 10})));                    // 3 cells away
   for (int k = 0; k < 3; ++k) g.update_cell({12, 10}, false);  // seen free again
   EXPECT_TRUE(g.traversable(idx({10, 10})));
 }

@@ -21,7 +21,8 @@ CameraFrame frame(Pose2 pose, double t, std::vector<ObjectDetection> detections 
 
 TEST(ObjectMap, DetectionConfidenceIsClippedAboveOneHalf) {
   ObjectMap m(geometry(), {});
-  EXPECT_DOUBLE_EQ(m.detection_confidence(1.0 / 3.0), 0.55);  // far: eta/d = 0.33, still weak evidence
+  EXPECT_DOUBLE_EQ(m.detection_confidence(1.0 / 3.0),
+                   0.55);  // far: eta/d = 0.33, still weak evidence
   EXPECT_DOUBLE_EQ(m.detection_confidence(0.8), 0.8);
   EXPECT_DOUBLE_EQ(m.detection_confidence(2.0), 0.99);
 }

@@ -20,11 +20,12 @@ TEST(Curiosity, PredictedConfidenceIsCappedAtEtaOverDistance) {
   CuriosityOptions o;
   // conf_t d_t / d_{t+1} = 0.6 * 3 / 2 = 0.9, capped at eta / 2 = 0.5, then the floor.
   EXPECT_DOUBLE_EQ(predicted_confidence(0.6, 3.0, 2.0, o), 0.55);
-  EXPECT_DOUBLE_EQ(predicted_confidence(0.6, 3.0, 1.0, o), 0.99);   // 1.8 -> eta/1 = 1 -> cap
-  EXPECT_DOUBLE_EQ(predicted_confidence(0.6, 3.0, 1.25, o), 0.8);   // min(1.44, 0.8)
-  EXPECT_DOUBLE_EQ(predicted_confidence(0.6, 3.0, 4.5, o), 0.0);    // beyond D_cam: no observation
+  EXPECT_DOUBLE_EQ(predicted_confidence(0.6, 3.0, 1.0, o), 0.99);  // 1.8 -> eta/1 = 1 -> cap
+  EXPECT_DOUBLE_EQ(predicted_confidence(0.6, 3.0, 1.25, o), 0.8);  // min(1.44, 0.8)
+  EXPECT_DOUBLE_EQ(predicted_confidence(0.6, 3.0, 4.5, o), 0.0);   // beyond D_cam: no observation
   o.cap_prediction = false;
-  EXPECT_NEAR(predicted_confidence(0.6, 3.0, 2.0, o), 0.9, 1e-12);  // the paper's formula as written
+  EXPECT_NEAR(predicted_confidence(0.6, 3.0, 2.0, o), 0.9,
+              1e-12);  // the paper's formula as written
 }
 
 // Evidence cell at (3, 0) with p = 0.6 and last conf 0.55; the robot at the origin.
@@ -55,10 +56,11 @@ TEST(Curiosity, ClosestApproachCountsThePassBy) {
   const std::vector<EvidenceCell> evidence{{{2.0, 1.0}, 0.6, 0.55}};
   CuriosityOptions o;
   const double end_only = curiosity_loss({4.0, 0.0}, {0.0, 0.0}, evidence, o);  // d_{t+1} = sqrt(5)
-  o.closest_approach = true;                                                   // passes at 1 m
+  o.closest_approach = true;                                                    // passes at 1 m
   const double pass_by = curiosity_loss({4.0, 0.0}, {0.0, 0.0}, evidence, o);
   EXPECT_GT(pass_by, end_only);
-  EXPECT_NEAR(pass_by, curiosity(0.6, o.params) - curiosity(fuse_probability(0.6, 0.99), o.params), 1e-9);
+  EXPECT_NEAR(pass_by, curiosity(0.6, o.params) - curiosity(fuse_probability(0.6, 0.99), o.params),
+              1e-9);
 }
 
 TEST(Curiosity, StrongestEvidenceAndFusion) {

@@ -1,5 +1,3 @@
-#include "ferret/planning/policies.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,6 +5,7 @@
 #include <stdexcept>
 
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/policies.hpp"
 
 namespace ferret {
 namespace {
@@ -41,7 +40,8 @@ PolicyOptions options() { return PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
 
 TEST(Policy, RegistryKnowsTheBuiltInsAndRejectsUnknownNames) {
   const auto names = exploration_policy_names();
-  for (const char* n : {"cdos", "cdos-literal", "cdos-fg", "cdos-closest", "rapid", "nearest", "oracle"}) {
+  for (const char* n :
+       {"cdos", "cdos-literal", "cdos-fg", "cdos-closest", "rapid", "nearest", "oracle"}) {
     EXPECT_TRUE(has_exploration_policy(n)) << n;
     EXPECT_EQ(make_exploration_policy(n, options())->name(), n);
   }
@@ -80,7 +80,7 @@ TEST(Policy, RapidFallsBackToTheNearestFrontierByPath) {
   const auto goal = policy->choose(w.state());
   ASSERT_TRUE(goal);
   EXPECT_EQ(goal->reason, "nearest");
-  EXPECT_EQ(goal->cell.i, 39);  // the frontier column
+  EXPECT_EQ(goal->cell.i, 39);       // the frontier column
   EXPECT_NEAR(goal->cell.j, 20, 1);  // straight across
   ASSERT_TRUE(goal->heading_rad);
   EXPECT_NEAR(*goal->heading_rad, 0.0, 1e-9);  // facing the unknown
@@ -102,7 +102,8 @@ TEST(Policy, CdosGoesTowardsEvidenceAndFacesIt) {
   CameraFrame frame;  // one far detection: weak evidence
   frame.view = {w.pose, 4.0, {}};
   const Eigen::Vector2d to_object = object - w.pose.position();
-  frame.detections = {{std::atan2(to_object.y(), to_object.x()), to_object.norm(), 1.0 / to_object.norm()}};
+  frame.detections = {
+      {std::atan2(to_object.y(), to_object.x()), to_object.norm(), 1.0 / to_object.norm()}};
   w.objects.integrate_frame(frame);
   ASSERT_FALSE(w.objects.evidence_cells().empty());
   auto cdos = make_exploration_policy("cdos", options());
@@ -151,7 +152,8 @@ TEST(GridPathPlanner, DistancesDetoursAndUnreachableCells) {
   EXPECT_GT(p.distance_m({20, 0}), 4.5);
   const auto path = p.path_to({20, 0});
   ASSERT_GE(path.size(), 3u);
-  for (const auto& q : path) EXPECT_FALSE(geo.cell_at(q.x(), q.y()).i == 15 && geo.cell_at(q.x(), q.y()).j < 25);
+  for (const auto& q : path)
+    EXPECT_FALSE(geo.cell_at(q.x(), q.y()).i == 15 && geo.cell_at(q.x(), q.y()).j < 25);
   // Closed off: unreachable.
   for (int i = 15; i < 30; ++i) g.update_cell({i, 25}, true);
   for (int i = 15; i < 30; ++i) g.update_cell({i, 25}, true);
@@ -197,7 +199,7 @@ TEST(GridPathPlanner, ARobotInsideTheClearanceBandCanLeaveItButNeverStopsInIt) {
   for (int j = 0; j < 40; ++j)
     for (int i = 0; i < 60; ++i) g.update_cell({i, j}, false);
   for (int j = 0; j < 40; ++j) g.update_cell({30, j}, true);  // a wall at x = 1.5 .. 1.55
-  const Cell robot = geo.cell_at(1.43, 1.0);                   // 7 cm from it: inside the band
+  const Cell robot = geo.cell_at(1.43, 1.0);                  // 7 cm from it: inside the band
   GridPathPlanner p(geo);
   p.compute(g, robot, GridPathPlanner::Traversal::kKnownFree);
   EXPECT_FALSE(p.reachable(geo.cell_at(0.5, 1.0)));  // no escape band: stuck

@@ -22,8 +22,10 @@ struct ExperimentDir {
   ExperimentDir() { save_map_server(test::small_hidden_space(), dir.path() / "room.yaml"); }
   std::filesystem::path config(const std::string& zones, const std::string& extra = "") const {
     std::ofstream out(dir.path() / "exp.yaml");
-    out << "seed: 3\nobjects_per_zone: 2\nmethods: [cdos, rapid]\n" << extra
-        << "maps:\n  - name: room\n    map: room.yaml\n    start: [0.5, 1.0, 0.0]\n    zones:\n" << zones;
+    out << "seed: 3\nobjects_per_zone: 2\nmethods: [cdos, rapid]\n"
+        << extra
+        << "maps:\n  - name: room\n    map: room.yaml\n    start: [0.5, 1.0, 0.0]\n    zones:\n"
+        << zones;
     return dir.path() / "exp.yaml";
   }
 };
@@ -53,21 +55,28 @@ TEST(Experiment, LoadsZonesInOrderWithDefaults) {
 
 TEST(Experiment, BadConfigsNameTheField) {
   ExperimentDir s;
-  expect_input_error(s.config("      1: [1.0, 0.5, 1.8, 1.5]\n      3: [2.8, 0.4, 4.6, 1.4]\n"), "maps[0].zones.2");
-  expect_input_error(s.config("      1: [1.0, 0.5, 1.8, 1.5]\n      2: [2.8, 0.4, 6.0, 1.4]\n"), "maps[0].zones.2");
-  expect_input_error(s.config("      1: [2.0, 0.2, 2.4, 1.5]\n"), "maps[0].zones.1");  // inside the wall: no free cell
+  expect_input_error(s.config("      1: [1.0, 0.5, 1.8, 1.5]\n      3: [2.8, 0.4, 4.6, 1.4]\n"),
+                     "maps[0].zones.2");
+  expect_input_error(s.config("      1: [1.0, 0.5, 1.8, 1.5]\n      2: [2.8, 0.4, 6.0, 1.4]\n"),
+                     "maps[0].zones.2");
+  expect_input_error(s.config("      1: [2.0, 0.2, 2.4, 1.5]\n"),
+                     "maps[0].zones.1");  // inside the wall: no free cell
   expect_input_error(s.config(kZones, "sensors: {camera_fov_deg: -5}\n"), "sensors.camera_fov_deg");
   expect_input_error(s.config(kZones, "colour: red\n"), "colour");
-  expect_input_error(s.config(kZones, "sweeps: {objects_per_zone: 2.5}\n"), "sweeps.objects_per_zone");
-  expect_input_error(s.config(kZones, "sweeps: {objects_per_zone: 0}\n"), "sweeps.objects_per_zone");
+  expect_input_error(s.config(kZones, "sweeps: {objects_per_zone: 2.5}\n"),
+                     "sweeps.objects_per_zone");
+  expect_input_error(s.config(kZones, "sweeps: {objects_per_zone: 0}\n"),
+                     "sweeps.objects_per_zone");
   {
     std::ofstream out(s.dir.path() / "exp.yaml");
-    out << "methods: [cdos, random]\nmaps:\n  - {name: a, map: nowhere.yaml, start: [0.5, 1, 0], zones: {1: [1, 1, 2, 2]}}\n";
+    out << "methods: [cdos, random]\nmaps:\n  - {name: a, map: nowhere.yaml, start: [0.5, 1, 0], "
+           "zones: {1: [1, 1, 2, 2]}}\n";
   }
   expect_input_error(s.dir.path() / "exp.yaml", "methods[1]");
   {
     std::ofstream out(s.dir.path() / "exp.yaml");
-    out << "methods: [cdos]\nmaps:\n  - {name: a, map: nowhere.yaml, start: [0.5, 1, 0], zones: {1: [1, 1, 2, 2]}}\n";
+    out << "methods: [cdos]\nmaps:\n  - {name: a, map: nowhere.yaml, start: [0.5, 1, 0], zones: "
+           "{1: [1, 1, 2, 2]}}\n";
   }
   expect_input_error(s.dir.path() / "exp.yaml", "maps[0].map");
   {
@@ -88,7 +97,7 @@ TEST(Experiment, ObjectsAreUniformInTheZoneWithClearanceAndReproducible) {
   for (const auto& p : a) {
     EXPECT_GE(p.x(), 1.5);
     EXPECT_LE(p.x(), 2.9);
-    EXPECT_GE(p.y(), 0.35 - 1e-9);                       // 0.25 m from the bottom wall (y <= 0.1)
+    EXPECT_GE(p.y(), 0.35 - 1e-9);  // 0.25 m from the bottom wall (y <= 0.1)
     EXPECT_TRUE(p.x() <= 1.75 + 1e-9 || p.x() >= 2.65 - 1e-9);  // and from the partition
     left += p.x() < 2.0;
   }
@@ -99,14 +108,16 @@ TEST(Experiment, ObjectsAreUniformInTheZoneWithClearanceAndReproducible) {
 
 TEST(Experiment, EveryMethodMeetsTheSameObjectsAndSeeds) {
   ExperimentDir s;
-  auto c = load_experiment_config(s.config(kZones, "sweeps: {camera_fov_deg: [60, 120], objects_per_zone: 1}\n"));
+  auto c = load_experiment_config(
+      s.config(kZones, "sweeps: {camera_fov_deg: [60, 120], objects_per_zone: 1}\n"));
   const auto runs = plan_runs(c);
   // main: 2 zones x 2 methods x 2 objects; sweep: 2 fovs x 2 zones x 2 methods x 1 object.
   ASSERT_EQ(runs.size(), 8u + 8u);
   std::set<std::tuple<int, int, double, double, std::uint64_t>> per_object;
   for (const auto& r : runs)
     per_object.insert({r.zone, r.object_index, r.object_W.x(), r.object_W.y(), r.seed});
-  EXPECT_EQ(per_object.size(), 4u);  // (zone, object) pairs: the method and sweep do not change them
+  EXPECT_EQ(per_object.size(),
+            4u);  // (zone, object) pairs: the method and sweep do not change them
   std::set<std::size_t> groups;
   for (const auto& r : runs) groups.insert(r.group);
   EXPECT_EQ(groups.size(), 4u + 8u);

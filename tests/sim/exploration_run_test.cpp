@@ -34,7 +34,8 @@ TEST_P(EveryMethod, FindsTheObjectBehindThePartition) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Policies, EveryMethod,
-                         ::testing::Values("cdos", "cdos-literal", "cdos-fg", "cdos-closest", "rapid", "nearest", "oracle"));
+                         ::testing::Values("cdos", "cdos-literal", "cdos-fg", "cdos-closest",
+                                           "rapid", "nearest", "oracle"));
 
 TEST(ExplorationRun, SameSeedSameRunAndTheOracleIsFastest) {
   const auto map = test::small_hidden_space();
@@ -64,7 +65,8 @@ TEST(ExplorationRun, ObjectInViewIsFoundQuicklyAndRecordsTheRun) {
 
 TEST(ExplorationRun, RejectsUnknownMethodsAndStartsInWalls) {
   const auto map = test::small_hidden_space();
-  EXPECT_THROW((void)run_exploration(map, kStart, kBehindPartition, settings("random"), 1), std::invalid_argument);
+  EXPECT_THROW((void)run_exploration(map, kStart, kBehindPartition, settings("random"), 1),
+               std::invalid_argument);
   EXPECT_THROW((void)run_exploration(map, {2.2, 0.5, 0.0}, kBehindPartition, settings("cdos"), 1),
                std::invalid_argument);
 }
@@ -89,7 +91,8 @@ class PaperMapRegression : public ::testing::TestWithParam<Regression> {};
 
 TEST_P(PaperMapRegression, FindsTheObject) {
   const Regression& c = GetParam();
-  const auto map = load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/" + c.map + ".yaml");
+  const auto map =
+      load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/" + c.map + ".yaml");
   ExplorationSettings s;
   s.method = c.method;
   s.sensors.ir_fov_rad = deg_to_rad(c.ir_fov_deg);

@@ -14,7 +14,8 @@ OccupancyMap2D room() {
   m.cells.assign(m.geometry.size(), CellState::kFree);
   for (int j = 0; j < 60; ++j)
     for (int i = 0; i < 80; ++i)
-      if (i == 0 || j == 0 || i == 79 || j == 59 || (i == 50 && j < 30)) m.cells[m.geometry.index({i, j})] = CellState::kOccupied;
+      if (i == 0 || j == 0 || i == 79 || j == 59 || (i == 50 && j < 30))
+        m.cells[m.geometry.index({i, j})] = CellState::kOccupied;
   return m;
 }
 
@@ -25,11 +26,13 @@ TEST(HiddenSpaceSim, IrBeamsReturnAtTheWall) {
   HiddenSpaceSim sim(map, {3.5, 2.5}, o, 7);
   const RangeScan scan = sim.ir_scan({1.025, 1.0, 0.0});  // wall face at x = 2.5
   // Enough beams to touch every cell at 4 m across 30 degrees.
-  EXPECT_EQ(scan.beams.size(), static_cast<std::size_t>(std::ceil(deg_to_rad(30) * 4.0 / 0.05)) + 1);
+  EXPECT_EQ(scan.beams.size(),
+            static_cast<std::size_t>(std::ceil(deg_to_rad(30) * 4.0 / 0.05)) + 1);
   const auto& mid = scan.beams[scan.beams.size() / 2];
   EXPECT_NEAR(mid.bearing_rad, 0.0, 1e-9);
   EXPECT_NEAR(mid.range_m, 1.475, 0.05);
-  EXPECT_NEAR(sim.cast(Eigen::Vector2d(1.025, 2.0), 0.0, 4.0), 2.925, 1e-9);  // above the wall segment: far wall
+  EXPECT_NEAR(sim.cast(Eigen::Vector2d(1.025, 2.0), 0.0, 4.0), 2.925,
+              1e-9);  // above the wall segment: far wall
 }
 
 TEST(HiddenSpaceSim, DetectsTheObjectInViewWithDistanceFromApparentSize) {
@@ -54,9 +57,11 @@ TEST(HiddenSpaceSim, NoDetectionBehindWallsOutsideTheFovOrBeyondRange) {
   SensorOptions o;
   o.detection_probability = 1.0;
   HiddenSpaceSim behind(map, {3.0, 0.75}, o, 1);
-  EXPECT_TRUE(behind.camera_frame({1.0, 0.75, 0.0}, 0.0).detections.empty());  // the wall at x = 2.5
+  EXPECT_TRUE(
+      behind.camera_frame({1.0, 0.75, 0.0}, 0.0).detections.empty());  // the wall at x = 2.5
   HiddenSpaceSim side(map, {1.0, 2.5}, o, 1);
-  EXPECT_TRUE(side.camera_frame({1.0, 1.0, 0.0}, 0.0).detections.empty());  // 90 degrees off the axis
+  EXPECT_TRUE(
+      side.camera_frame({1.0, 1.0, 0.0}, 0.0).detections.empty());  // 90 degrees off the axis
   o.camera_range_m = 1.5;
   HiddenSpaceSim far(map, {3.0, 2.0}, o, 1);
   EXPECT_TRUE(far.camera_frame({1.0, 2.0, 0.0}, 0.0).detections.empty());

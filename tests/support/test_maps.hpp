@@ -17,7 +17,8 @@ inline OccupancyMap2D small_hidden_space() {
     for (int j = 0; j < m.geometry.height; ++j)
       for (int i = 0; i < m.geometry.width; ++i) {
         const auto c = m.geometry.center({i, j});
-        if (c.x() >= x0 && c.x() <= x1 && c.y() >= y0 && c.y() <= y1) m.cells[m.geometry.index({i, j})] = CellState::kOccupied;
+        if (c.x() >= x0 && c.x() <= x1 && c.y() >= y0 && c.y() <= y1)
+          m.cells[m.geometry.index({i, j})] = CellState::kOccupied;
       }
   };
   box(0.0, 0.0, 0.1, 3.0);

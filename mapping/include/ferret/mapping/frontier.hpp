@@ -31,8 +31,8 @@ struct FrontierCluster {
 };
 
 struct FrontierSets {
-  std::vector<Cell> global;   ///< F_g (reachable, not blacklisted)
-  std::vector<Cell> visible;  ///< F_v, a subset of F_g
+  std::vector<Cell> global;               ///< F_g (reachable, not blacklisted)
+  std::vector<Cell> visible;              ///< F_v, a subset of F_g
   std::vector<FrontierCluster> clusters;  ///< F_g grouped 8-connected
 };
 

@@ -39,7 +39,8 @@ struct RangeScan {
 /// double distance_m)` gets the distance from `from` to the cell's entry point and
 /// returns false to stop. Cells outside the grid end the traversal.
 template <class Visit>
-void trace_ray(const GridGeometry& g, const Eigen::Vector2d& from, const Eigen::Vector2d& to, Visit&& visit) {
+void trace_ray(const GridGeometry& g, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+               Visit&& visit) {
   const double res = g.resolution_m;
   const double fx = (from.x() - g.origin_x_m) / res, fy = (from.y() - g.origin_y_m) / res;
   const double tx = (to.x() - g.origin_x_m) / res, ty = (to.y() - g.origin_y_m) / res;
@@ -50,9 +51,12 @@ void trace_ray(const GridGeometry& g, const Eigen::Vector2d& from, const Eigen::
   const int si = dx > 0 ? 1 : (dx < 0 ? -1 : 0), sj = dy > 0 ? 1 : (dy < 0 ? -1 : 0);
   constexpr double kInf = 1e30;
   // Parameter t in [0, 1] along the segment where the next vertical/horizontal line is crossed.
-  const double dt_i = si != 0 ? 1.0 / std::abs(dx) : kInf, dt_j = sj != 0 ? 1.0 / std::abs(dy) : kInf;
-  double t_i = si > 0 ? (std::floor(fx) + 1 - fx) * dt_i : (si < 0 ? (fx - std::floor(fx)) * dt_i : kInf);
-  double t_j = sj > 0 ? (std::floor(fy) + 1 - fy) * dt_j : (sj < 0 ? (fy - std::floor(fy)) * dt_j : kInf);
+  const double dt_i = si != 0 ? 1.0 / std::abs(dx) : kInf,
+               dt_j = sj != 0 ? 1.0 / std::abs(dy) : kInf;
+  double t_i =
+      si > 0 ? (std::floor(fx) + 1 - fx) * dt_i : (si < 0 ? (fx - std::floor(fx)) * dt_i : kInf);
+  double t_j =
+      sj > 0 ? (std::floor(fy) + 1 - fy) * dt_j : (sj < 0 ? (fy - std::floor(fy)) * dt_j : kInf);
   double t = 0.0;
   const int max_steps = std::abs(ei - i) + std::abs(ej - j) + 1;
   for (int step = 0; step < max_steps; ++step) {
@@ -103,8 +107,12 @@ class IrGrid {
   [[nodiscard]] const Options& options() const { return options_; }
   [[nodiscard]] float log_odds(Cell c) const { return log_odds_[geometry_.index(c)]; }
   [[nodiscard]] double probability(Cell c) const;
-  [[nodiscard]] GridLabel label(Cell c) const { return static_cast<GridLabel>(label_[geometry_.index(c)]); }
-  [[nodiscard]] GridLabel label_at(std::size_t idx) const { return static_cast<GridLabel>(label_[idx]); }
+  [[nodiscard]] GridLabel label(Cell c) const {
+    return static_cast<GridLabel>(label_[geometry_.index(c)]);
+  }
+  [[nodiscard]] GridLabel label_at(std::size_t idx) const {
+    return static_cast<GridLabel>(label_[idx]);
+  }
   /// True when an occupied cell lies within clearance_m of `c` (or `c` is occupied).
   [[nodiscard]] bool near_occupied(std::size_t idx) const { return inflation_[idx] > 0; }
   /// Known free and clear of every occupied cell by clearance_m: the robot may stand here.

@@ -51,13 +51,13 @@ class ObjectMap {
     double eta_m = 1.0;
     double conf_floor = 0.55;
     double conf_cap = 0.99;
-    double miss_likelihood = 0.4;  ///< "no object" likelihood of a cell seen at distance 0
-    double camera_range_m = 4.0;   ///< D_cam: the miss likelihood is 0.5 from here on
-    double object_radius_m = 0.1;  ///< cells within this of a detected spot take the detection
-    double min_move_m = 0.2;       ///< a new viewpoint: moved this far ...
-    double min_turn_rad = 0.26;    ///< ... or turned this much since the cell's last update
-    double max_period_s = 1.0;     ///< ... or this long ago
-    bool gate_viewpoints = true;   ///< false: fuse every frame (the paper to the letter)
+    double miss_likelihood = 0.4;      ///< "no object" likelihood of a cell seen at distance 0
+    double camera_range_m = 4.0;       ///< D_cam: the miss likelihood is 0.5 from here on
+    double object_radius_m = 0.1;      ///< cells within this of a detected spot take the detection
+    double min_move_m = 0.2;           ///< a new viewpoint: moved this far ...
+    double min_turn_rad = 0.26;        ///< ... or turned this much since the cell's last update
+    double max_period_s = 1.0;         ///< ... or this long ago
+    bool gate_viewpoints = true;       ///< false: fuse every frame (the paper to the letter)
     double clamp_probability = 0.999;  ///< log-odds are clamped to +-logit of this
 
     /// The mission's object-search parameters plus the camera range.

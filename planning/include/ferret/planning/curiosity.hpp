@@ -29,16 +29,18 @@
 namespace ferret {
 
 struct CuriosityOptions {
-  CuriosityParams params;         ///< a, b, K
-  double eta_m = 1.0;             ///< conf = eta / d
-  double conf_floor = 0.55;       ///< a predicted detection is clipped like a real one
+  CuriosityParams params;    ///< a, b, K
+  double eta_m = 1.0;        ///< conf = eta / d
+  double conf_floor = 0.55;  ///< a predicted detection is clipped like a real one
   double conf_cap = 0.99;
-  double lambda1 = 0.10;          ///< for use_labels
+  double lambda1 = 0.10;  ///< for use_labels
   double lambda2 = 0.95;
-  double camera_range_m = 4.0;    ///< D_cam: no observation is predicted beyond it
-  bool use_labels = false;        ///< c of the relabelled probability (literal reading)
-  bool cap_prediction = true;     ///< cap conf_t d_t / d_{t+1} at eta / d_{t+1} (and clip to the floor)
-  bool closest_approach = false;  ///< d_{t+1}: closest distance along the straight drive, not at its end
+  double camera_range_m = 4.0;  ///< D_cam: no observation is predicted beyond it
+  bool use_labels = false;      ///< c of the relabelled probability (literal reading)
+  bool cap_prediction =
+      true;  ///< cap conf_t d_t / d_{t+1} at eta / d_{t+1} (and clip to the floor)
+  bool closest_approach =
+      false;  ///< d_{t+1}: closest distance along the straight drive, not at its end
 
   [[nodiscard]] static CuriosityOptions from(const MissionConfig& mission, double camera_range_m);
 };
@@ -51,7 +53,8 @@ struct CuriosityOptions {
 
 /// The predicted confidence of observing a cell from distance d_next, given the last
 /// confidence conf_t and the current distance d_t; 0 (no observation) beyond D_cam.
-[[nodiscard]] double predicted_confidence(double conf_t, double d_t, double d_next, const CuriosityOptions& options);
+[[nodiscard]] double predicted_confidence(double conf_t, double d_t, double d_next,
+                                          const CuriosityOptions& options);
 
 /// A cell of the object map with object evidence.
 struct EvidenceCell {
@@ -67,8 +70,10 @@ struct EvidenceCell {
 [[nodiscard]] const EvidenceCell& strongest_evidence(std::span<const EvidenceCell> evidence);
 
 /// Expected curiosity loss L(C) of moving from `p_W_robot` to `p_W_goal` (paper eq. (C_loss)).
-[[nodiscard]] double curiosity_loss(const Eigen::Vector2d& p_W_goal, const Eigen::Vector2d& p_W_robot,
-                                    std::span<const EvidenceCell> evidence, const CuriosityOptions& options);
+[[nodiscard]] double curiosity_loss(const Eigen::Vector2d& p_W_goal,
+                                    const Eigen::Vector2d& p_W_robot,
+                                    std::span<const EvidenceCell> evidence,
+                                    const CuriosityOptions& options);
 
 struct ScoredFrontier {
   Cell cell;

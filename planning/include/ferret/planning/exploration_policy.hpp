@@ -13,6 +13,7 @@
 // register_exploration_policy() call (or one line in the built-in table).
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -64,6 +65,8 @@ struct PolicyOptions {
   /// Oracle and "revisit the evidence": a pose this close sees the object with
   /// conf = eta / d > lambda2 (0.9 eta / lambda2 by default).
   double view_distance_m = 0.95;
+  /// The run's seed, for policies that draw random numbers (the OMPL frontier policies).
+  std::uint64_t seed = 0;
 
   [[nodiscard]] static PolicyOptions from(const MissionConfig& mission, double camera_range_m,
                                           double max_velocity_mps);
@@ -83,14 +86,16 @@ class ExplorationPolicy {
   /// True if choose() would return the goal it returned last, judged from the maps
   /// alone (no path field): the caller may then skip the decision cycle. The default
   /// (false) asks for a full decision every cycle.
-  [[nodiscard]] virtual bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const {
+  [[nodiscard]] virtual bool keeps_goal(const ObjectMap& objects,
+                                        const FrontierTracker& tracker) const {
     (void)objects;
     (void)tracker;
     return false;
   }
 };
 
-using ExplorationPolicyFactory = std::function<std::unique_ptr<ExplorationPolicy>(const PolicyOptions&)>;
+using ExplorationPolicyFactory =
+    std::function<std::unique_ptr<ExplorationPolicy>(const PolicyOptions&)>;
 
 /// Adds a policy under `name` (replaces one of the same name).
 void register_exploration_policy(std::string name, ExplorationPolicyFactory factory);
@@ -99,15 +104,17 @@ void register_exploration_policy(std::string name, ExplorationPolicyFactory fact
 [[nodiscard]] bool has_exploration_policy(std::string_view name);
 /// A new policy. @throws std::out_of_range for an unknown name (callers that read
 /// user input check has_exploration_policy first and raise an InputError).
-[[nodiscard]] std::unique_ptr<ExplorationPolicy> make_exploration_policy(std::string_view name,
-                                                                         const PolicyOptions& options);
+[[nodiscard]] std::unique_ptr<ExplorationPolicy> make_exploration_policy(
+    std::string_view name, const PolicyOptions& options);
 
 /// A goal from which the camera sees `target_W`: the reachable cell within
 /// `view_distance_m` of it (with a line of sight through non-occupied cells of G) of
 /// least path distance in `paths`, facing the target. Used by the oracle and to
 /// revisit evidence when exploration ends. None if no such cell is reachable.
-[[nodiscard]] std::optional<ExplorationGoal> viewing_goal(const IrGrid& grid, const FrontierTracker& tracker,
+[[nodiscard]] std::optional<ExplorationGoal> viewing_goal(const IrGrid& grid,
+                                                          const FrontierTracker& tracker,
                                                           const GridPathPlanner& paths,
-                                                          const Eigen::Vector2d& target_W, double view_distance_m);
+                                                          const Eigen::Vector2d& target_W,
+                                                          double view_distance_m);
 
 }  // namespace ferret

@@ -37,7 +37,9 @@ class GridPathPlanner {
   /// Path distance in metres per cell, kUnreachable where unreachable.
   [[nodiscard]] std::span<const float> distances_m() const { return distance_m_; }
   [[nodiscard]] float distance_m(Cell c) const { return distance_m_[geometry_.index(c)]; }
-  [[nodiscard]] bool reachable(Cell c) const { return geometry_.contains(c) && distance_m(c) != kUnreachable; }
+  [[nodiscard]] bool reachable(Cell c) const {
+    return geometry_.contains(c) && distance_m(c) != kUnreachable;
+  }
   [[nodiscard]] Cell start() const { return start_; }
 
   /// Waypoints (cell centres, world frame) from the start to `goal`, shortened by

@@ -45,7 +45,8 @@ class RapidFrontierPolicy final : public ExplorationPolicy {
     committed_.reset();
     fallback_.goal_done();
   }
-  [[nodiscard]] bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const override {
+  [[nodiscard]] bool keeps_goal(const ObjectMap& objects,
+                                const FrontierTracker& tracker) const override {
     if (!committed_) return fallback_.keeps_goal(objects, tracker);
     return tracker.is_frontier(committed_->cell) && !tracker.blacklisted(committed_->cell);
   }
@@ -84,7 +85,8 @@ class CdosPolicy final : public ExplorationPolicy {
   }
   /// A curiosity goal is kept until reached; without one, the baseline's goal is kept
   /// only while O holds no evidence (new evidence calls for a curiosity decision).
-  [[nodiscard]] bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const override {
+  [[nodiscard]] bool keeps_goal(const ObjectMap& objects,
+                                const FrontierTracker& tracker) const override {
     if (committed_) return !tracker.blacklisted(committed_->cell);
     return objects.evidence_cells().empty() && baseline_.keeps_goal(objects, tracker);
   }

@@ -39,7 +39,7 @@ struct ExperimentConfig {
   std::uint64_t seed = 1;
   int objects_per_zone = 20;
   std::vector<std::string> methods;
-  ExplorationSettings base;  ///< robot, sensors, mission, time limit (method set per run)
+  ExplorationSettings base;          ///< robot, sensors, mission, time limit (method set per run)
   double object_clearance_m = 0.25;  ///< sampled objects keep this far from non-free cells
   std::vector<ExperimentMap> maps;
   std::vector<double> sweep_camera_fov_deg;  ///< IR fov held at the base value
@@ -55,8 +55,10 @@ struct ExperimentConfig {
 
 /// `count` object positions, uniform over the zone's cells that are free with
 /// `clearance_m` to every non-free cell. Deterministic in `seed`. Empty if none.
-[[nodiscard]] std::vector<Eigen::Vector2d> sample_zone_objects(const OccupancyMap2D& map, const ZoneSpec& zone,
-                                                               int count, double clearance_m, std::uint64_t seed);
+[[nodiscard]] std::vector<Eigen::Vector2d> sample_zone_objects(const OccupancyMap2D& map,
+                                                               const ZoneSpec& zone, int count,
+                                                               double clearance_m,
+                                                               std::uint64_t seed);
 
 struct RunSpec {
   std::string experiment;  ///< "main", "camera_fov" or "ir_fov"
@@ -82,7 +84,8 @@ struct ExperimentOptions {
 };
 
 /// The exact header of summary.csv.
-inline constexpr const char* kSummaryHeader = "map,zone,method,runs,found,mean_time_s,ci95_time_s,mean_path_m";
+inline constexpr const char* kSummaryHeader =
+    "map,zone,method,runs,found,mean_time_s,ci95_time_s,mean_path_m";
 
 /// Runs this shard's part of the experiment and writes runs.csv, summary.csv and (with
 /// sweeps) sweep_camera_fov.csv / sweep_ir_fov.csv into `out_dir`, each atomically.

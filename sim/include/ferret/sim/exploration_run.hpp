@@ -39,7 +39,7 @@ struct ExplorationSettings {
   MissionConfig mission;
   double time_limit_s = 300.0;
   double decision_period_s = 0.1;
-  int max_revisits = 3;             ///< revisits of the strongest evidence once exploration ends
+  int max_revisits = 3;  ///< revisits of the strongest evidence once exploration ends
   bool cdos_candidates_global = false;  ///< cdos option: score F_g, not F_v
   bool cdos_closest_approach = false;   ///< cdos option: d_{t+1} at the closest approach
   bool record = false;                  ///< keep the trajectory, decisions and final maps
@@ -59,7 +59,7 @@ struct EpisodeResult {
   double time_s = 0.0;  ///< simulated time at the end (time to find when found)
   double path_m = 0.0;
   int decisions = 0;
-  std::string end_reason;  ///< found, explored, time_limit, false_find
+  std::string end_reason;                             ///< found, explored, time_limit, false_find
   Eigen::Vector2d found_W = Eigen::Vector2d::Zero();  ///< the cell that passed lambda2
   // Filled when ExplorationSettings::record:
   std::vector<Pose2> trajectory;  ///< one pose per IR step
@@ -72,7 +72,8 @@ struct EpisodeResult {
 /// Runs one search. Deterministic for a given seed.
 /// @throws std::invalid_argument for an unknown method or a start off the free space.
 [[nodiscard]] EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start,
-                                            const Eigen::Vector2d& object_W, const ExplorationSettings& settings,
+                                            const Eigen::Vector2d& object_W,
+                                            const ExplorationSettings& settings,
                                             std::uint64_t seed);
 
 /// Writes G.png, O.png and G_O.png (the paper's map figure: G; O with the object's

@@ -21,8 +21,8 @@
 namespace ferret {
 
 struct SensorOptions {
-  double ir_fov_rad = deg_to_rad(30.0);      ///< beta
-  double ir_range_m = 4.0;                   ///< D_IR
+  double ir_fov_rad = deg_to_rad(30.0);  ///< beta
+  double ir_range_m = 4.0;               ///< D_IR
   double ir_rate_hz = 20.0;
   int ir_beams = 0;                          ///< 0: enough to touch every cell at D_IR
   double ir_noise_m = 0.01;                  ///< range noise (standard deviation)
@@ -30,23 +30,23 @@ struct SensorOptions {
   double camera_fov_rad = deg_to_rad(90.0);  ///< alpha
   double camera_range_m = 4.0;               ///< D_cam
   double camera_rate_hz = 10.0;
-  int camera_beams = 0;                      ///< 0: enough to touch every cell at D_cam
-  int image_width_px = 640;                  ///< the focal length follows from this and alpha
-  double object_size_m = 0.2;                ///< the object's width (its apparent size gives d)
-  double object_radius_m = 0.1;              ///< cells of the truth covered by the object
-  double size_noise_px = 0.5;                ///< noise of the measured apparent width
+  int camera_beams = 0;          ///< 0: enough to touch every cell at D_cam
+  int image_width_px = 640;      ///< the focal length follows from this and alpha
+  double object_size_m = 0.2;    ///< the object's width (its apparent size gives d)
+  double object_radius_m = 0.1;  ///< cells of the truth covered by the object
+  double size_noise_px = 0.5;    ///< noise of the measured apparent width
   double bearing_noise_rad = 0.005;
   double detection_probability = 0.9;
-  double confidence_noise = 0.02;            ///< added to eta / d
-  double eta_m = 1.0;                        ///< conf = eta / d
+  double confidence_noise = 0.02;  ///< added to eta / d
+  double eta_m = 1.0;              ///< conf = eta / d
 };
 
 class HiddenSpaceSim {
  public:
   /// @param truth     the hidden space; occupied and unknown cells block sensing
   /// @param object_W  the object's position (on a free cell)
-  HiddenSpaceSim(const OccupancyMap2D& truth, const Eigen::Vector2d& object_W, SensorOptions options,
-                 std::uint64_t seed);
+  HiddenSpaceSim(const OccupancyMap2D& truth, const Eigen::Vector2d& object_W,
+                 SensorOptions options, std::uint64_t seed);
 
   /// One IR scan from the sensor pose X_WS.
   [[nodiscard]] RangeScan ir_scan(const Pose2& X_WS);
@@ -54,7 +54,8 @@ class HiddenSpaceSim {
   [[nodiscard]] CameraFrame camera_frame(const Pose2& X_WC, double time_s);
 
   /// Distance to the first blocking truth cell along a beam, or max_range_m.
-  [[nodiscard]] double cast(const Eigen::Vector2d& from, double angle_rad, double max_range_m) const;
+  [[nodiscard]] double cast(const Eigen::Vector2d& from, double angle_rad,
+                            double max_range_m) const;
   /// True if no blocking truth cell lies between the two points.
   [[nodiscard]] bool line_of_sight(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
   [[nodiscard]] bool blocks(Cell c) const;
