@@ -1,6 +1,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -85,6 +86,30 @@ TEST(ExperimentCli, BadConfigsExitTwoNamingTheFieldAndWriteNothing) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("--shard"));
   EXPECT_FALSE(std::filesystem::exists(s.dir / "out"));
+}
+
+}  // namespace
+}  // namespace ferret::test
+
+namespace ferret::test {
+namespace {
+
+TEST(ExperimentCli, DrawsThePlotsFromTheCsvs) {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "Debian's python3-matplotlib is not installed (scripts/install-deps)";
+  ExperimentDir s;
+  const std::string out = s.dir / "out";
+  const auto r =
+      run_cli("experiment " +
+              s.config(kZones, "sweeps: {camera_fov_deg: [60, 120], objects_per_zone: 1}\n") +
+              " --out " + out + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"time_room.png", "sweep_camera_fov.png", "ratios.csv"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(std::filesystem::path(out) / f)) << f << "\n"
+                                                                                  << r.err;
+  const std::string ratios = slurp(std::filesystem::path(out) / "ratios.csv");
+  EXPECT_THAT(ratios, HasSubstr("map,zone,method,mean_time_s,ratio_to_rapid,ratio_to_oracle"));
+  EXPECT_THAT(ratios, HasSubstr("room,1,rapid,"));
 }
 
 }  // namespace
