@@ -70,7 +70,8 @@ void BM_TautTetherMpc(benchmark::State& state) {
     iterations += mpc.last_solution().iterations;
     if (++i == r.observations.size()) i = 0;
   }
-  state.counters["active_mean"] = benchmark::Counter(static_cast<double>(active), benchmark::Counter::kAvgIterations);
+  state.counters["active_mean"] =
+      benchmark::Counter(static_cast<double>(active), benchmark::Counter::kAvgIterations);
   state.counters["qp_iterations_mean"] =
       benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
   state.counters["variables"] = o.horizon + 3;
@@ -91,7 +92,8 @@ void BM_TautTetherMpcMedian(benchmark::State& state) {
     for (const auto& obs : r.observations) {
       const auto t0 = std::chrono::steady_clock::now();
       benchmark::DoNotOptimize(mpc.step(obs));
-      times_us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+      times_us.push_back(
+          std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
     }
   }
   std::sort(times_us.begin(), times_us.end());

@@ -6,10 +6,9 @@
 // was active; writes DIR/tether_<controller>.csv, .png (l_t, required length and
 // slack over time) and .json (the figures). docs/tether.md describes the files.
 
-#include <nlohmann/json.hpp>
-
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -37,14 +36,19 @@ void run(const Options& o) {
   if (o.controller != "mpc" && o.controller != "baseline")
     throw InputError("ferret tether-sim", "--controller", "mpc or baseline", o.controller);
   if (o.horizon && (*o.horizon < 2 || *o.horizon > 200))
-    throw InputError("ferret tether-sim", "--horizon", "an integer in [2, 200]", std::to_string(*o.horizon));
+    throw InputError("ferret tether-sim", "--horizon", "an integer in [2, 200]",
+                     std::to_string(*o.horizon));
   if (o.latency_s && !(*o.latency_s >= 0.0 && *o.latency_s <= 1.0))
-    throw InputError("ferret tether-sim", "--latency", "seconds in [0, 1]", std::to_string(*o.latency_s));
+    throw InputError("ferret tether-sim", "--latency", "seconds in [0, 1]",
+                     std::to_string(*o.latency_s));
   // All input is read and checked before anything is written.
-  const MissionConfig mission = o.mission.empty() ? MissionConfig{} : load_mission_config(o.mission);
-  const sim::TetherScenario scenario =
-      o.trajectory.empty() ? sim::default_tether_scenario() : sim::load_tether_scenario(o.trajectory);
-  auto config = sim::TetherRunConfig::for_tether(mission.tether.total_length_m, mission.tether.entry_offset_m);
+  const MissionConfig mission =
+      o.mission.empty() ? MissionConfig{} : load_mission_config(o.mission);
+  const sim::TetherScenario scenario = o.trajectory.empty()
+                                           ? sim::default_tether_scenario()
+                                           : sim::load_tether_scenario(o.trajectory);
+  auto config = sim::TetherRunConfig::for_tether(mission.tether.total_length_m,
+                                                 mission.tether.entry_offset_m);
   config.sim.control.ugv_max_speed_mps = mission.ugv_limits.max_velocity_mps;
   config.mpc.control = config.baseline.control = config.sim.control;
   if (!o.config.empty()) sim::apply_tether_run_config(o.config, config);
@@ -53,7 +57,8 @@ void run(const Options& o) {
   config.sim.seed = o.seed;
 
   auto& options = config.sim;
-  auto model = std::make_shared<tether::FixedWrapTether>(options.entry_offset_m, scenario.p_WE, scenario.wrap_points);
+  auto model = std::make_shared<tether::FixedWrapTether>(options.entry_offset_m, scenario.p_WE,
+                                                         scenario.wrap_points);
   std::unique_ptr<tether::TetherController> controller;
   const tether::TautTetherMpc* mpc_controller = nullptr;
   if (o.controller == "mpc") {
@@ -66,15 +71,19 @@ void run(const Options& o) {
   const sim::TetherSimResult r = sim::run_tether_sim(scenario, options, *controller);
   const auto& m = r.metrics;
   const auto& c = options.control;
-  std::printf("scenario: %s\ncontroller: %s\nseed: %llu\nduration_s: %.2f\n", r.scenario.c_str(), r.controller.c_str(),
-              static_cast<unsigned long long>(o.seed), m.duration_s);
-  std::printf("slack_rms_m: %.4f\nmax_slack_m: %.4f\nmin_slack_m: %.4f\n", m.slack_rms_m, m.max_slack_m, m.min_slack_m);
-  std::printf("over_tension_events: %d\nover_tension_time_s: %.3f\nmax_tension_n: %.2f (limit %.1f)\n",
-              m.over_tension_events, m.over_tension_time_s, m.max_tension_n, c.slack_estimator.tension.max_tension_n);
-  std::printf("tether_limit_active_s: %.2f\nmax_released_m: %.3f (L = %.2f)\ncycles_above_L: %d\n", m.limit_active_s,
-              m.max_released_m, c.limits.total_length_m, m.released_over_limit);
+  std::printf("scenario: %s\ncontroller: %s\nseed: %llu\nduration_s: %.2f\n", r.scenario.c_str(),
+              r.controller.c_str(), static_cast<unsigned long long>(o.seed), m.duration_s);
+  std::printf("slack_rms_m: %.4f\nmax_slack_m: %.4f\nmin_slack_m: %.4f\n", m.slack_rms_m,
+              m.max_slack_m, m.min_slack_m);
+  std::printf(
+      "over_tension_events: %d\nover_tension_time_s: %.3f\nmax_tension_n: %.2f (limit %.1f)\n",
+      m.over_tension_events, m.over_tension_time_s, m.max_tension_n,
+      c.slack_estimator.tension.max_tension_n);
+  std::printf("tether_limit_active_s: %.2f\nmax_released_m: %.3f (L = %.2f)\ncycles_above_L: %d\n",
+              m.limit_active_s, m.max_released_m, c.limits.total_length_m, m.released_over_limit);
   if (mpc_controller) std::printf("mpc_fallback_cycles: %d\n", mpc_controller->fallback_count());
-  std::printf("step_time_median_us: %.1f\nstep_time_max_us: %.1f\n", m.step_time_median_us, m.step_time_max_us);
+  std::printf("step_time_median_us: %.1f\nstep_time_max_us: %.1f\n", m.step_time_median_us,
+              m.step_time_max_us);
 
   const fs::path out(o.out);
   const std::string stem = "tether_" + o.controller;
@@ -105,19 +114,26 @@ void run(const Options& o) {
   write_text_atomically(out / (stem + ".json"), j.dump(2) + "\n");
 }
 
-const CommandRegistration kTetherSim{"tether-sim", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("tether-sim", "Run a miniUGV trajectory through the tether model and winch controller");
-  sub->add_option("--trajectory", o->trajectory, "trajectory CSV or YAML (default: the built-in scripted one)");
-  sub->add_option("--controller", o->controller, "mpc or baseline")->capture_default_str();
-  sub->add_option("--seed", o->seed, "seed of the sensor noise")->capture_default_str();
-  sub->add_option("--out", o->out, "output directory")->required();
-  sub->add_option("--mission", o->mission, "mission YAML with tether.total_length_m (L) and entry_offset_m (l_0)");
-  sub->add_option("--config", o->config, "YAML with controller and simulation settings (docs/tether.md)");
-  sub->add_option("--horizon", o->horizon, "MPC horizon in prediction steps (default 20 of 0.02 s)");
-  sub->add_option("--latency", o->latency_s, "link latency of the miniUGV's pose, seconds (default 0.06)");
-  sub->callback([o] { run(*o); });
-}};
+const CommandRegistration kTetherSim{
+    "tether-sim", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      auto* sub = app.add_subcommand(
+          "tether-sim", "Run a miniUGV trajectory through the tether model and winch controller");
+      sub->add_option("--trajectory", o->trajectory,
+                      "trajectory CSV or YAML (default: the built-in scripted one)");
+      sub->add_option("--controller", o->controller, "mpc or baseline")->capture_default_str();
+      sub->add_option("--seed", o->seed, "seed of the sensor noise")->capture_default_str();
+      sub->add_option("--out", o->out, "output directory")->required();
+      sub->add_option("--mission", o->mission,
+                      "mission YAML with tether.total_length_m (L) and entry_offset_m (l_0)");
+      sub->add_option("--config", o->config,
+                      "YAML with controller and simulation settings (docs/tether.md)");
+      sub->add_option("--horizon", o->horizon,
+                      "MPC horizon in prediction steps (default 20 of 0.02 s)");
+      sub->add_option("--latency", o->latency_s,
+                      "link latency of the miniUGV's pose, seconds (default 0.06)");
+      sub->callback([o] { run(*o); });
+    }};
 
 }  // namespace
 }  // namespace ferret::cli

@@ -45,14 +45,19 @@ void differentiate_trajectory(std::vector<TrajectorySample>& s) {
       set(s[i], Eigen::Vector2d((get(s[b]) - get(s[a])) / (s[b].t_s - s[a].t_s)));
     }
   };
-  diff([](const TrajectorySample& x) { return x.p_WG; }, [](TrajectorySample& x, Eigen::Vector2d v) { x.v_WG = v; });
-  diff([](const TrajectorySample& x) { return x.v_WG; }, [](TrajectorySample& x, Eigen::Vector2d a) { x.a_WG = a; });
+  diff([](const TrajectorySample& x) { return x.p_WG; },
+       [](TrajectorySample& x, Eigen::Vector2d v) { x.v_WG = v; });
+  diff([](const TrajectorySample& x) { return x.v_WG; },
+       [](TrajectorySample& x, Eigen::Vector2d a) { x.a_WG = a; });
 }
 
-std::vector<TrajectorySample> scripted_trajectory(const std::vector<Eigen::Vector2d>& waypoints, double cruise_mps,
-                                                  double accel_mps2, double dwell_s, double dt_s) {
-  if (waypoints.size() < 2 || !(cruise_mps > 0.0) || !(accel_mps2 > 0.0) || !(dt_s > 0.0) || dwell_s < 0.0)
-    throw std::invalid_argument("scripted_trajectory: need >= 2 waypoints, positive speed, acceleration and dt");
+std::vector<TrajectorySample> scripted_trajectory(const std::vector<Eigen::Vector2d>& waypoints,
+                                                  double cruise_mps, double accel_mps2,
+                                                  double dwell_s, double dt_s) {
+  if (waypoints.size() < 2 || !(cruise_mps > 0.0) || !(accel_mps2 > 0.0) || !(dt_s > 0.0) ||
+      dwell_s < 0.0)
+    throw std::invalid_argument(
+        "scripted_trajectory: need >= 2 waypoints, positive speed, acceleration and dt");
   // Each segment: accelerate, cruise, decelerate (a triangle when too short), then dwell.
   struct Segment {
     Eigen::Vector2d from, dir;
@@ -145,8 +150,9 @@ const std::vector<std::string> kLongHeader = {"t", "x", "y", "yaw", "vx", "vy", 
 
 // Turns rows of 4 or 8 numbers into samples; `where(i)` names row i in errors.
 template <class Where>
-std::vector<TrajectorySample> samples_from_rows(const std::vector<std::vector<double>>& rows, bool has_derivatives,
-                                                const std::string& source, Where where) {
+std::vector<TrajectorySample> samples_from_rows(const std::vector<std::vector<double>>& rows,
+                                                bool has_derivatives, const std::string& source,
+                                                Where where) {
   std::vector<TrajectorySample> out;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
@@ -159,11 +165,12 @@ std::vector<TrajectorySample> samples_from_rows(const std::vector<std::vector<do
       s.a_WG = {r[6], r[7]};
     }
     if (!out.empty() && !(s.t_s > out.back().t_s))
-      throw InputError(source, where(i) + ", field 't'", "a time greater than the previous sample's",
-                       fmt::format("{}", s.t_s));
+      throw InputError(source, where(i) + ", field 't'",
+                       "a time greater than the previous sample's", fmt::format("{}", s.t_s));
     out.push_back(s);
   }
-  if (out.size() < 2) throw InputError(source, "", "at least two trajectory samples", std::to_string(out.size()));
+  if (out.size() < 2)
+    throw InputError(source, "", "at least two trajectory samples", std::to_string(out.size()));
   if (!has_derivatives) differentiate_trajectory(out);
   return out;
 }
@@ -189,21 +196,24 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
         f.erase(f.find_last_not_of(" \t") + 1);
       }
       if (fields != kShortHeader && fields != kLongHeader)
-        throw InputError(source, fmt::format("line {}", number), "the header t,x,y,yaw or t,x,y,yaw,vx,vy,ax,ay",
-                         line);
+        throw InputError(source, fmt::format("line {}", number),
+                         "the header t,x,y,yaw or t,x,y,yaw,vx,vy,ax,ay", line);
       header = fields;
       continue;
     }
     if (fields.size() != header.size())
-      throw InputError(source, fmt::format("line {}", number), fmt::format("{} comma-separated numbers", header.size()),
+      throw InputError(source, fmt::format("line {}", number),
+                       fmt::format("{} comma-separated numbers", header.size()),
                        fmt::format("{} fields", fields.size()));
     std::vector<double> row;
     for (std::size_t i = 0; i < fields.size(); ++i)
-      row.push_back(parse_number(fields[i], source, fmt::format("line {}, field '{}'", number, header[i])));
+      row.push_back(
+          parse_number(fields[i], source, fmt::format("line {}, field '{}'", number, header[i])));
     rows.push_back(row);
     line_numbers.push_back(number);
   }
-  if (header.empty()) throw InputError(source, "", "a header line t,x,y,yaw[,vx,vy,ax,ay]", "an empty file");
+  if (header.empty())
+    throw InputError(source, "", "a header line t,x,y,yaw[,vx,vy,ax,ay]", "an empty file");
   return samples_from_rows(rows, header.size() == kLongHeader.size(), source,
                            [&](std::size_t i) { return fmt::format("line {}", line_numbers[i]); });
 }
@@ -216,7 +226,8 @@ Eigen::Vector2d read_xy(const yaml::MapReader& r, std::string_view key) {
 TetherScenario read_yaml_scenario(const std::filesystem::path& path) {
   const std::string source = path.string();
   const yaml::MapReader root(yaml::load_file(path), source);
-  root.allow_only({"name", "entry_xy_m", "wrap_points", "snags", "samples", "samples_csv", "script"});
+  root.allow_only(
+      {"name", "entry_xy_m", "wrap_points", "snags", "samples", "samples_csv", "script"});
   TetherScenario scn;
   scn.name = root.get_or<std::string>("name", path.stem().string());
   if (root.has("entry_xy_m")) scn.p_WE = read_xy(root, "entry_xy_m");
@@ -225,9 +236,12 @@ TetherScenario read_yaml_scenario(const std::filesystem::path& path) {
       w.allow_only({"xy_m", "side"});
       const auto side = w.get_or<std::string>("side", "always");
       int s = 0;
-      if (side == "left") s = +1;
-      else if (side == "right") s = -1;
-      else if (side != "always") w.fail("side", "left, right or always", side);
+      if (side == "left")
+        s = +1;
+      else if (side == "right")
+        s = -1;
+      else if (side != "always")
+        w.fail("side", "left, right or always", side);
       scn.wrap_points.push_back({read_xy(w, "xy_m"), s});
     }
   }
@@ -245,7 +259,8 @@ TetherScenario read_yaml_scenario(const std::filesystem::path& path) {
                            s.get_in_range("duration_s", 1e-6, 1e9)});
     }
   }
-  const int sources = int(root.has("samples")) + int(root.has("samples_csv")) + int(root.has("script"));
+  const int sources =
+      int(root.has("samples")) + int(root.has("samples_csv")) + int(root.has("script"));
   if (sources != 1) root.fail("samples", "exactly one of samples, samples_csv or script");
   if (root.has("samples_csv")) {
     scn.samples = read_csv_samples(path.parent_path() / root.get<std::string>("samples_csv"));
@@ -271,24 +286,29 @@ TetherScenario read_yaml_scenario(const std::filesystem::path& path) {
     }
   } else {
     const YAML::Node list = root.node()["samples"];
-    if (!list.IsSequence()) root.fail("samples", "a list of [t, x, y, yaw] or [t, x, y, yaw, vx, vy, ax, ay]");
+    if (!list.IsSequence())
+      root.fail("samples", "a list of [t, x, y, yaw] or [t, x, y, yaw, vx, vy, ax, ay]");
     std::vector<std::vector<double>> rows;
     std::size_t width = 0;
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string field = fmt::format("samples[{}]", i);
-      if (!list[i].IsSequence() || (list[i].size() != 4 && list[i].size() != 8) || (width && list[i].size() != width))
-        throw InputError(source, field, width ? fmt::format("a list of {} numbers like the first sample", width)
-                                              : "a list of 4 or 8 numbers");
+      if (!list[i].IsSequence() || (list[i].size() != 4 && list[i].size() != 8) ||
+          (width && list[i].size() != width))
+        throw InputError(source, field,
+                         width ? fmt::format("a list of {} numbers like the first sample", width)
+                               : "a list of 4 or 8 numbers");
       width = list[i].size();
       std::vector<double> row;
       for (std::size_t j = 0; j < width; ++j) {
         const double v = root.convert<double>(list[i][j], fmt::format("{}[{}]", field, j));
-        if (!std::isfinite(v)) throw InputError(source, fmt::format("{}[{}]", field, j), "a finite number");
+        if (!std::isfinite(v))
+          throw InputError(source, fmt::format("{}[{}]", field, j), "a finite number");
         row.push_back(v);
       }
       rows.push_back(row);
     }
-    scn.samples = samples_from_rows(rows, width == 8, source, [](std::size_t i) { return fmt::format("samples[{}]", i); });
+    scn.samples = samples_from_rows(rows, width == 8, source,
+                                    [](std::size_t i) { return fmt::format("samples[{}]", i); });
   }
   return scn;
 }
@@ -298,7 +318,8 @@ TetherScenario read_yaml_scenario(const std::filesystem::path& path) {
 TetherScenario load_tether_scenario(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
   if (!std::filesystem::is_regular_file(path))
-    throw InputError(path.string(), "", "an existing trajectory file (.csv, .yaml or .yml)", "not found");
+    throw InputError(path.string(), "", "an existing trajectory file (.csv, .yaml or .yml)",
+                     "not found");
   if (ext == ".csv") {
     TetherScenario scn;
     scn.name = path.stem().string();
@@ -340,31 +361,38 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   root.allow_only({"control", "mpc", "baseline", "sim"});
   auto& ctl = c.sim.control;
   if (const auto r = root.optional_child("control")) {
-    r->allow_only({"slack_reference_m", "max_slack_m", "pose_filter_gain", "guard_n", "max_tension_n", "max_speed_mps",
-                   "max_acceleration_mps2"});
-    ctl.slack_reference_m = r->get_in_range_or("slack_reference_m", -0.1, 1.0, ctl.slack_reference_m);
+    r->allow_only({"slack_reference_m", "max_slack_m", "pose_filter_gain", "guard_n",
+                   "max_tension_n", "max_speed_mps", "max_acceleration_mps2"});
+    ctl.slack_reference_m =
+        r->get_in_range_or("slack_reference_m", -0.1, 1.0, ctl.slack_reference_m);
     ctl.max_slack_m = r->get_in_range_or("max_slack_m", 0.0, 10.0, ctl.max_slack_m);
     ctl.pose_filter_gain = r->get_in_range_or("pose_filter_gain", 1e-3, 1.0, ctl.pose_filter_gain);
-    ctl.slack_estimator.guard_n = r->get_in_range_or("guard_n", 0.0, 1e3, ctl.slack_estimator.guard_n);
+    ctl.slack_estimator.guard_n =
+        r->get_in_range_or("guard_n", 0.0, 1e3, ctl.slack_estimator.guard_n);
     ctl.slack_estimator.tension.max_tension_n =
         r->get_in_range_or("max_tension_n", 0.1, 1e4, ctl.slack_estimator.tension.max_tension_n);
-    ctl.limits.max_speed_mps = r->get_in_range_or("max_speed_mps", 1e-3, 10.0, ctl.limits.max_speed_mps);
+    ctl.limits.max_speed_mps =
+        r->get_in_range_or("max_speed_mps", 1e-3, 10.0, ctl.limits.max_speed_mps);
     ctl.limits.max_acceleration_mps2 =
         r->get_in_range_or("max_acceleration_mps2", 1e-3, 100.0, ctl.limits.max_acceleration_mps2);
     c.sim.winch.max_speed_mps = ctl.limits.max_speed_mps;
     c.sim.winch.max_acceleration_mps2 = ctl.limits.max_acceleration_mps2;
   }
   if (const auto r = root.optional_child("mpc")) {
-    r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "weight_slack", "weight_command_rate",
-                   "weight_feedforward", "weight_terminal"});
+    r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "weight_slack",
+                   "weight_command_rate", "weight_feedforward", "weight_terminal"});
     auto& m = c.mpc;
     m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
-    if (r->has("horizon") && r->get<double>("horizon") != m.horizon) r->fail("horizon", "an integer in [2, 200]");
+    if (r->has("horizon") && r->get<double>("horizon") != m.horizon)
+      r->fail("horizon", "an integer in [2, 200]");
     m.prediction_dt_s = r->get_in_range_or("prediction_dt_s", 1e-3, 1.0, m.prediction_dt_s);
-    m.acceleration_time_s = r->get_in_range_or("acceleration_time_s", 0.0, 10.0, m.acceleration_time_s);
+    m.acceleration_time_s =
+        r->get_in_range_or("acceleration_time_s", 0.0, 10.0, m.acceleration_time_s);
     m.weight_slack = r->get_in_range_or("weight_slack", 0.0, 1e6, m.weight_slack);
-    m.weight_command_rate = r->get_in_range_or("weight_command_rate", 0.0, 1e6, m.weight_command_rate);
-    m.weight_feedforward = r->get_in_range_or("weight_feedforward", 1e-6, 1e6, m.weight_feedforward);
+    m.weight_command_rate =
+        r->get_in_range_or("weight_command_rate", 0.0, 1e6, m.weight_command_rate);
+    m.weight_feedforward =
+        r->get_in_range_or("weight_feedforward", 1e-6, 1e6, m.weight_feedforward);
     m.weight_terminal = r->get_in_range_or("weight_terminal", 0.0, 1e6, m.weight_terminal);
   }
   if (const auto r = root.optional_child("baseline")) {
@@ -379,7 +407,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     r->allow_only({"link_latency_s", "pose_noise_m", "tension_noise_n"});
     c.sim.link_latency_s = r->get_in_range_or("link_latency_s", 0.0, 1.0, c.sim.link_latency_s);
     c.sim.pose_noise_m = r->get_in_range_or("pose_noise_m", 0.0, 1.0, c.sim.pose_noise_m);
-    c.sim.tension_noise_n = r->get_in_range_or("tension_noise_n", 0.0, 100.0, c.sim.tension_noise_n);
+    c.sim.tension_noise_n =
+        r->get_in_range_or("tension_noise_n", 0.0, 100.0, c.sim.tension_noise_n);
   }
   c.mpc.control = ctl;
   c.baseline.control = ctl;
@@ -418,8 +447,9 @@ class TetherState {
         beyond_material_m_ = beyond + (released_m - f.required_m) * beyond / f.required_m;
         beyond_geometry_ = std::make_unique<tether::FixedWrapTether>(
             0.0, scn_.wrap_points[snag->wrap_point].p_W,
-            std::vector<tether::WrapPoint>(scn_.wrap_points.begin() + static_cast<long>(snag->wrap_point) + 1,
-                                           scn_.wrap_points.end()));
+            std::vector<tether::WrapPoint>(
+                scn_.wrap_points.begin() + static_cast<long>(snag->wrap_point) + 1,
+                scn_.wrap_points.end()));
         winch_side_m_ = to_pin;
       }
     }
@@ -427,7 +457,8 @@ class TetherState {
       f.snagged = true;
       const double beyond_geom = beyond_geometry_->required_length_m(p_WG);
       f.ugv_n = tension.tension_n(beyond_material_m_, beyond_material_m_ - beyond_geom);
-      f.winch_n = tension.tension_n(released_m - beyond_material_m_, (released_m - beyond_material_m_) - winch_side_m_);
+      f.winch_n = tension.tension_n(released_m - beyond_material_m_,
+                                    (released_m - beyond_material_m_) - winch_side_m_);
     } else {
       f.ugv_n = f.winch_n = tension.tension_n(released_m, released_m - f.required_m);
     }
@@ -448,9 +479,11 @@ class TetherState {
 
 TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions& opt,
                                tether::TetherController& controller) {
-  if (scn.samples.size() < 2) throw std::invalid_argument("tether sim: the trajectory needs two samples or more");
+  if (scn.samples.size() < 2)
+    throw std::invalid_argument("tether sim: the trajectory needs two samples or more");
   for (const auto& s : scn.snags)
-    if (s.wrap_point >= scn.wrap_points.size()) throw std::invalid_argument("tether sim: snag on a missing wrap point");
+    if (s.wrap_point >= scn.wrap_points.size())
+      throw std::invalid_argument("tether sim: snag on a missing wrap point");
   if (!(opt.physics_dt_s > 0.0) || !(opt.control.control_period_s >= opt.physics_dt_s))
     throw std::invalid_argument("tether sim: need 0 < physics dt <= control period");
 
@@ -461,8 +494,8 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
   controller.reset();
   tether::SimulatedWinch::Options winch_options = opt.winch;
   winch_options.total_length_m = L;
-  winch_options.initial_released_m =
-      std::clamp(geometry.required_length_m(scn.samples.front().p_WG) + opt.control.slack_reference_m, 0.0, L);
+  winch_options.initial_released_m = std::clamp(
+      geometry.required_length_m(scn.samples.front().p_WG) + opt.control.slack_reference_m, 0.0, L);
   tether::SimulatedWinch winch(winch_options);
   TetherState tether_state(scn, opt);
 
@@ -470,7 +503,8 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
   result.scenario = scn.name;
   result.controller = std::string(controller.name());
   auto& m = result.metrics;
-  const int substeps = std::max(1, static_cast<int>(std::lround(opt.control.control_period_s / opt.physics_dt_s)));
+  const int substeps =
+      std::max(1, static_cast<int>(std::lround(opt.control.control_period_s / opt.physics_dt_s)));
   const double dt = opt.control.control_period_s / substeps;
   double t = scn.start_s();
   bool over = false;
@@ -487,14 +521,17 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
     obs.t_s = t;
     obs.released_m = winch.released_m();
     obs.spool_speed_mps = winch.speed_mps();
-    obs.winch_tension_n = tension_model.hanging_weight_n + forces.winch_n + rng.normal(0.0, opt.tension_noise_n);
-    obs.ugv.p_WG = msg.p_WG + Eigen::Vector2d(rng.normal(0.0, opt.pose_noise_m), rng.normal(0.0, opt.pose_noise_m));
+    obs.winch_tension_n =
+        tension_model.hanging_weight_n + forces.winch_n + rng.normal(0.0, opt.tension_noise_n);
+    obs.ugv.p_WG = msg.p_WG + Eigen::Vector2d(rng.normal(0.0, opt.pose_noise_m),
+                                              rng.normal(0.0, opt.pose_noise_m));
     obs.ugv.v_WG = msg.v_WG;
     obs.ugv.a_WG = msg.a_WG;
     obs.ugv_age_s = t - t_msg;
     const auto tick = std::chrono::steady_clock::now();
     const double command = controller.step(obs);
-    step_times_us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - tick).count());
+    step_times_us.push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - tick).count());
     winch.command_velocity_mps(command);
 
     TetherSimSample row;
@@ -537,10 +574,13 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
 }
 
 void write_tether_sim_csv(const TetherSimResult& result, const std::filesystem::path& path) {
-  std::string text = "t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,snagged\n";
+  std::string text =
+      "t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,"
+      "snagged\n";
   for (const auto& r : result.log)
-    text += fmt::format("{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.5f},{:.5f},{}\n", r.t_s, r.released_m, r.required_m,
-                        r.slack_m, r.ugv_tension_n, r.winch_tension_n, r.command_mps, r.speed_mps, r.snagged ? 1 : 0);
+    text += fmt::format("{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.5f},{:.5f},{}\n", r.t_s,
+                        r.released_m, r.required_m, r.slack_m, r.ugv_tension_n, r.winch_tension_n,
+                        r.command_mps, r.speed_mps, r.snagged ? 1 : 0);
   write_text_atomically(path, text);
 }
 

@@ -29,16 +29,17 @@ void draw_axes(cv::Mat& img, const Panel& p, const std::string& y_label, double 
   const double t_step = (p.t1 - p.t0) > 60 ? 10.0 : 5.0;
   for (double t = std::ceil(p.t0 / t_step) * t_step; t <= p.t1; t += t_step) {
     cv::line(img, p.to_px(t, p.y0), p.to_px(t, p.y1), grid, 1);
-    cv::putText(img, fmt::format("{:.0f}", t), p.to_px(t, p.y0) + cv::Point(-8, 18), cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                text, 1, cv::LINE_AA);
+    cv::putText(img, fmt::format("{:.0f}", t), p.to_px(t, p.y0) + cv::Point(-8, 18),
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, text, 1, cv::LINE_AA);
   }
   for (double y = std::ceil(p.y0 / y_step) * y_step; y <= p.y1 + 1e-9; y += y_step) {
     cv::line(img, p.to_px(p.t0, y), p.to_px(p.t1, y), grid, 1);
-    cv::putText(img, fmt::format("{:.2f}", y), p.to_px(p.t0, y) + cv::Point(-52, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                text, 1, cv::LINE_AA);
+    cv::putText(img, fmt::format("{:.2f}", y), p.to_px(p.t0, y) + cv::Point(-52, 4),
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, text, 1, cv::LINE_AA);
   }
   cv::rectangle(img, p.area, cv::Scalar(90, 90, 90), 1);
-  cv::putText(img, y_label, cv::Point(p.area.x, p.area.y - 8), cv::FONT_HERSHEY_SIMPLEX, 0.5, text, 1, cv::LINE_AA);
+  cv::putText(img, y_label, cv::Point(p.area.x, p.area.y - 8), cv::FONT_HERSHEY_SIMPLEX, 0.5, text,
+              1, cv::LINE_AA);
 }
 
 double nice_step(double range) {
@@ -49,7 +50,8 @@ double nice_step(double range) {
 }
 
 template <class Get>
-void polyline(cv::Mat& img, const Panel& p, const TetherSimResult& r, Get get, const cv::Scalar& color) {
+void polyline(cv::Mat& img, const Panel& p, const TetherSimResult& r, Get get,
+              const cv::Scalar& color) {
   std::vector<cv::Point> pts;
   pts.reserve(r.log.size());
   for (const auto& s : r.log) pts.push_back(p.to_px(s.t_s, std::clamp(get(s), p.y0, p.y1)));
@@ -69,7 +71,8 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
     hi = std::max({hi, s.released_m, s.required_m});
   }
   const double pad = std::max(0.1, 0.05 * (hi - lo));
-  const Panel top{cv::Rect(80, 60, 990, 330), t0, t1, std::max(0.0, lo - pad), std::min(total_length_m + pad, hi + pad)};
+  const Panel top{cv::Rect(80, 60, 990, 330), t0, t1, std::max(0.0, lo - pad),
+                  std::min(total_length_m + pad, hi + pad)};
   double smin = -0.05, smax = max_slack_m + 0.05;
   for (const auto& s : r.log) {
     smin = std::min(smin, s.slack_m);
@@ -82,28 +85,36 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
     if (!r.log[i].snagged) continue;
     const double ta = r.log[i].t_s, tb = i + 1 < r.log.size() ? r.log[i + 1].t_s : ta;
     for (const Panel* p : {&top, &bottom})
-      cv::rectangle(img, cv::Rect(p->to_px(ta, p->y1), p->to_px(tb, p->y0)), cv::Scalar(210, 230, 255), cv::FILLED);
+      cv::rectangle(img, cv::Rect(p->to_px(ta, p->y1), p->to_px(tb, p->y0)),
+                    cv::Scalar(210, 230, 255), cv::FILLED);
   }
   // The allowed slack band [0, s_max].
-  cv::rectangle(img, cv::Rect(bottom.to_px(t0, max_slack_m), bottom.to_px(t1, 0.0)), cv::Scalar(225, 245, 225),
-                cv::FILLED);
-  draw_axes(img, top, "tether length [m]: released l_t (blue), required (red), L (grey)", nice_step(top.y1 - top.y0));
+  cv::rectangle(img, cv::Rect(bottom.to_px(t0, max_slack_m), bottom.to_px(t1, 0.0)),
+                cv::Scalar(225, 245, 225), cv::FILLED);
+  draw_axes(img, top, "tether length [m]: released l_t (blue), required (red), L (grey)",
+            nice_step(top.y1 - top.y0));
   draw_axes(img, bottom, "slack l_t - required [m] (green band: [0, s_max]; orange: snag)",
             nice_step(bottom.y1 - bottom.y0));
   if (total_length_m <= top.y1)
-    cv::line(img, top.to_px(t0, total_length_m), top.to_px(t1, total_length_m), cv::Scalar(150, 150, 150), 1);
-  polyline(img, top, r, [](const TetherSimSample& s) { return s.required_m; }, cv::Scalar(40, 40, 220));
-  polyline(img, top, r, [](const TetherSimSample& s) { return s.released_m; }, cv::Scalar(200, 90, 20));
-  polyline(img, bottom, r, [](const TetherSimSample& s) { return s.slack_m; }, cv::Scalar(200, 90, 20));
+    cv::line(img, top.to_px(t0, total_length_m), top.to_px(t1, total_length_m),
+             cv::Scalar(150, 150, 150), 1);
+  polyline(
+      img, top, r, [](const TetherSimSample& s) { return s.required_m; }, cv::Scalar(40, 40, 220));
+  polyline(
+      img, top, r, [](const TetherSimSample& s) { return s.released_m; }, cv::Scalar(200, 90, 20));
+  polyline(
+      img, bottom, r, [](const TetherSimSample& s) { return s.slack_m; }, cv::Scalar(200, 90, 20));
   cv::line(img, bottom.to_px(t0, 0.0), bottom.to_px(t1, 0.0), cv::Scalar(0, 0, 0), 1);
   const auto& m = r.metrics;
   cv::putText(img,
-              fmt::format("{} / {}: slack RMS {:.4f} m, max {:.3f} m, over-tension events {}, limit active {:.2f} s",
-                          r.scenario, r.controller, m.slack_rms_m, m.max_slack_m, m.over_tension_events,
-                          m.limit_active_s),
-              cv::Point(80, 30), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  cv::putText(img, "time [s]", cv::Point(540, 705), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(40, 40, 40), 1,
+              fmt::format("{} / {}: slack RMS {:.4f} m, max {:.3f} m, over-tension events {}, "
+                          "limit active {:.2f} s",
+                          r.scenario, r.controller, m.slack_rms_m, m.max_slack_m,
+                          m.over_tension_events, m.limit_active_s),
+              cv::Point(80, 30), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);
+  cv::putText(img, "time [s]", cv::Point(540, 705), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+              cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
     // imwrite picks the format from the extension, so the temporary keeps ".png".
     const auto png = tmp.string() + ".png";

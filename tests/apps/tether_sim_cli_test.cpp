@@ -1,9 +1,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "support/cli_runner.hpp"
 
@@ -30,7 +30,9 @@ TEST(TetherSimCli, DefaultTrajectoryWithTheMpcPrintsFiguresAndWritesPlotCsvAndJs
   std::ifstream csv(dir / "tether_mpc.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,snagged");
+  EXPECT_EQ(header,
+            "t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,"
+            "snagged");
   const auto j = nlohmann::json::parse(std::ifstream(dir / "tether_mpc.json"));
   EXPECT_EQ(j["metrics"]["over_tension_events"], 0);
   EXPECT_EQ(j["metrics"]["cycles_above_L"], 0);
@@ -41,8 +43,10 @@ TEST(TetherSimCli, DefaultTrajectoryWithTheMpcPrintsFiguresAndWritesPlotCsvAndJs
 TEST(TetherSimCli, BaselineOnAShippedTrajectoryAndTheMissionsTetherLength) {
   TempDir dir;
   std::ofstream(dir / "mission.yaml") << "tether: {total_length_m: 12.0, entry_offset_m: 1.5}\n";
-  const auto r = run_cli("tether-sim --trajectory examples/trajectories/fast_back_and_forth.csv --controller baseline "
-                         "--seed 3 --mission '" + (dir / "mission.yaml") + "' --out '" + (dir / "out") + "'");
+  const auto r = run_cli(
+      "tether-sim --trajectory examples/trajectories/fast_back_and_forth.csv --controller baseline "
+      "--seed 3 --mission '" +
+      (dir / "mission.yaml") + "' --out '" + (dir / "out") + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("controller: baseline"));
   EXPECT_THAT(r.out, HasSubstr("(L = 12.00)"));
@@ -54,7 +58,8 @@ TEST(TetherSimCli, BaselineOnAShippedTrajectoryAndTheMissionsTetherLength) {
 TEST(TetherSimCli, BadTrajectoryExitsTwoNamingLineAndFieldWithoutOutputs) {
   TempDir dir;
   std::ofstream(dir / "bad.csv") << "t,x,y,yaw\n0,1,0,0\n0.1,1.1,oops,0\n";
-  const auto r = run_cli("tether-sim --trajectory '" + (dir / "bad.csv") + "' --out '" + (dir / "out") + "'");
+  const auto r =
+      run_cli("tether-sim --trajectory '" + (dir / "bad.csv") + "' --out '" + (dir / "out") + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("bad.csv"));
   EXPECT_THAT(r.err, HasSubstr("line 3, field 'y'"));
@@ -63,19 +68,22 @@ TEST(TetherSimCli, BadTrajectoryExitsTwoNamingLineAndFieldWithoutOutputs) {
 
 TEST(TetherSimCli, ConfigFileSetsGainsAndABadOneExitsTwo) {
   TempDir dir;
-  std::ofstream(dir / "slow.yaml") << "baseline: {kp_per_s: 1, ki_per_s2: 0}\nsim: {link_latency_s: 0.2}\n";
+  std::ofstream(dir / "slow.yaml")
+      << "baseline: {kp_per_s: 1, ki_per_s2: 0}\nsim: {link_latency_s: 0.2}\n";
   const auto tuned = run_cli("tether-sim --controller baseline --out '" + (dir / "a") + "'");
-  const auto detuned =
-      run_cli("tether-sim --controller baseline --config '" + (dir / "slow.yaml") + "' --out '" + (dir / "b") + "'");
+  const auto detuned = run_cli("tether-sim --controller baseline --config '" + (dir / "slow.yaml") +
+                               "' --out '" + (dir / "b") + "'");
   ASSERT_EQ(tuned.exit_code, 0) << tuned.err;
   ASSERT_EQ(detuned.exit_code, 0) << detuned.err;
   const auto a = nlohmann::json::parse(std::ifstream(dir / "a/tether_baseline.json"));
   const auto b = nlohmann::json::parse(std::ifstream(dir / "b/tether_baseline.json"));
   EXPECT_EQ(b["link_latency_s"], 0.2);
-  EXPECT_GT(b["metrics"]["slack_rms_m"].get<double>(), 2.0 * a["metrics"]["slack_rms_m"].get<double>());
+  EXPECT_GT(b["metrics"]["slack_rms_m"].get<double>(),
+            2.0 * a["metrics"]["slack_rms_m"].get<double>());
 
   std::ofstream(dir / "bad.yaml") << "mpc: {weight_slack: -1}\n";
-  const auto bad = run_cli("tether-sim --config '" + (dir / "bad.yaml") + "' --out '" + (dir / "c") + "'");
+  const auto bad =
+      run_cli("tether-sim --config '" + (dir / "bad.yaml") + "' --out '" + (dir / "c") + "'");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.err, HasSubstr("mpc.weight_slack"));
   EXPECT_FALSE(std::filesystem::exists(dir / "c"));
@@ -89,7 +97,8 @@ TEST(TetherSimCli, BadOptionsExitTwo) {
   r = run_cli("tether-sim");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("--out"));
-  r = run_cli("tether-sim --trajectory examples/trajectories/none.yaml --out '" + dir.path().string() + "'");
+  r = run_cli("tether-sim --trajectory examples/trajectories/none.yaml --out '" +
+              dir.path().string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("none.yaml"));
   EXPECT_EQ(dir.count(), 0u);

@@ -23,7 +23,8 @@ std::string write(const test::TempDir& dir, const std::string& name, const std::
 }
 
 // Expects InputError from loading `path` whose field contains `field`.
-void expect_input_error(const std::string& path, const std::string& field, const std::string& expected = "") {
+void expect_input_error(const std::string& path, const std::string& field,
+                        const std::string& expected = "") {
   try {
     (void)load_tether_scenario(path);
     FAIL() << "expected InputError for " << path;
@@ -39,7 +40,8 @@ void expect_input_error(const std::string& path, const std::string& field, const
 TEST(TetherTrajectory, CsvWithPositionsOnlyIsDifferentiated) {
   test::TempDir dir;
   // x = t^2: central differences give v(1) = (4 - 0) / 2 = 2 and v(2) = (9 - 1) / 2 = 4.
-  const auto path = write(dir, "t.csv", "# a comment\nt,x,y,yaw\n0,0,1,0\n1,1,1,0\n\n2,4,1,0\n3,9,1,0\n");
+  const auto path =
+      write(dir, "t.csv", "# a comment\nt,x,y,yaw\n0,0,1,0\n1,1,1,0\n\n2,4,1,0\n3,9,1,0\n");
   const auto s = load_tether_scenario(path);
   ASSERT_EQ(s.samples.size(), 4u);
   EXPECT_EQ(s.name, "t");
@@ -55,7 +57,9 @@ TEST(TetherTrajectory, CsvWithPositionsOnlyIsDifferentiated) {
 
 TEST(TetherTrajectory, CsvWithDesiredVelocityAndAcceleration) {
   test::TempDir dir;
-  const auto path = write(dir, "t.csv", "t, x, y, yaw, vx, vy, ax, ay\r\n0,1,2,0.5,0.1,0.2,0.3,0.4\r\n0.5,1.05,2.1,0.5,0.1,0.2,0,0\r\n");
+  const auto path = write(dir, "t.csv",
+                          "t, x, y, yaw, vx, vy, ax, "
+                          "ay\r\n0,1,2,0.5,0.1,0.2,0.3,0.4\r\n0.5,1.05,2.1,0.5,0.1,0.2,0,0\r\n");
   const auto s = load_tether_scenario(path);
   ASSERT_EQ(s.samples.size(), 2u);
   EXPECT_DOUBLE_EQ(s.samples[0].yaw_rad, 0.5);
@@ -66,9 +70,12 @@ TEST(TetherTrajectory, CsvWithDesiredVelocityAndAcceleration) {
 TEST(TetherTrajectory, BrokenCsvFilesNameLineAndField) {
   test::TempDir dir;
   expect_input_error(write(dir, "a.csv", "time,x,y,yaw\n0,0,0,0\n"), "line 1", "header");
-  expect_input_error(write(dir, "b.csv", "t,x,y,yaw\n0,0,0,0\n1,0,north,0\n"), "line 3, field 'y'", "finite number");
-  expect_input_error(write(dir, "c.csv", "t,x,y,yaw\n0,0,0,0\n1,0,0\n"), "line 3", "4 comma-separated");
-  expect_input_error(write(dir, "d.csv", "t,x,y,yaw\n0,0,0,0\n0,1,0,0\n"), "line 3, field 't'", "greater");
+  expect_input_error(write(dir, "b.csv", "t,x,y,yaw\n0,0,0,0\n1,0,north,0\n"), "line 3, field 'y'",
+                     "finite number");
+  expect_input_error(write(dir, "c.csv", "t,x,y,yaw\n0,0,0,0\n1,0,0\n"), "line 3",
+                     "4 comma-separated");
+  expect_input_error(write(dir, "d.csv", "t,x,y,yaw\n0,0,0,0\n0,1,0,0\n"), "line 3, field 't'",
+                     "greater");
   expect_input_error(write(dir, "e.csv", "t,x,y,yaw\n0,0,0,0\n"), "", "at least two");
   expect_input_error(write(dir, "f.csv", ""), "", "header");
   expect_input_error(write(dir, "g.csv", "t,x,y,yaw\n0,0,0,0\n1,inf,0,0\n"), "line 3, field 'x'");
@@ -107,22 +114,31 @@ TEST(TetherTrajectory, YamlSamplesInlineAndFromACsvBesideIt) {
   const auto a = load_tether_scenario(write(dir, "a.yaml", "samples_csv: pts.csv\n"));
   EXPECT_EQ(a.samples.size(), 2u);
   EXPECT_DOUBLE_EQ(a.samples[0].v_WG.x(), 1.0);
-  const auto b = load_tether_scenario(write(dir, "b.yaml", "samples: [[0, 1, 0, 0], [2, 1, 1, 0]]\n"));
+  const auto b =
+      load_tether_scenario(write(dir, "b.yaml", "samples: [[0, 1, 0, 0], [2, 1, 1, 0]]\n"));
   EXPECT_DOUBLE_EQ(b.samples[1].v_WG.y(), 0.5);
 }
 
 TEST(TetherTrajectory, BrokenYamlFilesNameTheField) {
   test::TempDir dir;
-  expect_input_error(write(dir, "a.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nwrap_points: [{xy_m: [1, 1], side: up}]\n"),
-                     "wrap_points[0].side", "left, right or always");
-  expect_input_error(write(dir, "b.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nsnags: [{wrap_point: 0, start_s: 1, duration_s: 1}]\n"),
+  expect_input_error(
+      write(dir, "a.yaml",
+            "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nwrap_points: [{xy_m: [1, 1], side: up}]\n"),
+      "wrap_points[0].side", "left, right or always");
+  expect_input_error(write(dir, "b.yaml",
+                           "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nsnags: [{wrap_point: 0, "
+                           "start_s: 1, duration_s: 1}]\n"),
                      "snags[0].wrap_point", "index into wrap_points");
   expect_input_error(write(dir, "c.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0]]\n"), "samples[1]");
-  expect_input_error(write(dir, "d.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nsamples_csv: x.csv\n"), "samples",
-                     "exactly one");
-  expect_input_error(write(dir, "e.yaml", "script: {waypoints_xy_m: [[0, 0], [1, 0]], cruise_mps: -1, accel_mps2: 1}\n"),
-                     "script.cruise_mps");
-  expect_input_error(write(dir, "f.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nspeed: 3\n"), "speed");
+  expect_input_error(
+      write(dir, "d.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nsamples_csv: x.csv\n"),
+      "samples", "exactly one");
+  expect_input_error(
+      write(dir, "e.yaml",
+            "script: {waypoints_xy_m: [[0, 0], [1, 0]], cruise_mps: -1, accel_mps2: 1}\n"),
+      "script.cruise_mps");
+  expect_input_error(write(dir, "f.yaml", "samples: [[0, 1, 0, 0], [1, 1, 0, 0]]\nspeed: 3\n"),
+                     "speed");
   // A missing CSV is named itself.
   write(dir, "g.yaml", "samples_csv: nowhere.csv\n");
   expect_input_error(dir / "nowhere.csv", "", "existing");
@@ -133,12 +149,13 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
   test::TempDir dir;
   auto config = TetherRunConfig::for_tether(12.0, 1.5);
   EXPECT_EQ(config.mpc.control.limits.total_length_m, 12.0);
-  apply_tether_run_config(write(dir, "c.yaml", R"(control: {slack_reference_m: 0.01, max_speed_mps: 0.8}
+  apply_tether_run_config(
+      write(dir, "c.yaml", R"(control: {slack_reference_m: 0.01, max_speed_mps: 0.8}
 mpc: {horizon: 30, weight_slack: 50}
 baseline: {kp_per_s: 4, ki_per_s2: 2}
 sim: {link_latency_s: 0.1, pose_noise_m: 0.0}
 )"),
-                          config);
+      config);
   EXPECT_EQ(config.mpc.horizon, 30);
   EXPECT_EQ(config.mpc.weight_slack, 50.0);
   EXPECT_EQ(config.mpc.weight_command_rate, TautDefaults().weight_command_rate);
@@ -184,7 +201,8 @@ TEST(ScriptedTrajectory, TrapezoidalSegmentsByHand) {
 
 TEST(TetherScenario, TheBuiltInDefaultIsTheShippedDefaultYaml) {
   const auto builtin = default_tether_scenario();
-  const auto shipped = load_tether_scenario(std::string(FERRET_SOURCE_DIR) + "/examples/trajectories/default.yaml");
+  const auto shipped =
+      load_tether_scenario(std::string(FERRET_SOURCE_DIR) + "/examples/trajectories/default.yaml");
   ASSERT_EQ(builtin.samples.size(), shipped.samples.size());
   ASSERT_EQ(builtin.wrap_points.size(), shipped.wrap_points.size());
   for (std::size_t i = 0; i < builtin.wrap_points.size(); ++i)
@@ -251,7 +269,8 @@ TEST(TetherSim, ASnagLoadsTheWinchSideOnlyAndReleases) {
   EXPECT_TRUE(saw_snag);
   // Reeling in 0.1 m/s against a fixed 3 m of line: ~500 N/m of stretch rate until the
   // servo stalls at its 40 N force limit.
-  const auto during = *std::find_if(r.log.rbegin(), r.log.rend(), [](const auto& s) { return s.snagged; });
+  const auto during =
+      *std::find_if(r.log.rbegin(), r.log.rend(), [](const auto& s) { return s.snagged; });
   EXPECT_GT(during.winch_tension_n, 35.0);
   EXPECT_LT(r.metrics.max_tension_n, 41.0);
   EXPECT_NEAR(during.speed_mps, 0.0, 0.01);
@@ -271,15 +290,18 @@ TEST(TetherSim, DeterministicForASeed) {
   };
   const auto a = run_with(7), b = run_with(7), c = run_with(8);
   ASSERT_EQ(a.log.size(), b.log.size());
-  for (std::size_t i = 0; i < a.log.size(); i += 50) EXPECT_EQ(a.log[i].released_m, b.log[i].released_m);
+  for (std::size_t i = 0; i < a.log.size(); i += 50)
+    EXPECT_EQ(a.log[i].released_m, b.log[i].released_m);
   EXPECT_EQ(a.metrics.slack_rms_m, b.metrics.slack_rms_m);
   EXPECT_NE(a.metrics.slack_rms_m, c.metrics.slack_rms_m);
 }
 
 TEST(TetherSim, TheMpcMeetsTheTargetsOnEveryShippedTrajectory) {
-  for (const char* file : {"default.yaml", "corner_snag.yaml", "fast_back_and_forth.csv", "reach_limit.csv"}) {
+  for (const char* file :
+       {"default.yaml", "corner_snag.yaml", "fast_back_and_forth.csv", "reach_limit.csv"}) {
     SCOPED_TRACE(file);
-    const auto scn = load_tether_scenario(std::string(FERRET_SOURCE_DIR) + "/examples/trajectories/" + file);
+    const auto scn =
+        load_tether_scenario(std::string(FERRET_SOURCE_DIR) + "/examples/trajectories/" + file);
     const auto options = TetherSimOptions::for_tether(15.0, 1.0);
     auto model = std::make_shared<tether::FixedWrapTether>(1.0, scn.p_WE, scn.wrap_points);
     tether::TautTetherMpc::Options mpc_options;

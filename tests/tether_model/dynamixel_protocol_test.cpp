@@ -10,10 +10,14 @@ using Bytes = std::vector<std::uint8_t>;
 
 // Packets from the ROBOTIS e-Manual's Protocol 2.0 page (Ping, Read, Write examples).
 const Bytes kPing = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x03, 0x00, 0x01, 0x19, 0x4E};
-const Bytes kPingStatus = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x07, 0x00, 0x55, 0x00, 0x06, 0x04, 0x26, 0x65, 0x5D};
-const Bytes kReadPosition = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x07, 0x00, 0x02, 0x84, 0x00, 0x04, 0x00, 0x1D, 0x15};
-const Bytes kReadStatus = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x08, 0x00, 0x55, 0x00, 0xA6, 0x00, 0x00, 0x00, 0x8C, 0xC0};
-const Bytes kWriteGoal = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x09, 0x00, 0x03, 0x74, 0x00, 0x00, 0x02, 0x00, 0x00, 0xCA, 0x89};
+const Bytes kPingStatus = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x07, 0x00,
+                           0x55, 0x00, 0x06, 0x04, 0x26, 0x65, 0x5D};
+const Bytes kReadPosition = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x07, 0x00,
+                             0x02, 0x84, 0x00, 0x04, 0x00, 0x1D, 0x15};
+const Bytes kReadStatus = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x08, 0x00, 0x55,
+                           0x00, 0xA6, 0x00, 0x00, 0x00, 0x8C, 0xC0};
+const Bytes kWriteGoal = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x09, 0x00, 0x03,
+                          0x74, 0x00, 0x00, 0x02, 0x00, 0x00, 0xCA, 0x89};
 const Bytes kWriteStatus = {0xFF, 0xFF, 0xFD, 0x00, 0x01, 0x04, 0x00, 0x55, 0x00, 0xA1, 0x0C};
 
 TEST(DynamixelProtocol, CrcMatchesThePublishedPingExample) {
@@ -21,13 +25,15 @@ TEST(DynamixelProtocol, CrcMatchesThePublishedPingExample) {
   EXPECT_EQ(crc16(std::span(kPingStatus).first(12)), 0x5D65);
   // CRC-16/BUYPASS check value: "123456789" -> 0xFEE8.
   const std::string check = "123456789";
-  EXPECT_EQ(crc16(std::span(reinterpret_cast<const std::uint8_t*>(check.data()), check.size())), 0xFEE8);
+  EXPECT_EQ(crc16(std::span(reinterpret_cast<const std::uint8_t*>(check.data()), check.size())),
+            0xFEE8);
 }
 
 TEST(DynamixelProtocol, EncodesThePublishedInstructionPackets) {
   EXPECT_EQ(encode_instruction(1, instruction::kPing), kPing);
   EXPECT_EQ(encode_instruction(1, instruction::kRead, read_params(132, 4)), kReadPosition);
-  EXPECT_EQ(encode_instruction(1, instruction::kWrite, write_params(116, to_le(512, 4))), kWriteGoal);
+  EXPECT_EQ(encode_instruction(1, instruction::kWrite, write_params(116, to_le(512, 4))),
+            kWriteGoal);
   EXPECT_EQ(encode_status(1, 0, Bytes{0x06, 0x04, 0x26}), kPingStatus);
   EXPECT_EQ(encode_status(1, 0), kWriteStatus);
 }
@@ -58,7 +64,8 @@ TEST(DynamixelProtocol, ByteStuffingInsertsFdAfterAHeaderPatternAndRoundTrips) {
   // The length field counts the stuffed bytes; decoding restores the parameters.
   const Bytes data = {0xFF, 0xFF, 0xFD, 0x00};
   const Bytes packet = encode_instruction(7, instruction::kWrite, write_params(0xFDFF, data));
-  EXPECT_EQ(packet[5] | (packet[6] << 8), 1 + 2 + 4 + 1 + 2);  // instruction, address, data, stuffing, CRC
+  EXPECT_EQ(packet[5] | (packet[6] << 8),
+            1 + 2 + 4 + 1 + 2);  // instruction, address, data, stuffing, CRC
   const auto d = decode(packet);
   ASSERT_EQ(d.status, DecodeResult::Status::kPacket);
   EXPECT_EQ(d.packet.params, write_params(0xFDFF, data));

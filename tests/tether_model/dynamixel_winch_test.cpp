@@ -147,7 +147,8 @@ TEST(DynamixelWinch, StateFollowsThePositionVelocityAndCurrentRegisters) {
   winch.command_velocity_mps(0.2);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const WinchState s = winch.read_state();
-  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   winch.command_velocity_mps(0.0);
   // 0.2 m/s -> 167 units -> 0.19996 m/s back; the fake moved for at most the elapsed
   // time and at least most of the 0.3 s sleep.

@@ -10,13 +10,13 @@
 #include <unistd.h>
 
 #include <array>
-#include <cmath>
-#include <span>
-#include <stdexcept>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <mutex>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -31,7 +31,8 @@ class FakeDynamixel {
  public:
   explicit FakeDynamixel(std::uint16_t model_number = 311, std::uint8_t id = 1) : id_(id) {
     master_ = ::posix_openpt(O_RDWR | O_NOCTTY);
-    if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0) throw std::runtime_error("no pty");
+    if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0)
+      throw std::runtime_error("no pty");
     slave_name_ = ::ptsname(master_);
     // Keep the slave open so the master never sees a hang-up between driver sessions.
     keep_open_ = ::open(slave_name_.c_str(), O_RDWR | O_NOCTTY);
@@ -58,8 +59,12 @@ class FakeDynamixel {
   /// Flip a CRC bit in the next n replies.
   void corrupt_next(int n) { corrupt_ = n; }
   /// Present Current register value (signed, 3.36 mA units on the MX-64).
-  void set_present_current(std::int16_t units) { write_table(126, dxl::to_le(static_cast<std::uint16_t>(units), 2)); }
-  [[nodiscard]] std::int32_t goal_velocity() { return static_cast<std::int32_t>(read_table(104, 4)); }
+  void set_present_current(std::int16_t units) {
+    write_table(126, dxl::to_le(static_cast<std::uint16_t>(units), 2));
+  }
+  [[nodiscard]] std::int32_t goal_velocity() {
+    return static_cast<std::int32_t>(read_table(104, 4));
+  }
   [[nodiscard]] std::uint32_t read_table(std::uint16_t address, std::size_t size) {
     std::lock_guard lock(mutex_);
     return dxl::from_le(std::span(table_).subspan(address, size));
@@ -121,7 +126,8 @@ class FakeDynamixel {
     std::lock_guard lock(mutex_);
     switch (req.instruction) {
       case dxl::instruction::kPing:
-        reply = dxl::encode_status(id_, 0, std::vector<std::uint8_t>{table_[0], table_[1], table_[6]});
+        reply =
+            dxl::encode_status(id_, 0, std::vector<std::uint8_t>{table_[0], table_[1], table_[6]});
         break;
       case dxl::instruction::kRead: {
         if (req.params.size() != 4) {

@@ -47,7 +47,8 @@ TEST(FeedForwardPid, IntegralAndDerivativeTermsByHand) {
 TEST(FeedForwardPid, SaturatesWithoutWindingUp) {
   FeedForwardPid pid(gains(1.0, 10.0, 0.0), tether());
   const double vmax = pid.options().control.limits.max_speed_mps;
-  for (int k = 0; k < 100; ++k) EXPECT_NEAR(pid.step(moving(3.0, 0.0)), vmax, 1e-12);  // 1 m stretched
+  for (int k = 0; k < 100; ++k)
+    EXPECT_NEAR(pid.step(moving(3.0, 0.0)), vmax, 1e-12);  // 1 m stretched
   // The error flips sign: without wind-up the command follows at once.
   EXPECT_NEAR(pid.step(moving(4.006, 0.0)), -0.001, 1e-9);
 }

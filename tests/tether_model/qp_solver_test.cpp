@@ -12,7 +12,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Eigen::MatrixXd M(std::initializer_list<std::initializer_list<double>> rows) {
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.begin()->size()));
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()),
+                    static_cast<Eigen::Index>(rows.begin()->size()));
   Eigen::Index i = 0;
   for (const auto& r : rows) {
     Eigen::Index j = 0;
@@ -30,8 +31,9 @@ Eigen::VectorXd V(std::initializer_list<double> v) {
 
 // KKT conditions of  min 1/2 x'Hx + g'x  s.t.  lo <= Cx <= hi  with multipliers y:
 // Hx + g = C'y, lo <= Cx <= hi, y_i > 0 only at a lower bound, y_i < 0 only at an upper one.
-void expect_kkt(const Eigen::MatrixXd& H, const Eigen::VectorXd& g, const Eigen::MatrixXd& C, const Eigen::VectorXd& lo,
-                const Eigen::VectorXd& hi, const QpResult& r, double tol = 1e-7) {
+void expect_kkt(const Eigen::MatrixXd& H, const Eigen::VectorXd& g, const Eigen::MatrixXd& C,
+                const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const QpResult& r,
+                double tol = 1e-7) {
   ASSERT_EQ(r.status, QpResult::Status::kOptimal);
   EXPECT_LT((H * r.x + g - C.transpose() * r.multipliers).norm(), tol) << "stationarity";
   const Eigen::VectorXd Cx = C * r.x;
@@ -162,9 +164,12 @@ TEST(DenseQpSolver, RandomProblemsSatisfyKkt) {
 
 TEST(DenseQpSolver, RejectsBadInput) {
   DenseQpSolver qp;
-  EXPECT_THROW(qp.setup(M({{1, 0}, {0, -1}}), Eigen::MatrixXd::Identity(2, 2)), std::invalid_argument);
-  EXPECT_THROW(qp.setup(M({{1, 2}, {0, 1}}), Eigen::MatrixXd::Identity(2, 2)), std::invalid_argument);
-  EXPECT_THROW(qp.setup(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(3, 3)), std::invalid_argument);
+  EXPECT_THROW(qp.setup(M({{1, 0}, {0, -1}}), Eigen::MatrixXd::Identity(2, 2)),
+               std::invalid_argument);
+  EXPECT_THROW(qp.setup(M({{1, 2}, {0, 1}}), Eigen::MatrixXd::Identity(2, 2)),
+               std::invalid_argument);
+  EXPECT_THROW(qp.setup(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(3, 3)),
+               std::invalid_argument);
   qp.setup(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(2, 2));
   EXPECT_THROW((void)qp.solve(V({0, 0}), V({1, 0}), V({0, 1})), std::invalid_argument);  // lo > hi
   EXPECT_THROW((void)qp.solve(V({0}), V({0, 0}), V({1, 1})), std::invalid_argument);

@@ -35,7 +35,8 @@ TEST(FixedWrapTether, LengthIsContinuousWhenACornerEngages) {
   // Up past the block and behind it: each corner engages when the tether is straight through it.
   double previous = t.required_length_m({4.2, 0.0});
   for (int i = 1; i <= 600; ++i) {
-    const Eigen::Vector2d p = i <= 300 ? Eigen::Vector2d(4.2, 0.01 * i) : Eigen::Vector2d(4.2 - 0.009 * (i - 300), 3.0);
+    const Eigen::Vector2d p =
+        i <= 300 ? Eigen::Vector2d(4.2, 0.01 * i) : Eigen::Vector2d(4.2 - 0.009 * (i - 300), 3.0);
     const double l = t.required_length_m(p);
     EXPECT_LT(std::abs(l - previous), 0.0101) << "step " << i;
     previous = l;

@@ -50,7 +50,8 @@ TEST(SimulatedWinch, FrictionHoldsASmallPullAndTheLineEndsAtL) {
   w.command_velocity_mps(0.6);
   run(w, 2.0, 0.0);
   EXPECT_DOUBLE_EQ(w.released_m(), 15.0);
-  EXPECT_THROW(SimulatedWinch(SimulatedWinch::Options{.initial_released_m = 16.0}), std::invalid_argument);
+  EXPECT_THROW(SimulatedWinch(SimulatedWinch::Options{.initial_released_m = 16.0}),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -68,7 +68,8 @@ TEST(TautTetherMpc, CommandsRampAtTheAccelerationLimitAndSaturateAtTheSpeedLimit
     TautTetherMpc mpc(raw_options(horizon), straight_tether());
     const auto& limits = mpc.options().control.limits;
     const double dt = mpc.options().control.control_period_s;
-    // The miniUGV leaves at 1.5 m/s, beyond the winch's 0.6 m/s; the spool follows the command exactly.
+    // The miniUGV leaves at 1.5 m/s, beyond the winch's 0.6 m/s; the spool follows the command
+    // exactly.
     double x = 3.0, released = 4.0, speed = 0.0, previous = 0.0;
     bool reached_limit = false;
     for (int k = 0; k < 60; ++k) {
@@ -78,7 +79,8 @@ TEST(TautTetherMpc, CommandsRampAtTheAccelerationLimitAndSaturateAtTheSpeedLimit
       const double command = mpc.step(obs);
       ASSERT_EQ(mpc.last_solution().status, QpResult::Status::kOptimal);
       EXPECT_LE(std::abs(command), limits.max_speed_mps + 1e-9);
-      EXPECT_LE(std::abs(command - previous), limits.max_acceleration_mps2 * dt + 1e-9) << "cycle " << k;
+      EXPECT_LE(std::abs(command - previous), limits.max_acceleration_mps2 * dt + 1e-9)
+          << "cycle " << k;
       reached_limit = reached_limit || command > limits.max_speed_mps - 1e-9;
       previous = speed = command;
       released += command * dt;

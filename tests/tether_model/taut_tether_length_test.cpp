@@ -8,9 +8,9 @@ namespace {
 // The block x in [1, 3.5], y in [0.5, 2] of examples/trajectories/default.yaml as the
 // planner's corner set, against the fixed wrap points the scripted scenario uses.
 TEST(TautTetherLengthModel, AgreesWithTheFixedWrapPointsAlongTheDefaultRoute) {
-  auto corners = TetherCorners::from_list({{{3.5, 0.5}, 0b0010},  // block on the (-x, +y) side
-                                           {{3.5, 2.0}, 0b0100},  // (-x, -y)
-                                           {{1.0, 0.5}, 0b0001},  // (+x, +y)
+  auto corners = TetherCorners::from_list({{{3.5, 0.5}, 0b0010},    // block on the (-x, +y) side
+                                           {{3.5, 2.0}, 0b0100},    // (-x, -y)
+                                           {{1.0, 0.5}, 0b0001},    // (+x, +y)
                                            {{1.0, 2.0}, 0b1000}});  // (+x, -y)
   const Eigen::Vector2d start(0.3, 0.0);
   TautTetherLengthModel planner(TautTether(corners, Eigen::Vector2d::Zero(), start), 1.0);
@@ -25,7 +25,8 @@ TEST(TautTetherLengthModel, AgreesWithTheFixedWrapPointsAlongTheDefaultRoute) {
       const double predicted = planner.required_length_m(p);
       planner.advance(p);
       EXPECT_NEAR(predicted, 1.0 + planner.tether().length_m(), 1e-12);
-      EXPECT_NEAR(planner.required_length_m(p), fixed.required_length_m(p), 1e-9) << "leg " << leg << " step " << i;
+      EXPECT_NEAR(planner.required_length_m(p), fixed.required_length_m(p), 1e-9)
+          << "leg " << leg << " step " << i;
       max_wraps = std::max(max_wraps, planner.tether().wrap_points().size());
     }
   }

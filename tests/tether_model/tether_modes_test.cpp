@@ -88,10 +88,11 @@ TEST(TouchdownGuard, LiftsOncePerBadSpellThenHolds) {
   TouchdownGuard g(TouchdownGuard::Options{});
   EXPECT_EQ(g.update(0.0, 0.7, 0.0, 0.60), LoweringAction::kRelift);
   EXPECT_EQ(g.update(0.1, 0.7, 0.0, 0.55), LoweringAction::kRelift);
-  EXPECT_EQ(g.update(0.2, 0.7, 0.0, 0.50), LoweringAction::kPause);  // lifted 10 cm, still bad: hold
+  EXPECT_EQ(g.update(0.2, 0.7, 0.0, 0.50),
+            LoweringAction::kPause);  // lifted 10 cm, still bad: hold
   EXPECT_EQ(g.update(0.3, 0.7, 0.0, 0.50), LoweringAction::kPause);
-  EXPECT_EQ(g.update(0.4, 0.5, 0.0, 0.50), LoweringAction::kPause);  // better, not good
-  EXPECT_EQ(g.update(0.5, 0.7, 0.0, 0.50), LoweringAction::kRelift); // a new bad spell
+  EXPECT_EQ(g.update(0.4, 0.5, 0.0, 0.50), LoweringAction::kPause);   // better, not good
+  EXPECT_EQ(g.update(0.5, 0.7, 0.0, 0.50), LoweringAction::kRelift);  // a new bad spell
 }
 
 }  // namespace

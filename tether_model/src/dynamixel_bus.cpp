@@ -11,7 +11,8 @@ DynamixelBus::DynamixelBus(std::unique_ptr<SerialLink> link, Options options)
   if (!link_) throw SerialError("Dynamixel bus: no serial link");
 }
 
-dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction, const std::vector<std::uint8_t>& params,
+dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction,
+                                   const std::vector<std::uint8_t>& params,
                                    std::size_t expected_params) {
   const auto request = dxl::encode_instruction(id, instruction, params);
   std::string last_problem;
@@ -21,10 +22,12 @@ dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction, co
     link_->discard_input();
     link_->write(request);
     std::vector<std::uint8_t> rx;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.timeout_ms);
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.timeout_ms);
     bool retry = false;
     while (!retry) {
-      const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      const auto left =
+          std::chrono::ceil<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
       if (left.count() <= 0) {
         last_kind = DynamixelError::Kind::kTimeout;
         last_problem = fmt::format("no reply within {} ms", options_.timeout_ms);
@@ -39,7 +42,8 @@ dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction, co
         if (d.status == dxl::DecodeResult::Status::kIncomplete) break;
         if (d.status != dxl::DecodeResult::Status::kPacket) {
           last_kind = DynamixelError::Kind::kCorrupt;
-          last_problem = d.status == dxl::DecodeResult::Status::kBadCrc ? "a reply with a bad CRC" : "a malformed reply";
+          last_problem = d.status == dxl::DecodeResult::Status::kBadCrc ? "a reply with a bad CRC"
+                                                                        : "a malformed reply";
           retry = true;
           break;
         }
@@ -47,15 +51,18 @@ dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction, co
         // Half-duplex adapters echo our own request; skip anything that is not a status.
         if (p.instruction != dxl::instruction::kStatus) continue;
         if (p.id != id)
-          throw DynamixelError(DynamixelError::Kind::kWrongDevice, 0,
-                               fmt::format("Dynamixel on '{}': asked id {}, id {} answered", port(), id, p.id));
+          throw DynamixelError(
+              DynamixelError::Kind::kWrongDevice, 0,
+              fmt::format("Dynamixel on '{}': asked id {}, id {} answered", port(), id, p.id));
         if (p.error != 0)
-          throw DynamixelError(DynamixelError::Kind::kStatus, p.error,
-                               fmt::format("Dynamixel id {} on '{}': {} (instruction 0x{:02X})", id, port(),
-                                           dxl::describe_status_error(p.error), instruction));
+          throw DynamixelError(
+              DynamixelError::Kind::kStatus, p.error,
+              fmt::format("Dynamixel id {} on '{}': {} (instruction 0x{:02X})", id, port(),
+                          dxl::describe_status_error(p.error), instruction));
         if (p.params.size() != expected_params) {
           last_kind = DynamixelError::Kind::kCorrupt;
-          last_problem = fmt::format("a reply with {} parameter bytes, expected {}", p.params.size(), expected_params);
+          last_problem = fmt::format("a reply with {} parameter bytes, expected {}",
+                                     p.params.size(), expected_params);
           retry = true;
           break;
         }
@@ -63,10 +70,12 @@ dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction, co
       }
     }
   }
-  throw DynamixelError(last_kind, 0,
-                       fmt::format("Dynamixel id {} on '{}': {} after {} attempts (instruction 0x{:02X}; check the id, "
-                                   "baud rate, wiring and power)",
-                                   id, port(), last_problem, options_.retries + 1, instruction));
+  throw DynamixelError(
+      last_kind, 0,
+      fmt::format(
+          "Dynamixel id {} on '{}': {} after {} attempts (instruction 0x{:02X}; check the id, "
+          "baud rate, wiring and power)",
+          id, port(), last_problem, options_.retries + 1, instruction));
 }
 
 PingReply DynamixelBus::ping(std::uint8_t id) {
@@ -74,11 +83,13 @@ PingReply DynamixelBus::ping(std::uint8_t id) {
   return {static_cast<std::uint16_t>(p.params[0] | (p.params[1] << 8)), p.params[2]};
 }
 
-std::vector<std::uint8_t> DynamixelBus::read(std::uint8_t id, std::uint16_t address, std::uint16_t length) {
+std::vector<std::uint8_t> DynamixelBus::read(std::uint8_t id, std::uint16_t address,
+                                             std::uint16_t length) {
   return transact(id, dxl::instruction::kRead, dxl::read_params(address, length), length).params;
 }
 
-void DynamixelBus::write(std::uint8_t id, std::uint16_t address, const std::vector<std::uint8_t>& data) {
+void DynamixelBus::write(std::uint8_t id, std::uint16_t address,
+                         const std::vector<std::uint8_t>& data) {
   (void)transact(id, dxl::instruction::kWrite, dxl::write_params(address, data), 0);
 }
 

@@ -12,7 +12,8 @@ constexpr std::array<std::uint16_t, 256> make_crc_table() {
   std::array<std::uint16_t, 256> table{};
   for (std::uint32_t i = 0; i < 256; ++i) {
     std::uint16_t crc = static_cast<std::uint16_t>(i << 8);
-    for (int b = 0; b < 8; ++b) crc = static_cast<std::uint16_t>((crc & 0x8000) ? (crc << 1) ^ 0x8005 : crc << 1);
+    for (int b = 0; b < 8; ++b)
+      crc = static_cast<std::uint16_t>((crc & 0x8000) ? (crc << 1) ^ 0x8005 : crc << 1);
     table[i] = crc;
   }
   return table;
@@ -45,7 +46,8 @@ std::vector<std::uint8_t> stuff(std::span<const std::uint8_t> payload) {
   out.reserve(payload.size() + 4);
   for (std::size_t i = 0; i < payload.size(); ++i) {
     out.push_back(payload[i]);
-    if (i >= 2 && payload[i] == 0xFD && payload[i - 1] == 0xFF && payload[i - 2] == 0xFF) out.push_back(0xFD);
+    if (i >= 2 && payload[i] == 0xFD && payload[i - 1] == 0xFF && payload[i - 2] == 0xFF)
+      out.push_back(0xFD);
   }
   return out;
 }
@@ -55,20 +57,22 @@ std::vector<std::uint8_t> unstuff(std::span<const std::uint8_t> payload) {
   out.reserve(payload.size());
   for (std::size_t i = 0; i < payload.size(); ++i) {
     out.push_back(payload[i]);
-    if (i >= 2 && payload[i] == 0xFD && payload[i - 1] == 0xFF && payload[i - 2] == 0xFF && i + 1 < payload.size() &&
-        payload[i + 1] == 0xFD)
+    if (i >= 2 && payload[i] == 0xFD && payload[i - 1] == 0xFF && payload[i - 2] == 0xFF &&
+        i + 1 < payload.size() && payload[i + 1] == 0xFD)
       ++i;  // skip the stuffing byte
   }
   return out;
 }
 
-std::vector<std::uint8_t> encode_instruction(std::uint8_t id, std::uint8_t instr, std::span<const std::uint8_t> params) {
+std::vector<std::uint8_t> encode_instruction(std::uint8_t id, std::uint8_t instr,
+                                             std::span<const std::uint8_t> params) {
   std::vector<std::uint8_t> payload{instr};
   payload.insert(payload.end(), params.begin(), params.end());
   return encode(id, payload);
 }
 
-std::vector<std::uint8_t> encode_status(std::uint8_t id, std::uint8_t error, std::span<const std::uint8_t> params) {
+std::vector<std::uint8_t> encode_status(std::uint8_t id, std::uint8_t error,
+                                        std::span<const std::uint8_t> params) {
   std::vector<std::uint8_t> payload{instruction::kStatus, error};
   payload.insert(payload.end(), params.begin(), params.end());
   return encode(id, payload);
@@ -79,7 +83,8 @@ DecodeResult decode(std::span<const std::uint8_t> buffer) {
   // Skip to the first header.
   std::size_t start = 0;
   while (start + kHeaderSize <= buffer.size() &&
-         !(buffer[start] == 0xFF && buffer[start + 1] == 0xFF && buffer[start + 2] == 0xFD && buffer[start + 3] == 0x00))
+         !(buffer[start] == 0xFF && buffer[start + 1] == 0xFF && buffer[start + 2] == 0xFD &&
+           buffer[start + 3] == 0x00))
     ++start;
   if (start + kHeaderSize > buffer.size()) {
     // Keep a possible partial header at the end.
@@ -105,7 +110,8 @@ DecodeResult decode(std::span<const std::uint8_t> buffer) {
   if (buffer.size() < start + total) return r;
   const auto packet = buffer.subspan(start, total);
   const std::uint16_t expected = crc16(packet.first(total - 2));
-  const std::uint16_t got = static_cast<std::uint16_t>(packet[total - 2] | (packet[total - 1] << 8));
+  const std::uint16_t got =
+      static_cast<std::uint16_t>(packet[total - 2] | (packet[total - 1] << 8));
   if (expected != got) {
     r.status = DecodeResult::Status::kBadCrc;
     r.consumed = start + total;
@@ -132,13 +138,15 @@ DecodeResult decode(std::span<const std::uint8_t> buffer) {
 
 std::vector<std::uint8_t> to_le(std::uint32_t value, std::size_t size) {
   std::vector<std::uint8_t> out;
-  for (std::size_t i = 0; i < size; ++i) out.push_back(static_cast<std::uint8_t>((value >> (8 * i)) & 0xFF));
+  for (std::size_t i = 0; i < size; ++i)
+    out.push_back(static_cast<std::uint8_t>((value >> (8 * i)) & 0xFF));
   return out;
 }
 
 std::uint32_t from_le(std::span<const std::uint8_t> bytes) {
   std::uint32_t v = 0;
-  for (std::size_t i = 0; i < bytes.size() && i < 4; ++i) v |= static_cast<std::uint32_t>(bytes[i]) << (8 * i);
+  for (std::size_t i = 0; i < bytes.size() && i < 4; ++i)
+    v |= static_cast<std::uint32_t>(bytes[i]) << (8 * i);
   return v;
 }
 
@@ -156,9 +164,9 @@ std::vector<std::uint8_t> write_params(std::uint16_t address, std::span<const st
 }
 
 std::string describe_status_error(std::uint8_t error) {
-  static const char* const kNames[] = {"no error",          "result fail",      "instruction error",
-                                       "CRC error",         "data range error", "data length error",
-                                       "data limit error",  "access error"};
+  static const char* const kNames[] = {"no error",         "result fail",      "instruction error",
+                                       "CRC error",        "data range error", "data length error",
+                                       "data limit error", "access error"};
   const std::uint8_t number = error & 0x7F;
   std::string text = number < 8 ? kNames[number] : "unknown error " + std::to_string(number);
   if (error & 0x80) text += " (hardware alert: read Hardware Error Status)";

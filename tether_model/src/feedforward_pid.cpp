@@ -9,7 +9,8 @@ namespace ferret::tether {
 FeedForwardPid::FeedForwardPid(Options options, std::shared_ptr<const RequiredLengthModel> model)
     : options_(options), model_(std::move(model)), filter_(options.control.pose_filter_gain) {
   if (!model_) throw std::invalid_argument("FeedForwardPid: no required-length model");
-  if (!(options_.control.control_period_s > 0.0)) throw std::invalid_argument("FeedForwardPid: control period must be > 0");
+  if (!(options_.control.control_period_s > 0.0))
+    throw std::invalid_argument("FeedForwardPid: control period must be > 0");
 }
 
 void FeedForwardPid::reset() {
@@ -35,22 +36,25 @@ double FeedForwardPid::step(const TetherObservation& obs) {
   last_error_m_ = error;
   has_last_ = true;
 
-  const double unsaturated = feedforward + options_.kp_per_s * error + options_.ki_per_s2 * integral_m_s_ +
-                             options_.kd * derivative;
+  const double unsaturated = feedforward + options_.kp_per_s * error +
+                             options_.ki_per_s2 * integral_m_s_ + options_.kd * derivative;
   // Limits: speed, acceleration (rate of the command), and the braking distance to
   // the ends of the tether (0 and L).
   const double vmax = c.limits.max_speed_mps, amax = c.limits.max_acceleration_mps2;
-  double hi = std::min(vmax, std::sqrt(2.0 * amax * std::max(0.0, c.limits.total_length_m - obs.released_m)));
+  double hi = std::min(
+      vmax, std::sqrt(2.0 * amax * std::max(0.0, c.limits.total_length_m - obs.released_m)));
   double lo = -std::min(vmax, std::sqrt(2.0 * amax * std::max(0.0, obs.released_m)));
   hi = std::min(hi, last_command_mps_ + amax * dt);
   lo = std::max(lo, last_command_mps_ - amax * dt);
-  if (lo > hi) lo = hi = std::clamp(0.0, last_command_mps_ - amax * dt, last_command_mps_ + amax * dt);
+  if (lo > hi)
+    lo = hi = std::clamp(0.0, last_command_mps_ - amax * dt, last_command_mps_ + amax * dt);
   const double command = std::clamp(unsaturated, lo, hi);
   // Conditional integration: stop integrating while the error pushes further into saturation.
   const bool saturated_up = unsaturated > hi && error > 0.0;
   const bool saturated_down = unsaturated < lo && error < 0.0;
   if (!saturated_up && !saturated_down)
-    integral_m_s_ = std::clamp(integral_m_s_ + error * dt, -options_.integral_limit_m_s, options_.integral_limit_m_s);
+    integral_m_s_ = std::clamp(integral_m_s_ + error * dt, -options_.integral_limit_m_s,
+                               options_.integral_limit_m_s);
   last_command_mps_ = command;
   return command;
 }

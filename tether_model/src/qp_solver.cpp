@@ -10,15 +10,19 @@ namespace ferret::tether {
 
 std::string_view to_string(QpResult::Status status) {
   switch (status) {
-    case QpResult::Status::kOptimal: return "optimal";
-    case QpResult::Status::kInfeasible: return "infeasible";
-    case QpResult::Status::kIterationLimit: return "iteration limit";
+    case QpResult::Status::kOptimal:
+      return "optimal";
+    case QpResult::Status::kInfeasible:
+      return "infeasible";
+    case QpResult::Status::kIterationLimit:
+      return "iteration limit";
   }
   return "?";
 }
 
 void DenseQpSolver::setup(const Eigen::MatrixXd& H, const Eigen::MatrixXd& C) {
-  if (H.rows() != H.cols() || H.rows() == 0) throw std::invalid_argument("QP: H must be square and non-empty");
+  if (H.rows() != H.cols() || H.rows() == 0)
+    throw std::invalid_argument("QP: H must be square and non-empty");
   if (C.cols() != H.rows()) throw std::invalid_argument("QP: C must have as many columns as H");
   if (!H.isApprox(H.transpose(), 1e-12)) throw std::invalid_argument("QP: H must be symmetric");
   llt_.compute(H);
@@ -47,7 +51,8 @@ QpResult DenseQpSolver::solve(const Eigen::VectorXd& g, const Eigen::VectorXd& l
   if (g.size() != n || lower.size() != m || upper.size() != m)
     throw std::invalid_argument("QP: g, lower or upper has the wrong size");
   for (Eigen::Index i = 0; i < m; ++i)
-    if (lower[i] > upper[i]) throw std::invalid_argument("QP: lower bound above upper bound in row " + std::to_string(i));
+    if (lower[i] > upper[i])
+      throw std::invalid_argument("QP: lower bound above upper bound in row " + std::to_string(i));
 
   const auto U = llt_.matrixU();
   QpResult result;
@@ -55,19 +60,22 @@ QpResult DenseQpSolver::solve(const Eigen::VectorXd& g, const Eigen::VectorXd& l
   Eigen::VectorXd x = -llt_.solve(g);
 
   std::vector<Side> active;
-  Eigen::VectorXd u(0);    // multipliers of the active set
-  Eigen::MatrixXd B(n, 0); // columns sign * W_i of the active constraints
+  Eigen::VectorXd u(0);     // multipliers of the active set
+  Eigen::MatrixXd B(n, 0);  // columns sign * W_i of the active constraints
   Eigen::HouseholderQR<Eigen::MatrixXd> qr;
   auto rebuild = [&] {
     B.resize(n, static_cast<Eigen::Index>(active.size()));
-    for (std::size_t j = 0; j < active.size(); ++j) B.col(static_cast<Eigen::Index>(j)) = active[j].sign * W_.col(active[j].row);
+    for (std::size_t j = 0; j < active.size(); ++j)
+      B.col(static_cast<Eigen::Index>(j)) = active[j].sign * W_.col(active[j].row);
     if (B.cols() > 0) qr.compute(B);
   };
   auto slack = [&](const Side& s, const Eigen::VectorXd& Cx) {
     return s.sign > 0 ? Cx[s.row] - lower[s.row] : upper[s.row] - Cx[s.row];
   };
   std::vector<char> is_active(static_cast<std::size_t>(2 * m), 0);
-  auto flag = [&](const Side& s) -> char& { return is_active[static_cast<std::size_t>(2 * s.row + (s.sign > 0 ? 0 : 1))]; };
+  auto flag = [&](const Side& s) -> char& {
+    return is_active[static_cast<std::size_t>(2 * s.row + (s.sign > 0 ? 0 : 1))];
+  };
 
   const int max_iterations = static_cast<int>(10 * (n + m) + 50);
   const double inf = std::numeric_limits<double>::infinity();

@@ -6,13 +6,17 @@
 
 namespace ferret::tether {
 
-FixedWrapTether::FixedWrapTether(double entry_offset_m, Eigen::Vector2d p_WE, std::vector<WrapPoint> wrap_points)
-    : entry_offset_m_(entry_offset_m), p_WE_(std::move(p_WE)), wrap_points_(std::move(wrap_points)) {
+FixedWrapTether::FixedWrapTether(double entry_offset_m, Eigen::Vector2d p_WE,
+                                 std::vector<WrapPoint> wrap_points)
+    : entry_offset_m_(entry_offset_m),
+      p_WE_(std::move(p_WE)),
+      wrap_points_(std::move(wrap_points)) {
   if (!(entry_offset_m_ >= 0.0)) throw std::invalid_argument("FixedWrapTether: l_0 must be >= 0");
   double length = entry_offset_m_;
   Eigen::Vector2d previous = p_WE_;
   for (const auto& w : wrap_points_) {
-    if (w.side < -1 || w.side > 1) throw std::invalid_argument("FixedWrapTether: side must be -1, 0 or +1");
+    if (w.side < -1 || w.side > 1)
+      throw std::invalid_argument("FixedWrapTether: side must be -1, 0 or +1");
     length += (w.p_W - previous).norm();
     cumulative_m_.push_back(length);
     previous = w.p_W;
@@ -33,7 +37,8 @@ std::size_t FixedWrapTether::engaged_count(const Eigen::Vector2d& p_WG) const {
 }
 
 double FixedWrapTether::length_to_wrap_point_m(std::size_t index) const {
-  if (index >= cumulative_m_.size()) throw std::out_of_range("FixedWrapTether: no wrap point " + std::to_string(index));
+  if (index >= cumulative_m_.size())
+    throw std::out_of_range("FixedWrapTether: no wrap point " + std::to_string(index));
   return cumulative_m_[index];
 }
 
@@ -43,7 +48,8 @@ double FixedWrapTether::required_length_m(const Eigen::Vector2d& p_WG) const {
   return cumulative_m_[engaged - 1] + (p_WG - wrap_points_[engaged - 1].p_W).norm();
 }
 
-UgvMotion UgvMotion::extrapolated(double dt_s, double max_speed_mps, double acceleration_time_s) const {
+UgvMotion UgvMotion::extrapolated(double dt_s, double max_speed_mps,
+                                  double acceleration_time_s) const {
   UgvMotion out = *this;
   if (dt_s <= 0.0) return out;
   const double speed = v_WG.norm();
@@ -74,7 +80,8 @@ UgvMotion UgvMotion::extrapolated(double dt_s, double max_speed_mps, double acce
 double required_length_rate_mps(const RequiredLengthModel& model, const UgvMotion& motion) {
   constexpr double kStep_s = 1e-3;
   const Eigen::Vector2d dp = motion.v_WG * kStep_s;
-  return (model.required_length_m(motion.p_WG + dp) - model.required_length_m(motion.p_WG - dp)) / (2.0 * kStep_s);
+  return (model.required_length_m(motion.p_WG + dp) - model.required_length_m(motion.p_WG - dp)) /
+         (2.0 * kStep_s);
 }
 
 }  // namespace ferret::tether

@@ -18,7 +18,8 @@ class LibSerialPortLink final : public SerialLink {
  public:
   LibSerialPortLink(const std::string& name, int baud) : name_(name) {
     if (sp_get_port_by_name(name.c_str(), &port_) != SP_OK)
-      throw SerialError("serial port '" + name + "': not found (is the Dynamixel adapter plugged in?)");
+      throw SerialError("serial port '" + name +
+                        "': not found (is the Dynamixel adapter plugged in?)");
     if (sp_open(port_, SP_MODE_READ_WRITE) != SP_OK) {
       const std::string why = sp_last_error_message();
       sp_free_port(port_);
@@ -30,7 +31,8 @@ class LibSerialPortLink final : public SerialLink {
       const std::string why = sp_last_error_message();
       sp_close(port_);
       sp_free_port(port_);
-      throw SerialError("serial port '" + name + "': cannot set " + std::to_string(baud) + " baud 8N1: " + why);
+      throw SerialError("serial port '" + name + "': cannot set " + std::to_string(baud) +
+                        " baud 8N1: " + why);
     }
   }
   ~LibSerialPortLink() override {
@@ -43,7 +45,8 @@ class LibSerialPortLink final : public SerialLink {
       throw SerialError("serial port '" + name_ + "': write failed");
   }
   std::size_t read_some(std::span<std::uint8_t> buffer, int timeout_ms) override {
-    const int n = sp_blocking_read_next(port_, buffer.data(), buffer.size(), static_cast<unsigned>(std::max(timeout_ms, 1)));
+    const int n = sp_blocking_read_next(port_, buffer.data(), buffer.size(),
+                                        static_cast<unsigned>(std::max(timeout_ms, 1)));
     if (n < 0) throw SerialError("serial port '" + name_ + "': read failed");
     return static_cast<std::size_t>(n);
   }
@@ -57,14 +60,22 @@ class LibSerialPortLink final : public SerialLink {
 
 speed_t termios_speed(int baud) {
   switch (baud) {
-    case 9600: return B9600;
-    case 57600: return B57600;
-    case 115200: return B115200;
-    case 1000000: return B1000000;
-    case 2000000: return B2000000;
-    case 3000000: return B3000000;
-    case 4000000: return B4000000;
-    default: return B0;
+    case 9600:
+      return B9600;
+    case 57600:
+      return B57600;
+    case 115200:
+      return B115200;
+    case 1000000:
+      return B1000000;
+    case 2000000:
+      return B2000000;
+    case 3000000:
+      return B3000000;
+    case 4000000:
+      return B4000000;
+    default:
+      return B0;
   }
 }
 
@@ -72,7 +83,8 @@ class TermiosLink final : public SerialLink {
  public:
   TermiosLink(const std::string& name, int baud) : name_(name) {
     fd_ = ::open(name.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
-    if (fd_ < 0) throw SerialError("serial port '" + name + "': cannot open: " + std::strerror(errno));
+    if (fd_ < 0)
+      throw SerialError("serial port '" + name + "': cannot open: " + std::strerror(errno));
     termios tio{};
     if (::tcgetattr(fd_, &tio) != 0) fail("not a terminal");
     ::cfmakeraw(&tio);
@@ -90,9 +102,12 @@ class TermiosLink final : public SerialLink {
     std::size_t done = 0;
     while (done < bytes.size()) {
       const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
-      if (n < 0 && errno != EAGAIN && errno != EINTR) throw SerialError("serial port '" + name_ + "': write failed: " + std::strerror(errno));
-      if (n > 0) done += static_cast<std::size_t>(n);
-      else wait(POLLOUT, 100);
+      if (n < 0 && errno != EAGAIN && errno != EINTR)
+        throw SerialError("serial port '" + name_ + "': write failed: " + std::strerror(errno));
+      if (n > 0)
+        done += static_cast<std::size_t>(n);
+      else
+        wait(POLLOUT, 100);
     }
   }
   std::size_t read_some(std::span<std::uint8_t> buffer, int timeout_ms) override {

@@ -117,15 +117,17 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // Required length now (the link message is ugv_age_s old) and over the horizon,
   // from the desired velocity and acceleration.
   const double ta = options_.acceleration_time_s;
-  const UgvMotion now =
-      filter_.update(obs.t_s - obs.ugv_age_s, obs.ugv).extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
+  const UgvMotion now = filter_.update(obs.t_s - obs.ugv_age_s, obs.ugv)
+                            .extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
   const double required_now = model_->required_length_m(now.p_WG);
   // A tension the geometry does not explain (a snag) shifts every prediction by the
   // measured stretch: the tether behaves as if it were that much longer.
-  const double slack = ctl.slack_estimator.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
+  const double slack =
+      ctl.slack_estimator.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
   const double bias = (obs.released_m - required_now) - slack;
   for (int k = 0; k < N; ++k) {
-    const UgvMotion future = now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps, std::max(0.0, ta - obs.ugv_age_s));
+    const UgvMotion future =
+        now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps, std::max(0.0, ta - obs.ugv_age_s));
     required_[k] = model_->required_length_m(future.p_WG) + bias;
     required_rate_[k] = required_length_rate_mps(*model_, future);
   }

@@ -16,7 +16,8 @@ double TensionModel::tension_n(double length_m, double slack_m) const {
   return slack_m >= 0.0 ? 0.0 : stiffness_npm(length_m) * -slack_m;
 }
 
-double SlackEstimator::estimate_m(double released_m, double required_m, double winch_tension_n) const {
+double SlackEstimator::estimate_m(double released_m, double required_m,
+                                  double winch_tension_n) const {
   const double geometric = released_m - required_m;
   const double pull = winch_tension_n - tension.hanging_weight_n;
   if (pull <= guard_n) return geometric;
@@ -39,8 +40,9 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
   return estimate_;
 }
 
-std::unique_ptr<TetherController> make_tether_controller(std::string_view name, const TautControlOptions& options,
-                                                         std::shared_ptr<const RequiredLengthModel> model) {
+std::unique_ptr<TetherController> make_tether_controller(
+    std::string_view name, const TautControlOptions& options,
+    std::shared_ptr<const RequiredLengthModel> model) {
   if (name == "mpc") {
     TautTetherMpc::Options o;
     o.control = options;
@@ -51,7 +53,8 @@ std::unique_ptr<TetherController> make_tether_controller(std::string_view name, 
     o.control = options;
     return std::make_unique<FeedForwardPid>(o, std::move(model));
   }
-  throw std::invalid_argument("unknown tether controller '" + std::string(name) + "' (expected mpc or baseline)");
+  throw std::invalid_argument("unknown tether controller '" + std::string(name) +
+                              "' (expected mpc or baseline)");
 }
 
 std::vector<std::string> tether_controller_names() { return {"mpc", "baseline"}; }

@@ -11,30 +11,41 @@ namespace ferret::tether {
 
 std::string_view to_string(TetherMode mode) {
   switch (mode) {
-    case TetherMode::kAerial: return "aerial";
-    case TetherMode::kLowering: return "lowering";
-    case TetherMode::kHiddenSpace: return "hidden-space";
+    case TetherMode::kAerial:
+      return "aerial";
+    case TetherMode::kLowering:
+      return "lowering";
+    case TetherMode::kHiddenSpace:
+      return "hidden-space";
   }
   return "?";
 }
 
 std::string_view to_string(LoweringAction action) {
   switch (action) {
-    case LoweringAction::kLower: return "lower";
-    case LoweringAction::kPause: return "pause";
-    case LoweringAction::kRelift: return "relift";
+    case LoweringAction::kLower:
+      return "lower";
+    case LoweringAction::kPause:
+      return "pause";
+    case LoweringAction::kRelift:
+      return "relift";
   }
   return "?";
 }
 
-TetherModeSwitcher::TetherModeSwitcher(Options options, TetherMode initial) : options_(options), mode_(initial) {
+TetherModeSwitcher::TetherModeSwitcher(Options options, TetherMode initial)
+    : options_(options), mode_(initial) {
   if (!(options_.total_length_m > 0.0) || !(options_.entry_offset_m > 0.0) ||
       options_.entry_offset_m > options_.total_length_m)
     throw std::invalid_argument("TetherModeSwitcher: need 0 < l_0 <= L");
-  if (!(options_.uav_height_m > 0.0) || !(options_.hysteresis_m >= 0.0) || !(options_.aerial_tolerance_m >= 0.0))
-    throw std::invalid_argument("TetherModeSwitcher: Z_W must be > 0, hysteresis and tolerance >= 0");
-  if (options_.aerial_tolerance_m + 2.0 * options_.hysteresis_m >= options_.entry_offset_m - options_.hysteresis_m)
-    throw std::invalid_argument("TetherModeSwitcher: hysteresis bands overlap (l_0 too small for the hysteresis)");
+  if (!(options_.uav_height_m > 0.0) || !(options_.hysteresis_m >= 0.0) ||
+      !(options_.aerial_tolerance_m >= 0.0))
+    throw std::invalid_argument(
+        "TetherModeSwitcher: Z_W must be > 0, hysteresis and tolerance >= 0");
+  if (options_.aerial_tolerance_m + 2.0 * options_.hysteresis_m >=
+      options_.entry_offset_m - options_.hysteresis_m)
+    throw std::invalid_argument(
+        "TetherModeSwitcher: hysteresis bands overlap (l_0 too small for the hysteresis)");
 }
 
 TetherMode TetherModeSwitcher::update(double t_s, double released_m) {
@@ -45,21 +56,27 @@ TetherMode TetherModeSwitcher::update(double t_s, double released_m) {
   TetherMode next = mode_;
   switch (mode_) {
     case TetherMode::kAerial:
-      if (released_m >= hidden_enter) next = TetherMode::kHiddenSpace;
-      else if (released_m > aerial_exit) next = TetherMode::kLowering;
+      if (released_m >= hidden_enter)
+        next = TetherMode::kHiddenSpace;
+      else if (released_m > aerial_exit)
+        next = TetherMode::kLowering;
       break;
     case TetherMode::kLowering:
-      if (released_m <= o.aerial_tolerance_m) next = TetherMode::kAerial;
-      else if (released_m >= hidden_enter) next = TetherMode::kHiddenSpace;
+      if (released_m <= o.aerial_tolerance_m)
+        next = TetherMode::kAerial;
+      else if (released_m >= hidden_enter)
+        next = TetherMode::kHiddenSpace;
       break;
     case TetherMode::kHiddenSpace:
-      if (released_m <= o.aerial_tolerance_m) next = TetherMode::kAerial;
-      else if (released_m < hidden_exit) next = TetherMode::kLowering;
+      if (released_m <= o.aerial_tolerance_m)
+        next = TetherMode::kAerial;
+      else if (released_m < hidden_exit)
+        next = TetherMode::kLowering;
       break;
   }
   if (next != mode_) {
-    spdlog::info("tether mode: {} -> {} at t = {:.3f} s, l_t = {:.3f} m", to_string(mode_), to_string(next), t_s,
-                 released_m);
+    spdlog::info("tether mode: {} -> {} at t = {:.3f} s, l_t = {:.3f} m", to_string(mode_),
+                 to_string(next), t_s, released_m);
     transitions_.push_back({t_s, mode_, next, released_m});
     mode_ = next;
   }
@@ -79,7 +96,8 @@ double TouchdownGuard::tilt_rad(double roll_rad, double pitch_rad) {
   return std::acos(std::clamp(std::cos(roll_rad) * std::cos(pitch_rad), -1.0, 1.0));
 }
 
-LoweringAction TouchdownGuard::update(double t_s, double roll_rad, double pitch_rad, double released_m) {
+LoweringAction TouchdownGuard::update(double t_s, double roll_rad, double pitch_rad,
+                                      double released_m) {
   const double tilt = tilt_rad(roll_rad, pitch_rad);
   const LoweringAction before = action_;
   if (tilt < options_.relift_tilt_rad) relift_armed_ = true;
@@ -99,16 +117,19 @@ LoweringAction TouchdownGuard::update(double t_s, double roll_rad, double pitch_
   } else {
     if (action_ != LoweringAction::kLower) {
       if (calm_since_s_ < 0.0) calm_since_s_ = t_s;
-      if (t_s - calm_since_s_ >= options_.settle_time_s) action_ = LoweringAction::kLower;
-      else action_ = LoweringAction::kPause;
+      if (t_s - calm_since_s_ >= options_.settle_time_s)
+        action_ = LoweringAction::kLower;
+      else
+        action_ = LoweringAction::kPause;
     }
   }
   velocity_mps_ = action_ == LoweringAction::kLower    ? options_.lowering_speed_mps
                   : action_ == LoweringAction::kRelift ? -options_.relift_speed_mps
-                                                        : 0.0;
+                                                       : 0.0;
   if (action_ != before)
-    spdlog::info("tether lowering: {} -> {} at t = {:.3f} s (tilt {:.1f} deg, l_t = {:.3f} m)", to_string(before),
-                 to_string(action_), t_s, tilt * 180.0 / std::numbers::pi, released_m);
+    spdlog::info("tether lowering: {} -> {} at t = {:.3f} s (tilt {:.1f} deg, l_t = {:.3f} m)",
+                 to_string(before), to_string(action_), t_s, tilt * 180.0 / std::numbers::pi,
+                 released_m);
   return action_;
 }
 

@@ -64,9 +64,9 @@ void differentiate_trajectory(std::vector<TrajectorySample>& samples);
 /// Straight segments through `waypoints`, each driven from rest to rest with a
 /// trapezoidal speed profile (cruise speed, acceleration), sampled every dt_s, with
 /// `dwell_s` standing still at every waypoint. Yaw follows the segment.
-[[nodiscard]] std::vector<TrajectorySample> scripted_trajectory(const std::vector<Eigen::Vector2d>& waypoints,
-                                                                double cruise_mps, double accel_mps2,
-                                                                double dwell_s, double dt_s = 0.02);
+[[nodiscard]] std::vector<TrajectorySample> scripted_trajectory(
+    const std::vector<Eigen::Vector2d>& waypoints, double cruise_mps, double accel_mps2,
+    double dwell_s, double dt_s = 0.02);
 
 /// The built-in scenario `ferret tether-sim` runs without --trajectory: out from the
 /// entry, round an obstacle corner (the tether wraps), behind it, and back.
@@ -75,11 +75,11 @@ void differentiate_trajectory(std::vector<TrajectorySample>& samples);
 struct TetherSimOptions {
   tether::TautControlOptions control;  ///< also the limits and the tension model
   tether::SimulatedWinch::Options winch;
-  double entry_offset_m = 1.0;         ///< l_0 (from MissionConfig)
+  double entry_offset_m = 1.0;  ///< l_0 (from MissionConfig)
   double physics_dt_s = 0.001;
-  double link_latency_s = 0.06;        ///< age of the miniUGV's pose when it reaches the winch
-  double pose_noise_m = 0.01;          ///< standard deviation of the reported position
-  double tension_noise_n = 0.2;        ///< standard deviation of the current-based tension
+  double link_latency_s = 0.06;  ///< age of the miniUGV's pose when it reaches the winch
+  double pose_noise_m = 0.01;    ///< standard deviation of the reported position
+  double tension_noise_n = 0.2;  ///< standard deviation of the current-based tension
   std::uint64_t seed = 1;
 
   /// Consistent options for a tether of total length L and entry offset l_0.
@@ -108,9 +108,9 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
 
 struct TetherSimSample {
   double t_s = 0.0;
-  double released_m = 0.0;   ///< l_t
-  double required_m = 0.0;   ///< taut length to the miniUGV (ground truth)
-  double slack_m = 0.0;      ///< l_t - required
+  double released_m = 0.0;  ///< l_t
+  double required_m = 0.0;  ///< taut length to the miniUGV (ground truth)
+  double slack_m = 0.0;     ///< l_t - required
   double ugv_tension_n = 0.0;
   double winch_tension_n = 0.0;  ///< true, without the hanging weight
   double command_mps = 0.0;
@@ -123,11 +123,11 @@ struct TetherSimMetrics {
   double max_slack_m = 0.0;
   double min_slack_m = 0.0;
   double max_tension_n = 0.0;
-  int over_tension_events = 0;     ///< rising edges of tension > max_tension_n (either end)
+  int over_tension_events = 0;  ///< rising edges of tension > max_tension_n (either end)
   double over_tension_time_s = 0.0;
-  double limit_active_s = 0.0;     ///< time with l_t within 1 mm of L
+  double limit_active_s = 0.0;  ///< time with l_t within 1 mm of L
   double max_released_m = 0.0;
-  int released_over_limit = 0;     ///< control cycles with l_t > L (+1 mm)
+  int released_over_limit = 0;  ///< control cycles with l_t > L (+1 mm)
   double duration_s = 0.0;
   int control_cycles = 0;
   /// Wall-clock time of controller.step(): the only non-deterministic figures.
@@ -145,10 +145,12 @@ struct TetherSimResult {
 /// Runs the scenario in closed loop with the controller. Deterministic for a seed.
 /// Throws std::invalid_argument if the scenario is unusable (too few samples, a
 /// snag on a wrap point that does not exist).
-[[nodiscard]] TetherSimResult run_tether_sim(const TetherScenario& scenario, const TetherSimOptions& options,
+[[nodiscard]] TetherSimResult run_tether_sim(const TetherScenario& scenario,
+                                             const TetherSimOptions& options,
                                              tether::TetherController& controller);
 
-/// CSV: t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,snagged.
+/// CSV:
+/// t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,snagged.
 void write_tether_sim_csv(const TetherSimResult& result, const std::filesystem::path& path);
 /// PNG plot: l_t and the required length (top), slack with the [0, s_max] band and
 /// snag intervals (bottom). Written atomically.

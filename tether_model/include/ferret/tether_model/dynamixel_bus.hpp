@@ -44,24 +44,31 @@ class DynamixelBus {
   DynamixelBus(std::unique_ptr<SerialLink> link, Options options);
 
   [[nodiscard]] PingReply ping(std::uint8_t id);
-  [[nodiscard]] std::vector<std::uint8_t> read(std::uint8_t id, std::uint16_t address, std::uint16_t length);
+  [[nodiscard]] std::vector<std::uint8_t> read(std::uint8_t id, std::uint16_t address,
+                                               std::uint16_t length);
   void write(std::uint8_t id, std::uint16_t address, const std::vector<std::uint8_t>& data);
 
-  [[nodiscard]] std::uint32_t read_u32(std::uint8_t id, std::uint16_t address) { return dxl::from_le(read(id, address, 4)); }
+  [[nodiscard]] std::uint32_t read_u32(std::uint8_t id, std::uint16_t address) {
+    return dxl::from_le(read(id, address, 4));
+  }
   [[nodiscard]] std::uint16_t read_u16(std::uint8_t id, std::uint16_t address) {
     return static_cast<std::uint16_t>(dxl::from_le(read(id, address, 2)));
   }
-  [[nodiscard]] std::uint8_t read_u8(std::uint8_t id, std::uint16_t address) { return read(id, address, 1).at(0); }
+  [[nodiscard]] std::uint8_t read_u8(std::uint8_t id, std::uint16_t address) {
+    return read(id, address, 1).at(0);
+  }
   void write_u8(std::uint8_t id, std::uint16_t address, std::uint8_t v) { write(id, address, {v}); }
-  void write_u32(std::uint8_t id, std::uint16_t address, std::uint32_t v) { write(id, address, dxl::to_le(v, 4)); }
+  void write_u32(std::uint8_t id, std::uint16_t address, std::uint32_t v) {
+    write(id, address, dxl::to_le(v, 4));
+  }
 
   /// Attempts that were repeated after a timeout or corrupted reply (for diagnostics).
   [[nodiscard]] int retried() const { return retried_; }
   [[nodiscard]] const std::string& port() const { return link_->name(); }
 
  private:
-  dxl::Packet transact(std::uint8_t id, std::uint8_t instruction, const std::vector<std::uint8_t>& params,
-                       std::size_t expected_params);
+  dxl::Packet transact(std::uint8_t id, std::uint8_t instruction,
+                       const std::vector<std::uint8_t>& params, std::size_t expected_params);
 
   std::unique_ptr<SerialLink> link_;
   Options options_;

@@ -43,8 +43,8 @@ struct Packet {
 };
 
 /// Encodes an instruction packet.
-[[nodiscard]] std::vector<std::uint8_t> encode_instruction(std::uint8_t id, std::uint8_t instruction,
-                                                           std::span<const std::uint8_t> params = {});
+[[nodiscard]] std::vector<std::uint8_t> encode_instruction(
+    std::uint8_t id, std::uint8_t instruction, std::span<const std::uint8_t> params = {});
 /// Encodes a status packet (what a servo sends back).
 [[nodiscard]] std::vector<std::uint8_t> encode_status(std::uint8_t id, std::uint8_t error,
                                                       std::span<const std::uint8_t> params = {});
@@ -64,7 +64,8 @@ struct DecodeResult {
 /// Parameters of Read: address and length, little endian.
 [[nodiscard]] std::vector<std::uint8_t> read_params(std::uint16_t address, std::uint16_t length);
 /// Parameters of Write: address then data.
-[[nodiscard]] std::vector<std::uint8_t> write_params(std::uint16_t address, std::span<const std::uint8_t> data);
+[[nodiscard]] std::vector<std::uint8_t> write_params(std::uint16_t address,
+                                                     std::span<const std::uint8_t> data);
 
 /// Little-endian encoding of the low `size` bytes of value.
 [[nodiscard]] std::vector<std::uint8_t> to_le(std::uint32_t value, std::size_t size);

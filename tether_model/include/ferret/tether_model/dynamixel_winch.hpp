@@ -16,14 +16,16 @@ namespace ferret::tether {
 
 /// Control-table addresses of the MX series with Protocol 2.0 firmware.
 namespace mx2 {
-inline constexpr std::uint16_t kModelNumber = 0;        // 2 bytes
-inline constexpr std::uint16_t kOperatingMode = 11;     // 1: velocity, 3: position, 4: extended position
-inline constexpr std::uint16_t kVelocityLimit = 44;     // 4 bytes, 0.229 rpm
+inline constexpr std::uint16_t kModelNumber = 0;  // 2 bytes
+inline constexpr std::uint16_t kOperatingMode =
+    11;  // 1: velocity, 3: position, 4: extended position
+inline constexpr std::uint16_t kVelocityLimit = 44;  // 4 bytes, 0.229 rpm
 inline constexpr std::uint16_t kTorqueEnable = 64;
 inline constexpr std::uint16_t kHardwareErrorStatus = 70;
-inline constexpr std::uint16_t kGoalVelocity = 104;     // 4 bytes, 0.229 rpm, signed
+inline constexpr std::uint16_t kGoalVelocity = 104;         // 4 bytes, 0.229 rpm, signed
 inline constexpr std::uint16_t kProfileAcceleration = 108;  // 4 bytes, 214.577 rev/min^2
-inline constexpr std::uint16_t kPresentCurrent = 126;   // 2 bytes signed (MX-28: Present Load, 0.1 %)
+inline constexpr std::uint16_t kPresentCurrent =
+    126;  // 2 bytes signed (MX-28: Present Load, 0.1 %)
 inline constexpr std::uint16_t kPresentVelocity = 128;  // 4 bytes signed, 0.229 rpm
 inline constexpr std::uint16_t kPresentPosition = 132;  // 4 bytes signed, 4096 a revolution
 inline constexpr std::uint8_t kVelocityMode = 1;
@@ -39,11 +41,12 @@ class DynamixelWinch final : public Winch {
  public:
   struct Options {
     std::string port = "/dev/ttyUSB0";
-    int baud_rate = 57600;          ///< factory default of the MX series (Protocol 2.0)
+    int baud_rate = 57600;  ///< factory default of the MX series (Protocol 2.0)
     std::uint8_t id = 1;
-    std::vector<std::uint16_t> accepted_models = {mx2::kModelMx28, mx2::kModelMx64, mx2::kModelMx106};
+    std::vector<std::uint16_t> accepted_models = {mx2::kModelMx28, mx2::kModelMx64,
+                                                  mx2::kModelMx106};
     double spool_radius_m = 0.09;
-    int payout_direction = +1;      ///< +1: positive servo velocity pays line out
+    int payout_direction = +1;  ///< +1: positive servo velocity pays line out
     double max_speed_mps = 0.6;
     double max_acceleration_mps2 = 2.0;
     double initial_released_m = 0.0;  ///< l_t at connect()

@@ -10,8 +10,8 @@
 //
 // Box constraints are rows of the identity in C; an infinite bound is ignored.
 
-#include <Eigen/Core>
 #include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <string_view>
 
 namespace ferret::tether {
@@ -19,10 +19,11 @@ namespace ferret::tether {
 struct QpResult {
   enum class Status { kOptimal, kInfeasible, kIterationLimit };
   Status status = Status::kInfeasible;
-  Eigen::VectorXd x;            ///< the minimiser (last iterate if not optimal)
-  Eigen::VectorXd multipliers;  ///< per row of C: > 0 lower bound active, < 0 upper; H x + g = C' multipliers
-  double objective = 0.0;       ///< 1/2 x' H x + g' x
-  int iterations = 0;           ///< constraint additions and removals
+  Eigen::VectorXd x;  ///< the minimiser (last iterate if not optimal)
+  Eigen::VectorXd
+      multipliers;  ///< per row of C: > 0 lower bound active, < 0 upper; H x + g = C' multipliers
+  double objective = 0.0;  ///< 1/2 x' H x + g' x
+  int iterations = 0;      ///< constraint additions and removals
   int active_constraints = 0;
 };
 

@@ -34,7 +34,8 @@ struct WrapPoint {
 class FixedWrapTether final : public RequiredLengthModel {
  public:
   /// @param entry_offset_m l_0, tether from the winch to the entry point p_WE.
-  FixedWrapTether(double entry_offset_m, Eigen::Vector2d p_WE, std::vector<WrapPoint> wrap_points = {});
+  FixedWrapTether(double entry_offset_m, Eigen::Vector2d p_WE,
+                  std::vector<WrapPoint> wrap_points = {});
 
   [[nodiscard]] double required_length_m(const Eigen::Vector2d& p_WG) const override;
   /// Number of wrap points the tether bends around with the miniUGV at p_WG.
@@ -69,6 +70,7 @@ struct UgvMotion {
 
 /// Rate of change of the required length when the miniUGV moves with v_WG (central
 /// difference of the model along the velocity).
-[[nodiscard]] double required_length_rate_mps(const RequiredLengthModel& model, const UgvMotion& motion);
+[[nodiscard]] double required_length_rate_mps(const RequiredLengthModel& model,
+                                              const UgvMotion& motion);
 
 }  // namespace ferret::tether

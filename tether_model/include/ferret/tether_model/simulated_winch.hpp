@@ -11,17 +11,17 @@ namespace ferret::tether {
 class SimulatedWinch final : public Winch {
  public:
   struct Options {
-    double max_speed_mps = 0.6;          ///< servo speed limit at the spool surface
-    double max_acceleration_mps2 = 2.0;  ///< profile acceleration
-    double effective_mass_kg = 0.4;      ///< spool + rotor inertia seen at the line, J / r^2
-    double max_force_n = 40.0;           ///< stall torque / spool radius
+    double max_speed_mps = 0.6;             ///< servo speed limit at the spool surface
+    double max_acceleration_mps2 = 2.0;     ///< profile acceleration
+    double effective_mass_kg = 0.4;         ///< spool + rotor inertia seen at the line, J / r^2
+    double max_force_n = 40.0;              ///< stall torque / spool radius
     double velocity_gain_n_per_mps = 16.0;  ///< m / K = 0.025 s velocity-loop time constant
     /// The velocity loop's I term: holds the line against the tether's pull (a load F
     /// gives F / Ki of line before it is held); 640 with the P gain is 40 rad/s, damping 0.5.
     double velocity_integral_gain_n_per_m = 640.0;
     double coulomb_friction_n = 0.3;
     double viscous_friction_n_per_mps = 0.5;
-    double total_length_m = 15.0;        ///< L: the line ends here (a hard stop)
+    double total_length_m = 15.0;  ///< L: the line ends here (a hard stop)
     double initial_released_m = 0.0;
   };
 

@@ -18,16 +18,18 @@ class TautTetherMpc final : public TetherController {
  public:
   struct Options {
     TautControlOptions control;
-    int horizon = 20;                 ///< N prediction steps
-    double prediction_dt_s = 0.02;    ///< N * dt = 0.4 s look-ahead by default
-    double acceleration_time_s = 0.1;  ///< how long the miniUGV's desired acceleration is assumed to last
-    double weight_slack = 100.0;      ///< on (slack - reference)^2 per step, 1/m^2
-    double weight_command_rate = 2.0; ///< on (delta command)^2, (s/m)^2
-    double weight_feedforward = 0.05; ///< on (command - required-length rate)^2
-    double weight_terminal = 5.0;     ///< extra slack weight on the last step (multiplier)
-    double soft_linear_weight = 2000.0;     ///< exact-penalty weight of the soft slack bounds
+    int horizon = 20;               ///< N prediction steps
+    double prediction_dt_s = 0.02;  ///< N * dt = 0.4 s look-ahead by default
+    double acceleration_time_s =
+        0.1;  ///< how long the miniUGV's desired acceleration is assumed to last
+    double weight_slack = 100.0;         ///< on (slack - reference)^2 per step, 1/m^2
+    double weight_command_rate = 2.0;    ///< on (delta command)^2, (s/m)^2
+    double weight_feedforward = 0.05;    ///< on (command - required-length rate)^2
+    double weight_terminal = 5.0;        ///< extra slack weight on the last step (multiplier)
+    double soft_linear_weight = 2000.0;  ///< exact-penalty weight of the soft slack bounds
     double soft_quadratic_weight = 20000.0;
-    double length_linear_weight = 1e5;     ///< penalty of l_t outside [0, L] (soft only to stay solvable)
+    double length_linear_weight =
+        1e5;  ///< penalty of l_t outside [0, L] (soft only to stay solvable)
     double length_quadratic_weight = 1e6;
   };
 
@@ -60,7 +62,8 @@ class TautTetherMpc final : public TetherController {
   Eigen::VectorXd free_l_from_l_, free_l_from_v_;
   Eigen::MatrixXd H_;
   // Constraint row blocks of C (see build()).
-  int row_rate_ = 0, row_length_ = 0, row_length_lo_ = 0, row_slack_lo_ = 0, row_slack_hi_ = 0, row_box_ = 0, row_soft_ = 0, rows_ = 0;
+  int row_rate_ = 0, row_length_ = 0, row_length_lo_ = 0, row_slack_lo_ = 0, row_slack_hi_ = 0,
+      row_box_ = 0, row_soft_ = 0, rows_ = 0;
   Eigen::VectorXd required_;
   Eigen::VectorXd required_rate_;
   QpResult last_;

@@ -16,17 +16,18 @@ namespace ferret::tether {
 
 /// Winch and tether limits shared by the controllers and the simulation.
 struct WinchLimits {
-  double total_length_m = 15.0;        ///< L: l_t never exceeds it
-  double max_speed_mps = 0.6;          ///< spool surface speed (MX-64: 63 rpm on a 9 cm spool)
-  double max_acceleration_mps2 = 2.0;  ///< profile acceleration
+  double total_length_m = 15.0;             ///< L: l_t never exceeds it
+  double max_speed_mps = 0.6;               ///< spool surface speed (MX-64: 63 rpm on a 9 cm spool)
+  double max_acceleration_mps2 = 2.0;       ///< profile acceleration
   double velocity_time_constant_s = 0.025;  ///< first-order lag of the servo's velocity loop
 };
 
 /// Elastic tether: tension = EA / l * stretch (stretch = -slack when negative).
 struct TensionModel {
   double axial_stiffness_n = 1500.0;  ///< EA of a 1 mm nylon line
-  double hanging_weight_n = 0.5;      ///< weight of the hanging part (winch to entry): the winch always feels it
-  double max_tension_n = 10.0;        ///< above this the tether drags the miniUGV: an over-tension event
+  double hanging_weight_n =
+      0.5;  ///< weight of the hanging part (winch to entry): the winch always feels it
+  double max_tension_n = 10.0;  ///< above this the tether drags the miniUGV: an over-tension event
 
   /// Spring rate of `length_m` of tether (N/m).
   [[nodiscard]] double stiffness_npm(double length_m) const;
@@ -36,11 +37,11 @@ struct TensionModel {
 
 struct TetherObservation {
   double t_s = 0.0;
-  double released_m = 0.0;         ///< l_t from the spool encoder
-  double spool_speed_mps = 0.0;    ///< measured
-  double winch_tension_n = 0.0;    ///< from motor current, includes the hanging weight
-  UgvMotion ugv;                   ///< last message from the miniUGV
-  double ugv_age_s = 0.0;          ///< how old that message is (link latency)
+  double released_m = 0.0;       ///< l_t from the spool encoder
+  double spool_speed_mps = 0.0;  ///< measured
+  double winch_tension_n = 0.0;  ///< from motor current, includes the hanging weight
+  UgvMotion ugv;                 ///< last message from the miniUGV
+  double ugv_age_s = 0.0;        ///< how old that message is (link latency)
 };
 
 /// Slack the controllers act on: geometric slack l_t - l_req from the (latency-
@@ -51,7 +52,8 @@ struct SlackEstimator {
   TensionModel tension;
   double guard_n = 1.5;  ///< tension (above the hanging weight) that overrides geometry
 
-  [[nodiscard]] double estimate_m(double released_m, double required_m, double winch_tension_n) const;
+  [[nodiscard]] double estimate_m(double released_m, double required_m,
+                                  double winch_tension_n) const;
 };
 
 /// Smooths the miniUGV's reported position with its own desired motion: each message
@@ -87,11 +89,11 @@ class TetherController {
 struct TautControlOptions {
   WinchLimits limits;
   SlackEstimator slack_estimator;
-  double slack_reference_m = 0.0;   ///< slack aimed for: taut (tuned, docs/tether.md)
-  double max_slack_m = 0.15;        ///< s_max: slack kept in [0, s_max]
-  double control_period_s = 0.02;   ///< 50 Hz
-  double ugv_max_speed_mps = 2.0;   ///< caps the miniUGV prediction
-  double pose_filter_gain = 0.05;   ///< UgvPositionFilter gain a cycle (1: raw positions)
+  double slack_reference_m = 0.0;  ///< slack aimed for: taut (tuned, docs/tether.md)
+  double max_slack_m = 0.15;       ///< s_max: slack kept in [0, s_max]
+  double control_period_s = 0.02;  ///< 50 Hz
+  double ugv_max_speed_mps = 2.0;  ///< caps the miniUGV prediction
+  double pose_filter_gain = 0.05;  ///< UgvPositionFilter gain a cycle (1: raw positions)
 };
 
 /// Named factory: "mpc" or "baseline". Throws std::invalid_argument for another name.

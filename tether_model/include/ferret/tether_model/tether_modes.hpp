@@ -30,11 +30,11 @@ struct ModeTransition {
 class TetherModeSwitcher {
  public:
   struct Options {
-    double total_length_m = 15.0;      ///< L
-    double entry_offset_m = 1.0;       ///< l_0
-    double uav_height_m = 1.0;         ///< Z_W (height of the UAV's COM above the ground)
-    double hysteresis_m = 0.02;        ///< half-width of the band around each boundary
-    double aerial_tolerance_m = 0.005; ///< l_t at or below this counts as fully retracted
+    double total_length_m = 15.0;       ///< L
+    double entry_offset_m = 1.0;        ///< l_0
+    double uav_height_m = 1.0;          ///< Z_W (height of the UAV's COM above the ground)
+    double hysteresis_m = 0.02;         ///< half-width of the band around each boundary
+    double aerial_tolerance_m = 0.005;  ///< l_t at or below this counts as fully retracted
 
     /// L and l_0 from the mission (MissionConfig::tether), Z_W from the flight.
     [[nodiscard]] static Options from_mission(const TetherParams& tether, double uav_height_m) {
@@ -75,8 +75,8 @@ enum class LoweringAction { kLower, kPause, kRelift };
 class TouchdownGuard {
  public:
   struct Options {
-    double pause_tilt_rad = 0.35;    ///< ~20 deg
-    double relift_tilt_rad = 0.61;   ///< ~35 deg
+    double pause_tilt_rad = 0.35;   ///< ~20 deg
+    double relift_tilt_rad = 0.61;  ///< ~35 deg
     double relift_distance_m = 0.10;
     double settle_time_s = 0.5;
     double lowering_speed_mps = 0.2;
