@@ -21,5 +21,4 @@ endif()
 # OctoMap's imported targets are `octomap` and `octomath` (no namespace).
 find_package(ompl REQUIRED)          # variables only: OMPL_INCLUDE_DIRS, OMPL_LIBRARIES
 find_package(fcl REQUIRED)           # target: fcl
-find_package(dynamicEDT3D REQUIRED)  # variables only: DYNAMICEDT3D_INCLUDE_DIRS, DYNAMICEDT3D_LIBRARIES
 pkg_check_modules(SERIALPORT REQUIRED IMPORTED_TARGET libserialport)
