@@ -380,7 +380,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   }
   if (const auto r = root.optional_child("mpc")) {
     r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "weight_slack",
-                   "weight_command_rate", "weight_feedforward", "weight_terminal"});
+                   "weight_command_rate", "weight_feedforward", "weight_terminal",
+                   "weight_soft_linear", "weight_soft_quadratic"});
     auto& m = c.mpc;
     m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
     if (r->has("horizon") && r->get<double>("horizon") != m.horizon)
@@ -394,6 +395,10 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     m.weight_feedforward =
         r->get_in_range_or("weight_feedforward", 1e-6, 1e6, m.weight_feedforward);
     m.weight_terminal = r->get_in_range_or("weight_terminal", 0.0, 1e6, m.weight_terminal);
+    m.soft_linear_weight =
+        r->get_in_range_or("weight_soft_linear", 0.0, 1e8, m.soft_linear_weight);
+    m.soft_quadratic_weight =
+        r->get_in_range_or("weight_soft_quadratic", 1e-6, 1e8, m.soft_quadratic_weight);
   }
   if (const auto r = root.optional_child("baseline")) {
     r->allow_only({"kp_per_s", "ki_per_s2", "kd", "feedforward_gain"});
