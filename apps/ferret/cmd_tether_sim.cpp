@@ -97,6 +97,8 @@ void run(const Options& o) {
   j["config"] = o.config.empty() ? nlohmann::json() : nlohmann::json(o.config);
   j["horizon"] = o.controller == "mpc" ? nlohmann::json(config.mpc.horizon) : nlohmann::json();
   j["link_latency_s"] = options.link_latency_s;
+  j["ugv_velocity_lag_s"] = options.ugv_velocity_lag_s;
+  j["ugv_slip_noise_mps"] = options.ugv_slip_noise_mps;
   j["total_length_m"] = c.limits.total_length_m;
   j["entry_offset_m"] = options.entry_offset_m;
   j["metrics"] = {{"slack_rms_m", m.slack_rms_m},

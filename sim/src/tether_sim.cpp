@@ -330,6 +330,40 @@ TetherScenario load_tether_scenario(const std::filesystem::path& path) {
   throw InputError(path.string(), "", "a .csv, .yaml or .yml trajectory file", ext);
 }
 
+std::vector<TrajectorySample> actual_ugv_motion(const TetherScenario& scn, double lag_s,
+                                                double slip_mps, double slip_time_s, double dt_s,
+                                                std::uint64_t seed) {
+  if (!(dt_s > 0.0) || lag_s < 0.0 || slip_mps < 0.0 || !(slip_time_s > 0.0))
+    throw std::invalid_argument("actual_ugv_motion: need dt > 0, lag >= 0, slip >= 0, time > 0");
+  Rng rng(seed);
+  const auto count =
+      static_cast<std::size_t>(std::floor((scn.end_s() - scn.start_s()) / dt_s + 1e-9)) + 1;
+  // Exact discretisation of the lag v' = (v_des - v) / lag and of the slip process.
+  const double follow = lag_s > 0.0 ? 1.0 - std::exp(-dt_s / lag_s) : 1.0;
+  const double keep = std::exp(-dt_s / slip_time_s);
+  const double kick = slip_mps * std::sqrt(1.0 - keep * keep);
+  std::vector<TrajectorySample> out;
+  out.reserve(count);
+  // The position is the desired one plus the integrated velocity error, so an
+  // obedient robot reproduces its trajectory exactly.
+  TrajectorySample desired = scn.at(scn.start_s());
+  Eigen::Vector2d v = desired.v_WG, slip = Eigen::Vector2d::Zero(), offset = slip;
+  out.push_back(desired);
+  for (std::size_t i = 1; i < count; ++i) {
+    const Eigen::Vector2d error_before = v + slip - desired.v_WG;
+    desired = scn.at(scn.start_s() + static_cast<double>(i) * dt_s);
+    v += follow * (desired.v_WG - v);
+    if (slip_mps > 0.0)
+      slip = keep * slip + kick * Eigen::Vector2d(rng.normal(0.0, 1.0), rng.normal(0.0, 1.0));
+    offset += 0.5 * (error_before + v + slip - desired.v_WG) * dt_s;
+    TrajectorySample row = desired;
+    row.p_WG += offset;
+    row.v_WG = v + slip;
+    out.push_back(row);
+  }
+  return out;
+}
+
 TetherScenario default_tether_scenario() {
   TetherScenario scn;
   scn.name = "default";
@@ -409,11 +443,18 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     b.feedforward_gain = r->get_in_range_or("feedforward_gain", 0.0, 2.0, b.feedforward_gain);
   }
   if (const auto r = root.optional_child("sim")) {
-    r->allow_only({"link_latency_s", "pose_noise_m", "tension_noise_n"});
+    r->allow_only({"link_latency_s", "pose_noise_m", "tension_noise_n", "ugv_velocity_lag_s",
+                   "ugv_slip_noise_mps", "ugv_slip_time_s"});
     c.sim.link_latency_s = r->get_in_range_or("link_latency_s", 0.0, 1.0, c.sim.link_latency_s);
     c.sim.pose_noise_m = r->get_in_range_or("pose_noise_m", 0.0, 1.0, c.sim.pose_noise_m);
     c.sim.tension_noise_n =
         r->get_in_range_or("tension_noise_n", 0.0, 100.0, c.sim.tension_noise_n);
+    c.sim.ugv_velocity_lag_s =
+        r->get_in_range_or("ugv_velocity_lag_s", 0.0, 5.0, c.sim.ugv_velocity_lag_s);
+    c.sim.ugv_slip_noise_mps =
+        r->get_in_range_or("ugv_slip_noise_mps", 0.0, 1.0, c.sim.ugv_slip_noise_mps);
+    c.sim.ugv_slip_time_s =
+        r->get_in_range_or("ugv_slip_time_s", 1e-3, 100.0, c.sim.ugv_slip_time_s);
   }
   c.mpc.control = ctl;
   c.baseline.control = ctl;
@@ -503,6 +544,15 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
       geometry.required_length_m(scn.samples.front().p_WG) + opt.control.slack_reference_m, 0.0, L);
   tether::SimulatedWinch winch(winch_options);
   TetherState tether_state(scn, opt);
+  // Where the miniUGV really is: its desired motion, unless it lags or slips.
+  TetherScenario actual_storage;
+  const bool obedient = opt.ugv_velocity_lag_s == 0.0 && opt.ugv_slip_noise_mps == 0.0;
+  if (!obedient) {
+    actual_storage.samples =
+        actual_ugv_motion(scn, opt.ugv_velocity_lag_s, opt.ugv_slip_noise_mps,
+                          opt.ugv_slip_time_s, opt.physics_dt_s, derive_seed(opt.seed, {1}));
+  }
+  const TetherScenario& actual = obedient ? scn : actual_storage;
 
   TetherSimResult result;
   result.scenario = scn.name;
@@ -517,18 +567,18 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
   std::vector<double> step_times_us;
   m.min_slack_m = std::numeric_limits<double>::infinity();
   m.max_slack_m = -std::numeric_limits<double>::infinity();
-  auto forces = tether_state.update(t, winch.released_m(), scn.at(t).p_WG);
+  auto forces = tether_state.update(t, winch.released_m(), actual.at(t).p_WG);
   while (t <= scn.end_s() + 1e-9) {
     // The miniUGV's message left latency seconds ago, with its localisation error.
     const double t_msg = std::max(scn.start_s(), t - opt.link_latency_s);
-    const TrajectorySample msg = scn.at(t_msg);
+    const TrajectorySample msg = scn.at(t_msg);  // the desired motion it reports
     tether::TetherObservation obs;
     obs.t_s = t;
     obs.released_m = winch.released_m();
     obs.spool_speed_mps = winch.speed_mps();
     obs.winch_tension_n =
         tension_model.hanging_weight_n + forces.winch_n + rng.normal(0.0, opt.tension_noise_n);
-    obs.ugv.p_WG = msg.p_WG + Eigen::Vector2d(rng.normal(0.0, opt.pose_noise_m),
+    obs.ugv.p_WG = actual.at(t_msg).p_WG + Eigen::Vector2d(rng.normal(0.0, opt.pose_noise_m),
                                               rng.normal(0.0, opt.pose_noise_m));
     obs.ugv.v_WG = msg.v_WG;
     obs.ugv.a_WG = msg.a_WG;
@@ -558,7 +608,7 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
     for (int i = 0; i < substeps; ++i) {
       winch.advance(dt, tension_model.hanging_weight_n + forces.winch_n);
       t += dt;
-      forces = tether_state.update(t, winch.released_m(), scn.at(t).p_WG);
+      forces = tether_state.update(t, winch.released_m(), actual.at(t).p_WG);
       const double peak = std::max(forces.ugv_n, forces.winch_n);
       m.max_tension_n = std::max(m.max_tension_n, peak);
       const bool now_over = peak > tension_model.max_tension_n;

@@ -153,7 +153,7 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
       write(dir, "c.yaml", R"(control: {slack_reference_m: 0.01, max_speed_mps: 0.8}
 mpc: {horizon: 30, weight_slack: 50, weight_soft_linear: 0, weight_soft_quadratic: 500}
 baseline: {kp_per_s: 4, ki_per_s2: 2}
-sim: {link_latency_s: 0.1, pose_noise_m: 0.0}
+sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip_noise_mps: 0.02}
 )"),
       config);
   EXPECT_EQ(config.mpc.horizon, 30);
@@ -167,6 +167,9 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0}
   EXPECT_EQ(config.sim.winch.max_speed_mps, 0.8);  // the simulated servo gets the same limit
   EXPECT_EQ(config.sim.link_latency_s, 0.1);
   EXPECT_EQ(config.sim.pose_noise_m, 0.0);
+  EXPECT_EQ(config.sim.ugv_velocity_lag_s, 0.15);
+  EXPECT_EQ(config.sim.ugv_slip_noise_mps, 0.02);
+  EXPECT_EQ(config.sim.ugv_slip_time_s, 0.5);
   EXPECT_EQ(config.mpc.control.limits.total_length_m, 12.0);
 
   auto check = [&](const std::string& text, const std::string& field) {
@@ -185,6 +188,7 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0}
   check("winch: {}\n", "winch");
   check("mpc: {weight_soft_quadratic: 0}\n", "mpc.weight_soft_quadratic");
   check("mpc: {weight_soft_linear: -1}\n", "mpc.weight_soft_linear");
+  check("sim: {ugv_slip_time_s: 0}\n", "sim.ugv_slip_time_s");
 }
 
 TEST(ScriptedTrajectory, TrapezoidalSegmentsByHand) {
@@ -317,6 +321,47 @@ TEST(TetherSim, TheMpcMeetsTheTargetsOnEveryShippedTrajectory) {
     EXPECT_LE(r.metrics.max_released_m, 15.0);
     EXPECT_GT(r.metrics.min_slack_m, -0.03);
   }
+}
+
+TEST(ActualUgvMotion, AnObedientRobotIsItsDesiredMotion) {
+  const auto scn = default_tether_scenario();
+  const auto actual = actual_ugv_motion(scn, 0.0, 0.0, 0.5, 0.001, 1);
+  ASSERT_EQ(actual.size(), static_cast<std::size_t>(std::lround(scn.end_s() / 0.001)) + 1);
+  for (std::size_t i = 0; i < actual.size(); i += 997)
+    EXPECT_NEAR((actual[i].p_WG - scn.at(actual[i].t_s).p_WG).norm(), 0.0, 1e-6) << i;
+}
+
+TEST(ActualUgvMotion, AVelocityLagTrailsByLagTimesSpeedAndCatchesUp) {
+  // One leg of 4 m at 0.4 m/s (1 m/s^2): cruising, a first-order velocity lag tau
+  // trails the desired position by tau * v = 0.2 * 0.4 = 0.08 m; at rest it arrives.
+  TetherScenario scn;
+  scn.samples = scripted_trajectory({{0.0, 0.0}, {4.0, 0.0}}, 0.4, 1.0, 3.0);
+  const auto actual = actual_ugv_motion(scn, 0.2, 0.0, 0.5, 0.001, 1);
+  const auto at = [&](double t) { return actual[static_cast<std::size_t>(std::lround(t / 0.001))]; };
+  EXPECT_NEAR(scn.at(5.0).p_WG.x() - at(5.0).p_WG.x(), 0.08, 3e-4);  // +- half a 1 ms step
+  EXPECT_NEAR(at(5.0).v_WG.x(), 0.4, 1e-6);
+  EXPECT_NEAR(at(scn.end_s()).p_WG.x(), 4.0, 1e-4);
+  EXPECT_NEAR(at(scn.end_s()).p_WG.y(), 0.0, 1e-12);
+}
+
+TEST(ActualUgvMotion, SlipIsARandomVelocityOfTheGivenSpreadAndSeeded) {
+  TetherScenario scn;
+  scn.samples.resize(2);  // standing still at (1, 0) for 400 s
+  scn.samples[0].p_WG = scn.samples[1].p_WG = Eigen::Vector2d(1.0, 0.0);
+  scn.samples[1].t_s = 400.0;
+  const auto a = actual_ugv_motion(scn, 0.0, 0.05, 0.5, 0.01, 3);
+  const auto b = actual_ugv_motion(scn, 0.0, 0.05, 0.5, 0.01, 3);
+  const auto c = actual_ugv_motion(scn, 0.0, 0.05, 0.5, 0.01, 4);
+  double sum_sq = 0.0;
+  for (const auto& s : a) sum_sq += s.v_WG.squaredNorm();
+  EXPECT_NEAR(std::sqrt(sum_sq / (2.0 * static_cast<double>(a.size()))), 0.05, 0.005);
+  EXPECT_EQ(a.back().p_WG, b.back().p_WG);
+  EXPECT_NE(a.back().p_WG, c.back().p_WG);
+  // Position is the integral of the slip velocity (trapezoidal).
+  double x = a.front().p_WG.x();
+  for (std::size_t i = 1; i < a.size(); ++i) x += 0.5 * (a[i - 1].v_WG.x() + a[i].v_WG.x()) * 0.01;
+  EXPECT_NEAR(x, a.back().p_WG.x(), 1e-9);
+  EXPECT_GT(std::abs(x - 1.0), 1e-3);  // it wandered off
 }
 
 // docs/results.md, "Why slack RMS does not halve": the reported pose's noise sets
