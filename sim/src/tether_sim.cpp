@@ -330,18 +330,19 @@ TetherScenario load_tether_scenario(const std::filesystem::path& path) {
   throw InputError(path.string(), "", "a .csv, .yaml or .yml trajectory file", ext);
 }
 
-std::vector<TrajectorySample> actual_ugv_motion(const TetherScenario& scn, double lag_s,
-                                                double slip_mps, double slip_time_s, double dt_s,
-                                                std::uint64_t seed) {
-  if (!(dt_s > 0.0) || lag_s < 0.0 || slip_mps < 0.0 || !(slip_time_s > 0.0))
-    throw std::invalid_argument("actual_ugv_motion: need dt > 0, lag >= 0, slip >= 0, time > 0");
+std::vector<TrajectorySample> actual_ugv_motion(const TetherScenario& scn, const UgvObedience& ugv,
+                                                double dt_s, std::uint64_t seed) {
+  if (!(dt_s > 0.0) || ugv.velocity_lag_s < 0.0 || ugv.slip_mps < 0.0 ||
+      !(ugv.slip_time_s > 0.0) || ugv.tracking_time_s < 0.0)
+    throw std::invalid_argument("actual_ugv_motion: need dt > 0, times and slip >= 0");
   Rng rng(seed);
   const auto count =
       static_cast<std::size_t>(std::floor((scn.end_s() - scn.start_s()) / dt_s + 1e-9)) + 1;
-  // Exact discretisation of the lag v' = (v_des - v) / lag and of the slip process.
-  const double follow = lag_s > 0.0 ? 1.0 - std::exp(-dt_s / lag_s) : 1.0;
-  const double keep = std::exp(-dt_s / slip_time_s);
-  const double kick = slip_mps * std::sqrt(1.0 - keep * keep);
+  // Exact discretisation of the lag v' = (v_cmd - v) / lag and of the slip process.
+  const double follow = ugv.velocity_lag_s > 0.0 ? 1.0 - std::exp(-dt_s / ugv.velocity_lag_s) : 1.0;
+  const double keep = std::exp(-dt_s / ugv.slip_time_s);
+  const double kick = ugv.slip_mps * std::sqrt(1.0 - keep * keep);
+  const double steer = ugv.tracking_time_s > 0.0 ? 1.0 / ugv.tracking_time_s : 0.0;
   std::vector<TrajectorySample> out;
   out.reserve(count);
   // The position is the desired one plus the integrated velocity error, so an
@@ -352,8 +353,8 @@ std::vector<TrajectorySample> actual_ugv_motion(const TetherScenario& scn, doubl
   for (std::size_t i = 1; i < count; ++i) {
     const Eigen::Vector2d error_before = v + slip - desired.v_WG;
     desired = scn.at(scn.start_s() + static_cast<double>(i) * dt_s);
-    v += follow * (desired.v_WG - v);
-    if (slip_mps > 0.0)
+    v += follow * (desired.v_WG - steer * offset - v);
+    if (ugv.slip_mps > 0.0)
       slip = keep * slip + kick * Eigen::Vector2d(rng.normal(0.0, 1.0), rng.normal(0.0, 1.0));
     offset += 0.5 * (error_before + v + slip - desired.v_WG) * dt_s;
     TrajectorySample row = desired;
@@ -444,7 +445,7 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   }
   if (const auto r = root.optional_child("sim")) {
     r->allow_only({"link_latency_s", "pose_noise_m", "tension_noise_n", "ugv_velocity_lag_s",
-                   "ugv_slip_noise_mps", "ugv_slip_time_s"});
+                   "ugv_slip_noise_mps", "ugv_slip_time_s", "ugv_tracking_time_s"});
     c.sim.link_latency_s = r->get_in_range_or("link_latency_s", 0.0, 1.0, c.sim.link_latency_s);
     c.sim.pose_noise_m = r->get_in_range_or("pose_noise_m", 0.0, 1.0, c.sim.pose_noise_m);
     c.sim.tension_noise_n =
@@ -455,6 +456,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
         r->get_in_range_or("ugv_slip_noise_mps", 0.0, 1.0, c.sim.ugv_slip_noise_mps);
     c.sim.ugv_slip_time_s =
         r->get_in_range_or("ugv_slip_time_s", 1e-3, 100.0, c.sim.ugv_slip_time_s);
+    c.sim.ugv_tracking_time_s =
+        r->get_in_range_or("ugv_tracking_time_s", 0.0, 100.0, c.sim.ugv_tracking_time_s);
   }
   c.mpc.control = ctl;
   c.baseline.control = ctl;
@@ -549,8 +552,10 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
   const bool obedient = opt.ugv_velocity_lag_s == 0.0 && opt.ugv_slip_noise_mps == 0.0;
   if (!obedient) {
     actual_storage.samples =
-        actual_ugv_motion(scn, opt.ugv_velocity_lag_s, opt.ugv_slip_noise_mps,
-                          opt.ugv_slip_time_s, opt.physics_dt_s, derive_seed(opt.seed, {1}));
+        actual_ugv_motion(scn,
+                          {opt.ugv_velocity_lag_s, opt.ugv_slip_noise_mps, opt.ugv_slip_time_s,
+                           opt.ugv_tracking_time_s},
+                          opt.physics_dt_s, derive_seed(opt.seed, {1}));
   }
   const TetherScenario& actual = obedient ? scn : actual_storage;
 

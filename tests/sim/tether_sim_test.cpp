@@ -153,7 +153,8 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
       write(dir, "c.yaml", R"(control: {slack_reference_m: 0.01, max_speed_mps: 0.8}
 mpc: {horizon: 30, weight_slack: 50, weight_soft_linear: 0, weight_soft_quadratic: 500}
 baseline: {kp_per_s: 4, ki_per_s2: 2}
-sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip_noise_mps: 0.02}
+sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip_noise_mps: 0.02,
+      ugv_tracking_time_s: 2}
 )"),
       config);
   EXPECT_EQ(config.mpc.horizon, 30);
@@ -170,6 +171,7 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
   EXPECT_EQ(config.sim.ugv_velocity_lag_s, 0.15);
   EXPECT_EQ(config.sim.ugv_slip_noise_mps, 0.02);
   EXPECT_EQ(config.sim.ugv_slip_time_s, 0.5);
+  EXPECT_EQ(config.sim.ugv_tracking_time_s, 2.0);
   EXPECT_EQ(config.mpc.control.limits.total_length_m, 12.0);
 
   auto check = [&](const std::string& text, const std::string& field) {
@@ -325,7 +327,7 @@ TEST(TetherSim, TheMpcMeetsTheTargetsOnEveryShippedTrajectory) {
 
 TEST(ActualUgvMotion, AnObedientRobotIsItsDesiredMotion) {
   const auto scn = default_tether_scenario();
-  const auto actual = actual_ugv_motion(scn, 0.0, 0.0, 0.5, 0.001, 1);
+  const auto actual = actual_ugv_motion(scn, {0.0, 0.0, 0.5, 1.0}, 0.001, 1);
   ASSERT_EQ(actual.size(), static_cast<std::size_t>(std::lround(scn.end_s() / 0.001)) + 1);
   for (std::size_t i = 0; i < actual.size(); i += 997)
     EXPECT_NEAR((actual[i].p_WG - scn.at(actual[i].t_s).p_WG).norm(), 0.0, 1e-6) << i;
@@ -333,15 +335,22 @@ TEST(ActualUgvMotion, AnObedientRobotIsItsDesiredMotion) {
 
 TEST(ActualUgvMotion, AVelocityLagTrailsByLagTimesSpeedAndCatchesUp) {
   // One leg of 4 m at 0.4 m/s (1 m/s^2): cruising, a first-order velocity lag tau
-  // trails the desired position by tau * v = 0.2 * 0.4 = 0.08 m; at rest it arrives.
+  // without path tracking trails the desired position by tau * v = 0.2 * 0.4 =
+  // 0.08 m; path tracking (time constant T) removes the trail; at rest it arrives.
   TetherScenario scn;
   scn.samples = scripted_trajectory({{0.0, 0.0}, {4.0, 0.0}}, 0.4, 1.0, 3.0);
-  const auto actual = actual_ugv_motion(scn, 0.2, 0.0, 0.5, 0.001, 1);
-  const auto at = [&](double t) { return actual[static_cast<std::size_t>(std::lround(t / 0.001))]; };
-  EXPECT_NEAR(scn.at(5.0).p_WG.x() - at(5.0).p_WG.x(), 0.08, 3e-4);  // +- half a 1 ms step
-  EXPECT_NEAR(at(5.0).v_WG.x(), 0.4, 1e-6);
-  EXPECT_NEAR(at(scn.end_s()).p_WG.x(), 4.0, 1e-4);
-  EXPECT_NEAR(at(scn.end_s()).p_WG.y(), 0.0, 1e-12);
+  const auto open_loop = actual_ugv_motion(scn, {0.2, 0.0, 0.5, 0.0}, 0.001, 1);
+  const auto tracking = actual_ugv_motion(scn, {0.2, 0.0, 0.5, 0.5}, 0.001, 1);
+  const auto index = [](double t) { return static_cast<std::size_t>(std::lround(t / 0.001)); };
+  EXPECT_NEAR(scn.at(5.0).p_WG.x() - open_loop[index(5.0)].p_WG.x(), 0.08,
+              3e-4);  // +- half a 1 ms step
+  EXPECT_NEAR(open_loop[index(5.0)].v_WG.x(), 0.4, 1e-6);
+  EXPECT_NEAR(scn.at(5.0).p_WG.x() - tracking[index(5.0)].p_WG.x(), 0.0, 1e-4);
+  EXPECT_GT(scn.at(0.5).p_WG.x() - tracking[index(0.5)].p_WG.x(), 0.01);  // lags while accelerating
+  for (const auto* actual : {&open_loop, &tracking}) {
+    EXPECT_NEAR(actual->back().p_WG.x(), 4.0, 1e-3);
+    EXPECT_NEAR(actual->back().p_WG.y(), 0.0, 1e-12);
+  }
 }
 
 TEST(ActualUgvMotion, SlipIsARandomVelocityOfTheGivenSpreadAndSeeded) {
@@ -349,9 +358,10 @@ TEST(ActualUgvMotion, SlipIsARandomVelocityOfTheGivenSpreadAndSeeded) {
   scn.samples.resize(2);  // standing still at (1, 0) for 400 s
   scn.samples[0].p_WG = scn.samples[1].p_WG = Eigen::Vector2d(1.0, 0.0);
   scn.samples[1].t_s = 400.0;
-  const auto a = actual_ugv_motion(scn, 0.0, 0.05, 0.5, 0.01, 3);
-  const auto b = actual_ugv_motion(scn, 0.0, 0.05, 0.5, 0.01, 3);
-  const auto c = actual_ugv_motion(scn, 0.0, 0.05, 0.5, 0.01, 4);
+  const UgvObedience slipping{0.0, 0.05, 0.5, 0.0};
+  const auto a = actual_ugv_motion(scn, slipping, 0.01, 3);
+  const auto b = actual_ugv_motion(scn, slipping, 0.01, 3);
+  const auto c = actual_ugv_motion(scn, slipping, 0.01, 4);
   double sum_sq = 0.0;
   for (const auto& s : a) sum_sq += s.v_WG.squaredNorm();
   EXPECT_NEAR(std::sqrt(sum_sq / (2.0 * static_cast<double>(a.size()))), 0.05, 0.005);
@@ -362,6 +372,12 @@ TEST(ActualUgvMotion, SlipIsARandomVelocityOfTheGivenSpreadAndSeeded) {
   for (std::size_t i = 1; i < a.size(); ++i) x += 0.5 * (a[i - 1].v_WG.x() + a[i].v_WG.x()) * 0.01;
   EXPECT_NEAR(x, a.back().p_WG.x(), 1e-9);
   EXPECT_GT(std::abs(x - 1.0), 1e-3);  // it wandered off
+  // Path tracking (1 s) holds it near its place: the offset stays bounded, with a
+  // spread of about slip * sqrt(tc T / (tc + T)) = 0.05 * 0.58 = 0.029 m per axis.
+  const auto held = actual_ugv_motion(scn, {0.0, 0.05, 0.5, 1.0}, 0.01, 3);
+  double offset_sq = 0.0;
+  for (const auto& s : held) offset_sq += (s.p_WG - Eigen::Vector2d(1.0, 0.0)).squaredNorm();
+  EXPECT_NEAR(std::sqrt(offset_sq / (2.0 * static_cast<double>(held.size()))), 0.029, 0.008);
 }
 
 // docs/results.md, "Why slack RMS does not halve": the reported pose's noise sets

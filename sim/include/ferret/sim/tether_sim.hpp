@@ -68,13 +68,20 @@ void differentiate_trajectory(std::vector<TrajectorySample>& samples);
     const std::vector<Eigen::Vector2d>& waypoints, double cruise_mps, double accel_mps2,
     double dwell_s, double dt_s = 0.02);
 
-/// The miniUGV's actual motion, sampled every dt_s over the scenario: its desired
-/// motion through a first-order velocity lag (time constant lag_s; 0 = none) plus a
-/// Gauss-Markov slip velocity (slip_mps per axis, correlation time slip_time_s),
-/// drawn from `seed`. v_WG is the actual velocity, a_WG the desired acceleration.
+/// How the miniUGV really moves (TetherSimOptions::ugv_*).
+struct UgvObedience {
+  double velocity_lag_s = 0.0;
+  double slip_mps = 0.0;
+  double slip_time_s = 0.5;
+  double tracking_time_s = 0.0;
+};
+
+/// The miniUGV's actual motion, sampled every dt_s over the scenario: its velocity
+/// loop (first-order lag) follows the desired velocity plus, with a tracking time,
+/// the position error over that time; a Gauss-Markov slip velocity drawn from `seed`
+/// adds to it. v_WG is the actual velocity, a_WG the desired acceleration.
 [[nodiscard]] std::vector<TrajectorySample> actual_ugv_motion(const TetherScenario& scenario,
-                                                              double lag_s, double slip_mps,
-                                                              double slip_time_s, double dt_s,
+                                                              const UgvObedience& ugv, double dt_s,
                                                               std::uint64_t seed);
 
 /// The built-in scenario `ferret tether-sim` runs without --trajectory: out from the
@@ -89,13 +96,16 @@ struct TetherSimOptions {
   double link_latency_s = 0.06;  ///< age of the miniUGV's pose when it reaches the winch
   double pose_noise_m = 0.01;    ///< standard deviation of the reported position
   double tension_noise_n = 0.2;  ///< standard deviation of the current-based tension
-  /// A less obedient miniUGV (an extra scenario; both 0 = it follows its desired
-  /// motion exactly, the shipped setting): its own velocity loop lags the desired
-  /// velocity with this time constant, and wheel slip adds a random velocity error
-  /// (Gauss-Markov: standard deviation per axis, correlation time).
+  /// A less obedient miniUGV (an extra scenario; lag and slip 0 = it follows its
+  /// desired motion exactly, the shipped setting): its own velocity loop lags the
+  /// desired velocity with this time constant, wheel slip adds a random velocity
+  /// error (Gauss-Markov: standard deviation per axis, correlation time), and its
+  /// path tracking steers back to the desired position with this time constant
+  /// (0: none, the error accumulates).
   double ugv_velocity_lag_s = 0.0;
   double ugv_slip_noise_mps = 0.0;
   double ugv_slip_time_s = 0.5;
+  double ugv_tracking_time_s = 1.0;
   std::uint64_t seed = 1;
 
   /// Consistent options for a tether of total length L and entry offset l_0.
@@ -118,7 +128,8 @@ struct TetherRunConfig {
 /// max_acceleration_mps2), `mpc` (horizon, prediction_dt_s, acceleration_time_s,
 /// weight_slack, weight_command_rate, weight_feedforward, weight_terminal), `baseline`
 /// (kp_per_s, ki_per_s2, kd, feedforward_gain) and `sim` (link_latency_s,
-/// pose_noise_m, tension_noise_n, ugv_velocity_lag_s, ugv_slip_noise_mps, ugv_slip_time_s)
+/// pose_noise_m, tension_noise_n, ugv_velocity_lag_s, ugv_slip_noise_mps, ugv_slip_time_s,
+/// ugv_tracking_time_s)
 /// on top of `config`. Unknown keys and values out of
 /// range are InputErrors naming the file and field.
 void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig& config);
