@@ -3,6 +3,7 @@
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/datastructures/NearestNeighborsLinear.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/util/Console.h>
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "ferret/core/pose.hpp"
 #include "ferret/planning/curiosity.hpp"
 
 namespace ob = ompl::base;
@@ -168,8 +170,123 @@ void FrontierGoal::sampleGoal(ob::State* state) const {
 
 unsigned int FrontierGoal::maxSampleCount() const { return static_cast<unsigned>(candidates_->cells.size()); }
 
-FrontierPlan plan_to_frontier(const ExplorationState& s, std::shared_ptr<const FrontierCandidates> candidates,
-                              double time_limit_s, std::uint64_t seed, double escape_radius_m) {
+namespace {
+
+// OMPL's default SE2 sampler draws from generators seeded by OMPL's process-wide seed
+// generator in construction order, which threads running side by side make random;
+// this one draws uniformly from its own stream (PRM's random-bounce expansion uses it).
+class SeededSe2Sampler final : public ob::StateSampler {
+ public:
+  SeededSe2Sampler(const ob::StateSpace* space, std::uint64_t seed)
+      : ob::StateSampler(space), rng_(seed) {}
+  void sampleUniform(ob::State* state) override {
+    const auto& b = space_->as<ob::SE2StateSpace>()->getBounds();
+    auto* se2 = state->as<ob::SE2StateSpace::StateType>();
+    se2->setXY(rng_.uniform(b.low[0], b.high[0]), rng_.uniform(b.low[1], b.high[1]));
+    se2->setYaw(rng_.uniform(-kPi, kPi));
+  }
+  void sampleUniformNear(ob::State* state, const ob::State* near, double distance) override {
+    const auto& b = space_->as<ob::SE2StateSpace>()->getBounds();
+    const auto* n = near->as<ob::SE2StateSpace::StateType>();
+    auto* se2 = state->as<ob::SE2StateSpace::StateType>();
+    se2->setXY(std::clamp(n->getX() + rng_.uniform(-distance, distance), b.low[0], b.high[0]),
+               std::clamp(n->getY() + rng_.uniform(-distance, distance), b.low[1], b.high[1]));
+    se2->setYaw(wrap_angle_rad(n->getYaw() + rng_.uniform(-distance, distance)));
+  }
+  void sampleGaussian(ob::State* state, const ob::State* mean, double stdDev) override {
+    const auto& b = space_->as<ob::SE2StateSpace>()->getBounds();
+    const auto* m = mean->as<ob::SE2StateSpace::StateType>();
+    auto* se2 = state->as<ob::SE2StateSpace::StateType>();
+    se2->setXY(std::clamp(rng_.normal(m->getX(), stdDev), b.low[0], b.high[0]),
+               std::clamp(rng_.normal(m->getY(), stdDev), b.low[1], b.high[1]));
+    se2->setYaw(wrap_angle_rad(rng_.normal(m->getYaw(), stdDev)));
+  }
+
+ private:
+  static constexpr double kPi = 3.14159265358979323846;
+  Rng rng_;
+};
+
+// A termination condition that is true after `n` evaluations: OMPL's roadmap loops
+// evaluate it once per step, in this thread, so the work done depends on nothing else.
+ob::PlannerTerminationCondition after_evaluations(std::size_t n) {
+  return ob::PlannerTerminationCondition([left = n]() mutable {
+    if (left == 0) return true;
+    --left;
+    return false;
+  });
+}
+
+// PRM driven in the caller's thread on a work budget. PRM::solve grows the roadmap in
+// one thread while a second looks for a solution every millisecond, and stops on wall
+// time: its result depends on the machine's load. This keeps PRM's pattern (grow
+// twice, expand once by random bounces, goals added as it goes) but counts the work
+// and checks for a solution between batches, so the same seed gives the same roadmap.
+class BudgetedPrm final : public ompl::geometric::PRM {
+ public:
+  explicit BudgetedPrm(const ob::SpaceInformationPtr& si) : PRM(si) {
+    // Exact k-nearest with a fixed tie order (GNAT's pivots come from OMPL's RNG).
+    setNearestNeighbors<ompl::NearestNeighborsLinear>();
+    nn_->setDistanceFunction([this](Vertex a, Vertex b) {
+      return distanceFunction(a, b);
+    });  // setup() only sets its own
+  }
+
+  // The path found within `budget`, or null; `cap` (wall time) is only a safety net.
+  ob::PathPtr solve_on_budget(const FrontierPlanBudget& budget, std::uint64_t seed,
+                              const std::atomic<std::size_t>& draws,
+                              const ob::PlannerTerminationCondition& cap) {
+    checkValidity();
+    rng_.setLocalSeed(static_cast<std::uint_fast32_t>(derive_seed(seed, {0x9e3}) & 0x7fffffffu) |
+                      1u);
+    auto* goal = dynamic_cast<ob::GoalSampleableRegion*>(pdef_->getGoal().get());
+    if (goal == nullptr) return nullptr;
+    while (const ob::State* st = pis_.nextStart())
+      startM_.push_back(addMilestone(si_->cloneState(st)));
+    if (startM_.empty()) return nullptr;
+    if (!sampler_) sampler_ = si_->allocValidStateSampler();
+    if (!simpleSampler_) simpleSampler_ = si_->allocStateSampler();
+    ob::State* work = si_->allocState();
+    std::vector<ob::State*> bounce(kBounceSteps);
+    si_->allocStates(bounce);
+    ob::PathPtr solution;
+    for (std::size_t round = 0; round < budget.rounds && !cap; ++round) {
+      // Grow: `grow_milestones` new frontier states, or `grow_draws` sampler draws
+      // (first, as PRM::solve grows while its other thread adds goals and looks for
+      // a solution).
+      const std::size_t milestones = milestoneCount() + budget.grow_milestones;
+      const std::size_t draw_limit = draws.load() + budget.grow_draws;
+      growRoadmap(ob::PlannerTerminationCondition([&] {
+                    return milestoneCount() >= milestones || draws.load() >= draw_limit || cap();
+                  }),
+                  work);
+      if (goal->maxSampleCount() > goalM_.size())
+        if (const ob::State* st = pis_.nextGoal())
+          goalM_.push_back(addMilestone(si_->cloneState(st)));
+      if (maybeConstructSolution(startM_, goalM_, solution)) break;
+      if (budget.expand_bounces > 0) {
+        expandRoadmap(
+            ob::plannerOrTerminationCondition(after_evaluations(budget.expand_bounces), cap),
+            bounce);
+        if (maybeConstructSolution(startM_, goalM_, solution)) break;
+      }
+      solution.reset();  // maybeConstructSolution may leave a path that failed the goal test
+    }
+    si_->freeStates(bounce);
+    si_->freeState(work);
+    return solution;
+  }
+
+ private:
+  static constexpr unsigned kBounceSteps = 5;  // PRM's magic::MAX_RANDOM_BOUNCE_STEPS
+};
+
+}  // namespace
+
+FrontierPlan plan_to_frontier(const ExplorationState& s,
+                              std::shared_ptr<const FrontierCandidates> candidates,
+                              const FrontierPlanBudget& budget, std::uint64_t seed,
+                              double escape_radius_m) {
   const auto t0 = std::chrono::steady_clock::now();
   FrontierPlan out;
   if (!candidates || candidates->empty()) return out;
@@ -182,6 +299,9 @@ FrontierPlan plan_to_frontier(const ExplorationState& s, std::shared_ptr<const F
   bounds.setLow(1, g.origin_y_m);
   bounds.setHigh(1, g.origin_y_m + g.height_m());
   space->setBounds(bounds);
+  space->setStateSamplerAllocator([seed](const ob::StateSpace* sp) {
+    return std::make_shared<SeededSe2Sampler>(sp, derive_seed(seed, {0x5e2}));
+  });
   auto si = std::make_shared<ob::SpaceInformation>(space);
   const Eigen::Vector2d robot = s.X_WG.position();
   const IrGrid& grid = s.grid;
@@ -204,16 +324,19 @@ FrontierPlan plan_to_frontier(const ExplorationState& s, std::shared_ptr<const F
   ob::ScopedState<ob::SE2StateSpace> start(space);
   start->setXY(robot.x(), robot.y());
   start->setYaw(s.X_WG.yaw_rad);
+  // A robot beyond the escape radius of free space has no plan (PRM would warn).
+  if (!si->isValid(start.get())) return out;
   pdef->addStartState(start);
   pdef->setGoal(std::make_shared<FrontierGoal>(si, candidates, seed));
-  ompl::geometric::PRM prm(si);
+  BudgetedPrm prm(si);
   prm.setProblemDefinition(pdef);
   prm.setup();
-  const ob::PlannerStatus status = prm.solve(ob::timedPlannerTerminationCondition(time_limit_s));
+  const ob::PathPtr solution = prm.solve_on_budget(
+      budget, seed, *counter, ob::timedPlannerTerminationCondition(budget.safety_cap_s));
   out.samples_drawn = counter->load();
   out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (status != ob::PlannerStatus::EXACT_SOLUTION) return out;
-  auto& path = *pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+  if (!solution) return out;
+  auto& path = *solution->as<ompl::geometric::PathGeometric>();
   for (const ob::State* st : path.getStates()) {
     const auto* se2 = st->as<ob::SE2StateSpace::StateType>();
     out.path_W.emplace_back(se2->getX(), se2->getY());

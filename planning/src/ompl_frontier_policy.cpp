@@ -1,9 +1,11 @@
 // The OMPL frontier policies: "cdos+ompl" and "rapid+ompl". They weigh the frontier
 // cells by the CDOS or the rapid rule (frontier_sampler.hpp) and let PRM, fed by the
 // frontier valid-state sampler and a frontier goal region, find the path to a
-// frontier: OMPL both picks the goal (by the weights) and plans the way there. Where
-// PRM finds nothing in its time, the goal is the best-weighted frontier and the
-// exploration loop plans the grid path to it.
+// frontier: OMPL both picks the goal (by the weights) and plans the way there. Each
+// plan runs on a work budget seeded from the run's seed and the decision's number,
+// so runs repeat exactly (also side by side in threads). Where PRM finds nothing,
+// the goal is the best-weighted frontier and the exploration loop plans the grid
+// path to it.
 
 #include <cmath>
 
@@ -13,8 +15,6 @@
 
 namespace ferret {
 namespace {
-
-constexpr double kPlanTime_s = 0.05;
 
 class OmplFrontierPolicy final : public ExplorationPolicy {
  public:
@@ -32,7 +32,8 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
     auto candidates = std::make_shared<FrontierCandidates>(
         cdos_ ? cdos_candidates(s, options_.curiosity, options_.max_velocity_mps) : rapid_candidates(s, options_.max_velocity_mps));
     if (candidates->empty()) return std::nullopt;
-    const FrontierPlan plan = plan_to_frontier(s, candidates, kPlanTime_s, derive_seed(7, {decisions_++}));
+    const FrontierPlan plan = plan_to_frontier(s, candidates, FrontierPlanBudget{},
+                                               derive_seed(options_.seed, {decisions_++}));
     ExplorationGoal goal;
     if (plan.solved) {
       goal.cell = plan.goal;

@@ -200,8 +200,8 @@ std::string plan_to_json(const PlanFile& plan) {
   doc["robot"] = to_string(plan.robot);
   doc["frame"] = plan.frame;
   if (!plan.robot_model.empty()) doc["robot_model"] = plan.robot_model;
-  doc["planner"] = {{"name", plan.planner}, {"planning_time_s", plan.planning_time_s}, {"seed", plan.seed},
-                    {"world", plan.world}};
+  // No planning time: a plan file depends only on its inputs and seed (same bytes).
+  doc["planner"] = {{"name", plan.planner}, {"seed", plan.seed}, {"world", plan.world}};
   if (plan.unknown_policy) doc["unknown_policy"] = to_string(*plan.unknown_policy);
   if (plan.bounds) doc["bounds"] = {{"min", vec(plan.bounds->lo)}, {"max", vec(plan.bounds->hi)}};
   if (plan.max_velocity_mps || plan.max_yaw_rate_radps) {

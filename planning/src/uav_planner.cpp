@@ -136,8 +136,17 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
   const ob::PlannerStatus status = planner->solve(ob::timedPlannerTerminationCondition(options_.time_limit_s));
   if (status != ob::PlannerStatus::EXACT_SOLUTION) return fail("no path found within the time limit");
   auto& path = *pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+  // Simplify on a count of rounds, not on time (PathSimplifier::simplify stops on a
+  // clock, so a loaded machine would return another path for the same seed). Each
+  // step bounds its own attempts by the path's size; no B-spline smoothing (it only
+  // adds states to straight segments).
   ompl::geometric::PathSimplifier simplifier(si);
-  simplifier.simplify(path, options_.simplify_time_s);
+  for (int round = 0; round < options_.simplify_rounds; ++round) {
+    const bool shortcut = simplifier.shortcutPath(path);
+    const bool reduced = simplifier.reduceVertices(path);
+    const bool collapsed = simplifier.collapseCloseVertices(path);
+    if (!shortcut && !reduced && !collapsed) break;
+  }
   std::vector<Waypoint> states;
   for (const ob::State* s : path.getStates()) states.push_back(to_waypoint(s));
   assign_times(states, options_.max_velocity_mps, options_.max_yaw_rate_radps);

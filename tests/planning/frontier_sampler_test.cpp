@@ -10,6 +10,7 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
 #include <algorithm>
+#include <thread>
 
 #include "ferret/planning/ompl_setup.hpp"
 
@@ -173,12 +174,53 @@ TEST(FrontierWeights, RapidAndCdosWeighTheFrontier) {
 TEST(FrontierWeights, PrmPlansFromTheRobotToAFrontier) {
   Room r;
   auto c = std::make_shared<FrontierCandidates>(rapid_candidates(r.state(), 2.0));
-  const FrontierPlan plan = plan_to_frontier(r.state(), c, 1.0, 3);
+  const FrontierPlan plan = plan_to_frontier(r.state(), c, FrontierPlanBudget{}, 3);
   ASSERT_TRUE(plan.solved);
   EXPECT_GT(plan.samples_drawn, 0u);
   EXPECT_TRUE(plan.path_W.front().isApprox(r.pose.position()));
   EXPECT_GE(c->find(plan.path_W.back().x(), plan.path_W.back().y()), 0);
   EXPECT_EQ(plan.goal.i, 39);
+}
+
+// PRM::solve grows the roadmap in one thread, checks for solutions in another and
+// stops on wall time; plan_to_frontier runs on a work budget in the caller's thread
+// with every generator seeded, so a plan is a function of its inputs and seed, also
+// when plans run side by side (as `ferret experiment --jobs 2` runs them).
+TEST(FrontierWeights, PlansRepeatGivenTheSeedAlsoInParallelThreads) {
+  Room r;
+  auto c = std::make_shared<FrontierCandidates>(rapid_candidates(r.state(), 2.0));
+  FrontierPlanBudget with_bounces;  // exercises PRM's random-bounce expansion too
+  with_bounces.grow_milestones = 4;
+  with_bounces.expand_bounces = 6;
+  for (const FrontierPlanBudget& budget : {FrontierPlanBudget{}, with_bounces}) {
+    constexpr int kSeeds = 6;
+    std::vector<FrontierPlan> once;
+    for (int seed = 0; seed < kSeeds; ++seed)
+      once.push_back(plan_to_frontier(r.state(), c, budget, seed));
+    std::vector<FrontierPlan> a(kSeeds), b(kSeeds);
+    std::thread ta([&] {
+      for (int seed = 0; seed < kSeeds; ++seed)
+        a[seed] = plan_to_frontier(r.state(), c, budget, seed);
+    });
+    std::thread tb([&] {
+      for (int seed = kSeeds - 1; seed >= 0; --seed)
+        b[seed] = plan_to_frontier(r.state(), c, budget, seed);
+    });
+    ta.join();
+    tb.join();
+    bool some_differ = false;
+    for (int seed = 0; seed < kSeeds; ++seed) {
+      ASSERT_TRUE(once[seed].solved) << seed;
+      EXPECT_GT(once[seed].samples_drawn, 0u);
+      for (const FrontierPlan* p : {&a[seed], &b[seed]}) {
+        EXPECT_EQ(p->samples_drawn, once[seed].samples_drawn) << seed;
+        EXPECT_EQ(p->goal, once[seed].goal) << seed;
+        EXPECT_EQ(p->path_W, once[seed].path_W) << seed;
+      }
+      some_differ = some_differ || once[seed].path_W != once[0].path_W;
+    }
+    EXPECT_TRUE(some_differ);  // the seed matters
+  }
 }
 
 TEST(FrontierSampler, OmplPoliciesAreRegistered) {

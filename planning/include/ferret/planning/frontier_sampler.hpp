@@ -100,11 +100,29 @@ struct FrontierPlan {
   std::size_t samples_drawn = 0;  ///< by the frontier sampler
 };
 
+/// The work one frontier plan may do. PRM runs in rounds: a grow batch (states from
+/// the frontier sampler), a goal state, optionally an expand batch (random bounces
+/// from poorly connected roadmap states), a solution check after each. The defaults
+/// match what PRM::solve did within the former 50 ms limit (it grew all the time and
+/// added a goal about every millisecond; its first expansion phase starts after
+/// 0.4 s). The plan ends on this budget, so it depends only on the seed; the wall-time
+/// cap is a safety net a plan does not reach in normal use.
+struct FrontierPlanBudget {
+  std::size_t rounds = 50;
+  std::size_t grow_milestones = 30;  ///< new roadmap states per grow batch...
+  std::size_t grow_draws = 600;      ///< ...or this many sampler draws, whichever first
+  std::size_t expand_bounces = 0;    ///< random-bounce expansions per round
+  double safety_cap_s = 5.0;
+};
+
 /// Plans with PRM (which calls the frontier sampler) from the robot to a frontier
 /// over G's known-free, clear cells (within `escape_radius_m` of the robot, known free
-/// suffices, so a robot next to a wall can leave it).
+/// suffices, so a robot next to a wall can leave it). Single-threaded and seeded
+/// through and through (PRM's generator, the SE2 sampler, the frontier sampler and
+/// goal): the same state, candidates and seed give the same plan in any thread.
 [[nodiscard]] FrontierPlan plan_to_frontier(const ExplorationState& state,
-                                            std::shared_ptr<const FrontierCandidates> candidates, double time_limit_s,
-                                            std::uint64_t seed, double escape_radius_m = 1.0);
+                                            std::shared_ptr<const FrontierCandidates> candidates,
+                                            const FrontierPlanBudget& budget, std::uint64_t seed,
+                                            double escape_radius_m = 1.0);
 
 }  // namespace ferret

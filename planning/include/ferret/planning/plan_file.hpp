@@ -39,7 +39,8 @@ struct PlanFile {
   std::string robot_model;
   // What made it (informational).
   std::string planner;
-  double planning_time_s = 0.0;
+  double planning_time_s =
+      0.0;  ///< read from older files; not written (wall time would make runs differ)
   std::uint64_t seed = 0;
   std::string world;
 };

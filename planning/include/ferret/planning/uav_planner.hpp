@@ -26,7 +26,8 @@ struct UavPlannerOptions {
   Aabb3 geofence{{-30.0, -30.0, 0.5}, {30.0, 30.0, 8.0}};  ///< x, y fence; z is the altitude band
   std::string planner = "rrtconnect";  ///< see ompl_planner_names()
   double time_limit_s = 1.0;
-  double simplify_time_s = 0.05;       ///< OMPL path simplification budget
+  int simplify_rounds =
+      5;  ///< rounds of OMPL shortcut/reduce/collapse (stops early when none helps)
   CheckResolution resolution{0.05, 0.1};
   double range_m = 0.0;                ///< planner range; 0 = the planner's default
   /// Re-check the final path with FCL alone instead of the checker (whose answers
