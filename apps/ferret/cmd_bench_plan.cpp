@@ -51,7 +51,11 @@ void run_benchmark(og::SimpleSetup& setup, const std::vector<ob::PlannerPtr>& pl
                    const std::string& name, const fs::path& log) {
   ompl::tools::Benchmark benchmark(setup, name);
   for (const auto& p : planners) benchmark.addPlanner(p);
-  ompl::tools::Benchmark::Request request(a.time_limit_s, 4096.0, static_cast<unsigned>(a.runs), 0.05, true, true,
+  // saveConsoleOutput off: OMPL would write an "ompl_<host>_<date>.console" file into
+  // the current directory on every run.
+  ompl::tools::Benchmark::Request request(a.time_limit_s, 4096.0, static_cast<unsigned>(a.runs),
+                                          0.05,
+                                          /*displayProgress=*/true, /*saveConsoleOutput=*/false,
                                           /*simplify=*/true);
   benchmark.benchmark(request);
   write_file_atomically(log, [&](const fs::path& tmp) {

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <future>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "support/cli_runner.hpp"
@@ -113,8 +114,19 @@ TEST(PlanCli, UavApproachToAHiddenSpace) {
             2);  // neither --to nor --approach
 }
 
+// OMPL's console files ("ompl_<host>_<date>.console") in the directory the CLI runs in.
+std::set<std::string> ompl_console_files() {
+  std::set<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(FERRET_SOURCE_DIR)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("ompl_", 0) == 0 && e.path().extension() == ".console") out.insert(name);
+  }
+  return out;
+}
+
 TEST(PlanCli, BenchPlanWritesOmplLogs) {
   TempDir dir;
+  const auto console_before = ompl_console_files();
   const auto r = run_cli("bench-plan --world " + kDetour + " --robots ugv --runs 2 --time-limit 0.2 --planners rrtconnect -o " +
                          dir / "logs");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -122,6 +134,7 @@ TEST(PlanCli, BenchPlanWritesOmplLogs) {
   EXPECT_NE(log.find("geometric_TetheredRRT"), std::string::npos);
   EXPECT_NE(log.find("geometric_RRTConnect"), std::string::npos);
   EXPECT_NE(log.find("2 runs"), std::string::npos) << log.substr(0, 400);
+  EXPECT_EQ(ompl_console_files(), console_before);  // no stray console file
   EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --robots boat -o " + dir / "x").exit_code, 2);
   EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --planners nope -o " + dir / "x").exit_code, 2);
 }
