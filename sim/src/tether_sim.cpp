@@ -332,8 +332,8 @@ TetherScenario load_tether_scenario(const std::filesystem::path& path) {
 
 std::vector<TrajectorySample> actual_ugv_motion(const TetherScenario& scn, const UgvObedience& ugv,
                                                 double dt_s, std::uint64_t seed) {
-  if (!(dt_s > 0.0) || ugv.velocity_lag_s < 0.0 || ugv.slip_mps < 0.0 ||
-      !(ugv.slip_time_s > 0.0) || ugv.tracking_time_s < 0.0)
+  if (!(dt_s > 0.0) || ugv.velocity_lag_s < 0.0 || ugv.slip_mps < 0.0 || !(ugv.slip_time_s > 0.0) ||
+      ugv.tracking_time_s < 0.0)
     throw std::invalid_argument("actual_ugv_motion: need dt > 0, times and slip >= 0");
   Rng rng(seed);
   const auto count =
@@ -397,11 +397,14 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   auto& ctl = c.sim.control;
   if (const auto r = root.optional_child("control")) {
     r->allow_only({"slack_reference_m", "max_slack_m", "pose_filter_gain", "guard_n",
-                   "max_tension_n", "max_speed_mps", "max_acceleration_mps2"});
+                   "max_tension_n", "max_speed_mps", "max_acceleration_mps2",
+                   "ugv_velocity_lag_s"});
     ctl.slack_reference_m =
         r->get_in_range_or("slack_reference_m", -0.1, 1.0, ctl.slack_reference_m);
     ctl.max_slack_m = r->get_in_range_or("max_slack_m", 0.0, 10.0, ctl.max_slack_m);
     ctl.pose_filter_gain = r->get_in_range_or("pose_filter_gain", 1e-3, 1.0, ctl.pose_filter_gain);
+    ctl.ugv_velocity_lag_s =
+        r->get_in_range_or("ugv_velocity_lag_s", 0.0, 5.0, ctl.ugv_velocity_lag_s);
     ctl.slack_estimator.guard_n =
         r->get_in_range_or("guard_n", 0.0, 1e3, ctl.slack_estimator.guard_n);
     ctl.slack_estimator.tension.max_tension_n =
@@ -430,8 +433,7 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     m.weight_feedforward =
         r->get_in_range_or("weight_feedforward", 1e-6, 1e6, m.weight_feedforward);
     m.weight_terminal = r->get_in_range_or("weight_terminal", 0.0, 1e6, m.weight_terminal);
-    m.soft_linear_weight =
-        r->get_in_range_or("weight_soft_linear", 0.0, 1e8, m.soft_linear_weight);
+    m.soft_linear_weight = r->get_in_range_or("weight_soft_linear", 0.0, 1e8, m.soft_linear_weight);
     m.soft_quadratic_weight =
         r->get_in_range_or("weight_soft_quadratic", 1e-6, 1e8, m.soft_quadratic_weight);
   }
@@ -551,11 +553,10 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
   TetherScenario actual_storage;
   const bool obedient = opt.ugv_velocity_lag_s == 0.0 && opt.ugv_slip_noise_mps == 0.0;
   if (!obedient) {
-    actual_storage.samples =
-        actual_ugv_motion(scn,
-                          {opt.ugv_velocity_lag_s, opt.ugv_slip_noise_mps, opt.ugv_slip_time_s,
-                           opt.ugv_tracking_time_s},
-                          opt.physics_dt_s, derive_seed(opt.seed, {1}));
+    actual_storage.samples = actual_ugv_motion(scn,
+                                               {opt.ugv_velocity_lag_s, opt.ugv_slip_noise_mps,
+                                                opt.ugv_slip_time_s, opt.ugv_tracking_time_s},
+                                               opt.physics_dt_s, derive_seed(opt.seed, {1}));
   }
   const TetherScenario& actual = obedient ? scn : actual_storage;
 
@@ -584,7 +585,7 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
     obs.winch_tension_n =
         tension_model.hanging_weight_n + forces.winch_n + rng.normal(0.0, opt.tension_noise_n);
     obs.ugv.p_WG = actual.at(t_msg).p_WG + Eigen::Vector2d(rng.normal(0.0, opt.pose_noise_m),
-                                              rng.normal(0.0, opt.pose_noise_m));
+                                                           rng.normal(0.0, opt.pose_noise_m));
     obs.ugv.v_WG = msg.v_WG;
     obs.ugv.a_WG = msg.a_WG;
     obs.ugv_age_s = t - t_msg;

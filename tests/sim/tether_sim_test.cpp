@@ -150,7 +150,8 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
   auto config = TetherRunConfig::for_tether(12.0, 1.5);
   EXPECT_EQ(config.mpc.control.limits.total_length_m, 12.0);
   apply_tether_run_config(
-      write(dir, "c.yaml", R"(control: {slack_reference_m: 0.01, max_speed_mps: 0.8}
+      write(dir, "c.yaml",
+            R"(control: {slack_reference_m: 0.01, max_speed_mps: 0.8, ugv_velocity_lag_s: 0.1}
 mpc: {horizon: 30, weight_slack: 50, weight_soft_linear: 0, weight_soft_quadratic: 500}
 baseline: {kp_per_s: 4, ki_per_s2: 2}
 sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip_noise_mps: 0.02,
@@ -172,6 +173,8 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
   EXPECT_EQ(config.sim.ugv_slip_noise_mps, 0.02);
   EXPECT_EQ(config.sim.ugv_slip_time_s, 0.5);
   EXPECT_EQ(config.sim.ugv_tracking_time_s, 2.0);
+  EXPECT_EQ(config.mpc.control.ugv_velocity_lag_s, 0.1);
+  EXPECT_EQ(config.baseline.control.ugv_velocity_lag_s, 0.1);
   EXPECT_EQ(config.mpc.control.limits.total_length_m, 12.0);
 
   auto check = [&](const std::string& text, const std::string& field) {

@@ -7,7 +7,9 @@
 namespace ferret::tether {
 
 FeedForwardPid::FeedForwardPid(Options options, std::shared_ptr<const RequiredLengthModel> model)
-    : options_(options), model_(std::move(model)), filter_(options.control.pose_filter_gain) {
+    : options_(options),
+      model_(std::move(model)),
+      filter_(options.control.pose_filter_gain, options.control.ugv_velocity_lag_s) {
   if (!model_) throw std::invalid_argument("FeedForwardPid: no required-length model");
   if (!(options_.control.control_period_s > 0.0))
     throw std::invalid_argument("FeedForwardPid: control period must be > 0");
@@ -18,7 +20,8 @@ void FeedForwardPid::reset() {
   last_error_m_ = 0.0;
   has_last_ = false;
   last_command_mps_ = 0.0;
-  filter_ = UgvPositionFilter(options_.control.pose_filter_gain);
+  filter_ =
+      UgvPositionFilter(options_.control.pose_filter_gain, options_.control.ugv_velocity_lag_s);
 }
 
 double FeedForwardPid::step(const TetherObservation& obs) {

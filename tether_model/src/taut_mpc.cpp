@@ -10,7 +10,9 @@
 namespace ferret::tether {
 
 TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLengthModel> model)
-    : options_(options), model_(std::move(model)), filter_(options.control.pose_filter_gain) {
+    : options_(options),
+      model_(std::move(model)),
+      filter_(options.control.pose_filter_gain, options.control.ugv_velocity_lag_s) {
   if (!model_) throw std::invalid_argument("TautTetherMpc: no required-length model");
   if (options_.horizon < 2) throw std::invalid_argument("TautTetherMpc: horizon must be >= 2");
   if (!(options_.prediction_dt_s > 0.0) || !(options_.control.control_period_s > 0.0))
@@ -23,7 +25,8 @@ TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLeng
 void TautTetherMpc::reset() {
   last_command_mps_ = 0.0;
   last_ = QpResult{};
-  filter_ = UgvPositionFilter(options_.control.pose_filter_gain);
+  filter_ =
+      UgvPositionFilter(options_.control.pose_filter_gain, options_.control.ugv_velocity_lag_s);
 }
 
 // Servo model: the spool speed follows the command with a first-order lag tau,

@@ -60,19 +60,26 @@ struct SlackEstimator {
 /// is first predicted from the previous estimate with the desired velocity and
 /// acceleration, then corrected towards the measurement by `gain` (1: no filtering).
 /// A fixed-gain (steady-state) Kalman filter for a robot that follows its commands.
+/// With `velocity_lag_s` > 0 the robot's velocity loop is modelled as a first-order
+/// lag: the filter keeps the robot's estimated actual velocity, predicts with it, and
+/// reports it with the acceleration of the lag, (v_desired - v) / lag.
 class UgvPositionFilter {
  public:
-  explicit UgvPositionFilter(double gain = 1.0) : gain_(gain) {}
+  explicit UgvPositionFilter(double gain = 1.0, double velocity_lag_s = 0.0)
+      : gain_(gain), lag_s_(velocity_lag_s) {}
   /// @param t_msg_s time the message was sent (its pose's time stamp)
-  /// @return the motion with the filtered position (velocity and acceleration unchanged)
+  /// @return the motion with the filtered position (and, with a lag, velocity and acceleration)
   UgvMotion update(double t_msg_s, const UgvMotion& measured);
   void reset() { initialised_ = false; }
 
  private:
+  [[nodiscard]] UgvMotion output() const;
   double gain_;
+  double lag_s_;
   bool initialised_ = false;
   double t_s_ = 0.0;
-  UgvMotion estimate_;
+  UgvMotion estimate_;  ///< filtered position; the desired velocity and acceleration
+  Eigen::Vector2d velocity_ = Eigen::Vector2d::Zero();  ///< estimated actual velocity (lag > 0)
 };
 
 class TetherController {
@@ -94,6 +101,9 @@ struct TautControlOptions {
   double control_period_s = 0.02;  ///< 50 Hz
   double ugv_max_speed_mps = 2.0;  ///< caps the miniUGV prediction
   double pose_filter_gain = 0.05;  ///< UgvPositionFilter gain a cycle (1: raw positions)
+  /// The miniUGV's velocity-loop time constant as the filter models it (0: it
+  /// follows its desired motion exactly).
+  double ugv_velocity_lag_s = 0.0;
 };
 
 /// Named factory: "mpc" or "baseline". Throws std::invalid_argument for another name.
