@@ -419,7 +419,7 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   if (const auto r = root.optional_child("mpc")) {
     r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "weight_slack",
                    "weight_command_rate", "weight_feedforward", "weight_terminal",
-                   "weight_soft_linear", "weight_soft_quadratic"});
+                   "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic"});
     auto& m = c.mpc;
     m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
     if (r->has("horizon") && r->get<double>("horizon") != m.horizon)
@@ -434,6 +434,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
         r->get_in_range_or("weight_feedforward", 1e-6, 1e6, m.weight_feedforward);
     m.weight_terminal = r->get_in_range_or("weight_terminal", 0.0, 1e6, m.weight_terminal);
     m.soft_linear_weight = r->get_in_range_or("weight_soft_linear", 0.0, 1e8, m.soft_linear_weight);
+    m.stretch_linear_weight =
+        r->get_in_range_or("weight_stretch_linear", 0.0, 1e8, m.stretch_linear_weight);
     m.soft_quadratic_weight =
         r->get_in_range_or("weight_soft_quadratic", 1e-6, 1e8, m.soft_quadratic_weight);
   }

@@ -56,7 +56,7 @@ void TautTetherMpc::build() {
   }
 
   // Hessian of J = sum_k w_k (l_k - r_k - s_ref)^2 + w_rate sum (u_k - u_k-1)^2
-  //             + w_ff sum (u_k - rdot_k)^2 + rho1 (e_lo + e_hi) + rho2 (e_lo^2 + e_hi^2)
+  //             + w_ff sum (u_k - rdot_k)^2 + rho_lo e_lo + rho1 e_hi + rho2 (e_lo^2 + e_hi^2)
   // written as 1/2 z' H z + g' z with z = [u_0..u_N-1, e_lo, e_hi].
   H_ = Eigen::MatrixXd::Zero(n_, n_);
   for (int k = 0; k < N; ++k) {
@@ -147,7 +147,8 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     g[k] -= 2.0 * std::max(options_.weight_feedforward, 1e-6) * required_rate_[k];
   }
   g[0] -= 2.0 * options_.weight_command_rate * last_command_mps_;
-  g[N] = g[N + 1] = options_.soft_linear_weight;
+  g[N] = options_.stretch_linear_weight;
+  g[N + 1] = options_.soft_linear_weight;
   g[N + 2] = options_.length_linear_weight;
 
   // Bounds.

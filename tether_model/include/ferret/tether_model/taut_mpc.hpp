@@ -27,7 +27,13 @@ class TautTetherMpc final : public TetherController {
     double weight_feedforward = 0.05;    ///< on (command - required-length rate)^2
     double weight_terminal = 5.0;        ///< extra slack weight on the last step (multiplier)
     double soft_linear_weight = 2000.0;  ///< exact-penalty weight of the soft slack bounds
-    double soft_quadratic_weight = 20000.0;
+    /// Exact-penalty weight of the lower slack bound (slack >= 0) alone. 0 by default:
+    /// the bound sits at the slack reference, where the estimate's noise crosses it
+    /// every cycle, and an exact penalty there makes the controller answer a noisy
+    /// "stretched" harder than a noisy "slack": a biased, larger slack RMS for no
+    /// gain in peak tension (docs/results.md, Tether control).
+    double stretch_linear_weight = 0.0;
+    double soft_quadratic_weight = 2000.0;
     double length_linear_weight =
         1e5;  ///< penalty of l_t outside [0, L] (soft only to stay solvable)
     double length_quadratic_weight = 1e6;
