@@ -383,14 +383,18 @@ TEST(ActualUgvMotion, SlipIsARandomVelocityOfTheGivenSpreadAndSeeded) {
   EXPECT_NEAR(std::sqrt(offset_sq / (2.0 * static_cast<double>(held.size()))), 0.029, 0.008);
 }
 
+TetherScenario fast_back_and_forth() {
+  return load_tether_scenario(std::string(FERRET_SOURCE_DIR) +
+                              "/examples/trajectories/fast_back_and_forth.csv");
+}
+
 // An exact penalty on slack < 0 sits where the pose noise crosses the bound every
 // cycle: the MPC then pays out harder for a noisy "stretched" than it reels in for
 // a noisy "slack", and the line runs loose by about a millimetre on average. The
 // default (no linear term on that side) is unbiased and tighter, at the same
 // minimum slack and without over-tension.
 TEST(TetherSim, NoExactPenaltyOnStretchKeepsTheMpcUnbiased) {
-  const auto scn = load_tether_scenario(std::string(FERRET_SOURCE_DIR) +
-                                        "/examples/trajectories/fast_back_and_forth.csv");
+  const auto scn = fast_back_and_forth();
   auto model = std::make_shared<tether::FixedWrapTether>(1.0, scn.p_WE, scn.wrap_points);
   auto run = [&](double stretch_linear_weight, double quadratic_weight) {
     auto config = TetherRunConfig::for_tether(15.0, 1.0);
@@ -415,8 +419,7 @@ TEST(TetherSim, NoExactPenaltyOnStretchKeepsTheMpcUnbiased) {
 // a floor shared by both controllers. Without it the MPC's own tracking error is
 // well under half the baseline's on the fast trajectory; with it, it is not.
 TEST(TetherSim, PoseNoiseSetsTheSlackFloorOfBothControllers) {
-  const auto scn = load_tether_scenario(std::string(FERRET_SOURCE_DIR) +
-                                        "/examples/trajectories/fast_back_and_forth.csv");
+  const auto scn = fast_back_and_forth();
   auto model = std::make_shared<tether::FixedWrapTether>(1.0, scn.p_WE, scn.wrap_points);
   auto rms = [&](double pose_noise_m, bool mpc) {
     auto config = TetherRunConfig::for_tether(15.0, 1.0);
