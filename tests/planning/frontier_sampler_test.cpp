@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <thread>
 
+#include "exploration_room.hpp"
 #include "ferret/planning/ompl_setup.hpp"
 
 namespace ferret {
@@ -115,28 +116,7 @@ TEST(FrontierSampler, PrmCallsItRrtConnectDoesNot) {
   EXPECT_GE(c->find(last->getX(), last->getY()), 0);
 }
 
-// A 4 x 2 m room at 0.05 m, left half seen free, right half unknown: the frontier
-// is the column x = 1.975 (the setting of policy_test.cpp).
-struct Room {
-  GridGeometry geo{0.0, 0.0, 0.05, 80, 40};
-  IrGrid grid{geo, {}};
-  ObjectMap objects{geo, {}};
-  FrontierTracker tracker{geo};
-  GridPathPlanner paths{geo};
-  FrontierSets sets;
-  Pose2 pose{0.5, 1.0, 0.0};
-
-  Room() {
-    for (int j = 0; j < 40; ++j)
-      for (int i = 0; i < 40; ++i) grid.update_cell({i, j}, false);
-    tracker.update(grid);
-    paths.compute(grid, geo.cell_at(pose.x_m, pose.y_m), GridPathPlanner::Traversal::kKnownFree);
-    sets = tracker.extract(paths.distances_m(), pose, deg_to_rad(60), 4.0);
-  }
-  ExplorationState state() const {
-    return {grid, objects, tracker, sets, paths, pose, Eigen::Vector2d::Zero(), deg_to_rad(60), 4.0, std::nullopt};
-  }
-};
+using Room = test::HalfSeenRoom;
 
 std::size_t heaviest(const FrontierCandidates& c) {
   return static_cast<std::size_t>(std::max_element(c.weights.begin(), c.weights.end()) - c.weights.begin());

@@ -4,37 +4,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "exploration_room.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/policies.hpp"
 
 namespace ferret {
 namespace {
 
-// A 4 x 2 m room at 0.05 m, left half seen free, right half unknown.
-struct World {
-  GridGeometry geo{0.0, 0.0, 0.05, 80, 40};
-  IrGrid grid{geo, {}};
-  ObjectMap objects{geo, {}};
-  FrontierTracker tracker{geo};
-  GridPathPlanner paths{geo};
-  FrontierSets sets;
-  Pose2 pose{0.5, 1.0, 0.0};
-  Eigen::Vector2d v{0.0, 0.0};
-
-  World() {
-    for (int j = 0; j < 40; ++j)
-      for (int i = 0; i < 40; ++i) grid.update_cell({i, j}, false);
-    refresh();
-  }
-  void refresh() {
-    tracker.update(grid);
-    paths.compute(grid, geo.cell_at(pose.x_m, pose.y_m), GridPathPlanner::Traversal::kKnownFree);
-    sets = tracker.extract(paths.distances_m(), pose, deg_to_rad(60), 4.0);
-  }
-  ExplorationState state() const {
-    return {grid, objects, tracker, sets, paths, pose, v, deg_to_rad(60), 4.0, std::nullopt};
-  }
-};
+using World = test::HalfSeenRoom;
 
 PolicyOptions options() { return PolicyOptions::from(MissionConfig{}, 4.0, 2.0); }
 
