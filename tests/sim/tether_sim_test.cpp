@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "ferret/core/error.hpp"
@@ -194,6 +195,24 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
   check("mpc: {weight_soft_quadratic: 0}\n", "mpc.weight_soft_quadratic");
   check("mpc: {weight_soft_linear: -1}\n", "mpc.weight_soft_linear");
   check("sim: {ugv_slip_time_s: 0}\n", "sim.ugv_slip_time_s");
+}
+
+TEST(TetherRunConfig, TheShippedDiagnosticConfigsLoad) {
+  int count = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(FERRET_SOURCE_DIR) + "/examples/tether")) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    auto config = TetherRunConfig::for_tether(15.0, 1.0);
+    EXPECT_NO_THROW(apply_tether_run_config(entry.path(), config));
+    ++count;
+  }
+  EXPECT_GE(count, 5);
+  auto config = TetherRunConfig::for_tether(15.0, 1.0);
+  apply_tether_run_config(
+      std::string(FERRET_SOURCE_DIR) + "/examples/tether/less_obedient_ugv_lag_model.yaml", config);
+  EXPECT_EQ(config.sim.ugv_velocity_lag_s, 0.15);
+  EXPECT_EQ(config.baseline.control.ugv_velocity_lag_s, 0.15);
 }
 
 TEST(ScriptedTrajectory, TrapezoidalSegmentsByHand) {
