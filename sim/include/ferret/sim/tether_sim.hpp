@@ -32,10 +32,6 @@ struct TetherSnag {
   std::size_t wrap_point = 0;
   double start_s = 0.0;
   double duration_s = 0.0;
-  int control_cycles = 0;
-  /// Wall-clock time of controller.step(): the only non-deterministic figures.
-  double step_time_median_us = 0.0;
-  double step_time_max_us = 0.0;
 };
 
 struct TetherScenario {
