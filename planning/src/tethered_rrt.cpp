@@ -6,12 +6,15 @@
 #include <ompl/datastructures/NearestNeighborsLinear.h>
 #include <ompl/geometric/PathGeometric.h>
 
+#include <limits>
+
 #include "ferret/planning/motion_check.hpp"
 
 namespace ob = ompl::base;
 
 namespace ferret {
 namespace {
+constexpr double kTetherWeight = 0.5;  // metres of drive per metre of tether
 Eigen::Vector2d xy(const ob::State* s) {
   const auto* se2 = s->as<ob::SE2StateSpace::StateType>();
   return {se2->getX(), se2->getY()};
@@ -63,7 +66,6 @@ ob::PlannerStatus TetheredRRT::solve(const ob::PlannerTerminationCondition& ptc)
   }
   const auto& bounds = si_->getStateSpace()->as<ob::SE2StateSpace>()->getBounds();
   ob::State* candidate = si_->allocState();
-  Motion probe{candidate, nullptr, tether0_};
   Motion* solution = nullptr;
   const Eigen::Vector2d p_goal = xy(goal_state);
 
@@ -89,7 +91,20 @@ ob::PlannerStatus TetheredRRT::solve(const ob::PlannerTerminationCondition& ptc)
     auto* c = candidate->as<ob::SE2StateSpace::StateType>();
     c->setXY(target.x(), target.y());
     c->setYaw(0.0);
-    Motion* near = nn_->nearest(&probe);
+    // The nearest node in the plane (the heading costs only a turn in place) plus a
+    // share of its tether paid out. By position alone, a branch whose tether went round
+    // an obstacle the long way can cover the way to the goal first and starve the
+    // branch with the short tether (a tree over positions forgets the homotopy class),
+    // and the search times out although a path exists.
+    Motion* near = nullptr;
+    double near_cost = std::numeric_limits<double>::infinity();
+    for (const auto& m : motions_) {
+      const double cost = (xy(m->state) - target).norm() + kTetherWeight * m->tether.length_m();
+      if (cost < near_cost) {
+        near_cost = cost;
+        near = m.get();
+      }
+    }
     const Eigen::Vector2d from = xy(near->state);
     const double d = (target - from).norm();
     if (d < 1e-6) continue;
@@ -106,7 +121,6 @@ ob::PlannerStatus TetheredRRT::solve(const ob::PlannerTerminationCondition& ptc)
     if ((target - p_goal).norm() <= range_m_) solution = try_add(added, goal_state);
   }
   si_->freeState(candidate);
-  probe.state = nullptr;
   if (!solution) return ob::PlannerStatus::TIMEOUT;
   auto path = std::make_shared<ompl::geometric::PathGeometric>(si_);
   std::vector<const Motion*> chain;
