@@ -61,23 +61,29 @@ TEST(PlanCli, UgvDetourScenarioPlansAndValidates) {
 
 // house_void of the default world: the miniUGV went in south of the rotated rubble
 // block house_void_debris_b and round its west corner, so the tether lies along the
-// block's slanted edge, over a row of its voxel staircase corners in a straight
-// line. Retracing once pushed the middle ones off "along the bend's bisector", whose
-// direction at a straight bend is rounding noise, into the block; the fallback
-// TetheredRRT found nothing either (see docs/planning.md), so --return failed.
+// block's slanted edge, over a row of its voxel staircase corners in a straight line.
+// Plans `ugv_args` from there to the entry; returns the plan (exit 0 and valid).
+nlohmann::json plan_back_to_the_entry(const TempDir& dir, const std::string& ugv_args) {
+  const std::string world = "--world examples/worlds/default.yaml";
+  const auto r = run_cli("plan ugv " + world +
+                         " --from -14.814,6.665,2.92 --to -7.2,7,0 "
+                         "--driven '-7.3,7;-14.3267,5.6634;-14.814,6.665' " +
+                         ugv_args + " -o " + dir / "back.json");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto v = run_cli("validate " + world + " --plan " + dir / "back.json");
+  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
+  return r.exit_code == 0 ? nlohmann::json::parse(slurp(dir / "back.json")) : nlohmann::json{};
+}
+
+// Retracing once pushed the middle corners of the row off "along the bend's
+// bisector", whose direction at a straight bend is rounding noise, into the block;
+// the fallback found nothing either (below), so --return failed.
 TEST(PlanCli, UgvReturnRetracesATetherAlongASlantedEdge) {
   TempDir dir;
-  const auto r = run_cli(
-      "plan ugv --world examples/worlds/default.yaml --from -14.814,6.665,2.92 --to -7.2,7,0 "
-      "--driven '-7.3,7;-14.3267,5.6634;-14.814,6.665' --return -o " +
-      dir / "back.json");
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  const auto plan = nlohmann::json::parse(slurp(dir / "back.json"));
+  const auto plan = plan_back_to_the_entry(dir, "--return");
+  ASSERT_FALSE(plan.is_null());
   EXPECT_GE(plan["tether"]["initial_wraps"].size(), 3u);  // the straight row of corners
   EXPECT_NEAR(plan["states"].back()["tether_length_m"].get<double>(), 0.35, 1e-9);  // unwound
-  const auto v =
-      run_cli("validate --world examples/worlds/default.yaml --plan " + dir / "back.json");
-  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
 }
 
 // The same wound tether, planned (not retraced) to the entry: TetheredRRT once
@@ -85,14 +91,7 @@ TEST(PlanCli, UgvReturnRetracesATetherAlongASlantedEdge) {
 // (its tether too long for the entry) covered the way, and it timed out.
 TEST(PlanCli, UgvPlanFromAWoundTetherFindsTheWayBack) {
   TempDir dir;
-  const auto r = run_cli(
-      "plan ugv --world examples/worlds/default.yaml --from -14.814,6.665,2.92 --to -7.2,7,0 "
-      "--driven '-7.3,7;-14.3267,5.6634;-14.814,6.665' -o " +
-      dir / "p.json");
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  EXPECT_EQ(
-      run_cli("validate --world examples/worlds/default.yaml --plan " + dir / "p.json").exit_code,
-      0);
+  EXPECT_FALSE(plan_back_to_the_entry(dir, "").is_null());
 }
 
 TEST(PlanCli, UgvPlansAreByteIdenticalGivenTheSeed) {
