@@ -398,13 +398,24 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   if (const auto r = root.optional_child("control")) {
     r->allow_only({"slack_reference_m", "max_slack_m", "pose_filter_gain", "guard_n",
                    "max_tension_n", "max_speed_mps", "max_acceleration_mps2",
-                   "ugv_velocity_lag_s"});
+                   "ugv_velocity_lag_s", "tension_fusion", "observer_pose_noise_m",
+                   "observer_tension_noise_n", "observer_speed_noise_mps",
+                   "servo_time_constant_s"});
     ctl.slack_reference_m =
         r->get_in_range_or("slack_reference_m", -0.1, 1.0, ctl.slack_reference_m);
     ctl.max_slack_m = r->get_in_range_or("max_slack_m", 0.0, 10.0, ctl.max_slack_m);
     ctl.pose_filter_gain = r->get_in_range_or("pose_filter_gain", 1e-3, 1.0, ctl.pose_filter_gain);
     ctl.ugv_velocity_lag_s =
         r->get_in_range_or("ugv_velocity_lag_s", 0.0, 5.0, ctl.ugv_velocity_lag_s);
+    ctl.limits.velocity_time_constant_s = r->get_in_range_or(
+        "servo_time_constant_s", 1e-4, 1.0, ctl.limits.velocity_time_constant_s);
+    auto& obs = ctl.slack_observer;
+    obs.tension_fusion = r->get_or<bool>("tension_fusion", obs.tension_fusion);
+    obs.pose_noise_m = r->get_in_range_or("observer_pose_noise_m", 0.0, 1.0, obs.pose_noise_m);
+    obs.tension_noise_n =
+        r->get_in_range_or("observer_tension_noise_n", 1e-3, 100.0, obs.tension_noise_n);
+    obs.ugv_speed_noise_mps =
+        r->get_in_range_or("observer_speed_noise_mps", 0.0, 10.0, obs.ugv_speed_noise_mps);
     ctl.slack_estimator.guard_n =
         r->get_in_range_or("guard_n", 0.0, 1e3, ctl.slack_estimator.guard_n);
     ctl.slack_estimator.tension.max_tension_n =
@@ -417,7 +428,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     c.sim.winch.max_acceleration_mps2 = ctl.limits.max_acceleration_mps2;
   }
   if (const auto r = root.optional_child("mpc")) {
-    r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "weight_slack",
+    r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "use_preview",
+                   "weight_slack",
                    "weight_command_rate", "weight_feedforward", "weight_terminal",
                    "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic"});
     auto& m = c.mpc;
@@ -427,6 +439,7 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     m.prediction_dt_s = r->get_in_range_or("prediction_dt_s", 1e-3, 1.0, m.prediction_dt_s);
     m.acceleration_time_s =
         r->get_in_range_or("acceleration_time_s", 0.0, 10.0, m.acceleration_time_s);
+    m.use_preview = r->get_or<bool>("use_preview", m.use_preview);
     m.weight_slack = r->get_in_range_or("weight_slack", 0.0, 1e6, m.weight_slack);
     m.weight_command_rate =
         r->get_in_range_or("weight_command_rate", 0.0, 1e6, m.weight_command_rate);
@@ -440,20 +453,25 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
         r->get_in_range_or("weight_soft_quadratic", 1e-6, 1e8, m.soft_quadratic_weight);
   }
   if (const auto r = root.optional_child("baseline")) {
-    r->allow_only({"kp_per_s", "ki_per_s2", "kd", "feedforward_gain"});
+    r->allow_only({"kp_per_s", "ki_per_s2", "kd", "feedforward_gain", "use_preview"});
     auto& b = c.baseline;
     b.kp_per_s = r->get_in_range_or("kp_per_s", 0.0, 1e3, b.kp_per_s);
     b.ki_per_s2 = r->get_in_range_or("ki_per_s2", 0.0, 1e4, b.ki_per_s2);
     b.kd = r->get_in_range_or("kd", 0.0, 1e2, b.kd);
     b.feedforward_gain = r->get_in_range_or("feedforward_gain", 0.0, 2.0, b.feedforward_gain);
+    b.use_preview = r->get_or<bool>("use_preview", b.use_preview);
   }
   if (const auto r = root.optional_child("sim")) {
-    r->allow_only({"link_latency_s", "pose_noise_m", "tension_noise_n", "ugv_velocity_lag_s",
+    r->allow_only({"link_latency_s", "pose_noise_m", "tension_noise_n", "ugv_preview_s",
+                   "ugv_preview_step_s", "ugv_velocity_lag_s",
                    "ugv_slip_noise_mps", "ugv_slip_time_s", "ugv_tracking_time_s"});
     c.sim.link_latency_s = r->get_in_range_or("link_latency_s", 0.0, 1.0, c.sim.link_latency_s);
     c.sim.pose_noise_m = r->get_in_range_or("pose_noise_m", 0.0, 1.0, c.sim.pose_noise_m);
     c.sim.tension_noise_n =
         r->get_in_range_or("tension_noise_n", 0.0, 100.0, c.sim.tension_noise_n);
+    c.sim.ugv_preview_s = r->get_in_range_or("ugv_preview_s", 0.0, 10.0, c.sim.ugv_preview_s);
+    c.sim.ugv_preview_step_s =
+        r->get_in_range_or("ugv_preview_step_s", 1e-3, 1.0, c.sim.ugv_preview_step_s);
     c.sim.ugv_velocity_lag_s =
         r->get_in_range_or("ugv_velocity_lag_s", 0.0, 5.0, c.sim.ugv_velocity_lag_s);
     c.sim.ugv_slip_noise_mps =
@@ -539,6 +557,8 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
       throw std::invalid_argument("tether sim: snag on a missing wrap point");
   if (!(opt.physics_dt_s > 0.0) || !(opt.control.control_period_s >= opt.physics_dt_s))
     throw std::invalid_argument("tether sim: need 0 < physics dt <= control period");
+  if (opt.ugv_preview_s > 0.0 && !(opt.ugv_preview_step_s > 0.0))
+    throw std::invalid_argument("tether sim: a preview needs a step > 0");
 
   const tether::FixedWrapTether geometry(opt.entry_offset_m, scn.p_WE, scn.wrap_points);
   const auto& tension_model = opt.control.slack_estimator.tension;
@@ -591,6 +611,21 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
     obs.ugv.v_WG = msg.v_WG;
     obs.ugv.a_WG = msg.a_WG;
     obs.ugv_age_s = t - t_msg;
+    // Its plan ahead, relative to where the plan has it at the message.
+    const int preview_knots =
+        static_cast<int>(std::ceil(opt.ugv_preview_s / opt.ugv_preview_step_s - 1e-9));
+    if (preview_knots > 0) {
+      auto& preview = obs.ugv_preview;
+      preview.step_s = opt.ugv_preview_step_s;
+      for (int i = 0; i <= preview_knots; ++i) {
+        const TrajectorySample planned = scn.at(t_msg + i * opt.ugv_preview_step_s);
+        preview.displacement_m.push_back(planned.p_WG - msg.p_WG);
+        // The plan stands still once it has ended.
+        preview.velocity_mps.push_back(t_msg + i * opt.ugv_preview_step_s >= scn.end_s()
+                                           ? Eigen::Vector2d::Zero()
+                                           : planned.v_WG);
+      }
+    }
     const auto tick = std::chrono::steady_clock::now();
     const double command = controller.step(obs);
     step_times_us.push_back(

@@ -150,6 +150,24 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
   test::TempDir dir;
   auto config = TetherRunConfig::for_tether(12.0, 1.5);
   EXPECT_EQ(config.mpc.control.limits.total_length_m, 12.0);
+
+  auto observer = TetherRunConfig::for_tether(12.0, 1.5);
+  EXPECT_TRUE(observer.mpc.control.slack_observer.tension_fusion);
+  EXPECT_EQ(observer.sim.ugv_preview_s, 0.0);
+  apply_tether_run_config(
+      write(dir, "o.yaml",
+            "control: {tension_fusion: false, observer_pose_noise_m: 0.02, "
+            "servo_time_constant_s: 0.01}\n"
+            "mpc: {use_preview: false}\nbaseline: {use_preview: true}\n"
+            "sim: {ugv_preview_s: 0.4, ugv_preview_step_s: 0.1}\n"),
+      observer);
+  EXPECT_FALSE(observer.baseline.control.slack_observer.tension_fusion);
+  EXPECT_EQ(observer.mpc.control.slack_observer.pose_noise_m, 0.02);
+  EXPECT_EQ(observer.mpc.control.limits.velocity_time_constant_s, 0.01);
+  EXPECT_FALSE(observer.mpc.use_preview);
+  EXPECT_TRUE(observer.baseline.use_preview);
+  EXPECT_EQ(observer.sim.ugv_preview_s, 0.4);
+  EXPECT_EQ(observer.sim.ugv_preview_step_s, 0.1);
   apply_tether_run_config(
       write(dir, "c.yaml",
             R"(control: {slack_reference_m: 0.01, max_speed_mps: 0.8, ugv_velocity_lag_s: 0.1}
@@ -195,6 +213,10 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
   check("mpc: {weight_soft_quadratic: 0}\n", "mpc.weight_soft_quadratic");
   check("mpc: {weight_soft_linear: -1}\n", "mpc.weight_soft_linear");
   check("sim: {ugv_slip_time_s: 0}\n", "sim.ugv_slip_time_s");
+  check("control: {tension_fusion: 3}\n", "control.tension_fusion");
+  check("control: {observer_tension_noise_n: 0}\n", "control.observer_tension_noise_n");
+  check("sim: {ugv_preview_step_s: 0}\n", "sim.ugv_preview_step_s");
+  check("mpc: {use_preview: maybe}\n", "mpc.use_preview");
 }
 
 TEST(TetherRunConfig, TheShippedDiagnosticConfigsLoad) {
@@ -417,6 +439,7 @@ TEST(TetherSim, NoExactPenaltyOnStretchKeepsTheMpcUnbiased) {
   auto model = std::make_shared<tether::FixedWrapTether>(1.0, scn.p_WE, scn.wrap_points);
   auto run = [&](double stretch_linear_weight, double quadratic_weight) {
     auto config = TetherRunConfig::for_tether(15.0, 1.0);
+    config.mpc.control.slack_observer.tension_fusion = false;  // the noisy geometric estimate
     config.mpc.stretch_linear_weight = stretch_linear_weight;
     config.mpc.soft_quadratic_weight = quadratic_weight;
     tether::TautTetherMpc mpc(config.mpc, model);
@@ -434,15 +457,18 @@ TEST(TetherSim, NoExactPenaltyOnStretchKeepsTheMpcUnbiased) {
   EXPECT_GT(quadratic.min_slack_m, exact.min_slack_m - 0.002);
 }
 
-// docs/results.md, "Why slack RMS does not halve": the reported pose's noise sets
-// a floor shared by both controllers. Without it the MPC's own tracking error is
-// well under half the baseline's on the fast trajectory; with it, it is not.
+// docs/results.md, "Why slack RMS does not halve": with the geometric slack alone
+// (no tension fusion) the reported pose's noise sets a floor shared by both
+// controllers. Without it the MPC's own tracking error is well under half the
+// baseline's on the fast trajectory; with it, it is not.
 TEST(TetherSim, PoseNoiseSetsTheSlackFloorOfBothControllers) {
   const auto scn = fast_back_and_forth();
   auto model = std::make_shared<tether::FixedWrapTether>(1.0, scn.p_WE, scn.wrap_points);
   auto rms = [&](double pose_noise_m, bool mpc) {
     auto config = TetherRunConfig::for_tether(15.0, 1.0);
     config.sim.pose_noise_m = pose_noise_m;
+    config.mpc.control.slack_observer.tension_fusion = false;
+    config.baseline.control.slack_observer.tension_fusion = false;
     auto controller = mpc ? std::unique_ptr<tether::TetherController>(
                                 std::make_unique<tether::TautTetherMpc>(config.mpc, model))
                           : std::make_unique<tether::FeedForwardPid>(config.baseline, model);
@@ -460,6 +486,50 @@ TEST(TetherSim, PoseNoiseSetsTheSlackFloorOfBothControllers) {
       std::sqrt(baseline_noisy * baseline_noisy - baseline_clean * baseline_clean);
   EXPECT_NEAR(mpc_added, 0.002, 0.0006);
   EXPECT_NEAR(baseline_added, 0.002, 0.0008);
+}
+
+std::unique_ptr<tether::TetherController> make_controller(const TetherRunConfig& config, bool mpc,
+                                                          const TetherScenario& scn) {
+  auto model = std::make_shared<tether::FixedWrapTether>(1.0, scn.p_WE, scn.wrap_points);
+  if (mpc) return std::make_unique<tether::TautTetherMpc>(config.mpc, model);
+  return std::make_unique<tether::FeedForwardPid>(config.baseline, model);
+}
+
+// The winch tension measures the stretch now (no link latency) whenever the line
+// is taut; fusing it with the geometric slack (SlackObserver) takes both
+// controllers well below the pose estimate's floor, without over-tension.
+TEST(TetherSim, TensionFusionLowersBothControllersSlack) {
+  for (const auto& scn : {default_tether_scenario(), fast_back_and_forth()}) {
+    for (const bool mpc : {true, false}) {
+      auto run = [&](bool fusion) {
+        auto config = TetherRunConfig::for_tether(15.0, 1.0);
+        config.mpc.control.slack_observer.tension_fusion = fusion;
+        config.baseline.control.slack_observer.tension_fusion = fusion;
+        return run_tether_sim(scn, config.sim, *make_controller(config, mpc, scn)).metrics;
+      };
+      const auto fused = run(true), geometric = run(false);
+      EXPECT_LT(fused.slack_rms_m, 0.75 * geometric.slack_rms_m) << scn.name << " mpc " << mpc;
+      EXPECT_EQ(fused.over_tension_events, 0) << scn.name << " mpc " << mpc;
+      EXPECT_EQ(fused.released_over_limit, 0);
+    }
+  }
+}
+
+// With the miniUGV's plan ahead in each message, the MPC predicts the steps of the
+// trapezoidal speed profile instead of learning of them a latency late. The
+// default baseline ignores the preview (the classic feed-forward); with
+// use_preview it latency-compensates with it, and gains too.
+TEST(TetherSim, APlanPreviewHelpsOnTrapezoidalProfiles) {
+  const auto scn = default_tether_scenario();
+  auto rms = [&](bool mpc, double preview_s, bool baseline_uses_it) {
+    auto config = TetherRunConfig::for_tether(15.0, 1.0);
+    config.sim.ugv_preview_s = preview_s;
+    config.baseline.use_preview = baseline_uses_it;
+    return run_tether_sim(scn, config.sim, *make_controller(config, mpc, scn)).metrics.slack_rms_m;
+  };
+  EXPECT_LT(rms(true, 0.5, false), 0.85 * rms(true, 0.0, false));
+  EXPECT_EQ(rms(false, 0.5, false), rms(false, 0.0, false));
+  EXPECT_LT(rms(false, 0.5, true), 0.85 * rms(false, 0.0, false));
 }
 
 }  // namespace

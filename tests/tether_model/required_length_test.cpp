@@ -70,5 +70,45 @@ TEST(RequiredLengthRate, RadialAndTangentialMotion) {
   EXPECT_NEAR(required_length_rate_mps(t, m), 0.0, 1e-6);
 }
 
+// A preview of the cubic p(t) = (t^3 - t, 2 t): the Hermite interpolation through
+// knots with exact positions and velocities reproduces it exactly.
+TEST(UgvMotionPreview, HermiteKnotsReproduceACubicAndContinuePastTheEnd) {
+  auto p = [](double t) { return Eigen::Vector2d(t * t * t - t, 2.0 * t); };
+  auto v = [](double t) { return Eigen::Vector2d(3.0 * t * t - 1.0, 2.0); };
+  UgvMotionPreview preview;
+  EXPECT_TRUE(preview.empty());
+  EXPECT_EQ(preview.at(0.3), Eigen::Vector2d::Zero());
+  preview.step_s = 0.1;
+  for (int i = 0; i <= 4; ++i) {
+    preview.displacement_m.push_back(p(0.1 * i));
+    preview.velocity_mps.push_back(v(0.1 * i));
+  }
+  ASSERT_FALSE(preview.empty());
+  for (double t : {0.0, 0.03, 0.1, 0.17, 0.25, 0.399}) {
+    EXPECT_NEAR((preview.at(t) - p(t)).norm(), 0.0, 1e-12) << t;
+    EXPECT_NEAR((preview.velocity_at(t) - v(t)).norm(), 0.0, 1e-12) << t;
+  }
+  // Past the last knot (0.4 s) the plan goes on at its last velocity.
+  EXPECT_NEAR((preview.at(0.6) - (p(0.4) + 0.2 * v(0.4))).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((preview.velocity_at(0.6) - v(0.4)).norm(), 0.0, 1e-12);
+  // Knots and velocities of different counts are no preview.
+  preview.velocity_mps.pop_back();
+  EXPECT_TRUE(preview.empty());
+}
+
+TEST(UgvMotionPreview, PlannedMotionAddsTheDisplacementToTheFilteredPosition) {
+  UgvMotionPreview preview;
+  preview.step_s = 0.5;
+  preview.displacement_m = {Eigen::Vector2d::Zero(), Eigen::Vector2d(0.25, 0.0)};
+  preview.velocity_mps = {Eigen::Vector2d(0.5, 0.0), Eigen::Vector2d(0.5, 0.0)};
+  UgvMotion at_message;
+  at_message.p_WG = {2.0, 1.0};
+  at_message.a_WG = {3.0, 0.0};  // the preview, not the acceleration, decides
+  const UgvMotion m = planned_motion(at_message, preview, 0.2);
+  EXPECT_NEAR((m.p_WG - Eigen::Vector2d(2.1, 1.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((m.v_WG - Eigen::Vector2d(0.5, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(m.a_WG.norm(), 0.0);
+}
+
 }  // namespace
 }  // namespace ferret::tether

@@ -17,6 +17,8 @@ TautTetherMpc::Options raw_options(int horizon = 20) {
   TautTetherMpc::Options o;
   o.horizon = horizon;
   o.control.pose_filter_gain = 1.0;  // use positions as given
+  // The control law alone: the geometric slack, without the tension-fusing observer.
+  o.control.slack_observer.tension_fusion = false;
   return o;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace ferret::tether {
 
@@ -74,6 +75,46 @@ UgvMotion UgvMotion::extrapolated(double dt_s, double max_speed_mps,
     out.p_WG += out.v_WG * (dt_s - t_acc);
     out.a_WG.setZero();
   }
+  return out;
+}
+
+namespace {
+// Cubic Hermite segment of the preview holding dt_s (clamped to [0, last knot]):
+// its first knot and the fraction u in [0, 1] into it.
+std::pair<std::size_t, double> preview_segment(const UgvMotionPreview& p, double dt_s) {
+  const std::size_t segments = p.displacement_m.size() - 1;
+  const double x = std::clamp(dt_s / p.step_s, 0.0, static_cast<double>(segments));
+  const std::size_t i = std::min(static_cast<std::size_t>(x), segments - 1);
+  return {i, x - static_cast<double>(i)};
+}
+}  // namespace
+
+Eigen::Vector2d UgvMotionPreview::at(double dt_s) const {
+  if (empty() || dt_s <= 0.0) return Eigen::Vector2d::Zero();
+  const double end_s = step_s * static_cast<double>(displacement_m.size() - 1);
+  if (dt_s >= end_s) return displacement_m.back() + velocity_mps.back() * (dt_s - end_s);
+  const auto [i, u] = preview_segment(*this, dt_s);
+  const double u2 = u * u, u3 = u2 * u;
+  return (2 * u3 - 3 * u2 + 1) * displacement_m[i] + (u3 - 2 * u2 + u) * step_s * velocity_mps[i] +
+         (-2 * u3 + 3 * u2) * displacement_m[i + 1] + (u3 - u2) * step_s * velocity_mps[i + 1];
+}
+
+Eigen::Vector2d UgvMotionPreview::velocity_at(double dt_s) const {
+  if (empty()) return Eigen::Vector2d::Zero();
+  const double end_s = step_s * static_cast<double>(displacement_m.size() - 1);
+  if (dt_s >= end_s) return velocity_mps.back();
+  const auto [i, u] = preview_segment(*this, dt_s);
+  const double u2 = u * u;
+  return ((6 * u2 - 6 * u) * (displacement_m[i] - displacement_m[i + 1])) / step_s +
+         (3 * u2 - 4 * u + 1) * velocity_mps[i] + (3 * u2 - 2 * u) * velocity_mps[i + 1];
+}
+
+UgvMotion planned_motion(const UgvMotion& at_message, const UgvMotionPreview& preview,
+                         double dt_s) {
+  UgvMotion out = at_message;
+  out.p_WG += preview.at(dt_s);
+  out.v_WG = preview.velocity_at(dt_s);
+  out.a_WG.setZero();
   return out;
 }
 

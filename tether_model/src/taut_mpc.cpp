@@ -12,7 +12,9 @@ namespace ferret::tether {
 TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLengthModel> model)
     : options_(options),
       model_(std::move(model)),
-      filter_(options.control.pose_filter_gain, options.control.ugv_velocity_lag_s) {
+      filter_(options.control.pose_filter_gain, options.control.ugv_velocity_lag_s),
+      observer_(options.control.slack_estimator, options.control.slack_observer,
+                options.control.pose_filter_gain, options.control.control_period_s) {
   if (!model_) throw std::invalid_argument("TautTetherMpc: no required-length model");
   if (options_.horizon < 2) throw std::invalid_argument("TautTetherMpc: horizon must be >= 2");
   if (!(options_.prediction_dt_s > 0.0) || !(options_.control.control_period_s > 0.0))
@@ -27,6 +29,7 @@ void TautTetherMpc::reset() {
   last_ = QpResult{};
   filter_ =
       UgvPositionFilter(options_.control.pose_filter_gain, options_.control.ugv_velocity_lag_s);
+  observer_.reset();
 }
 
 // Servo model: the spool speed follows the command with a first-order lag tau,
@@ -119,18 +122,25 @@ double TautTetherMpc::step(const TetherObservation& obs) {
 
   // Required length now (the link message is ugv_age_s old) and over the horizon,
   // from the desired velocity and acceleration.
+  // With the miniUGV's planned motion (preview) the predictions follow its plan;
+  // without, the desired acceleration is held for acceleration_time_s.
   const double ta = options_.acceleration_time_s;
-  const UgvMotion now = filter_.update(obs.t_s - obs.ugv_age_s, obs.ugv)
-                            .extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
+  const bool preview = options_.use_preview && !obs.ugv_preview.empty();
+  const UgvMotion at_message = filter_.update(obs.t_s - obs.ugv_age_s, obs.ugv);
+  const UgvMotion now =
+      preview ? planned_motion(at_message, obs.ugv_preview, obs.ugv_age_s)
+              : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
   const double required_now = model_->required_length_m(now.p_WG);
   // A tension the geometry does not explain (a snag) shifts every prediction by the
   // measured stretch: the tether behaves as if it were that much longer.
   const double slack =
-      ctl.slack_estimator.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
+      observer_.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
   const double bias = (obs.released_m - required_now) - slack;
   for (int k = 0; k < N; ++k) {
     const UgvMotion future =
-        now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps, std::max(0.0, ta - obs.ugv_age_s));
+        preview ? planned_motion(at_message, obs.ugv_preview, obs.ugv_age_s + (k + 1) * dt)
+                : now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps,
+                                   std::max(0.0, ta - obs.ugv_age_s));
     required_[k] = model_->required_length_m(future.p_WG) + bias;
     required_rate_[k] = required_length_rate_mps(*model_, future);
   }

@@ -92,6 +92,10 @@ struct TetherSimOptions {
   double link_latency_s = 0.06;  ///< age of the miniUGV's pose when it reaches the winch
   double pose_noise_m = 0.01;    ///< standard deviation of the reported position
   double tension_noise_n = 0.2;  ///< standard deviation of the current-based tension
+  /// How far ahead each message carries the miniUGV's planned motion (its desired
+  /// trajectory), in knots `ugv_preview_step_s` apart; 0: no preview.
+  double ugv_preview_s = 0.0;
+  double ugv_preview_step_s = 0.05;
   /// A less obedient miniUGV (an extra scenario; lag and slip 0 = it follows its
   /// desired motion exactly, the shipped setting): its own velocity loop lags the
   /// desired velocity with this time constant, wheel slip adds a random velocity
@@ -121,11 +125,12 @@ struct TetherRunConfig {
 
 /// Applies a YAML file with optional sections `control` (slack_reference_m,
 /// max_slack_m, pose_filter_gain, guard_n, max_tension_n, max_speed_mps,
-/// max_acceleration_mps2), `mpc` (horizon, prediction_dt_s, acceleration_time_s,
-/// weight_slack, weight_command_rate, weight_feedforward, weight_terminal), `baseline`
-/// (kp_per_s, ki_per_s2, kd, feedforward_gain) and `sim` (link_latency_s,
-/// pose_noise_m, tension_noise_n, ugv_velocity_lag_s, ugv_slip_noise_mps, ugv_slip_time_s,
-/// ugv_tracking_time_s)
+/// max_acceleration_mps2, ugv_velocity_lag_s, tension_fusion, observer_pose_noise_m,
+/// observer_tension_noise_n, observer_speed_noise_mps), `mpc` (horizon,
+/// prediction_dt_s, acceleration_time_s, use_preview, weight_*), `baseline`
+/// (kp_per_s, ki_per_s2, kd, feedforward_gain, use_preview) and `sim` (link_latency_s,
+/// pose_noise_m, tension_noise_n, ugv_preview_s, ugv_preview_step_s,
+/// ugv_velocity_lag_s, ugv_slip_noise_mps, ugv_slip_time_s, ugv_tracking_time_s)
 /// on top of `config`. Unknown keys and values out of
 /// range are InputErrors naming the file and field.
 void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig& config);

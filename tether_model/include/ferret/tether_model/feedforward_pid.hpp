@@ -21,6 +21,9 @@ class FeedForwardPid final : public TetherController {
     double kd = 0.05;          ///< m/s of command per m/s of error rate
     double feedforward_gain = 1.0;
     double integral_limit_m_s = 0.2;
+    /// Latency-compensate with the miniUGV's planned motion when sent (an ablation:
+    /// off by default, the classic feed-forward uses the desired velocity).
+    bool use_preview = false;
   };
 
   FeedForwardPid(Options options, std::shared_ptr<const RequiredLengthModel> model);
@@ -34,6 +37,7 @@ class FeedForwardPid final : public TetherController {
   Options options_;
   std::shared_ptr<const RequiredLengthModel> model_;
   UgvPositionFilter filter_;
+  SlackObserver observer_;
   double integral_m_s_ = 0.0;
   double last_error_m_ = 0.0;
   bool has_last_ = false;

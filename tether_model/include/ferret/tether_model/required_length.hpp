@@ -68,6 +68,32 @@ struct UgvMotion {
                                        double acceleration_time_s = 1e9) const;
 };
 
+/// The miniUGV's planned motion ahead, as its path follower can send it with each
+/// message: knots `step_s` apart from the message on (knot 0 is the message itself),
+/// each the planned displacement from its desired position at the message (relative,
+/// so that its localisation error does not enter twice) and the planned velocity.
+/// Between knots the motion is the cubic Hermite curve through them. Empty: no preview.
+struct UgvMotionPreview {
+  double step_s = 0.0;
+  std::vector<Eigen::Vector2d> displacement_m;  ///< knot i at i * step_s; [0] is zero
+  std::vector<Eigen::Vector2d> velocity_mps;    ///< same size
+
+  [[nodiscard]] bool empty() const {
+    return displacement_m.size() < 2 || velocity_mps.size() != displacement_m.size() ||
+           !(step_s > 0.0);
+  }
+  /// Planned displacement `dt_s` after the message (past the last knot it continues
+  /// with the last knot's velocity).
+  [[nodiscard]] Eigen::Vector2d at(double dt_s) const;
+  /// Planned velocity `dt_s` after the message.
+  [[nodiscard]] Eigen::Vector2d velocity_at(double dt_s) const;
+};
+
+/// The miniUGV's motion `dt_s` after a message, from its (filtered) position at the
+/// message and its preview: position p + displacement, velocity the preview's.
+[[nodiscard]] UgvMotion planned_motion(const UgvMotion& at_message,
+                                       const UgvMotionPreview& preview, double dt_s);
+
 /// Rate of change of the required length when the miniUGV moves with v_WG (central
 /// difference of the model along the velocity).
 [[nodiscard]] double required_length_rate_mps(const RequiredLengthModel& model,

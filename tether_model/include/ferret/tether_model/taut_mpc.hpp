@@ -22,6 +22,10 @@ class TautTetherMpc final : public TetherController {
     double prediction_dt_s = 0.02;  ///< N * dt = 0.4 s look-ahead by default
     double acceleration_time_s =
         0.1;  ///< how long the miniUGV's desired acceleration is assumed to last
+    /// Predict along the miniUGV's planned motion when its messages carry it
+    /// (TetherObservation::ugv_preview); false: from the desired velocity and
+    /// acceleration alone, as the paper's interface has it.
+    bool use_preview = true;
     double weight_slack = 100.0;         ///< on (slack - reference)^2 per step, 1/m^2
     double weight_command_rate = 2.0;    ///< on (delta command)^2, (s/m)^2
     double weight_feedforward = 0.05;    ///< on (command - required-length rate)^2
@@ -61,6 +65,7 @@ class TautTetherMpc final : public TetherController {
   Options options_;
   std::shared_ptr<const RequiredLengthModel> model_;
   UgvPositionFilter filter_;
+  SlackObserver observer_;
   DenseQpSolver solver_;
   int n_ = 0;  ///< QP variables: N commands + 3 soft-constraint slacks (e_lo, e_hi, e_len)
   // l_k = l_free_k + Phi_l.row(k) u and v_k likewise: the condensed dynamics.

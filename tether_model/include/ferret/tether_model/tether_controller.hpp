@@ -42,6 +42,7 @@ struct TetherObservation {
   double winch_tension_n = 0.0;  ///< from motor current, includes the hanging weight
   UgvMotion ugv;                 ///< last message from the miniUGV
   double ugv_age_s = 0.0;        ///< how old that message is (link latency)
+  UgvMotionPreview ugv_preview;  ///< the miniUGV's planned motion after the message, if sent
 };
 
 /// Slack the controllers act on: geometric slack l_t - l_req from the (latency-
@@ -54,6 +55,44 @@ struct SlackEstimator {
 
   [[nodiscard]] double estimate_m(double released_m, double required_m,
                                   double winch_tension_n) const;
+};
+
+/// The slack the controllers act on, with the winch tension fused in: a one-state
+/// censored (Tobit) Kalman filter on the error b of the geometric slack, s = g - b.
+/// b comes from the pose estimate (UgvPositionFilter's error projected on the tether,
+/// an AR(1) process with the filter's time constant) and from the latency
+/// extrapolation (the miniUGV's velocity error). The tension measures the stretch
+/// k * max(0, -s) now, without the link's latency, and says nothing more than "not
+/// stretched" while the line is slack; the update uses the exact mean and covariance
+/// of that rectified measurement under the Gaussian prior, so it is informative on
+/// both sides of taut and never pulls the estimate past what the tension allows.
+/// A pull above the SlackEstimator guard (a snag) is left to the guard, and |b| is
+/// capped at a few standard deviations: larger errors are not pose noise.
+class SlackObserver {
+ public:
+  struct Options {
+    bool tension_fusion = true;        ///< false: the geometric SlackEstimator alone
+    double pose_noise_m = 0.01;        ///< assumed std of a reported position, per axis
+    double tension_noise_n = 0.2;      ///< assumed std of the current-based tension
+    double ugv_speed_noise_mps = 0.02; ///< assumed miniUGV velocity error (process noise)
+    double max_bias_sigmas = 4.0;      ///< cap of |b| in steady-state standard deviations
+  };
+
+  SlackObserver(const SlackEstimator& estimator, const Options& options, double pose_filter_gain,
+                double control_period_s);
+  /// One control cycle: the estimate of s = l_t - l_req (call once a cycle).
+  [[nodiscard]] double estimate_m(double released_m, double required_m, double winch_tension_n);
+  void reset();
+  [[nodiscard]] double bias_m() const { return bias_m_; }
+  [[nodiscard]] double bias_variance_m2() const { return variance_m2_; }
+
+ private:
+  SlackEstimator estimator_;
+  Options options_;
+  double decay_ = 0.0;         ///< AR(1) factor of b a cycle: 1 - pose filter gain
+  double process_m2_ = 0.0;    ///< variance b gains a cycle
+  double steady_m2_ = 0.0;     ///< variance of b without tension information
+  double bias_m_ = 0.0, variance_m2_ = 0.0;
 };
 
 /// Smooths the miniUGV's reported position with its own desired motion: each message
@@ -101,6 +140,7 @@ struct TautControlOptions {
   double control_period_s = 0.02;  ///< 50 Hz
   double ugv_max_speed_mps = 2.0;  ///< caps the miniUGV prediction
   double pose_filter_gain = 0.05;  ///< UgvPositionFilter gain a cycle (1: raw positions)
+  SlackObserver::Options slack_observer;  ///< tension fusion (both controllers)
   /// The miniUGV's velocity-loop time constant as the filter models it (0: it
   /// follows its desired motion exactly).
   double ugv_velocity_lag_s = 0.0;
