@@ -131,8 +131,9 @@ double TautTetherMpc::step(const TetherObservation& obs) {
       preview ? planned_motion(at_message, obs.ugv_preview, obs.ugv_age_s)
               : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
   const double required_now = model_->required_length_m(now.p_WG);
-  // A tension the geometry does not explain (a snag) shifts every prediction by the
-  // measured stretch: the tether behaves as if it were that much longer.
+  // The observer's correction of the geometric slack (the pose error the tension
+  // reveals, or a snag's measured stretch) shifts every prediction: the tether
+  // behaves as if it were that much longer.
   const double slack =
       observer_.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
   const double bias = (obs.released_m - required_now) - slack;
