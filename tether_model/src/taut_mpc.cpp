@@ -145,6 +145,19 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     required_[k] = model_->required_length_m(future.p_WG) + bias;
     required_rate_[k] = required_length_rate_mps(*model_, future);
   }
+  // While the pull is above the guard the line may be caught on a corner (a snag):
+  // then the winch side ends at the pin and cannot get shorter, whatever the miniUGV
+  // does beyond it. So no prediction may ask for less line than the line needs now;
+  // otherwise slack predicted beyond the pin (past s_max, which no winch can take in)
+  // would make the MPC hold the stretch against it. Growth is still followed, so an
+  // ordinary stretch behind a miniUGV driving away is paid out as before.
+  const auto& tension = ctl.slack_estimator.tension;
+  if (obs.winch_tension_n - tension.hanging_weight_n > ctl.slack_estimator.guard_n) {
+    for (int k = 0; k < N; ++k) {
+      required_[k] = std::max(required_[k], obs.released_m - slack);
+      required_rate_[k] = std::max(required_rate_[k], 0.0);
+    }
+  }
 
   const double l0 = obs.released_m, v0 = obs.spool_speed_mps;
   const Eigen::VectorXd free_l = free_l_from_l_ * l0 + free_l_from_v_ * v0;

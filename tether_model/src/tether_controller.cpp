@@ -40,6 +40,10 @@ SlackObserver::SlackObserver(const SlackEstimator& estimator, const Options& opt
   reset();
 }
 
+double SlackObserver::max_bias_m() const {
+  return options_.max_bias_sigmas * std::sqrt(steady_m2_);
+}
+
 void SlackObserver::reset() {
   bias_m_ = 0.0;
   variance_m2_ = steady_m2_;
@@ -68,8 +72,7 @@ double SlackObserver::estimate_m(double released_m, double required_m, double wi
     const double gain = k * cov / innovation_var;
     bias_m_ += gain * (pull - k * mean_plus);
     variance_m2_ = std::max(variance_m2_ - gain * k * cov, 1e-12);
-    const double cap = options_.max_bias_sigmas * std::sqrt(steady_m2_);
-    bias_m_ = std::clamp(bias_m_, -cap, cap);
+    bias_m_ = std::clamp(bias_m_, -max_bias_m(), max_bias_m());
   }
   // The guard still decides a snag: above it the measured stretch wins.
   return estimator_.estimate_m(released_m, required_m + bias_m_, winch_tension_n);

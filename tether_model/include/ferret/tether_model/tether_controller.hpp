@@ -85,6 +85,8 @@ class SlackObserver {
   void reset();
   [[nodiscard]] double bias_m() const { return bias_m_; }
   [[nodiscard]] double bias_variance_m2() const { return variance_m2_; }
+  /// Largest |b| the observer accepts as pose error (larger: not pose noise).
+  [[nodiscard]] double max_bias_m() const;
 
  private:
   SlackEstimator estimator_;
