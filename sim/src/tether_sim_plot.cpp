@@ -34,7 +34,9 @@ void draw_axes(cv::Mat& img, const Panel& p, const std::string& y_label, double 
   }
   for (double y = std::ceil(p.y0 / y_step) * y_step; y <= p.y1 + 1e-9; y += y_step) {
     cv::line(img, p.to_px(p.t0, y), p.to_px(p.t1, y), grid, 1);
-    cv::putText(img, fmt::format("{:.2f}", y), p.to_px(p.t0, y) + cv::Point(-52, 4),
+    const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(y_step) + 1e-9)));
+    const double shown = std::abs(y) < 1e-6 * y_step ? 0.0 : y;  // no "-0"
+    cv::putText(img, fmt::format("{:.{}f}", shown, decimals), p.to_px(p.t0, y) + cv::Point(-52, 4),
                 cv::FONT_HERSHEY_SIMPLEX, 0.4, text, 1, cv::LINE_AA);
   }
   cv::rectangle(img, p.area, cv::Scalar(90, 90, 90), 1);
@@ -73,12 +75,15 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
   const double pad = std::max(0.1, 0.05 * (hi - lo));
   const Panel top{cv::Rect(80, 60, 990, 330), t0, t1, std::max(0.0, lo - pad),
                   std::min(total_length_m + pad, hi + pad)};
-  double smin = -0.05, smax = max_slack_m + 0.05;
+  // Slack in millimetres, fitted to the run (a taut line's millimetres would vanish
+  // on a scale that always showed the whole [0, s_max] band).
+  double smin = -2.0, smax = 2.0;
   for (const auto& s : r.log) {
-    smin = std::min(smin, s.slack_m);
-    smax = std::max(smax, s.slack_m);
+    smin = std::min(smin, 1e3 * s.slack_m);
+    smax = std::max(smax, 1e3 * s.slack_m);
   }
-  const Panel bottom{cv::Rect(80, 440, 990, 230), t0, t1, smin, smax};
+  const double spad = 0.1 * (smax - smin);
+  const Panel bottom{cv::Rect(80, 440, 990, 230), t0, t1, smin - spad, smax + spad};
 
   // Snag intervals shaded in both panels.
   for (std::size_t i = 0; i < r.log.size(); ++i) {
@@ -88,12 +93,14 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
       cv::rectangle(img, cv::Rect(p->to_px(ta, p->y1), p->to_px(tb, p->y0)),
                     cv::Scalar(210, 230, 255), cv::FILLED);
   }
-  // The allowed slack band [0, s_max].
-  cv::rectangle(img, cv::Rect(bottom.to_px(t0, max_slack_m), bottom.to_px(t1, 0.0)),
+  // The allowed slack band [0, s_max], as far as it is on the panel.
+  cv::rectangle(img,
+                cv::Rect(bottom.to_px(t0, std::min(1e3 * max_slack_m, bottom.y1)),
+                         bottom.to_px(t1, std::max(0.0, bottom.y0))),
                 cv::Scalar(225, 245, 225), cv::FILLED);
   draw_axes(img, top, "tether length [m]: released l_t (blue), required (red), L (grey)",
             nice_step(top.y1 - top.y0));
-  draw_axes(img, bottom, "slack l_t - required [m] (green band: [0, s_max]; orange: snag)",
+  draw_axes(img, bottom, "slack l_t - required [mm] (green band: [0, s_max]; orange: snag)",
             nice_step(bottom.y1 - bottom.y0));
   if (total_length_m <= top.y1)
     cv::line(img, top.to_px(t0, total_length_m), top.to_px(t1, total_length_m),
@@ -103,13 +110,14 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
   polyline(
       img, top, r, [](const TetherSimSample& s) { return s.released_m; }, cv::Scalar(200, 90, 20));
   polyline(
-      img, bottom, r, [](const TetherSimSample& s) { return s.slack_m; }, cv::Scalar(200, 90, 20));
+      img, bottom, r, [](const TetherSimSample& s) { return 1e3 * s.slack_m; },
+      cv::Scalar(200, 90, 20));
   cv::line(img, bottom.to_px(t0, 0.0), bottom.to_px(t1, 0.0), cv::Scalar(0, 0, 0), 1);
   const auto& m = r.metrics;
   cv::putText(img,
-              fmt::format("{} / {}: slack RMS {:.4f} m, max {:.3f} m, over-tension events {}, "
+              fmt::format("{} / {}: slack RMS {:.2f} mm, max {:.1f} mm, over-tension events {}, "
                           "limit active {:.2f} s",
-                          r.scenario, r.controller, m.slack_rms_m, m.max_slack_m,
+                          r.scenario, r.controller, 1e3 * m.slack_rms_m, 1e3 * m.max_slack_m,
                           m.over_tension_events, m.limit_active_s),
               cv::Point(80, 30), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);
