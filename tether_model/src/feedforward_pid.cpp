@@ -9,9 +9,7 @@ namespace ferret::tether {
 FeedForwardPid::FeedForwardPid(Options options, std::shared_ptr<const RequiredLengthModel> model)
     : options_(options),
       model_(std::move(model)),
-      filter_(options.control.pose_filter_gain, options.control.ugv_velocity_lag_s),
-      observer_(options.control.slack_estimator, options.control.slack_observer,
-                options.control.pose_filter_gain, options.control.control_period_s) {
+      estimator_(options.control) {
   if (!model_) throw std::invalid_argument("FeedForwardPid: no required-length model");
   if (!(options_.control.control_period_s > 0.0))
     throw std::invalid_argument("FeedForwardPid: control period must be > 0");
@@ -22,9 +20,7 @@ void FeedForwardPid::reset() {
   last_error_m_ = 0.0;
   has_last_ = false;
   last_command_mps_ = 0.0;
-  filter_ =
-      UgvPositionFilter(options_.control.pose_filter_gain, options_.control.ugv_velocity_lag_s);
-  observer_.reset();
+  estimator_.reset();
 }
 
 double FeedForwardPid::step(const TetherObservation& obs) {
@@ -32,7 +28,7 @@ double FeedForwardPid::step(const TetherObservation& obs) {
   const double dt = c.control_period_s;
   // Latency compensation with the desired velocity only: the classic feed-forward
   // (or, as an option, with the miniUGV's planned motion).
-  UgvMotion now = filter_.update(obs.t_s - obs.ugv_age_s, obs.ugv);
+  UgvMotion now = estimator_.pose_filter.update(obs.t_s - obs.ugv_age_s, obs.ugv);
   if (options_.use_preview && !obs.ugv_preview.empty()) {
     now = planned_motion(now, obs.ugv_preview, obs.ugv_age_s);
   } else {
@@ -41,7 +37,7 @@ double FeedForwardPid::step(const TetherObservation& obs) {
   }
   const double required = model_->required_length_m(now.p_WG);
   const double feedforward = options_.feedforward_gain * required_length_rate_mps(*model_, now);
-  const double slack = observer_.estimate_m(obs.released_m, required, obs.winch_tension_n);
+  const double slack = estimator_.slack_observer.estimate_m(obs.released_m, required, obs.winch_tension_n);
   const double error = c.slack_reference_m - slack;  // > 0: too taut, pay out
   const double derivative = has_last_ ? (error - last_error_m_) / dt : 0.0;
   last_error_m_ = error;

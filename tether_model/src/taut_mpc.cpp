@@ -12,9 +12,7 @@ namespace ferret::tether {
 TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLengthModel> model)
     : options_(options),
       model_(std::move(model)),
-      filter_(options.control.pose_filter_gain, options.control.ugv_velocity_lag_s),
-      observer_(options.control.slack_estimator, options.control.slack_observer,
-                options.control.pose_filter_gain, options.control.control_period_s) {
+      estimator_(options.control) {
   if (!model_) throw std::invalid_argument("TautTetherMpc: no required-length model");
   if (options_.horizon < 2) throw std::invalid_argument("TautTetherMpc: horizon must be >= 2");
   if (!(options_.prediction_dt_s > 0.0) || !(options_.control.control_period_s > 0.0))
@@ -27,9 +25,7 @@ TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLeng
 void TautTetherMpc::reset() {
   last_command_mps_ = 0.0;
   last_ = QpResult{};
-  filter_ =
-      UgvPositionFilter(options_.control.pose_filter_gain, options_.control.ugv_velocity_lag_s);
-  observer_.reset();
+  estimator_.reset();
 }
 
 // Servo model: the spool speed follows the command with a first-order lag tau,
@@ -126,7 +122,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // without, the desired acceleration is held for acceleration_time_s.
   const double ta = options_.acceleration_time_s;
   const bool preview = options_.use_preview && !obs.ugv_preview.empty();
-  const UgvMotion at_message = filter_.update(obs.t_s - obs.ugv_age_s, obs.ugv);
+  const UgvMotion at_message = estimator_.pose_filter.update(obs.t_s - obs.ugv_age_s, obs.ugv);
   const UgvMotion now =
       preview ? planned_motion(at_message, obs.ugv_preview, obs.ugv_age_s)
               : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
@@ -135,7 +131,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // reveals, or a snag's measured stretch) shifts every prediction: the tether
   // behaves as if it were that much longer.
   const double slack =
-      observer_.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
+      estimator_.slack_observer.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
   const double bias = (obs.released_m - required_now) - slack;
   for (int k = 0; k < N; ++k) {
     const UgvMotion future =

@@ -114,6 +114,17 @@ UgvMotion UgvPositionFilter::output() const {
   return out;
 }
 
+TetherStateEstimator::TetherStateEstimator(const TautControlOptions& options)
+    : pose_filter(options.pose_filter_gain, options.ugv_velocity_lag_s),
+      slack_observer(options.slack_estimator, options.slack_observer, options.pose_filter_gain,
+                     options.control_period_s),
+      fresh_filter_(pose_filter) {}
+
+void TetherStateEstimator::reset() {
+  pose_filter = fresh_filter_;
+  slack_observer.reset();
+}
+
 std::unique_ptr<TetherController> make_tether_controller(
     std::string_view name, const TautControlOptions& options,
     std::shared_ptr<const RequiredLengthModel> model) {

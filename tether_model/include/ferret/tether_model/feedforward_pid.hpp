@@ -36,8 +36,7 @@ class FeedForwardPid final : public TetherController {
  private:
   Options options_;
   std::shared_ptr<const RequiredLengthModel> model_;
-  UgvPositionFilter filter_;
-  SlackObserver observer_;
+  TetherStateEstimator estimator_;
   double integral_m_s_ = 0.0;
   double last_error_m_ = 0.0;
   bool has_last_ = false;

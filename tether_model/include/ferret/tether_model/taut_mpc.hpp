@@ -64,8 +64,7 @@ class TautTetherMpc final : public TetherController {
 
   Options options_;
   std::shared_ptr<const RequiredLengthModel> model_;
-  UgvPositionFilter filter_;
-  SlackObserver observer_;
+  TetherStateEstimator estimator_;
   DenseQpSolver solver_;
   int n_ = 0;  ///< QP variables: N commands + 3 soft-constraint slacks (e_lo, e_hi, e_len)
   // l_k = l_free_k + Phi_l.row(k) u and v_k likewise: the condensed dynamics.

@@ -148,6 +148,19 @@ struct TautControlOptions {
   double ugv_velocity_lag_s = 0.0;
 };
 
+/// What both controllers estimate from an observation: the miniUGV's filtered motion
+/// and the tension-fused slack, built from the same options and reset together.
+struct TetherStateEstimator {
+  explicit TetherStateEstimator(const TautControlOptions& options);
+  void reset();
+
+  UgvPositionFilter pose_filter;
+  SlackObserver slack_observer;
+
+ private:
+  UgvPositionFilter fresh_filter_;
+};
+
 /// Named factory: "mpc" or "baseline". Throws std::invalid_argument for another name.
 [[nodiscard]] std::unique_ptr<TetherController> make_tether_controller(
     std::string_view name, const TautControlOptions& options,
