@@ -1,0 +1,116 @@
+#include "cli_options.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+
+#include "ferret/core/error.hpp"
+#include "ferret/planning/planning_world.hpp"
+#include "ferret/urdf/robot_description.hpp"
+
+namespace ferret::cli {
+
+CLI::Option* add_world_option(CLI::App* cmd, std::string& world, bool required,
+                              std::string_view what) {
+  auto* opt = cmd->add_option("--world", world, std::string(what));
+  if (required) opt->required();
+  return opt;
+}
+
+CLI::Option* add_robot_option(CLI::App* cmd, std::string& robot, std::string_view default_text) {
+  return cmd->add_option("--robot", robot,
+                         fmt::format("robot URDF, or a shipped model: {} (default: {})",
+                                     fmt::join(shipped_model_names(), ", "), default_text));
+}
+
+CLI::Option* add_mission_option(CLI::App* cmd, std::string& mission, bool config_alias) {
+  auto* opt = cmd->add_option("--mission", mission,
+                              "mission YAML: motion limits, tether L and l_0, object search "
+                              "(default: the built-in values, docs/configuration.md)");
+  if (config_alias) add_hidden_alias(cmd, "--config", mission);
+  return opt;
+}
+
+CLI::Option* add_out_option(CLI::App* cmd, std::string& out, std::string_view what) {
+  auto* opt = cmd->add_option("-o,--out", out, std::string(what) + " (required)");
+  add_hidden_alias(cmd, "--output", out);
+  add_hidden_alias(cmd, "--output-dir", out);
+  return opt;
+}
+
+void require_out(const std::string& out, std::string_view what) {
+  if (out.empty()) throw InputError("--out", "", std::string(what) + " (-o/--out is required)");
+}
+
+CLI::Option* add_tether_budget_option(CLI::App* cmd, std::optional<double>& budget_m,
+                                      std::string_view default_text) {
+  auto* opt = cmd->add_option(
+      "--tether-budget", budget_m,
+      fmt::format("taut tether length the miniUGV may use on the floor, L - l_0, metres "
+                  "(default: {})",
+                  default_text));
+  add_hidden_alias(cmd, "--tether", budget_m);
+  add_hidden_alias(cmd, "--tether-max", budget_m);
+  return opt;
+}
+
+std::optional<double> checked_tether_budget(const std::optional<double>& budget_m) {
+  if (budget_m && !(std::isfinite(*budget_m) && *budget_m > 0.0 && *budget_m <= 1000.0))
+    throw InputError("--tether-budget", "", "a taut tether length in (0, 1000] m",
+                     fmt::format("{}", *budget_m));
+  return budget_m;
+}
+
+CLI::Option* add_bounds_option(CLI::App* cmd, std::string& bounds, std::string_view meaning) {
+  return cmd->add_option("--bounds", bounds,
+                         fmt::format("x0,y0,z0,x1,y1,z1 in metres: {}", meaning));
+}
+
+std::optional<Aabb3> parse_bounds(const std::string& text, const std::string& option) {
+  if (text.empty()) return std::nullopt;
+  const auto b = parse_number_list(text, 6, option);
+  Aabb3 box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+  if ((box.lo.array() >= box.hi.array()).any())
+    throw InputError(option, "", "x0,y0,z0,x1,y1,z1 (metres) with x0 < x1, y0 < y1, z0 < z1",
+                     text);
+  return box;
+}
+
+CLI::Option* add_seed_option(CLI::App* cmd, std::uint64_t& seed, std::string_view what) {
+  return cmd->add_option("--seed", seed, std::string(what))->capture_default_str();
+}
+
+const std::vector<std::string>& shipped_model_names() {
+  static const std::vector<std::string> names{"m100", "miniugv"};
+  return names;
+}
+
+std::filesystem::path resolve_robot(const std::string& robot, std::string_view default_model) {
+  if (robot.empty()) return find_model(default_model);
+  for (const auto& name : shipped_model_names())
+    if (robot == name || robot == name + ".urdf") return find_model(name + ".urdf");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(robot, ec))
+    throw InputError("--robot", "",
+                     "a URDF file, or a shipped model: " + fmt::format("{}", fmt::join(shipped_model_names(), ", ")),
+                     robot);
+  return robot;
+}
+
+MissionConfig load_mission_or_defaults(const std::string& path) {
+  return path.empty() ? MissionConfig{} : load_mission_config(path);
+}
+
+std::string one_of(const std::vector<std::string>& choices) {
+  return fmt::format("one of {}", fmt::join(choices, ", "));
+}
+
+void check_choice(const std::string& option, const std::string& value,
+                  const std::vector<std::string>& choices) {
+  for (const auto& c : choices)
+    if (c == value) return;
+  throw InputError(option, "", one_of(choices), value);
+}
+
+}  // namespace ferret::cli

@@ -1,0 +1,82 @@
+#pragma once
+// The options that mean the same thing in every command, spelt, typed and checked in
+// one place so the commands cannot drift apart again. docs/cli.md is the convention;
+// every command adds these through the functions below instead of by hand.
+//
+// Old spellings are kept as hidden aliases (an option in CLI11's empty group, bound to
+// the same variable) for one release; docs/cli.md lists them.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <filesystem>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ferret/planning/collision_map.hpp"
+#include "ferret/urdf/mission_config.hpp"
+
+namespace ferret::cli {
+
+/// `--world FILE`: a world YAML, or an OctoMap .bt/.ot.
+CLI::Option* add_world_option(CLI::App* cmd, std::string& world, bool required = true,
+                              std::string_view what = "world YAML, .bt or .ot");
+
+/// `--robot URDF|NAME`: a URDF path or a shipped model's name (docs/cli.md).
+/// `default_text` says what an absent --robot means for this command.
+CLI::Option* add_robot_option(CLI::App* cmd, std::string& robot, std::string_view default_text);
+
+/// `--mission YAML`: the mission configuration (config/mission.yaml's format).
+/// `config_alias` keeps the old `--config` spelling as a hidden alias; commands where
+/// `--config` means something else pass false.
+CLI::Option* add_mission_option(CLI::App* cmd, std::string& mission, bool config_alias = true);
+
+/// `-o,--out PATH` (hidden aliases: --output, --output-dir). Not marked required in
+/// CLI11 (an alias may carry the value): call require_out() in the callback.
+CLI::Option* add_out_option(CLI::App* cmd, std::string& out, std::string_view what);
+/// Throws InputError("--out", ...) when `out` is empty.
+void require_out(const std::string& out, std::string_view what);
+
+/// `--tether-budget M`: the taut tether length the miniUGV may use on the floor,
+/// L - l_0 (hidden aliases: --tether, --tether-max).
+CLI::Option* add_tether_budget_option(CLI::App* cmd, std::optional<double>& budget_m,
+                                      std::string_view default_text);
+/// The budget checked: finite, in (0, 1000] m.
+[[nodiscard]] std::optional<double> checked_tether_budget(const std::optional<double>& budget_m);
+
+/// `--bounds x0,y0,z0,x1,y1,z1` (metres), one format in every command.
+CLI::Option* add_bounds_option(CLI::App* cmd, std::string& bounds, std::string_view meaning);
+/// nullopt for "", the box otherwise; InputError unless six finite numbers with
+/// x0 < x1, y0 < y1, z0 < z1.
+[[nodiscard]] std::optional<Aabb3> parse_bounds(const std::string& text,
+                                                const std::string& option = "--bounds");
+
+/// `--seed N`: the run's seed (every simulated or sampled result follows from it).
+CLI::Option* add_seed_option(CLI::App* cmd, std::uint64_t& seed, std::string_view what);
+
+/// A hidden alias `name` for an option bound to `value` (same type, same variable).
+template <typename T>
+CLI::Option* add_hidden_alias(CLI::App* cmd, const std::string& name, T& value) {
+  return cmd->add_option(name, value, "")->group("");
+}
+
+/// The names of the models shipped with ferret (m100, miniugv).
+[[nodiscard]] const std::vector<std::string>& shipped_model_names();
+/// --robot's value as a file: "" gives `default_model` (a shipped file name such as
+/// "miniugv.urdf"); a shipped model's name gives its file; anything else is a path,
+/// which must exist. InputError listing the shipped names otherwise.
+[[nodiscard]] std::filesystem::path resolve_robot(const std::string& robot,
+                                                  std::string_view default_model);
+
+/// The mission YAML, or the built-in defaults when `path` is empty.
+[[nodiscard]] MissionConfig load_mission_or_defaults(const std::string& path);
+
+/// "one of a, b, c": the expectation of an option with a fixed set of values.
+[[nodiscard]] std::string one_of(const std::vector<std::string>& choices);
+/// Throws InputError(option, "", one_of(choices), value) unless value is a choice.
+void check_choice(const std::string& option, const std::string& value,
+                  const std::vector<std::string>& choices);
+
+}  // namespace ferret::cli
