@@ -72,8 +72,7 @@ std::optional<Aabb3> parse_bounds(const std::string& text, const std::string& op
   const auto b = parse_number_list(text, 6, option);
   Aabb3 box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
   if ((box.lo.array() >= box.hi.array()).any())
-    throw InputError(option, "", "x0,y0,z0,x1,y1,z1 (metres) with x0 < x1, y0 < y1, z0 < z1",
-                     text);
+    throw InputError(option, "", "x0,y0,z0,x1,y1,z1 (metres) with x0 < x1, y0 < y1, z0 < z1", text);
   return box;
 }
 
@@ -93,7 +92,8 @@ std::filesystem::path resolve_robot(const std::string& robot, std::string_view d
   std::error_code ec;
   if (!std::filesystem::is_regular_file(robot, ec))
     throw InputError("--robot", "",
-                     "a URDF file, or a shipped model: " + fmt::format("{}", fmt::join(shipped_model_names(), ", ")),
+                     "a URDF file, or a shipped model: " +
+                         fmt::format("{}", fmt::join(shipped_model_names(), ", ")),
                      robot);
   return robot;
 }

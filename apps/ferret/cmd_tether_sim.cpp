@@ -1,7 +1,7 @@
 // `ferret tether-sim`: a miniUGV trajectory through the tether model and the winch
 // controller in closed loop.
 //   ferret tether-sim [--trajectory FILE] [--controller mpc|baseline] [--seed N]
-//                     [--mission FILE] [--config FILE] [--horizon N] [--latency S] --out DIR
+//                     [--mission FILE] [--sim-config FILE] [--horizon N] [--latency S] -o DIR
 // Prints slack RMS, maximum slack, over-tension events and the time the tether limit
 // was active; writes DIR/tether_<controller>.csv, .png (l_t, required length and
 // slack over time) and .json (the figures). docs/tether.md describes the files.
@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "cli_options.hpp"
 #include "command.hpp"
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
@@ -33,6 +34,7 @@ struct Options {
 };
 
 void run(const Options& o) {
+  require_out(o.out, "the output directory");
   if (o.controller != "mpc" && o.controller != "baseline")
     throw InputError("ferret tether-sim", "--controller", "mpc or baseline", o.controller);
   if (o.horizon && (*o.horizon < 2 || *o.horizon > 200))
@@ -123,13 +125,17 @@ const CommandRegistration kTetherSim{
           "tether-sim", "Run a miniUGV trajectory through the tether model and winch controller");
       sub->add_option("--trajectory", o->trajectory,
                       "trajectory CSV or YAML (default: the built-in scripted one)");
-      sub->add_option("--controller", o->controller, "mpc or baseline")->capture_default_str();
-      sub->add_option("--seed", o->seed, "seed of the sensor noise")->capture_default_str();
-      sub->add_option("--out", o->out, "output directory")->required();
+      sub->add_option("--controller", o->controller, "mpc or baseline")
+          ->check(CLI::IsMember({"mpc", "baseline"}))
+          ->capture_default_str();
+      add_seed_option(sub, o->seed, "seed of the sensor noise");
+      add_out_option(sub, o->out, "output directory (created)");
       sub->add_option("--mission", o->mission,
-                      "mission YAML with tether.total_length_m (L) and entry_offset_m (l_0)");
-      sub->add_option("--config", o->config,
+                      "mission YAML with tether.total_length_m (L) and entry_offset_m (l_0) "
+                      "(default: the built-in values)");
+      sub->add_option("--sim-config", o->config,
                       "YAML with controller and simulation settings (docs/tether.md)");
+      add_hidden_alias(sub, "--config", o->config);
       sub->add_option("--horizon", o->horizon,
                       "MPC horizon in prediction steps (default 20 of 0.02 s)");
       sub->add_option("--latency", o->latency_s,

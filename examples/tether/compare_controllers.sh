@@ -6,7 +6,7 @@
 # (MPC / baseline), the largest tension and the cycles with l_t > L.
 #   examples/tether/compare_controllers.sh [FERRET_BINARY] [tether-sim options...]
 # e.g. examples/tether/compare_controllers.sh build/release/apps/ferret --latency 0.15
-#      examples/tether/compare_controllers.sh build/release/apps/ferret --config examples/tether/plan_preview.yaml
+#      examples/tether/compare_controllers.sh build/release/apps/ferret --sim-config examples/tether/plan_preview.yaml
 set -euo pipefail
 ferret=${1:-build/release/apps/ferret}
 shift || true

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Grid search of the winch controllers' settings over the shipped trajectories, as
 # used to choose the defaults (docs/tether.md, "The baseline"). Every setting runs
-# `ferret tether-sim --config` on all four shipped trajectories at seed 1. The score
+# `ferret tether-sim --sim-config` on all four shipped trajectories at seed 1. The score
 # is the sum of the slack RMS of default, fast_back_and_forth and reach_limit
 # (corner_snag's slack behind the snag is beyond any controller, so it only counts
 # for over-tension); only settings with no over-tension event on any of the four
@@ -22,7 +22,7 @@ run_setting() {  # controller label yaml
   for t in "${trajectories[@]}"; do
     local res
     res=$("$ferret" --log-level warn tether-sim --trajectory "examples/trajectories/$t" --controller "$controller" \
-      --config "$out/config.yaml" --seed 1 --out "$out/run")
+      --sim-config "$out/config.yaml" --seed 1 --out "$out/run")
     local rms ev
     rms=$(awk '/^slack_rms_m:/{print $2}' <<<"$res")
     ev=$(awk '/^over_tension_events:/{print $2}' <<<"$res")

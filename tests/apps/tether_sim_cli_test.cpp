@@ -71,12 +71,18 @@ TEST(TetherSimCli, ConfigFileSetsGainsAndABadOneExitsTwo) {
   std::ofstream(dir / "slow.yaml")
       << "baseline: {kp_per_s: 1, ki_per_s2: 0}\nsim: {link_latency_s: 0.2}\n";
   const auto tuned = run_cli("tether-sim --controller baseline --out '" + (dir / "a") + "'");
-  const auto detuned = run_cli("tether-sim --controller baseline --config '" + (dir / "slow.yaml") +
-                               "' --out '" + (dir / "b") + "'");
+  const auto detuned = run_cli("tether-sim --controller baseline --sim-config '" +
+                               (dir / "slow.yaml") + "' -o '" + (dir / "b") + "'");
+  // The old spelling (--config, --output) is a hidden alias of the same options.
+  const auto old_spelling = run_cli("tether-sim --controller baseline --config '" +
+                                    (dir / "slow.yaml") + "' --output '" + (dir / "old") + "'");
   ASSERT_EQ(tuned.exit_code, 0) << tuned.err;
   ASSERT_EQ(detuned.exit_code, 0) << detuned.err;
+  ASSERT_EQ(old_spelling.exit_code, 0) << old_spelling.err;
   const auto a = nlohmann::json::parse(std::ifstream(dir / "a/tether_baseline.json"));
   const auto b = nlohmann::json::parse(std::ifstream(dir / "b/tether_baseline.json"));
+  const auto old = nlohmann::json::parse(std::ifstream(dir / "old/tether_baseline.json"));
+  EXPECT_EQ(old["metrics"], b["metrics"]);
   EXPECT_EQ(b["link_latency_s"], 0.2);
   EXPECT_GT(b["metrics"]["slack_rms_m"].get<double>(),
             2.0 * a["metrics"]["slack_rms_m"].get<double>());
@@ -94,6 +100,8 @@ TEST(TetherSimCli, BadOptionsExitTwo) {
   auto r = run_cli("tether-sim --controller bang-bang --out '" + dir.path().string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("--controller"));
+  EXPECT_THAT(r.err, HasSubstr("mpc"));  // the valid choices are listed
+  EXPECT_THAT(r.err, HasSubstr("baseline"));
   r = run_cli("tether-sim");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("--out"));
