@@ -133,8 +133,10 @@ const CommandRegistration kTetherSim{
       sub->add_option("--mission", o->mission,
                       "mission YAML with tether.total_length_m (L) and entry_offset_m (l_0) "
                       "(default: the built-in values)");
-      sub->add_option("--sim-config", o->config,
-                      "YAML with controller and simulation settings (docs/tether.md)");
+      sub->add_option(
+          "--sim-config", o->config,
+          "YAML with controller and simulation settings, docs/tether.md (default: none, "
+          "the built-in values)");
       add_hidden_alias(sub, "--config", o->config);
       sub->add_option("--horizon", o->horizon,
                       "MPC horizon in prediction steps (default 20 of 0.02 s)");
