@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -177,6 +178,41 @@ TEST(Experiment, IntervalNeverLeavesTheSampleRangeOnRandomSamples) {
     ASSERT_LE(m.lo, m.mean) << trial;
     ASSERT_GE(m.hi, m.mean) << trial;
   }
+}
+
+// The paired ratios of examples/plot_experiment.py (time of a method over rapid's on the
+// same object) get their interval on the log scale. Run with Debian's python3.
+TEST(Experiment, PlotScriptsRatioIntervalIsGeometricAndPositive) {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "Debian's python3-matplotlib is not installed (scripts/install-deps)";
+  test::TempDir dir;
+  const std::string script = R"(
+import math, random, sys
+sys.path.insert(0, ")" FERRET_SOURCE_DIR R"(/examples")
+from plot_experiment import geometric_mean_ci95 as gm
+# {1, 2, 4}: logs 0, ln 2, 2 ln 2, mean ln 2 (g = 2), sd ln 2, t(0.975, 2) = 4.303:
+# 2 exp(-+4.303 ln 2 / sqrt 3) = [0.357412, 11.19155].
+g, lo, hi = gm([1.0, 2.0, 4.0])
+print("%.6f %.6f %.5f" % (g, lo, hi))
+# Symmetric in a/b versus b/a.
+g2, lo2, hi2 = gm([1.0, 0.5, 0.25])
+print("%.6f %.6f" % (lo2 * hi, hi2 * lo))
+print(all(math.isnan(x) for x in gm([1.0, 0.0, 2.0])), math.isnan(gm([3.0])[1]))
+rng = random.Random(7)
+bad = 0
+for trial in range(2000):
+    v = [math.exp(rng.gauss(0, rng.uniform(0.1, 4))) for _ in range(rng.randint(2, 40))]
+    g, lo, hi = gm(v)
+    bad += not (0 < lo <= g <= hi)
+print("bad", bad)
+)";
+  std::ofstream(dir / "check.py") << script;
+  const std::string out = dir / "out.txt";
+  ASSERT_EQ(std::system(("/usr/bin/python3 " + (dir / "check.py") + " > " + out).c_str()), 0);
+  std::ifstream in(out);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), "2.000000 0.357412 11.19155\n1.000000 1.000000\nTrue True\nbad 0\n");
 }
 
 TEST(Experiment, ShardsPartitionTheRunsAndConcatenateToTheWhole) {
