@@ -312,6 +312,11 @@ void MapCanvas::draw_marker(const Eigen::Vector2d& p_W, Rgb color, LegendMark sh
   draw_mark(impl_->image, impl_->pixel(p_W), color, shape, radius_px, impl_->line_px());
 }
 int MapCanvas::pixels_per_cell() const { return impl_->scale; }
+bool MapCanvas::contains(const Eigen::Vector2d& p_W, double margin_m) const {
+  const GridGeometry& g = impl_->geometry;
+  return p_W.x() >= g.origin_x_m - margin_m && p_W.x() <= g.origin_x_m + g.width_m() + margin_m &&
+         p_W.y() >= g.origin_y_m - margin_m && p_W.y() <= g.origin_y_m + g.height_m() + margin_m;
+}
 
 RgbImage MapCanvas::image() const {
   cv::Mat img = impl_->image.clone();
@@ -524,12 +529,19 @@ void draw_world_annotations(MapCanvas& canvas, const WorldSpec& world) {
     canvas.draw_circle(world.drop_zone->center_m, world.drop_zone->radius_m, orange, 2);
     canvas.draw_text(world.drop_zone->center_m, "drop zone", orange);
   }
-  if (!world.hidden_spaces.empty()) {
+  // Legend entries only for what the picture shows (a window may cut the rest away).
+  const auto any_of = [](const auto& items, const auto& shown) {
+    return std::any_of(items.begin(), items.end(), shown);
+  };
+  if (any_of(world.hidden_spaces, [&](const auto& h) { return canvas.contains(h.p_WE.head(2)); }))
     canvas.add_legend("hidden-space entry, heading in", green, LegendMark::kLine);
+  if (any_of(world.hidden_spaces,
+             [&](const auto& h) { return canvas.contains(h.marker.X_WM.translation().head(2)); }))
     canvas.add_legend("marker (space #id)", blue, LegendMark::kDot);
-  }
-  if (!world.objects.empty()) canvas.add_legend("object", red, LegendMark::kDot);
-  if (world.drop_zone) canvas.add_legend("drop zone", orange, LegendMark::kRing);
+  if (any_of(world.objects, [&](const auto& o) { return canvas.contains(o.p_WO().head(2)); }))
+    canvas.add_legend("object", red, LegendMark::kDot);
+  if (world.drop_zone && canvas.contains(world.drop_zone->center_m, world.drop_zone->radius_m))
+    canvas.add_legend("drop zone", orange, LegendMark::kRing);
 }
 
 void write_png(const RgbImage& image, const fs::path& path) {

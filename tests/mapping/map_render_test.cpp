@@ -110,6 +110,23 @@ TEST(MapCanvas, WorldAnnotationsMarkObjectsAndDropZone) {
   EXPECT_TRUE(same(pixel(-2.0, -2.5), Rgb{255, 140, 0}));    // bottom of the drop zone's circle
   EXPECT_TRUE(same(pixel(-0.601, -1.0), Rgb{30, 80, 230}));  // the cellar's marker
   EXPECT_TRUE(same(pixel(-0.3, -1.0), Rgb{0, 160, 0}));      // the entry heading, into the cellar
+
+  // The legend lists what the picture shows: the whole world has the drop zone (orange),
+  // a window on the cellar does not.
+  const auto orange_in_legend = [](const MapCanvas& c) {
+    const RgbImage im = c.image();
+    const PixelRect l = c.legend_area();
+    int n = 0;
+    for (int r = l.y; r < l.y + l.height; ++r)
+      for (int col = l.x; col < l.x + l.width; ++col) n += same(im.at(col, r), Rgb{255, 140, 0});
+    return n;
+  };
+  EXPECT_GT(orange_in_legend(canvas), 5);
+  at_floor.window_m = hidden_space_window(world, "cellar", 0.5, "--space");
+  MapCanvas cellar(slice_octree(*build_world_octree(world), at_floor), o);
+  draw_world_annotations(cellar, world);
+  EXPECT_EQ(orange_in_legend(cellar), 0);
+  EXPECT_GT(cellar.legend_area().height, 0);  // entry, marker, object
 }
 
 bool dark(Rgb c) { return c.r < 128 && c.g < 128 && c.b < 128; }

@@ -122,6 +122,8 @@ class MapCanvas {
   [[nodiscard]] PixelRect legend_area() const;
   [[nodiscard]] PixelRect colour_bar_area() const;
   [[nodiscard]] int pixels_per_cell() const;
+  /// True when a world point lies on the map, or within `margin_m` of it.
+  [[nodiscard]] bool contains(const Eigen::Vector2d& p_W, double margin_m = 0.0) const;
   /// The picture so far, with the scale bar and the frame when enabled.
   [[nodiscard]] RgbImage image() const;
   /// Writes image() as PNG atomically. The path must end in .png.
