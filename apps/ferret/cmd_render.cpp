@@ -67,6 +67,7 @@ void run(const RenderArgs& a) {
   std::optional<WorldSpec> world;
   OccupancyMap2D map;
   std::string title;
+  std::optional<OccupancyMap2D> whole;  // the unwindowed slice, for a tether to wrap on
   if (is_map_server_yaml(a.input)) {
     map = load_map_server(a.input);
     title = fmt::format("{} (map_server map, {:g} m cells)", fs::path(a.input).filename().string(),
@@ -76,6 +77,10 @@ void run(const RenderArgs& a) {
     SliceOptions slice = a.slice;
     slice.window_m = requested_slice_window(a.window, a.space, world);
     map = slice_octree(*tree, slice);
+    if (plan && slice.window_m) {
+      slice.window_m.reset();
+      whole = slice_octree(*tree, slice);
+    }
     title = world ? fmt::format("{} world", world->name) : fs::path(a.input).filename().string();
     if (!a.space.empty()) title += ", hidden space " + a.space;
     title += ", " + slice_caption(slice);
@@ -83,8 +88,8 @@ void run(const RenderArgs& a) {
   MapCanvas canvas(map, a.render);
   if (world && a.annotate) draw_world_annotations(canvas, *world);
   if (plan) {
-    const PlanOverlaySummary s = draw_plan(canvas, *plan, map);
-    title += fmt::format("; plan {} ({}): {}", fs::path(a.plan).filename().string(),
+    const PlanOverlaySummary s = draw_plan(canvas, *plan, whole ? *whole : map);
+    title += fmt::format("\nplan {} ({}): {}", fs::path(a.plan).filename().string(),
                          plan->robot_known ? to_string(plan->robot) : "CSV", s.describe());
     if (s.outside == s.states) title += " (none inside: nothing drawn)";
     plan_line = "plan: " + s.describe() + "\n";

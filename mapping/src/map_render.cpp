@@ -131,6 +131,15 @@ struct MapCanvas::Impl {
     double x_step = 1, y_step = 1;
   };
   [[nodiscard]] Layout layout() const;
+  [[nodiscard]] std::vector<std::string> title_lines() const {
+    std::vector<std::string> lines;
+    for (std::size_t a = 0; !title.empty() && a <= title.size();) {
+      const std::size_t b = std::min(title.find('\n', a), title.size());
+      lines.push_back(title.substr(a, b - a));
+      a = b + 1;
+    }
+    return lines;
+  }
   void draw_frame(cv::Mat& out, const Layout& l) const;
 
   // Text and marks grow with the picture so they stay legible when it is shrunk for viewing.
@@ -382,7 +391,9 @@ MapCanvas::Impl::Layout MapCanvas::Impl::layout() const {
     label_w = std::max(label_w, text(tick_label(y, l.y_step)).width);
   const cv::Size caption = text("y [m]");
   const int left = px(10) + caption.height + px(10) + label_w + px(10);
-  const int top = title.empty() ? px(14) : text(title, 1.2).height + px(26);
+  const auto lines = title_lines();
+  const int line_h = text("Ag", 1.2).height + px(12);
+  const int top = lines.empty() ? px(14) : static_cast<int>(lines.size()) * line_h + px(14);
   const int bottom = px(8) + caption.height + px(12) + caption.height + px(14);
   l.map = cv::Rect(left, top, w, h);
 
@@ -411,7 +422,8 @@ MapCanvas::Impl::Layout MapCanvas::Impl::layout() const {
     panel_h = by + bh - top;
   }
   const int right = panel_w ? px(16) + panel_w + px(14) : px(14);
-  const int title_w = title.empty() ? 0 : text(title, 1.2).width + 2 * px(12);
+  int title_w = 0;
+  for (const auto& line : lines) title_w = std::max(title_w, text(line, 1.2).width + 2 * px(12));
   l.size = cv::Size(std::max(left + w + right, title_w),
                     std::max(top + h + bottom, top + panel_h + px(14)));
   return l;
@@ -428,7 +440,10 @@ void MapCanvas::Impl::draw_frame(cv::Mat& out, const Layout& l) const {
     int base = 0;
     return cv::getTextSize(t, kFont, l.font * scale, l.thick, &base);
   };
-  if (!title.empty()) put(title, {px(12), px(12) + size_of(title, 1.2).height}, 1.2, ink);
+  const auto lines = title_lines();
+  const int line_h = size_of("Ag", 1.2).height + px(12);
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    put(lines[i], {px(12), px(4) + static_cast<int>(i + 1) * line_h - px(8)}, 1.2, ink);
 
   // Axes: ticks and labels in metres below and left of the map, a border round it.
   const cv::Rect m = l.map;

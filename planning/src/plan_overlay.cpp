@@ -19,14 +19,10 @@ std::string PlanOverlaySummary::describe() const {
   return s;
 }
 
-PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan, const OccupancyMap2D& map,
-                             const PlanOverlayStyle& style) {
+PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan,
+                             const OccupancyMap2D& obstacles, const PlanOverlayStyle& style) {
   PlanOverlaySummary out;
-  const GridGeometry& g = map.geometry;
-  const auto inside = [&](const Eigen::Vector2d& p) {
-    return p.x() >= g.origin_x_m && p.x() <= g.origin_x_m + g.width_m() && p.y() >= g.origin_y_m &&
-           p.y() <= g.origin_y_m + g.height_m();
-  };
+  const auto inside = [&](const Eigen::Vector2d& p) { return canvas.contains(p); };
   std::vector<Eigen::Vector2d> path;
   path.reserve(plan.states.size());
   for (const Waypoint& w : plan.states) {
@@ -39,7 +35,7 @@ PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan, const Occu
 
   // The tether first, so that the path lies on top of it.
   if (plan.robot == PlanRobot::kUgv && plan.tether) {
-    TautTether tether(TetherCorners::from_map(map, false), plan.tether->p_WE,
+    TautTether tether(TetherCorners::from_map(obstacles, false), plan.tether->p_WE,
                       plan.tether->initial_wraps, path.front());
     std::vector<Eigen::Vector2d> wraps;
     const auto note = [&] {
@@ -59,7 +55,8 @@ PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan, const Occu
     out.wraps = wraps.size();
     out.goal_wraps = tether.wrap_points().size();
     out.tether_taut_m = tether.length_m();
-    canvas.add_legend("tether entry E", style.entry, LegendMark::kDiamond);
+    if (inside(plan.tether->p_WE))
+      canvas.add_legend("tether entry E", style.entry, LegendMark::kDiamond);
     canvas.add_legend(fmt::format("tether at the goal ({:.2f} m taut)", tether.length_m()),
                       style.tether, LegendMark::kLine);
     if (!wraps.empty())
@@ -69,7 +66,7 @@ PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan, const Occu
 
   canvas.draw_path(path, style.path, 3);
   // Heading ticks at states at least tick_spacing_px apart along the path (and at both ends).
-  const double px_per_m = canvas.pixels_per_cell() / g.resolution_m;
+  const double px_per_m = canvas.to_pixel({1.0, 0.0}).x() - canvas.to_pixel({0.0, 0.0}).x();
   const double tick_m = 2.0 * style.tick_spacing_px / px_per_m;
   double since_m = 0.0;
   for (std::size_t k = 0; k < path.size(); ++k) {

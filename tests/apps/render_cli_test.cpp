@@ -138,6 +138,32 @@ TEST(RenderCli, PlanPartlyOutsideTheMapIsDrawnAndSaid) {
   EXPECT_TRUE(std::filesystem::is_regular_file(dir / "o.png"));
 }
 
+// A window cuts the picture, not the obstacles the tether wraps on: the same plan gives
+// the same tether whether the block it bends round is in the picture or not.
+TEST(RenderCli, TetherOfAPlanDoesNotDependOnTheWindow) {
+  TempDir dir;
+  const std::string world = "examples/scenarios/tether_detour.yaml";
+  const auto plan = run_cli("plan ugv --world " + world +
+                            " --driven \"1,6.5;10,6.5\" --from 10,4.5,-1.57 --to 10,1.5,-1.57 "
+                            "--tether 12.5 --seed 1 -o " +
+                            (dir / "p.json"));
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  const auto tether_of = [](const std::string& out) {
+    const std::size_t a = out.find("tether "), b = out.find(" taut", a);
+    return a == std::string::npos || b == std::string::npos ? std::string() : out.substr(a, b - a);
+  };
+  const auto whole =
+      run_cli("render " + world + " --plan " + (dir / "p.json") + " -o " + (dir / "whole.png"));
+  const auto window = run_cli("render " + world + " --plan " + (dir / "p.json") +
+                              " --window 5,0,13,8 -o " + (dir / "window.png"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  ASSERT_EQ(window.exit_code, 0) << window.err;
+  EXPECT_THAT(plan.out, HasSubstr(tether_of(whole.out).substr(7)));  // as the planner said
+  EXPECT_FALSE(tether_of(whole.out).empty());
+  EXPECT_EQ(tether_of(window.out), tether_of(whole.out));
+  EXPECT_THAT(window.out, HasSubstr("states outside the map"));
+}
+
 TEST(RenderCli, BadPlanExitsTwoNamingTheFileWithoutPng) {
   TempDir dir;
   write_free_map(dir);

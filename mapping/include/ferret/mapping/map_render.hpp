@@ -105,7 +105,7 @@ class MapCanvas {
   /// kDiamond filled; kRing an outline; kLine and kSwatch draw a square).
   void draw_marker(const Eigen::Vector2d& p_W, Rgb color, LegendMark shape, int radius_px = 6);
 
-  /// What the picture shows (one line above the map; needs `frame`).
+  /// What the picture shows, above the map ('\n' starts a new line); needs `frame`.
   void set_title(std::string title);
   /// A legend entry (in the order added), right of the map; needs `frame`.
   void add_legend(std::string label, Rgb color, LegendMark mark);

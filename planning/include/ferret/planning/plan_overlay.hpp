@@ -36,13 +36,14 @@ struct PlanOverlaySummary {
   [[nodiscard]] std::string describe() const;
 };
 
-/// Draws `plan` on `canvas`, a picture of `map`. Parts outside the map are clipped:
-/// a plan that leaves the window is drawn where it lies inside and the summary
-/// counts the rest (the caller says so in the title). A miniUGV plan's tether is
-/// replayed from its entry and initial wraps with the taut-tether model against the
-/// map's occupied cells (unknown cells do not wrap it), so the wraps are those of
-/// the pictured slice.
-PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan, const OccupancyMap2D& map,
-                             const PlanOverlayStyle& style = {});
+/// Draws `plan` on `canvas`. Parts outside the canvas's map are clipped: a plan that
+/// leaves the window is drawn where it lies inside and the summary counts the rest
+/// (the caller says so in the title). A miniUGV plan's tether is replayed from its
+/// entry and initial wraps with the taut-tether model against the occupied cells of
+/// `obstacles` (unknown cells do not wrap it): the pictured map, or when that is a
+/// window, the whole slice it was cut from, so that corners outside the window
+/// still hold the tether.
+PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan,
+                             const OccupancyMap2D& obstacles, const PlanOverlayStyle& style = {});
 
 }  // namespace ferret
