@@ -5,11 +5,16 @@
 
 Reads DIR/summary.csv (and DIR/sweep_camera_fov.csv, DIR/sweep_ir_fov.csv if present)
 and writes into DIR:
-  time_<map>.png          mean time to find per zone and method, 95% intervals (paper Fig. 6a/b)
+  time_<map>.png          mean time to find per zone and method with the CSV's 95% bootstrap
+                          intervals (paper Fig. 6a/b)
   sweep_camera_fov.png    mean time to find vs camera fov alpha (IR fov held), per map and method
   sweep_ir_fov.png        the same vs IR fov beta (camera fov held)
   ratios.csv              per map and zone: each method's time over rapid's and over the oracle's,
                           and the geometric mean of cdos/rapid over zones 2..N
+  paired_ratios.csv       with DIR/runs.csv: per map, zone and method, the per-object ratio of its
+                          time to rapid's (same object, same noise), their geometric mean with a
+                          95% interval on the log scale (never below zero), and how many objects
+                          it found faster
 Sharded runs: concatenate the shards' CSVs first (docs/object_search.md).
 Needs python3-matplotlib (Debian).
 """
@@ -35,6 +40,43 @@ def read_rows(path):
         return [r for r in reader if r["map"] != "map"]
 
 
+# Student t quantile at 0.975 for 1..30 degrees of freedom; beyond, 1.96 + 2.4/df is
+# within 0.01 of it (the same table the experiment used before its bootstrap intervals).
+T975 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160,
+        2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056,
+        2.052, 2.048, 2.045, 2.042]
+
+
+def t975(df):
+    return T975[df - 1] if df <= 30 else 1.96 + 2.4 / df
+
+
+def geometric_mean_ci95(values):
+    """Geometric mean of positive values and its 95% interval: the Student t interval of
+    the mean of the logs, exponentiated (a ratio's interval that cannot reach zero and is
+    symmetric in a/b versus b/a). (nan, nan, nan) if any value is not positive;
+    (g, nan, nan) for one value."""
+    if not values or any(not (v > 0) or math.isinf(v) for v in values):
+        return math.nan, math.nan, math.nan
+    logs = [math.log(v) for v in values]
+    n = len(logs)
+    m = sum(logs) / n
+    if n < 2:
+        return math.exp(m), math.nan, math.nan
+    sd = math.sqrt(sum((x - m) ** 2 for x in logs) / (n - 1))
+    half = t975(n - 1) * sd / math.sqrt(n)
+    return math.exp(m), math.exp(m - half), math.exp(m + half)
+
+
+def interval(row):
+    """(lo, hi) of a summary row: the bootstrap columns, or an old CSV's symmetric
+    half-width clipped at zero."""
+    if "ci95_lo_time_s" in row:
+        return num(row["ci95_lo_time_s"]), num(row["ci95_hi_time_s"])
+    mean, half = num(row["mean_time_s"]), num(row["ci95_time_s"])
+    return max(0.0, mean - half), mean + half
+
+
 def num(text):
     try:
         v = float(text)
@@ -47,6 +89,20 @@ def ordered(methods):
     return sorted(methods, key=lambda m: (METHOD_ORDER.index(m) if m in METHOD_ORDER else 99, m))
 
 
+def zone_ratio_summary(mrows):
+    """'cdos / rapid over zones 2-5: 0.14' (geometric mean of the zones' mean-time ratios)."""
+    t = {(int(r["zone"]), r["method"]): num(r["mean_time_s"]) for r in mrows}
+    zones = sorted({z for z, _ in t if z >= 2})
+    ratios = [t[(z, "cdos")] / t[(z, "rapid")] for z in zones
+              if (z, "cdos") in t and (z, "rapid") in t and t[(z, "rapid")] > 0]
+    ratios = [x for x in ratios if x > 0 and not math.isnan(x)]
+    if not ratios:
+        return ""
+    g = math.exp(sum(math.log(x) for x in ratios) / len(ratios))
+    return "cdos / rapid over zones %d-%d: %.2f (geometric mean of the zone means)" % (
+        zones[0], zones[-1], g)
+
+
 def bar_plots(rows, out_dir):
     by_map = defaultdict(list)
     for r in rows:
@@ -56,18 +112,29 @@ def bar_plots(rows, out_dir):
         zones = sorted({int(r["zone"]) for r in mrows})
         methods = ordered({r["method"] for r in mrows})
         width = 0.8 / len(methods)
-        fig, ax = plt.subplots(figsize=(7, 4))
+        fig, ax = plt.subplots(figsize=(8, 4.6))
         for k, method in enumerate(methods):
             cell = {int(r["zone"]): r for r in mrows if r["method"] == method}
             xs = [z + (k - (len(methods) - 1) / 2) * width for z in zones]
             means = [num(cell[z]["mean_time_s"]) if z in cell else math.nan for z in zones]
-            cis = [num(cell[z]["ci95_time_s"]) if z in cell else 0 for z in zones]
-            ax.bar(xs, means, width, yerr=cis, capsize=2, label=method, color=COLORS.get(method))
+            lows, highs = [], []
+            for z, m in zip(zones, means):
+                lo, hi = interval(cell[z]) if z in cell else (math.nan, math.nan)
+                # No bar where there is no interval (fewer than two finds).
+                lows.append(m - lo if not math.isnan(lo) else 0.0)
+                highs.append(hi - m if not math.isnan(hi) else 0.0)
+            found = sum(int(cell[z]["found"]) for z in zones if z in cell)
+            runs = sum(int(cell[z]["runs"]) for z in zones if z in cell)
+            ax.bar(xs, means, width, yerr=[lows, highs], capsize=2, color=COLORS.get(method),
+                   label="%s (found %d/%d)" % (method, found, runs), error_kw={"elinewidth": 0.8})
         ax.set_xticks(zones)
         ax.set_xticklabels(["zone %d" % z for z in zones])
         ax.set_ylabel("mean time to find the object (s)")
-        ax.set_title("%s map: time to find per zone (95%% intervals)" % name)
-        ax.legend()
+        ax.set_ylim(bottom=0)
+        result = zone_ratio_summary(mrows)
+        ax.set_title("%s map: mean time to find per zone and method\n%s%s95%% bootstrap intervals"
+                     % (name, result, "; " if result else ""), fontsize=10)
+        ax.legend(fontsize=8)
         ax.grid(axis="y", alpha=0.3)
         fig.tight_layout()
         path = os.path.join(out_dir, "time_%s.png" % name)
@@ -77,7 +144,7 @@ def bar_plots(rows, out_dir):
     return written
 
 
-def sweep_plot(rows, key, label, out_dir, name):
+def sweep_plot(rows, key, label, held, out_dir, name):
     # Mean over zones of each (map, method, fov), weighted by runs found.
     acc = defaultdict(lambda: [0.0, 0])
     for r in rows:
@@ -97,9 +164,23 @@ def sweep_plot(rows, key, label, out_dir, name):
             if pts:
                 ax.plot([p[0] for p in pts], [p[1] for p in pts], styles[mi % len(styles)],
                         color=COLORS.get(method), label="%s, %s" % (method, m))
+    # The result: the range of cdos / rapid over the swept values, per map.
+    spans = []
+    for m in maps:
+        per = {}
+        for (mm, method, fov), v in acc.items():
+            if mm == m and v[1]:
+                per[(method, fov)] = v[0] / v[1]
+        r = [per[("cdos", f)] / per[("rapid", f)] for (meth, f) in per if meth == "cdos" and ("rapid", f) in per]
+        if r:
+            spans.append("%s %.2f-%.2f" % (m, min(r), max(r)))
+    held_rows = {num(r[held[0]]) for r in rows}
+    held_text = "%s = %s deg" % (held[1], ", ".join("%g" % v for v in sorted(held_rows)))
     ax.set_xlabel(label)
     ax.set_ylabel("mean time to find (s), all zones")
-    ax.set_title("time to find vs %s" % label)
+    ax.set_ylim(bottom=0)
+    ax.set_title("time to find vs %s (%s), mean over all zones' finds\n%s" % (
+        label.replace(" (deg)", ""), held_text, ("cdos / rapid: " + ", ".join(spans)) if spans else ""), fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -128,6 +209,28 @@ def ratios(rows, out_dir):
     return path
 
 
+def paired_ratios(runs, out_dir):
+    """Per (map, zone, method): the ratio of its time to rapid's on each object both found."""
+    time = {}
+    for r in runs:
+        if r["experiment"] == "main" and r["found"] == "1":
+            time[(r["map"], int(r["zone"]), r["method"], int(r["object"]))] = num(r["time_s"])
+    keys = sorted({(m, z, meth) for (m, z, meth, _) in time if meth != "rapid"},
+                  key=lambda k: (k[0], k[1], ordered([k[2]])))
+    lines = ["map,zone,method,baseline,pairs,geomean_ratio,ci95_lo,ci95_hi,faster"]
+    for m, z, meth in keys:
+        pairs = [(t, time[(m, z, "rapid", o)]) for (mm, zz, me, o), t in time.items()
+                 if (mm, zz, me) == (m, z, meth) and (m, z, "rapid", o) in time]
+        ratios = [a / b for a, b in pairs if b > 0]
+        g, lo, hi = geometric_mean_ci95(ratios)
+        lines.append("%s,%d,%s,rapid,%d,%.4g,%.4g,%.4g,%d" % (m, z, meth, len(ratios), g, lo, hi,
+                                                             sum(a < b for a, b in pairs)))
+    path = os.path.join(out_dir, "paired_ratios.csv")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: plot_experiment.py DIR")
@@ -135,11 +238,17 @@ def main():
     rows = read_rows(os.path.join(out_dir, "summary.csv"))
     written = bar_plots(rows, out_dir)
     written.append(ratios(rows, out_dir))
-    for csv_name, key, label, png in [("sweep_camera_fov.csv", "camera_fov_deg", "camera fov alpha (deg)", "sweep_camera_fov.png"),
-                                      ("sweep_ir_fov.csv", "ir_fov_deg", "IR fov beta (deg)", "sweep_ir_fov.png")]:
+    runs_path = os.path.join(out_dir, "runs.csv")
+    if os.path.exists(runs_path):
+        written.append(paired_ratios(read_rows(runs_path), out_dir))
+    for csv_name, key, label, held, png in [
+            ("sweep_camera_fov.csv", "camera_fov_deg", "camera fov alpha (deg)", ("ir_fov_deg", "IR fov beta"),
+             "sweep_camera_fov.png"),
+            ("sweep_ir_fov.csv", "ir_fov_deg", "IR fov beta (deg)", ("camera_fov_deg", "camera fov alpha"),
+             "sweep_ir_fov.png")]:
         p = os.path.join(out_dir, csv_name)
         if os.path.exists(p):
-            written.append(sweep_plot(read_rows(p), key, label, out_dir, png))
+            written.append(sweep_plot(read_rows(p), key, label, held, out_dir, png))
     print("plotted: " + " ".join(written))
 
 

@@ -4,6 +4,8 @@
 // Prints the time to find, the path length and the number of decisions; with --out,
 // writes G.png, O.png, G_O.png (the paper's map figure) and log.json.
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -120,7 +122,10 @@ void run(const Options& o) {
   if (o.out.empty()) return;
 
   const fs::path out(o.out);
-  write_exploration_images(map, object, r, out);
+  write_exploration_images(
+      map, object, r, out,
+      fmt::format("{}, {}, object at ({:g}, {:g}), seed {}", fs::path(o.map).filename().string(),
+                  s.method, object.x(), object.y(), o.seed));
   nlohmann::json log;
   log["map"] = o.map;
   log["method"] = o.method;

@@ -5,12 +5,14 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "cli_options.hpp"
 #include "command.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/world_octree.hpp"
@@ -24,7 +26,7 @@ void require_extension(const std::string& path, std::initializer_list<const char
   const std::string ext = fs::path(path).extension().string();
   for (const char* e : exts)
     if (ext == e) return;
-  throw InputError("-o", "", what, path);
+  throw InputError("--out", "", what, path);
 }
 
 std::string vec3(const Eigen::Vector3d& v) {
@@ -78,9 +80,9 @@ void add_build(CLI::App& world) {
   auto* build =
       world.add_subcommand("build", "Voxelize a world YAML into an OctoMap .bt or .ot file");
   build->add_option("world", args->input, "world YAML")->required();
-  build->add_option("-o,--output", args->output, "output .bt (max-likelihood) or .ot (log-odds)")
-      ->required();
+  add_out_option(build, args->output, "output .bt (max-likelihood) or .ot (log-odds)");
   build->callback([args] {
+    require_out(args->output, "an output .bt or .ot");
     require_extension(args->output, {".bt", ".ot"}, "an output path ending in .bt or .ot");
     const auto t0 = std::chrono::steady_clock::now();
     const WorldSpec w = load_world(args->input);
@@ -111,16 +113,20 @@ void add_slice(CLI::App& world) {
       ->add_option("--band", args->options.half_band_m,
                    "voxel layers within +-band of z count (occupied if any is)")
       ->capture_default_str();
-  slice->add_option("--window", args->window, "cut to x0,y0,x1,y1 (m)")
+  slice
+      ->add_option("--window", args->window,
+                   "cut to x0,y0,x1,y1 (m) (default: the map's known extent)")
       ->expected(4)
       ->delimiter(',');
   slice->add_option("--space", args->space,
-                    "cut to a hidden space (and 0.5 m around it); world YAML input");
-  slice
-      ->add_option("-o,--output", args->output,
-                   "output map_server YAML (the PGM is written beside it)")
-      ->required();
+                    "cut to a hidden space (and 0.5 m around it); world YAML input (default: "
+                    "the whole world)");
+  add_out_option(slice, args->output, "output map_server YAML (the PGM is written beside it)");
   slice->callback([args] {
+    require_out(args->output, "an output map_server YAML");
+    if (!std::isfinite(args->options.z_m)) throw InputError("--z", "", "a finite height in metres");
+    if (!(args->options.half_band_m >= 0 && args->options.half_band_m < 1e3))
+      throw InputError("--band", "", "a half band in [0, 1000) m");
     require_extension(args->output, {".yaml"}, "an output path ending in .yaml");
     std::optional<WorldSpec> spec;
     const auto tree = load_or_build_octree(args->input, &spec);

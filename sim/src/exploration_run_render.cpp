@@ -1,6 +1,8 @@
-// PNG figures of one search, like the paper's map figure: G, O with the object's
-// cells in yellow, and both together; frontiers green, the driven path blue. Drawn
-// with the mapping module's MapCanvas (scale bar included).
+// PNG figures of one search, like the paper's map figure: G, O as a probability per
+// cell with its colour bar, and both together; frontiers green, the driven path
+// magenta. Drawn with the mapping module's MapCanvas (title, metre axes, legend).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -10,9 +12,10 @@
 namespace ferret {
 namespace {
 
-const Rgb kFrontier{0, 190, 0}, kObject{255, 220, 0}, kEvidence{255, 140, 0}, kPath{0, 70, 210},
-    kTruthWall{215, 215, 215}, kTruthObject{220, 0, 0}, kSeenLow{255, 255, 255},
-    kSeenHigh{90, 90, 255};
+const Rgb kFrontier{0, 190, 0}, kObject{255, 220, 0}, kEvidence{255, 140, 0}, kPath{210, 0, 150},
+    kTruthWall{215, 215, 215}, kTruthObject{220, 0, 0}, kProbLow{50, 80, 200},
+    kProbHigh{255, 220, 0}, kUnknown{160, 160, 160},
+    kUnseen{228, 228, 228};  // lighter than the bar's grey-green middle (p = 0.5)
 
 // G as a map: free, occupied, unknown.
 OccupancyMap2D grid_as_map(const IrGrid& grid) {
@@ -53,22 +56,43 @@ void draw_truth_walls(MapCanvas& canvas, const OccupancyMap2D& truth, const IrGr
   canvas.draw_cells(truth.geometry, hidden, kTruthWall);
 }
 
-void draw_objects(MapCanvas& canvas, const ObjectMap& objects, bool seen_field) {
+// O as what it is, a probability per observed cell, on the colour bar's scale.
+void draw_probability(MapCanvas& canvas, const ObjectMap& objects) {
   const GridGeometry& g = objects.geometry();
-  if (seen_field) {  // seen without the object: white (p = 0.5) to blue (p = 0)
-    std::vector<double> values(g.size(), -1.0);
-    for (std::size_t idx = 0; idx < values.size(); ++idx) {
-      const double p = objects.probability_at(idx);
-      if (objects.observed(idx) && p <= 0.5) values[idx] = (0.5 - p) / 0.5;
-    }
-    canvas.draw_field(g, values, kSeenLow, kSeenHigh, 0.8);
-  }
+  std::vector<double> values(g.size(), -1.0);  // unobserved cells stay grey
+  for (std::size_t idx = 0; idx < values.size(); ++idx)
+    if (objects.observed(idx)) values[idx] = objects.probability_at(idx);
+  canvas.draw_field(g, values, kProbLow, kProbHigh, 1.0);
+  const auto& o = objects.options();
+  canvas.set_colour_bar(ColourBar{"P(object) per cell",
+                                  kProbLow,
+                                  kProbHigh,
+                                  {{o.lambda1, fmt::format("lambda1 = {:.2f}", o.lambda1)},
+                                   {o.lambda2, fmt::format("lambda2 = {:.2f}", o.lambda2)}}});
+  canvas.add_legend("not seen by the camera (prior 0.5)", kUnseen, LegendMark::kSwatch);
+}
+
+// O's evidence on G: cells above 0.5 in orange, above lambda2 in yellow.
+void draw_evidence(MapCanvas& canvas, const ObjectMap& objects) {
+  const GridGeometry& g = objects.geometry();
   std::vector<Cell> object, evidence;
   for (const std::size_t idx : objects.evidence_cells())
     (objects.label_of(objects.probability_at(idx)) == ObjectLabel::kObject ? object : evidence)
         .push_back(g.cell_of_index(idx));
   canvas.draw_cells(g, evidence, kEvidence);
   canvas.draw_cells(g, object, kObject);
+  const auto& o = objects.options();
+  canvas.add_legend(fmt::format("O: evidence, 0.5 < p <= lambda2 = {:.2f}", o.lambda2), kEvidence,
+                    LegendMark::kSwatch);
+  canvas.add_legend(fmt::format("O: object, p > lambda2 = {:.2f}", o.lambda2), kObject,
+                    LegendMark::kSwatch);
+}
+
+void legend_for_g(MapCanvas& canvas) {
+  canvas.add_legend("G: free", Rgb{255, 255, 255}, LegendMark::kSwatch);
+  canvas.add_legend("G: occupied", Rgb{0, 0, 0}, LegendMark::kSwatch);
+  canvas.add_legend("G: unknown", kUnknown, LegendMark::kSwatch);
+  canvas.add_legend("walls G has not seen (truth)", kTruthWall, LegendMark::kSwatch);
 }
 
 void draw_run(MapCanvas& canvas, const GridGeometry& g, const Eigen::Vector2d& object_W,
@@ -83,28 +107,50 @@ void draw_run(MapCanvas& canvas, const GridGeometry& g, const Eigen::Vector2d& o
     canvas.draw_pose(r.trajectory.back(), kPath, 0.4);
   }
   canvas.draw_circle(object_W, 0.12, kTruthObject);
+  canvas.add_legend("frontier cells of G at the end", kFrontier, LegendMark::kSwatch);
+  canvas.add_legend("driven path", kPath, LegendMark::kLine);
+  canvas.add_legend("start", kPath, LegendMark::kRing);
+  canvas.add_legend("end pose (dot, heading line)", kPath, LegendMark::kDot);
+  canvas.add_legend("object (ground truth)", kTruthObject, LegendMark::kRing);
+}
+
+std::string outcome(const EpisodeResult& r) {
+  if (r.found)
+    return fmt::format("found in {:.1f} s, {:.1f} m, {} decisions", r.time_s, r.path_m,
+                       r.decisions);
+  return fmt::format("not found ({}) after {:.1f} s, {:.1f} m", r.end_reason, r.time_s, r.path_m);
 }
 
 }  // namespace
 
 void write_exploration_images(const OccupancyMap2D& truth, const Eigen::Vector2d& object_W,
-                              const EpisodeResult& r, const std::filesystem::path& dir) {
+                              const EpisodeResult& r, const std::filesystem::path& dir,
+                              const std::string& what) {
   if (!r.grid || !r.objects)
     throw std::invalid_argument("write_exploration_images: the run was not recorded");
   const GridGeometry& g = r.grid->geometry();
   const OccupancyMap2D g_map = grid_as_map(*r.grid);
 
+  const std::string result = (what.empty() ? "" : what + ": ") + outcome(r);
+
   MapCanvas img_g(g_map);
+  img_g.set_title("G, IR occupancy grid; " + result);
   draw_truth_walls(img_g, truth, *r.grid);
+  legend_for_g(img_g);
   draw_run(img_g, g, object_W, r);
 
-  MapCanvas img_o(observed_as_map(*r.objects));
-  draw_objects(img_o, *r.objects, true);
+  RenderOptions o_options;
+  o_options.unknown = kUnseen;
+  MapCanvas img_o(observed_as_map(*r.objects), o_options);
+  img_o.set_title("O, object map; " + result);
+  draw_probability(img_o, *r.objects);
   draw_run(img_o, g, object_W, r);
 
   MapCanvas img_go(g_map);
+  img_go.set_title("G and O's evidence; " + result);
   draw_truth_walls(img_go, truth, *r.grid);
-  draw_objects(img_go, *r.objects, false);
+  legend_for_g(img_go);
+  draw_evidence(img_go, *r.objects);
   draw_run(img_go, g, object_W, r);
 
   std::filesystem::create_directories(dir);

@@ -51,6 +51,32 @@ double nice_step(double range) {
   return 10.0 * mag;
 }
 
+// A row of legend entries (a line, a filled box, or a shaded box) right-aligned above a panel.
+struct Key {
+  std::string label;
+  cv::Scalar colour;
+  bool box = false;
+};
+void draw_keys(cv::Mat& img, const Panel& p, const std::vector<Key>& keys) {
+  int x = p.area.x + p.area.width;
+  const int y = p.area.y - 12;
+  for (auto it = keys.rbegin(); it != keys.rend(); ++it) {
+    int base = 0;
+    const cv::Size ts = cv::getTextSize(it->label, cv::FONT_HERSHEY_SIMPLEX, 0.42, 1, &base);
+    x -= ts.width;
+    cv::putText(img, it->label, {x, y}, cv::FONT_HERSHEY_SIMPLEX, 0.42, cv::Scalar(40, 40, 40), 1,
+                cv::LINE_AA);
+    x -= 28;
+    if (it->box) {
+      cv::rectangle(img, cv::Rect(x, y - 10, 22, 11), it->colour, cv::FILLED);
+      cv::rectangle(img, cv::Rect(x, y - 10, 22, 11), cv::Scalar(120, 120, 120), 1);
+    } else {
+      cv::line(img, {x, y - 4}, {x + 22, y - 4}, it->colour, 2, cv::LINE_AA);
+    }
+    x -= 18;
+  }
+}
+
 template <class Get>
 void polyline(cv::Mat& img, const Panel& p, const TetherSimResult& r, Get get,
               const cv::Scalar& color) {
@@ -65,7 +91,7 @@ void polyline(cv::Mat& img, const Panel& p, const TetherSimResult& r, Get get,
 void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double total_length_m,
                            const std::filesystem::path& path) {
   if (r.log.empty()) throw std::invalid_argument("tether plot: empty log");
-  cv::Mat img(720, 1100, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::Mat img(750, 1100, CV_8UC3, cv::Scalar(255, 255, 255));
   const double t0 = r.log.front().t_s, t1 = r.log.back().t_s;
   double lo = total_length_m, hi = 0.0;
   for (const auto& s : r.log) {
@@ -73,7 +99,7 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
     hi = std::max({hi, s.released_m, s.required_m});
   }
   const double pad = std::max(0.1, 0.05 * (hi - lo));
-  const Panel top{cv::Rect(80, 60, 990, 330), t0, t1, std::max(0.0, lo - pad),
+  const Panel top{cv::Rect(80, 90, 990, 330), t0, t1, std::max(0.0, lo - pad),
                   std::min(total_length_m + pad, hi + pad)};
   // Slack in millimetres, fitted to the run (a taut line's millimetres would vanish
   // on a scale that always showed the whole [0, s_max] band).
@@ -83,7 +109,7 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
     smax = std::max(smax, 1e3 * s.slack_m);
   }
   const double spad = 0.1 * (smax - smin);
-  const Panel bottom{cv::Rect(80, 440, 990, 230), t0, t1, smin - spad, smax + spad};
+  const Panel bottom{cv::Rect(80, 470, 990, 230), t0, t1, smin - spad, smax + spad};
 
   // Snag intervals shaded in both panels.
   for (std::size_t i = 0; i < r.log.size(); ++i) {
@@ -98,30 +124,50 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
                 cv::Rect(bottom.to_px(t0, std::min(1e3 * max_slack_m, bottom.y1)),
                          bottom.to_px(t1, std::max(0.0, bottom.y0))),
                 cv::Scalar(225, 245, 225), cv::FILLED);
-  draw_axes(img, top, "tether length [m]: released l_t (blue), required (red), L (grey)",
-            nice_step(top.y1 - top.y0));
-  draw_axes(img, bottom, "slack l_t - required [mm] (green band: [0, s_max]; orange: snag)",
-            nice_step(bottom.y1 - bottom.y0));
+  const cv::Scalar kReleased(200, 90, 20), kRequired(40, 40, 220), kLimit(150, 150, 150),
+      kBand(225, 245, 225), kSnag(210, 230, 255);
+  draw_axes(img, top, "tether length [m]", nice_step(top.y1 - top.y0));
+  draw_axes(img, bottom, "slack = l_t - required [mm]", nice_step(bottom.y1 - bottom.y0));
+  std::vector<Key> top_keys{{"released l_t", kReleased},
+                            {"required (taut, ground truth)", kRequired},
+                            {fmt::format("L = {:g} m{}", total_length_m,
+                                         total_length_m <= top.y1 ? "" : " (above the panel)"),
+                             kLimit}};
+  std::vector<Key> bottom_keys{
+      {"slack", kReleased},
+      {fmt::format("allowed [0, s_max = {:g} mm]", 1e3 * max_slack_m), kBand, true}};
+  if (std::any_of(r.log.begin(), r.log.end(), [](const auto& s) { return s.snagged; })) {
+    top_keys.push_back({"snagged", kSnag, true});
+    bottom_keys.push_back({"snagged", kSnag, true});
+  }
+  draw_keys(img, top, top_keys);
+  draw_keys(img, bottom, bottom_keys);
   if (total_length_m <= top.y1)
     cv::line(img, top.to_px(t0, total_length_m), top.to_px(t1, total_length_m),
              cv::Scalar(150, 150, 150), 1);
   polyline(
-      img, top, r, [](const TetherSimSample& s) { return s.required_m; }, cv::Scalar(40, 40, 220));
+      img, top, r, [](const TetherSimSample& s) { return s.required_m; }, kRequired);
   polyline(
-      img, top, r, [](const TetherSimSample& s) { return s.released_m; }, cv::Scalar(200, 90, 20));
+      img, top, r, [](const TetherSimSample& s) { return s.released_m; }, kReleased);
   polyline(
-      img, bottom, r, [](const TetherSimSample& s) { return 1e3 * s.slack_m; },
-      cv::Scalar(200, 90, 20));
+      img, bottom, r, [](const TetherSimSample& s) { return 1e3 * s.slack_m; }, kReleased);
   cv::line(img, bottom.to_px(t0, 0.0), bottom.to_px(t1, 0.0), cv::Scalar(0, 0, 0), 1);
   const auto& m = r.metrics;
+  // Two lines: what ran, then how it went.
   cv::putText(img,
-              fmt::format("{} / {}: slack RMS {:.2f} mm, max {:.1f} mm, over-tension events {}, "
-                          "limit active {:.2f} s",
-                          r.scenario, r.controller, 1e3 * m.slack_rms_m, 1e3 * m.max_slack_m,
-                          m.over_tension_events, m.limit_active_s),
-              cv::Point(80, 30), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1,
+              fmt::format("tether-sim {} trajectory, {}: slack RMS {:.2f} mm, peak {:.1f} N",
+                          r.scenario, r.controller == "mpc" ? "MPC" : r.controller,
+                          1e3 * m.slack_rms_m, m.max_tension_n),
+              cv::Point(20, 26), cv::FONT_HERSHEY_SIMPLEX, 0.62, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);
-  cv::putText(img, "time [s]", cv::Point(540, 705), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+  cv::putText(img,
+              fmt::format("slack max {:.1f} mm, min {:.1f} mm; {} over-tension events; l_t at L "
+                          "for {:.2f} s",
+                          1e3 * m.max_slack_m, 1e3 * m.min_slack_m, m.over_tension_events,
+                          m.limit_active_s),
+              cv::Point(20, 50), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(40, 40, 40), 1,
+              cv::LINE_AA);
+  cv::putText(img, "time [s]", cv::Point(540, 735), cv::FONT_HERSHEY_SIMPLEX, 0.45,
               cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
     // imwrite picks the format from the extension, so the temporary keeps ".png".

@@ -45,7 +45,7 @@ TEST(ExperimentCli, WritesTheCsvsWithTheExactSummaryHeader) {
   EXPECT_THAT(r.err, HasSubstr("runs/s"));  // the progress line
   const std::string summary = slurp(std::filesystem::path(out) / "summary.csv");
   EXPECT_EQ(summary.substr(0, summary.find('\n')),
-            "map,zone,method,runs,found,mean_time_s,ci95_time_s,mean_path_m");
+            "map,zone,method,runs,found,mean_time_s,ci95_lo_time_s,ci95_hi_time_s,mean_path_m");
   EXPECT_THAT(summary, HasSubstr("room,2,oracle,2,2,"));
   const std::string runs = slurp(std::filesystem::path(out) / "runs.csv");
   EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 1 + 2 * 3 * 2 + 2 * 2 * 2 * 1);

@@ -12,6 +12,7 @@
 namespace ferret::test {
 namespace {
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 const std::string kSmall = "examples/worlds/small.yaml";
 
@@ -134,7 +135,31 @@ TEST(WorldCli, OutputExtensionsAreChecked) {
   EXPECT_THAT(r.err, HasSubstr("--z"));
   r = run_cli("world build no/such/world.yaml -o " + (dir / "w.bt"));
   EXPECT_EQ(r.exit_code, 2);
+  for (const char* bad : {"--z nan", "--z inf", "--band -1", "--band nan"}) {
+    r = run_cli("world slice " + kSmall + " " + bad + " -o " + (dir / "s.yaml"));
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_THAT(r.err, HasSubstr(std::string(bad).substr(0, std::string(bad).find(' '))));
+  }
   EXPECT_EQ(dir.count(), 0u);
+}
+
+TEST(WorldCli, OutFollowsTheCliConvention) {
+  TempDir dir;
+  // -o/--out, with --output kept as a hidden alias; a missing one names --out.
+  ASSERT_EQ(run_cli("world build " + kSmall + " --out " + (dir / "a.bt")).exit_code, 0);
+  ASSERT_EQ(run_cli("world build " + kSmall + " --output " + (dir / "b.bt")).exit_code, 0);
+  EXPECT_EQ(read(dir / "a.bt"), read(dir / "b.bt"));
+  ASSERT_EQ(run_cli("world slice " + (dir / "a.bt") + " --out " + (dir / "s.yaml")).exit_code, 0);
+  for (const std::string& cmd : {"world build " + kSmall, "world slice " + kSmall}) {
+    const auto r = run_cli(cmd);
+    EXPECT_EQ(r.exit_code, 2) << cmd;
+    EXPECT_THAT(r.err, HasSubstr("--out")) << cmd;
+  }
+  const auto help = run_cli("world slice --help");
+  EXPECT_THAT(help.out, HasSubstr("-o,--out"));
+  EXPECT_THAT(help.out, Not(HasSubstr("--output")));
+  EXPECT_THAT(help.out, HasSubstr("--z FLOAT=0.03"));  // defaults are shown
+  EXPECT_EQ(dir.count(), 4u);                          // a.bt, b.bt, s.yaml, s.pgm
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ TEST(MapCanvas, CellColoursAndRowOrder) {
   RenderOptions o;
   o.pixels_per_cell = 10;
   o.scale_bar = false;
+  o.frame = false;
   const MapCanvas canvas(tiny_map(), o);
   const RgbImage img = canvas.image();
   ASSERT_EQ(img.width, 30);
@@ -52,6 +53,7 @@ TEST(MapCanvas, OverlaysLandOnTheirCells) {
   RenderOptions o;
   o.pixels_per_cell = 10;
   o.scale_bar = false;
+  o.frame = false;
   MapCanvas canvas(tiny_map(), o);
   // A finer grid (0.5 m) drawn over the map: its cell (2, 3) is world [11, 11.5] x [21.5, 22].
   const GridGeometry fine{10.0, 20.0, 0.5, 6, 4};
@@ -73,6 +75,7 @@ TEST(MapCanvas, PngRoundTripAndScaleBar) {
   TempDir dir;
   RenderOptions o;
   o.pixels_per_cell = 100;
+  o.frame = false;
   MapCanvas canvas(tiny_map(), o);
   canvas.draw_path({{10.5, 20.5}, {12.5, 21.5}}, Rgb{0, 200, 0});
   canvas.save_png(dir / "m.png");
@@ -107,6 +110,129 @@ TEST(MapCanvas, WorldAnnotationsMarkObjectsAndDropZone) {
   EXPECT_TRUE(same(pixel(-2.0, -2.5), Rgb{255, 140, 0}));    // bottom of the drop zone's circle
   EXPECT_TRUE(same(pixel(-0.601, -1.0), Rgb{30, 80, 230}));  // the cellar's marker
   EXPECT_TRUE(same(pixel(-0.3, -1.0), Rgb{0, 160, 0}));      // the entry heading, into the cellar
+
+  // The legend lists what the picture shows: the whole world has the drop zone (orange),
+  // a window on the cellar does not.
+  const auto orange_in_legend = [](const MapCanvas& c) {
+    const RgbImage im = c.image();
+    const PixelRect l = c.legend_area();
+    int n = 0;
+    for (int r = l.y; r < l.y + l.height; ++r)
+      for (int col = l.x; col < l.x + l.width; ++col) n += same(im.at(col, r), Rgb{255, 140, 0});
+    return n;
+  };
+  EXPECT_GT(orange_in_legend(canvas), 5);
+  at_floor.window_m = hidden_space_window(world, "cellar", 0.5, "--space");
+  MapCanvas cellar(slice_octree(*build_world_octree(world), at_floor), o);
+  draw_world_annotations(cellar, world);
+  EXPECT_EQ(orange_in_legend(cellar), 0);
+  EXPECT_GT(cellar.legend_area().height, 0);  // entry, marker, object
+}
+
+bool dark(Rgb c) { return c.r < 128 && c.g < 128 && c.b < 128; }
+bool white(Rgb c) { return same(c, Rgb{255, 255, 255}); }
+
+// 40 x 20 cells at 0.25 m from (-2, 1): 10 x 5 m, 10 px a cell -> a 400 x 200 px map.
+OccupancyMap2D field_map() {
+  return OccupancyMap2D::filled(GridGeometry{-2.0, 1.0, 0.25, 40, 20}, CellState::kFree);
+}
+
+TEST(MapCanvas, FrameHasTitleMetreAxesAndLegend) {
+  RenderOptions o;
+  o.pixels_per_cell = 10;
+  o.scale_bar = false;
+  MapCanvas canvas(field_map(), o);
+  const Rgb swatch{200, 0, 160};
+  canvas.set_title("field, slice z = 0.03 m");
+  canvas.add_legend("plan path", swatch, LegendMark::kSwatch);
+  const RgbImage img = canvas.image();
+  const PixelRect m = canvas.map_area();
+  ASSERT_EQ(m.width, 400);
+  ASSERT_EQ(m.height, 200);
+  ASSERT_GT(m.x, 0);
+  ASSERT_GT(m.y, 0);
+  EXPECT_GT(img.width, m.x + m.width);  // the legend's panel
+  EXPECT_GT(img.height, m.y + m.height);
+  // World (-2, 6) is the map's top-left corner; (8, 1) its bottom-right.
+  EXPECT_TRUE(canvas.to_pixel({-2.0, 6.0}).isApprox(Eigen::Vector2d(m.x, m.y)));
+  EXPECT_TRUE(canvas.to_pixel({8.0, 1.0}).isApprox(Eigen::Vector2d(m.x + 400, m.y + 200)));
+  EXPECT_TRUE(white(img.at(m.x + 5, m.y + 5)));  // the map itself is unchanged
+  // The title: ink above the map.
+  int title_ink = 0;
+  for (int r = 0; r < m.y; ++r)
+    for (int c = 0; c < img.width; ++c) title_ink += dark(img.at(c, r));
+  EXPECT_GT(title_ink, 50);
+  // x ticks: 10 m / 8 = 1.25 m rounds up to a 2 m step, so the tick at x = 0 m is
+  // 2 m / 0.25 m * 10 px = 80 px right of the map's left edge and x = 1 m has none.
+  EXPECT_TRUE(dark(img.at(m.x + 80, m.y + m.height + 3)));
+  EXPECT_FALSE(dark(img.at(m.x + 120, m.y + m.height + 3)));
+  // y ticks: y = 2 m is 4 m / 0.25 m * 10 px = 160 px below the map's top edge.
+  EXPECT_TRUE(dark(img.at(m.x - 3, m.y + 160)));
+  // Tick labels: ink in the margins left of and below the map.
+  int left_ink = 0, bottom_ink = 0;
+  for (int r = m.y; r < m.y + m.height; ++r)
+    for (int c = 0; c < m.x - 8; ++c) left_ink += dark(img.at(c, r));
+  for (int r = m.y + m.height + 8; r < img.height; ++r)
+    for (int c = m.x; c < m.x + m.width; ++c) bottom_ink += dark(img.at(c, r));
+  EXPECT_GT(left_ink, 30);
+  EXPECT_GT(bottom_ink, 30);
+  // The legend's swatch: its exact colour inside the legend box, nowhere on the map.
+  const PixelRect l = canvas.legend_area();
+  ASSERT_GT(l.width, 0);
+  EXPECT_GE(l.x, m.x + m.width);
+  int in_box = 0;
+  for (int r = l.y; r < l.y + l.height; ++r)
+    for (int c = l.x; c < l.x + l.width; ++c) in_box += same(img.at(c, r), swatch);
+  EXPECT_GT(in_box, 50);
+  EXPECT_EQ(canvas.colour_bar_area().width, 0);  // none set
+
+  o.frame = false;  // the map alone, pixel for pixel
+  const MapCanvas bare(field_map(), o);
+  EXPECT_EQ(bare.image().width, 400);
+  EXPECT_EQ(bare.map_area().x, 0);
+}
+
+TEST(MapCanvas, ColourBarRunsFromLowToHighWithThresholdsMarked) {
+  RenderOptions o;
+  o.pixels_per_cell = 10;
+  MapCanvas canvas(field_map(), o);
+  const Rgb low{50, 80, 200}, high{255, 220, 0};
+  canvas.set_colour_bar({"P(object) per cell", low, high, {{0.10, "lambda1"}, {0.95, "lambda2"}}});
+  // A field of 0.5 everywhere takes the bar's middle colour.
+  canvas.draw_field(field_map().geometry, std::vector<double>(800, 0.5), low, high, 1.0);
+  const RgbImage img = canvas.image();
+  const PixelRect b = canvas.colour_bar_area();
+  ASSERT_GT(b.height, 100);
+  ASSERT_GT(b.width, 5);
+  const int c = b.x + b.width / 2;
+  const auto row_of = [&](double v) {
+    return b.y + static_cast<int>(std::lround((1 - v) * (b.height - 1)));
+  };
+  EXPECT_TRUE(same(img.at(c, row_of(0.0)), low));
+  EXPECT_TRUE(same(img.at(c, row_of(1.0)), high));
+  // Bottom to top: red and green never fall, blue never rises (the marks' rows excepted).
+  Rgb prev = low;
+  int samples = 0;
+  for (int r = b.y + b.height - 1; r >= b.y; --r) {
+    if (std::abs(r - row_of(0.10)) <= 2 || std::abs(r - row_of(0.95)) <= 2) continue;
+    const Rgb p = img.at(c, r);
+    EXPECT_GE(p.r, prev.r) << r;
+    EXPECT_GE(p.g, prev.g) << r;
+    EXPECT_LE(p.b, prev.b) << r;
+    prev = p;
+    ++samples;
+  }
+  EXPECT_GT(samples, 100);
+  // The thresholds are dark lines across the bar.
+  EXPECT_TRUE(dark(img.at(c, row_of(0.10))));
+  EXPECT_TRUE(dark(img.at(c, row_of(0.95))));
+  // The field's p = 0.5 is the bar's colour half way up.
+  const Rgb mid = img.at(canvas.map_area().x + 200, canvas.map_area().y + 100);
+  const Rgb bar_mid = img.at(c, b.y + (b.height - 1) / 2);
+  EXPECT_NEAR(mid.r, bar_mid.r, 2);
+  EXPECT_NEAR(mid.g, bar_mid.g, 2);
+  EXPECT_NEAR(mid.b, bar_mid.b, 2);
+  EXPECT_THROW(canvas.set_colour_bar({"p", low, high, {{1.5, "x"}}}), InputError);
 }
 
 TEST(MapServerImage, PngThroughOpenCv) {

@@ -3,11 +3,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include "ferret/core/error.hpp"
+#include "ferret/core/random.hpp"
 #include "support/cli_runner.hpp"
 #include "support/test_maps.hpp"
 
@@ -123,12 +127,92 @@ TEST(Experiment, EveryMethodMeetsTheSameObjectsAndSeeds) {
   EXPECT_EQ(groups.size(), 4u + 8u);
 }
 
-TEST(Experiment, MeanAndStudentInterval) {
-  const auto m = mean_ci95({1.0, 2.0, 3.0, 4.0});
-  EXPECT_DOUBLE_EQ(m.mean, 2.5);
-  EXPECT_NEAR(m.ci95, 3.182 * std::sqrt(5.0 / 3.0) / 2.0, 1e-9);  // t(0.975, 3) s / sqrt(n)
-  EXPECT_DOUBLE_EQ(mean_ci95({7.0}).ci95, 0.0);
+TEST(Experiment, BootstrapIntervalOfASymmetricSampleMatchesTheNormalOne) {
+  // 1..20: mean 10.5, population sd sqrt((n^2 - 1) / 12) = 5.766, so the resampled means
+  // have sd 5.766 / sqrt(20) = 1.289 and the percentile interval is about
+  // 10.5 -+ 1.96 * 1.289 = [7.97, 13.03] (Monte Carlo error of 10,000 resamples ~0.05).
+  std::vector<double> v;
+  for (int k = 1; k <= 20; ++k) v.push_back(k);
+  const auto m = mean_ci95(v);
+  EXPECT_DOUBLE_EQ(m.mean, 10.5);
+  EXPECT_NEAR(m.lo, 7.97, 0.12);
+  EXPECT_NEAR(m.hi, 13.03, 0.12);
+  // {1, 2, 4}: of the 27 equally likely resamples, (1, 1, 1) alone has mean 1 and
+  // (4, 4, 4) alone mean 4, each 1/27 = 3.7% > 2.5%: the interval is exactly [1, 4].
+  const auto small = mean_ci95({1.0, 2.0, 4.0});
+  EXPECT_DOUBLE_EQ(small.mean, 7.0 / 3.0);
+  EXPECT_DOUBLE_EQ(small.lo, 1.0);
+  EXPECT_DOUBLE_EQ(small.hi, 4.0);
+  EXPECT_TRUE(std::isnan(mean_ci95({7.0}).lo));
+  EXPECT_DOUBLE_EQ(mean_ci95({7.0}).mean, 7.0);
   EXPECT_TRUE(std::isnan(mean_ci95({}).mean));
+  // The same sample always gives the same interval (fixed seed).
+  EXPECT_EQ(mean_ci95(v).lo, m.lo);
+}
+
+TEST(Experiment, IntervalOfSkewedTimesStaysAboveZeroWhereStudentsDoesNot) {
+  // 19 quick finds and one at 100 s: Student's t gives 5.095 -+ 2.093 * 22.34 / sqrt(20)
+  // = [-5.36, 15.55]; a time cannot be negative.
+  std::vector<double> v(19, 0.1);
+  v.push_back(100.0);
+  const auto m = mean_ci95(v);
+  EXPECT_NEAR(m.mean, 5.095, 1e-9);
+  EXPECT_GE(m.lo, 0.1);  // no resample mean is below the smallest value
+  EXPECT_LT(m.lo, m.mean);
+  EXPECT_GT(m.hi, m.mean);
+  EXPECT_LE(m.hi, 100.0);
+}
+
+TEST(Experiment, IntervalNeverLeavesTheSampleRangeOnRandomSamples) {
+  Rng rng(20261201);
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto n = static_cast<std::size_t>(rng.uniform_int(2, 40));
+    const double sigma = rng.uniform(0.1, 2.5);  // log-normal, up to very skewed
+    std::vector<double> v(n);
+    for (double& x : v) x = std::exp(rng.normal(0.0, sigma)) * (trial % 3 == 0 ? 1e-4 : 1.0);
+    const auto m = mean_ci95(v);
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    ASSERT_GT(m.lo, 0.0) << trial;
+    ASSERT_GE(m.lo, *lo) << trial;
+    ASSERT_LE(m.hi, *hi) << trial;
+    ASSERT_LE(m.lo, m.mean) << trial;
+    ASSERT_GE(m.hi, m.mean) << trial;
+  }
+}
+
+// The paired ratios of examples/plot_experiment.py (time of a method over rapid's on the
+// same object) get their interval on the log scale. Run with Debian's python3.
+TEST(Experiment, PlotScriptsRatioIntervalIsGeometricAndPositive) {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "Debian's python3-matplotlib is not installed (scripts/install-deps)";
+  test::TempDir dir;
+  const std::string script = R"(
+import math, random, sys
+sys.path.insert(0, ")" FERRET_SOURCE_DIR R"(/examples")
+from plot_experiment import geometric_mean_ci95 as gm
+# {1, 2, 4}: logs 0, ln 2, 2 ln 2, mean ln 2 (g = 2), sd ln 2, t(0.975, 2) = 4.303:
+# 2 exp(-+4.303 ln 2 / sqrt 3) = [0.357412, 11.19155].
+g, lo, hi = gm([1.0, 2.0, 4.0])
+print("%.6f %.6f %.5f" % (g, lo, hi))
+# Symmetric in a/b versus b/a.
+g2, lo2, hi2 = gm([1.0, 0.5, 0.25])
+print("%.6f %.6f" % (lo2 * hi, hi2 * lo))
+print(all(math.isnan(x) for x in gm([1.0, 0.0, 2.0])), math.isnan(gm([3.0])[1]))
+rng = random.Random(7)
+bad = 0
+for trial in range(2000):
+    v = [math.exp(rng.gauss(0, rng.uniform(0.1, 4))) for _ in range(rng.randint(2, 40))]
+    g, lo, hi = gm(v)
+    bad += not (0 < lo <= g <= hi)
+print("bad", bad)
+)";
+  std::ofstream(dir / "check.py") << script;
+  const std::string out = dir / "out.txt";
+  ASSERT_EQ(std::system(("/usr/bin/python3 " + (dir / "check.py") + " > " + out).c_str()), 0);
+  std::ifstream in(out);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), "2.000000 0.357412 11.19155\n1.000000 1.000000\nTrue True\nbad 0\n");
 }
 
 TEST(Experiment, ShardsPartitionTheRunsAndConcatenateToTheWhole) {
@@ -157,6 +241,17 @@ TEST(Experiment, ShardsPartitionTheRunsAndConcatenateToTheWhole) {
   EXPECT_EQ(all_rows.size(), 4u);
   EXPECT_EQ(shard_rows, all_rows);  // same numbers, whichever process ran them
   for (const auto& row : all_rows) EXPECT_THAT(row, HasSubstr(",2,2,"));  // 2 runs, 2 found
+  // Every row's interval is a pair of times around the mean, none below zero.
+  for (const auto& row : all_rows) {
+    std::vector<std::string> f;
+    std::stringstream in_row(row);
+    for (std::string x; std::getline(in_row, x, ',');) f.push_back(x);
+    ASSERT_EQ(f.size(), 9u) << row;  // kSummaryHeader's columns
+    const double mean = std::stod(f[5]), lo = std::stod(f[6]), hi = std::stod(f[7]);
+    EXPECT_GE(lo, 0.0) << row;
+    EXPECT_LE(lo, mean) << row;
+    EXPECT_GE(hi, mean) << row;
+  }
 }
 
 }  // namespace

@@ -85,17 +85,23 @@ struct ExperimentOptions {
 
 /// The exact header of summary.csv.
 inline constexpr const char* kSummaryHeader =
-    "map,zone,method,runs,found,mean_time_s,ci95_time_s,mean_path_m";
+    "map,zone,method,runs,found,mean_time_s,ci95_lo_time_s,ci95_hi_time_s,mean_path_m";
 
 /// Runs this shard's part of the experiment and writes runs.csv, summary.csv and (with
 /// sweeps) sweep_camera_fov.csv / sweep_ir_fov.csv into `out_dir`, each atomically.
 void run_experiment(const ExperimentConfig& config, const std::filesystem::path& out_dir,
                     const ExperimentOptions& options);
 
-/// Mean and 95% confidence half-width (Student t) of a sample; 0 half-width below 2 values.
+/// The mean of a positive sample (times, path lengths) and its 95% bootstrap percentile
+/// interval [lo, hi]: the 2.5% and 97.5% quantiles of the means of 10,000 resamples
+/// drawn with a fixed seed, so the interval is a function of the sample alone. It lies
+/// inside [min, max] of the sample, so it never goes below zero for non-negative data
+/// (a symmetric Student t interval does for skewed times). lo = hi = NaN below 2 values;
+/// everything NaN for an empty sample. docs/object_search.md says why this interval.
 struct MeanCi {
   double mean = 0.0;
-  double ci95 = 0.0;
+  double lo = 0.0;
+  double hi = 0.0;
 };
 [[nodiscard]] MeanCi mean_ci95(const std::vector<double>& values);
 

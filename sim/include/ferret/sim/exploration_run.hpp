@@ -76,10 +76,13 @@ struct EpisodeResult {
                                             const ExplorationSettings& settings,
                                             std::uint64_t seed);
 
-/// Writes G.png, O.png and G_O.png (the paper's map figure: G; O with the object's
-/// cells in yellow; both, with frontiers in green and the driven path) into `dir`.
+/// Writes G.png, O.png and G_O.png (the paper's map figure: G; O, the probability per
+/// cell with a colour bar marking lambda1 and lambda2; G with O's evidence; each with
+/// the frontiers, the driven path and the object) into `dir`. Each is titled with
+/// `what` (e.g. "sparse.yaml, cdos, seed 1") and the outcome: found in 12.4 s, 18.2 m.
 /// @pre result was recorded (ExplorationSettings::record).
 void write_exploration_images(const OccupancyMap2D& truth, const Eigen::Vector2d& object_W,
-                              const EpisodeResult& result, const std::filesystem::path& dir);
+                              const EpisodeResult& result, const std::filesystem::path& dir,
+                              const std::string& what = "");
 
 }  // namespace ferret
