@@ -103,7 +103,6 @@ ValidationReport validate_plan_file(const std::filesystem::path& plan_path,
                      fmt::format("{}", *request.floor_z_m));
   const PlanningWorld world = load_planning_world(world_path);
 
-  ValidationInputs in;
   // The box: the request's, else the plan's, else (miniUGV in a world YAML) the hidden
   // space the plan starts in. It is where unknown space is occupied, the geofence,
   // and for the miniUGV the tether's obstacle region.

@@ -185,7 +185,8 @@ TEST(ValidateCli, BadPlanFilesExitTwo) {
   EXPECT_EQ(validate(dir / "missing.json").exit_code, 2);
 }
 
-nlohmann::json json_of(const Outcome& r) {
+template <typename Result>
+nlohmann::json json_of(const Result& r) {
   try {
     return nlohmann::json::parse(r.out);
   } catch (const nlohmann::json::exception& e) {
@@ -352,6 +353,56 @@ TEST(ValidateCli, StatesOnlyJsonNeedsARobot) {
       validate(write(dir, "bad.json", "{\"states\": [{\"t_s\": 0}]}"), "--robot miniugv");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("states[0].x_m"), std::string::npos) << bad.err;
+}
+
+// An OctoMap of a 0.4 m pillar on a floor slab (z from -0.2 to 0). The tether, entering
+// at (0, 2), wraps the pillar to 5.95 m at the plan's end (straight: at most 5.10 m).
+// Bounds whose z0 lies in or under the slab must not move the floor the tether's
+// obstacles are read at: the floor is found in the map.
+TEST(ValidateCli, TetherFloorOfAnOctoMapWhateverTheBounds) {
+  TempDir dir;
+  const auto yaml = write(dir, "pillar.yaml", R"(name: pillar
+resolution_m: 0.05
+bounds_m: {min: [-1, -1, -0.2], max: [7, 5, 1.0]}
+ground: {height_m: 0.0}
+boxes:
+  - {name: pillar, center_m: [3, 2], size_m: [0.4, 0.4, 0.3]}
+)");
+  const std::string bt = dir / "pillar.bt";
+  ASSERT_EQ(run_cli("world build " + yaml + " -o " + bt).exit_code, 0);
+  const auto plan =
+      write(dir, "wrap.json", R"({"format": "ferret-plan", "version": 1, "robot": "ugv",
+    "tether": {"entry": [0, 2], "total_length_m": 6.5, "entry_offset_m": 1.0}, "states": [
+    {"t_s": 0, "x_m": 1, "y_m": 2.6, "z_m": 0, "yaw_rad": 0},
+    {"t_s": 4, "x_m": 5, "y_m": 2.6, "z_m": 0, "yaw_rad": 0},
+    {"t_s": 6, "x_m": 5, "y_m": 1.0, "z_m": 0, "yaw_rad": 0},
+    {"t_s": 10, "x_m": 1, "y_m": 1.0, "z_m": 0, "yaw_rad": 0}]})");
+  for (const std::string z0 : {"-0.2", "-0.05", "0"}) {
+    SCOPED_TRACE("z0 = " + z0);
+    const std::string args =
+        "validate --world " + bt + " --plan " + plan + " --bounds 0,0," + z0 + ",6,4,0.12";
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_NE(
+        r.out.find(
+            "invalid: state 3 at t = 10.000 s, position (1.000, 1.000, 0.000): tether too long: "
+            "taut length 5.948 m > 5.5 m"),
+        std::string::npos)
+        << r.out;
+    const auto doc = json_of(run_cli(args + " --json"));
+    EXPECT_EQ(doc["inputs"]["floor_z_m"], 0.0);
+    EXPECT_EQ(doc["inputs"]["floor_source"], "map");
+    EXPECT_EQ(run_cli(args + " --tether-budget 6").exit_code, 0);
+  }
+  // Without bounds a UAV's geofence is the map's extent (here z <= 1 m).
+  const auto uav = write(dir, "high.csv", "0,1,1,0.5,0\n10,5,1,2,0\n");
+  const auto r = run_cli("validate --world " + bt + " --plan " + uav + " --robot m100 --json");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  const auto doc = json_of(r);
+  EXPECT_EQ(doc["inputs"]["geofence_source"], "map extent");
+  ASSERT_EQ(doc["violations"].size(), 1u) << r.out;
+  EXPECT_EQ(doc["violations"][0]["kind"], "geofence");
+  EXPECT_EQ(doc["violations"][0]["segment"]["from"], 1);
 }
 
 }  // namespace
