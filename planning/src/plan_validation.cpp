@@ -134,6 +134,7 @@ ValidationReport validate_plan(const PlanFile& plan, CollisionChecker& exact,
   for (const ShapePart& p : exact.shape().parts) in.parts.push_back(p.name);
   ValidationMargins& m = report.margins;
   const auto& states = plan.states;
+  if (states.empty()) throw InputError("plan", "states", "at least one state");
   const MotionLimits& lim = options.limits;
 
   auto at = [&](ViolationKind kind, std::size_t from, std::size_t to, double s, const Waypoint& w) {
