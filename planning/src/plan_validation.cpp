@@ -236,7 +236,9 @@ ValidationReport validate_plan(const PlanFile& plan, CollisionChecker& exact,
     // Acceleration at state k: the change between the timed segments meeting there,
     // over the mean of their durations (the time the robot has to make it).
     while (next_timed < timed.size() && timed[next_timed].to < k) ++next_timed;
-    if (next_timed + 1 < timed.size() && timed[next_timed].to == k) {
+    if (next_timed + 1 < timed.size() && timed[next_timed].to == k &&
+        states[timed[next_timed + 1].from].t_s == w.t_s &&
+        states[timed[next_timed + 1].from].position() == w.position()) {  // only repeats between
       const TimedSegment& a = timed[next_timed];
       const TimedSegment& b = timed[next_timed + 1];
       const double accel = (b.v_mps - a.v_mps).norm() / (0.5 * (a.dt_s + b.dt_s));

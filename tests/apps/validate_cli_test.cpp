@@ -305,6 +305,10 @@ TEST(ValidateCli, CsvFarOutsideTheWorldBreaksItsBounds) {
             std::string::npos)
       << r.out;
   const auto doc = json_of(validate(p, "--robot m100 --json"));
+  const auto errors = validate_schema().errors(doc);
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  EXPECT_TRUE(doc["inputs"]["floor_z_m"].is_null());  // a UAV: no floor, no entry
+  EXPECT_TRUE(doc["margins"]["peak_tether_m"].is_null());
   EXPECT_EQ(doc["inputs"]["geofence_source"], "world bounds");
   EXPECT_EQ(doc["inputs"]["geofence"]["max"][0], 13.0);
   // Inside the world, the same flight is valid.
@@ -400,6 +404,8 @@ boxes:
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   const auto doc = json_of(r);
   EXPECT_EQ(doc["inputs"]["geofence_source"], "map extent");
+  const auto errors = validate_schema().errors(doc);
+  EXPECT_TRUE(errors.empty()) << errors.front();
   ASSERT_EQ(doc["violations"].size(), 1u) << r.out;
   EXPECT_EQ(doc["violations"][0]["kind"], "geofence");
   EXPECT_EQ(doc["violations"][0]["segment"]["from"], 1);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
 
 #include "ferret/core/error.hpp"
 #include "ferret/planning/floor_from_map.hpp"
@@ -71,6 +72,9 @@ std::vector<ViolationKind> kinds(const ValidationReport& r) {
   for (const auto& v : r.violations) out.push_back(v.kind);
   return out;
 }
+
+// The limits are the robot's, always given: no default could be right for every robot.
+static_assert(!std::is_default_constructible_v<ValidationOptions>);
 
 TEST(PlanValidation, PlannerOutputIsValid) {
   Fixture f;
@@ -213,6 +217,11 @@ TEST(PlanValidation, Acceleration) {
   // A repeated state (no time, no motion) is not a stop.
   EXPECT_TRUE(
       check(f, ugv_plan({at(0, 1, 1, 0), at(1, 2, 1, 0), at(1, 2, 1, 0), at(2, 3, 1, 0)})).valid());
+  // Across a jump back in time there is no acceleration to speak of (at rest, then
+  // 1.9 m/s for 0.5 s after it would be 2.53 m/s^2): time order only.
+  EXPECT_EQ(kinds(check(f, ugv_plan({at(0, 2, 1, 0), at(1, 2, 1, 0), at(0.5, 2, 1, 0),
+                                     at(1.0, 2.95, 1, 0)}))),
+            std::vector{ViolationKind::kTimeOrder});
 }
 
 TEST(PlanValidation, EveryViolationWithItsSegment) {
