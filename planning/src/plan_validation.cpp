@@ -67,14 +67,16 @@ std::string Violation::describe() const {
   switch (kind) {
     case ViolationKind::kCollision:
     case ViolationKind::kUnknownSpace: {
-      what = kind == ViolationKind::kCollision ? "collision" : "collision with unknown space";
+      // "collision of chassis_link with block (voxel at ...)", "... with unknown space (...)"
+      what = "collision";
       if (!part.empty()) what += " of " + part;
-      if (obstacle) {
-        what += kind == ViolationKind::kCollision ? " with " : " at ";
-        if (!obstacle->name.empty()) what += obstacle->name + " ";
-        what += fmt::format("(voxel at {:.3f}, {:.3f}, {:.3f})", obstacle->p_W.x(),
-                            obstacle->p_W.y(), obstacle->p_W.z());
-      }
+      std::string with = kind == ViolationKind::kUnknownSpace  ? "unknown space"
+                         : obstacle && !obstacle->name.empty() ? obstacle->name
+                                                               : "";
+      if (obstacle)
+        with += fmt::format("{}(voxel at {:.3f}, {:.3f}, {:.3f})", with.empty() ? "" : " ",
+                            obstacle->p_W.x(), obstacle->p_W.y(), obstacle->p_W.z());
+      if (!with.empty()) what += " with " + with;
       break;
     }
     case ViolationKind::kGeofence:

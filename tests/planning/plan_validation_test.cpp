@@ -126,6 +126,8 @@ TEST(PlanValidation, ThroughUnknownSpace) {
   EXPECT_GT(r.violations[0].p_W.x(), 10.4);
   EXPECT_LT(r.violations[0].p_W.x(), 10.5);
   EXPECT_NEAR(r.violations[0].obstacle->p_W.x(), 10.525, 1e-9);  // the patch's first voxel
+  EXPECT_EQ(r.violations[0].describe().substr(r.violations[0].describe().find(": ")),
+            ": collision of ugv_body with unknown space (voxel at 10.525, 7.375, 0.025)");
   // Without the observed map, the same voxel is a plain collision.
   CollisionChecker checker(f.map, ugv_shape());
   ValidationOptions blind = options(f);
