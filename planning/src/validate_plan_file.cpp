@@ -101,6 +101,11 @@ ValidationReport validate_plan_file(const std::filesystem::path& plan_path,
   if (request.floor_z_m && !std::isfinite(*request.floor_z_m))
     throw InputError("--floor-z", "", "a finite height in metres",
                      fmt::format("{}", *request.floor_z_m));
+  if (request.bounds && !(request.bounds->lo.allFinite() && request.bounds->hi.allFinite() &&
+                          (request.bounds->lo.array() < request.bounds->hi.array()).all()))
+    throw InputError("--bounds", "", "x0,y0,z0,x1,y1,z1: finite, with min < max on every axis");
+  if (request.p_WE && !request.p_WE->allFinite())
+    throw InputError("--entry", "", "a finite point x,y");
   const PlanningWorld world = load_planning_world(world_path);
 
   // The box: the request's, else the plan's, else (miniUGV in a world YAML) the hidden

@@ -329,6 +329,29 @@ TEST(PlanValidation, TetherFloorFromTheMapNotTheBounds) {
   }
 }
 
+TEST(PlanValidation, BadRequestsAreBadInput) {
+  PillarSpace world;
+  std::ofstream(world.plan) << pillar_plan(5.5);
+  ValidateRequest request;
+  request.bounds = Aabb3{{0, 0, 0}, {6, 4, 0.12}};
+  EXPECT_FALSE(validate_plan_file(world.plan, world.bt, request).valid());
+  request.bounds->hi.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW((void)validate_plan_file(world.plan, world.bt, request), InputError);
+  request.bounds = Aabb3{{0, 0, 0.2}, {6, 4, 0.12}};  // z0 > z1
+  EXPECT_THROW((void)validate_plan_file(world.plan, world.bt, request), InputError);
+  request.bounds.reset();  // a miniUGV in an OctoMap: the box is required
+  EXPECT_THROW((void)validate_plan_file(world.plan, world.bt, request), InputError);
+  request.bounds = Aabb3{{0, 0, 0}, {6, 4, 0.12}};
+  request.tether_budget_m = 0.0;
+  EXPECT_THROW((void)validate_plan_file(world.plan, world.bt, request), InputError);
+  request.tether_budget_m = 6.0;  // overrides the plan's 5.5
+  EXPECT_TRUE(validate_plan_file(world.plan, world.bt, request).valid());
+  request.floor_z_m = -0.2;  // an explicit floor wins over the map's (and here sees no pillar)
+  const auto r = validate_plan_file(world.plan, world.bt, request);
+  EXPECT_EQ(r.inputs.floor_source, "--floor-z");
+  EXPECT_EQ(*r.inputs.floor_z_m, -0.2);
+}
+
 TEST(PlanValidation, FloorFromMap) {
   PillarSpace world;
   octomap::OcTree tree(world.bt.string());
