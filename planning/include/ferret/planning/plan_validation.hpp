@@ -91,7 +91,8 @@ struct ValidationInputs {
   std::string robot_model;  ///< the URDF whose shapes were checked; "builtin" otherwise
   std::vector<std::string> parts;
   MotionLimits limits;
-  std::string limits_source;  ///< "plan", "robot URDF", "mission", "defaults"
+  /// "robot <urdf>", "mission", "mission defaults", or "plan (else ...)"
+  std::string limits_source;
   UnknownPolicy unknown = UnknownPolicy::kFree;
   std::optional<Aabb3> geofence;
   std::string
