@@ -14,6 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include "ferret/mapping/world_octree.hpp"
@@ -27,6 +28,13 @@
 
 namespace ferret {
 namespace {
+
+// The limits the planners time their paths with. They have no acceleration model (a
+// drive starts and stops at full speed), so acceleration is not counted here:
+// validation failures are geometry, speed, yaw rate and tether.
+MotionLimits planner_limits(double max_velocity_mps, double max_yaw_rate_radps) {
+  return {max_velocity_mps, std::numeric_limits<double>::infinity(), max_yaw_rate_radps};
+}
 
 // The shipped URDFs' collision shapes, as `ferret plan` uses them.
 RobotShape urdf_shape(const char* model, PlanRobot robot) {
@@ -68,12 +76,10 @@ void BM_UavApproach(benchmark::State& state) {
       PlanFile file;
       file.robot = PlanRobot::kUav;
       file.states = plan.states;
-      ValidationOptions v;
-      v.resolution = default_resolution(PlanRobot::kUav);
+      ValidationOptions v(planner_limits(opt.max_velocity_mps, opt.max_yaw_rate_radps),
+                          default_resolution(PlanRobot::kUav));
       v.geofence = opt.geofence;
-      v.max_velocity_mps = opt.max_velocity_mps;
-      v.max_yaw_rate_radps = opt.max_yaw_rate_radps;
-      invalid += validate_plan(file, exact, nullptr, v) ? 1 : 0;
+      invalid += validate_plan(file, exact, nullptr, v).valid() ? 0 : 1;
     }
     report(state, times_ms, solved, static_cast<int>(problems.size()), invalid);
   }
@@ -94,11 +100,12 @@ int validate_ugv(const UgvPlan& plan, const Cellar& c, UgvPlanner& planner, cons
   file.robot = PlanRobot::kUgv;
   file.states = plan.states;
   file.tether = PlanTether{c.frame.p_WE, plan.initial_wraps, tether.total_length_m, tether.entry_offset_m};
-  ValidationOptions v;
-  v.resolution = default_resolution(PlanRobot::kUgv);
+  const UgvPlannerOptions timing;
+  ValidationOptions v(planner_limits(timing.max_velocity_mps, timing.max_yaw_rate_radps),
+                      default_resolution(PlanRobot::kUgv));
   v.geofence = ugv_policy_bounds(c.frame);
   CollisionChecker exact(c.map, *planner.options().shape);
-  return validate_plan(file, exact, planner.corners(), v) ? 1 : 0;
+  return validate_plan(file, exact, planner.corners(), v).valid() ? 0 : 1;
 }
 
 void BM_UgvCellar(benchmark::State& state) {

@@ -26,14 +26,15 @@ struct PlanTether {
 
 struct PlanFile {
   PlanRobot robot = PlanRobot::kUav;
-  bool robot_known = true;   ///< false for a CSV (the robot comes from the command line)
+  bool robot_known =
+      true;  ///< false for a CSV or a JSON of states only (the robot comes from the command line)
   std::string frame = "world";
   std::vector<Waypoint> states;
-  double released_length_m = 0.0;     ///< kUavWithUgv: tether from the winch to the miniUGV
-  std::optional<PlanTether> tether;   ///< kUgv
+  double released_length_m = 0.0;    ///< kUavWithUgv: tether from the winch to the miniUGV
+  std::optional<PlanTether> tether;  ///< kUgv
   std::optional<UnknownPolicy> unknown_policy;
-  std::optional<Aabb3> bounds;        ///< the geofence (UAV) or hidden-space bounds (miniUGV)
-  std::optional<double> max_velocity_mps, max_yaw_rate_radps;
+  std::optional<Aabb3> bounds;  ///< the geofence (UAV) or hidden-space bounds (miniUGV)
+  std::optional<double> max_velocity_mps, max_acceleration_mps2, max_yaw_rate_radps;
   /// The URDF whose collision shapes the plan was made with; empty: ferret's
   /// built-in shapes (robot_shape.hpp). `ferret validate` checks with the same.
   std::string robot_model;
@@ -49,9 +50,10 @@ struct PlanFile {
 /// Writes the JSON atomically.
 void save_plan(const PlanFile& plan, const std::filesystem::path& path);
 /// Reads a plan: JSON (by content: a leading '{') or CSV of t,x,y,z,yaw with an
-/// optional header line. Throws InputError naming the file, the field (or line) and
-/// what was expected for anything malformed: syntax, missing or mistyped fields,
-/// non-finite numbers, an unknown robot, fewer than one state.
+/// optional header line. A JSON object without "format" is a plan of another tool:
+/// only "states" is required (and read), and the robot comes from the command line. Throws
+/// InputError naming the file, the field (or line) and what was expected for anything malformed:
+/// syntax, missing or mistyped fields, non-finite numbers, an unknown robot, fewer than one state.
 [[nodiscard]] PlanFile load_plan(const std::filesystem::path& path);
 [[nodiscard]] PlanFile parse_plan(const std::string& text, const std::string& source);
 
