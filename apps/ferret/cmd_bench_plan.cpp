@@ -75,7 +75,9 @@ void run(const Args& a) {
     const std::map<std::string, std::pair<std::string, std::string>> options{
         {"runs", {"--runs", std::to_string(a.runs)}},
         {"problems", {"--problems", std::to_string(a.problems)}},
-        {"time_limit_s", {"--time-limit", fmt::format("{}", a.time_limit_s)}}};
+        {"time_limit_s", {"--time-limit", fmt::format("{}", a.time_limit_s)}},
+        {"uav_robot", {"--robot", a.robot}},
+        {"ugv_robot", {"--robot", a.robot}}};
     const auto it = options.find(e.field());
     if (e.source() != "PlanBenchmarkRequest" || it == options.end()) throw;
     throw InputError(it->second.first, "", e.expected(), it->second.second);

@@ -148,7 +148,8 @@ void run_uav(const UavArgs& a) {
                        {"time_limit_s", "--time-limit"},
                        {"tether_released_m", "--tether-released"},
                        {"planner", "--planner"},
-                       {"bounds", "--bounds"}});
+                       {"bounds", "--bounds"},
+                       {"robot", "--robot"}});
   }
   if (!result.solved) throw CheckFailed("no UAV path: " + result.status);
   write_and_report(result, a.common.out);
@@ -209,7 +210,8 @@ void run_ugv(const UgvArgs& a) {
                        {"bounds", "--bounds"},
                        {"p_WE", "--entry"},
                        {"floor_z_m", "--floor-z"},
-                       {"driven", "--driven"}});
+                       {"driven", "--driven"},
+                       {"robot", "--robot"}});
   }
   if (!result.solved) throw CheckFailed("no miniUGV path: " + result.status);
   write_and_report(result, a.common.out);

@@ -80,7 +80,7 @@ std::vector<PlanBenchmarkLog> run_plan_benchmarks(const PlanningWorld& world,
   std::vector<PlanBenchmarkLog> logs;
   if (r.uav) {
     const LoadedPlanRobot robot =
-        load_plan_robot(PlanRobot::kUav, r.uav_robot, r.mission, 0.0, kSource);
+        load_plan_robot(PlanRobot::kUav, r.uav_robot, r.mission, 0.0, kSource, "uav_robot");
     UavPlannerOptions opt;
     // The default geofence, half a metre in from the world's sides too: the random
     // starts are drawn inside it.
@@ -107,7 +107,7 @@ std::vector<PlanBenchmarkLog> run_plan_benchmarks(const PlanningWorld& world,
   }
   if (r.ugv) {
     const LoadedPlanRobot robot =
-        load_plan_robot(PlanRobot::kUgv, r.ugv_robot, r.mission, 0.0, kSource);
+        load_plan_robot(PlanRobot::kUgv, r.ugv_robot, r.mission, 0.0, kSource, "ugv_robot");
     const double budget_m = r.tether_budget_m.value_or(r.mission.tether.total_length_m -
                                                        r.mission.tether.entry_offset_m);
     const HiddenSpaceFrame frame = hidden_space_frame(w.hidden_spaces.front());

@@ -185,7 +185,7 @@ RobotShape plan_robot_shape(PlanRobot robot, double released_length_m, const Rob
 
 LoadedPlanRobot load_plan_robot(PlanRobot robot, const PlanRobotModel& model,
                                 const MissionConfig& mission, double released_length_m,
-                                const std::string& source) {
+                                const std::string& source, const std::string& field) {
   const bool ground = robot == PlanRobot::kUgv;
   LoadedPlanRobot out;
   if (model.builtin) {
@@ -198,7 +198,8 @@ LoadedPlanRobot load_plan_robot(PlanRobot robot, const PlanRobotModel& model,
   const RobotDescription description = load_robot_description(path, mission);
   const RobotKind expected = ground ? RobotKind::kUgv : RobotKind::kUav;
   if (description.kind != expected)
-    throw InputError(source, "", std::string("a URDF of a ") + to_string(expected), path.string());
+    throw InputError(source, field, std::string("a URDF of a ") + to_string(expected),
+                     path.string());
   const RobotShape urdf_shape = robot_shape_from_description(description);
   if (ground && !urdf_shape.parts.empty()) {
     // The ground robot's box, for the bands over the floor and the retrace offsets.

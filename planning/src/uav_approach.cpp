@@ -51,7 +51,8 @@ PlanResult plan_uav_approach(const PlanningWorld& world, const UavApproachReques
           : approach_hover_pose(find_hidden_space(world, r.hidden_space, kSource, "hidden_space"));
   const PlanRobot robot = r.tether_released_m ? PlanRobot::kUavWithUgv : PlanRobot::kUav;
   const double released_m = r.tether_released_m.value_or(0.0);
-  const LoadedPlanRobot model = load_plan_robot(robot, r.robot, r.mission, released_m, kSource);
+  const LoadedPlanRobot model =
+      load_plan_robot(robot, r.robot, r.mission, released_m, kSource, "robot");
 
   UavPlannerOptions opt;
   opt.geofence = r.bounds.value_or(default_uav_bounds(world));

@@ -82,7 +82,8 @@ UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& re
     tether.total_length_m = tether.entry_offset_m + *r.tether_budget_m;
   }
   const HiddenSpaceFrame space = request_space(world, r);
-  const LoadedPlanRobot model = load_plan_robot(PlanRobot::kUgv, r.robot, r.mission, 0.0, kSource);
+  const LoadedPlanRobot model =
+      load_plan_robot(PlanRobot::kUgv, r.robot, r.mission, 0.0, kSource, "robot");
 
   const auto map = ugv_collision_map(*world.tree, space, model.ugv);
   UgvPlannerOptions opt;

@@ -160,7 +160,7 @@ TEST(UavApproach, BadRequestsAreInputErrorsNamingTheField) {
   EXPECT_EQ(field_of(flat), "bounds");
   UavApproachRequest ground_robot = ok;
   ground_robot.robot.urdf = kRover;
-  EXPECT_EQ(field_of(ground_robot), "");  // the URDF as a whole: a ground robot's
+  EXPECT_EQ(field_of(ground_robot), "robot");  // a URDF of the other kind of robot
 
   try {
     (void)plan_uav_approach(default_world(), planner);

@@ -160,7 +160,7 @@ TEST(UgvPath, WithoutAHiddenSpaceOrAnEntryTheRequestIsAnInputError) {
   EXPECT_EQ(field_of(nan_goal), "goal");
   UgvPathRequest aerial = detour_request();
   aerial.robot.urdf = find_model("m100.urdf");
-  EXPECT_EQ(field_of(aerial), "");  // the URDF as a whole: an aerial robot's
+  EXPECT_EQ(field_of(aerial), "robot");  // a URDF of the other kind of robot
 }
 
 TEST(UgvPath, NoTetherFeasiblePathIsNotSolvedAndHasNoStates) {

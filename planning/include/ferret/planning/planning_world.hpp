@@ -97,12 +97,13 @@ struct LoadedPlanRobot {
   std::string model;  ///< the plan's robot_model: the URDF's path, "" for built-in shapes
 };
 
-/// Loads the robot of a `robot` plan. Throws InputError naming `source` ("--robot" at
-/// the CLI) when the URDF describes the other kind of robot, besides the loader's own.
+/// Loads the robot of a `robot` plan. Throws InputError(source, field, ...) when the
+/// URDF describes the other kind of robot, besides the loader's own errors.
 [[nodiscard]] LoadedPlanRobot load_plan_robot(PlanRobot robot, const PlanRobotModel& model,
                                               const MissionConfig& mission,
                                               double released_length_m = 0.0,
-                                              const std::string& source = "robot");
+                                              const std::string& source = "robot",
+                                              const std::string& field = "");
 
 /// What a one-call planner returns: the plan file, filled as `ferret plan` writes it
 /// (its states empty when no path was found), and how the search went.
