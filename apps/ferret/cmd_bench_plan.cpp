@@ -1,42 +1,35 @@
 // `ferret bench-plan`: OMPL's Benchmark over the UAV approach and miniUGV problems
 // of a world, writing OMPL benchmark logs (one per problem). ompl_benchmark_statistics
 // (Debian's ompl-demos) turns them into a Planner Arena database (docs/planning.md).
+// The benchmarks are the library's (plan_benchmark.hpp); this file maps options.
 
 #include <fmt/format.h>
-#include <ompl/base/Planner.h>
-#include <ompl/geometric/SimpleSetup.h>
-#include <ompl/tools/benchmark/Benchmark.h>
 
-#include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_options.hpp"
 #include "command.hpp"
-#include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
-#include "ferret/planning/benchmark_problems.hpp"
 #include "ferret/planning/ompl_setup.hpp"
+#include "ferret/planning/plan_benchmark.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/planning/tethered_rrt.hpp"
-#include "ferret/planning/uav_planner.hpp"
-#include "ferret/planning/ugv_planner.hpp"
 
 namespace ferret::cli {
 namespace {
-namespace fs = std::filesystem;
-namespace ob = ompl::base;
-namespace og = ompl::geometric;
 
 struct Args {
-  std::string world, output_dir, robots = "uav,ugv", planners = "rrtconnect,rrt,prm,kpiece,est";
+  std::string world, out, robots = "uav,ugv", planners = "rrtconnect,rrt,prm,kpiece,est",
+                          robot = "builtin", mission;
   int problems = 1;
   int runs = 20;
   double time_limit_s = 1.0;
   std::uint64_t seed = 1;
-  double tether_max_m = 14.0;
+  std::optional<double> tether_budget_m;
 };
 
 std::vector<std::string> split(const std::string& text) {
@@ -47,107 +40,78 @@ std::vector<std::string> split(const std::string& text) {
   return out;
 }
 
-void run_benchmark(og::SimpleSetup& setup, const std::vector<ob::PlannerPtr>& planners, const Args& a,
-                   const std::string& name, const fs::path& log) {
-  ompl::tools::Benchmark benchmark(setup, name);
-  for (const auto& p : planners) benchmark.addPlanner(p);
-  // saveConsoleOutput off: OMPL would write an "ompl_<host>_<date>.console" file into
-  // the current directory on every run.
-  ompl::tools::Benchmark::Request request(a.time_limit_s, 4096.0, static_cast<unsigned>(a.runs),
-                                          0.05,
-                                          /*displayProgress=*/true, /*saveConsoleOutput=*/false,
-                                          /*simplify=*/true);
-  benchmark.benchmark(request);
-  write_file_atomically(log, [&](const fs::path& tmp) {
-    if (!benchmark.saveResultsToFile(tmp.c_str())) throw InputError(log.string(), "", "a writable log file");
-  });
-  std::cout << fmt::format("{}: {} planners x {} runs -> {}\n", name, planners.size(), a.runs, log.string());
-}
-
 void run(const Args& a) {
-  if (a.runs < 1 || a.runs > 10000) throw InputError("--runs", "", "1 to 10000", std::to_string(a.runs));
-  if (a.problems < 1 || a.problems > 1000) throw InputError("--problems", "", "1 to 1000", std::to_string(a.problems));
-  if (!(a.time_limit_s > 0 && a.time_limit_s <= 600))
-    throw InputError("--time-limit", "", "seconds in (0, 600]", std::to_string(a.time_limit_s));
-  const auto robots = split(a.robots);
-  for (const auto& r : robots)
-    if (r != "uav" && r != "ugv") throw InputError("--robots", "", "a list of uav and ugv", a.robots);
-  const auto planner_names = split(a.planners);
-  if (planner_names.empty()) throw InputError("--planners", "", "at least one OMPL planner name", a.planners);
-  const auto& known = ompl_planner_names();
-  for (const auto& n : planner_names)
-    if (std::find(known.begin(), known.end(), n) == known.end())
-      throw InputError("--planners", "", "names from: " + fmt::format("{}", fmt::join(known, ", ")), n);
-  seed_ompl_once(a.seed);
+  require_out(a.out, "the directory for the OMPL logs");
+  PlanBenchmarkRequest req;
+  req.uav = req.ugv = false;
+  for (const auto& r : split(a.robots)) {
+    check_choice("--robots", r, {"uav", "ugv"});
+    (r == "uav" ? req.uav : req.ugv) = true;
+  }
+  if (!req.uav && !req.ugv) throw InputError("--robots", "", "uav, ugv or both", a.robots);
+  req.planners = split(a.planners);
+  for (const auto& n : req.planners) check_choice("--planners", n, ompl_planner_names());
+  req.problems = a.problems;
+  req.runs = a.runs;
+  req.time_limit_s = a.time_limit_s;
+  req.seed = a.seed;
+  req.tether_budget_m = checked_tether_budget(a.tether_budget_m);
+  req.mission = load_mission_or_defaults(a.mission);
+  if (a.robot != "builtin") {
+    // One URDF is one robot: it replaces the built-in shapes of its kind, so --robots
+    // must name that kind alone (load_plan_robot rejects the other).
+    if (req.uav && req.ugv)
+      throw InputError("--robots", "", "uav or ugv alone with --robot (a URDF is one robot)",
+                       a.robots);
+    PlanRobotModel& model = req.uav ? req.uav_robot : req.ugv_robot;
+    model = {resolve_robot(a.robot, req.uav ? "m100.urdf" : "miniugv.urdf"), false};
+  }
   const PlanningWorld world = load_planning_world(a.world);
-  if (!world.spec || world.spec->hidden_spaces.empty())
-    throw InputError(a.world, "hidden_spaces", "a world YAML with at least one hidden space (the problems come from it)");
-  const fs::path dir(a.output_dir);
-
-  if (std::find(robots.begin(), robots.end(), "uav") != robots.end()) {
-    const auto map = CollisionMap::build(*world.tree, uav_map_options(world.spec));
-    UavPlannerOptions opt;
-    const WorldSpec& w = *world.spec;
-    opt.geofence = {{w.bounds_min_m.x() + 0.5, w.bounds_min_m.y() + 0.5, std::max(w.bounds_min_m.z(), 0.0) + 0.5},
-                    {w.bounds_max_m.x() - 0.5, w.bounds_max_m.y() - 0.5, w.bounds_max_m.z() - 0.5}};
-    UavPlanner planner(map, uav_shape(), opt);
-    const auto problems = uav_approach_problems(w, planner.checker(), opt.geofence, a.problems, a.seed);
-    for (std::size_t k = 0; k < problems.size(); ++k) {
-      auto si = planner.space_information();
-      og::SimpleSetup setup(si);
-      ob::ScopedState<> s(si->getStateSpace()), g(si->getStateSpace());
-      planner.to_ompl_state(problems[k].start, s.get());
-      planner.to_ompl_state(problems[k].goal, g.get());
-      setup.setStartAndGoalStates(s, g);
-      std::vector<ob::PlannerPtr> planners;
-      for (const auto& n : planner_names) planners.push_back(make_ompl_planner(n, si, "--planners"));
-      run_benchmark(setup, planners, a, fmt::format("ferret uav approach {} ({})", k, w.name),
-                    dir / fmt::format("uav_{}.log", k));
-    }
+  std::vector<PlanBenchmarkLog> logs;
+  try {
+    logs = run_plan_benchmarks(world, req, a.out);
+  } catch (const InputError& e) {
+    // The request's fields as the options that set them, with the value typed.
+    const std::map<std::string, std::pair<std::string, std::string>> options{
+        {"runs", {"--runs", std::to_string(a.runs)}},
+        {"problems", {"--problems", std::to_string(a.problems)}},
+        {"time_limit_s", {"--time-limit", fmt::format("{}", a.time_limit_s)}},
+        {"uav_robot", {"--robot", a.robot}},
+        {"ugv_robot", {"--robot", a.robot}}};
+    const auto it = options.find(e.field());
+    if (e.source() != "PlanBenchmarkRequest" || it == options.end()) throw;
+    throw InputError(it->second.first, "", e.expected(), it->second.second);
   }
-  if (std::find(robots.begin(), robots.end(), "ugv") != robots.end()) {
-    const HiddenSpaceFrame frame = hidden_space_frame(world.spec->hidden_spaces.front());
-    const auto map = ugv_collision_map(*world.tree, frame);
-    UgvPlanner planner(map, frame);
-    const auto problems = ugv_problems(planner, a.problems, a.seed);
-    for (std::size_t k = 0; k < problems.size(); ++k) {
-      auto si = planner.space_information();
-      og::SimpleSetup setup(si);
-      ob::ScopedState<> s(si->getStateSpace()), g(si->getStateSpace());
-      s[0] = problems[k].start.x_m;
-      s[1] = problems[k].start.y_m;
-      s[2] = problems[k].start.yaw_rad;
-      g[0] = problems[k].goal.x_m;
-      g[1] = problems[k].goal.y_m;
-      g[2] = problems[k].goal.yaw_rad;
-      setup.setStartAndGoalStates(s, g);
-      UgvPlanRequest req;
-      req.start = {problems[k].start.x_m, problems[k].start.y_m, problems[k].start.yaw_rad};
-      // The tether-aware planner, and the named OMPL planners, which ignore the tether
-      // (their paths may need more tether than there is: compare path lengths).
-      std::vector<ob::PlannerPtr> planners{
-          std::make_shared<TetheredRRT>(si, planner.tether_at_start(req), a.tether_max_m, a.seed)};
-      for (const auto& n : planner_names) planners.push_back(make_ompl_planner(n, si, "--planners"));
-      run_benchmark(setup, planners, a, fmt::format("ferret ugv {} ({})", k, world.spec->hidden_spaces.front().name),
-                    dir / fmt::format("ugv_{}.log", k));
-    }
-  }
+  for (const auto& log : logs)
+    std::cout << fmt::format("{}: {} planners x {} runs -> {}\n", log.experiment, log.planners,
+                             a.runs, log.path.string());
 }
 
-const CommandRegistration kBenchPlan{"bench-plan", [](CLI::App& app) {
-  auto a = std::make_shared<Args>();
-  auto* cmd = app.add_subcommand("bench-plan", "Run OMPL's Benchmark on the UAV and miniUGV problems of a world");
-  cmd->add_option("--world", a->world, "world YAML with hidden spaces")->required();
-  cmd->add_option("-o,--output-dir", a->output_dir, "directory for the OMPL logs (<robot>_<k>.log)")->required();
-  cmd->add_option("--robots", a->robots, "uav, ugv or both")->capture_default_str();
-  cmd->add_option("--planners", a->planners, "OMPL planners to compare")->capture_default_str();
-  cmd->add_option("--problems", a->problems, "problems per robot (one log each)")->capture_default_str();
-  cmd->add_option("--runs", a->runs, "runs per planner and problem")->capture_default_str();
-  cmd->add_option("--time-limit", a->time_limit_s, "seconds per run")->capture_default_str();
-  cmd->add_option("--seed", a->seed, "seed of the problems and of OMPL")->capture_default_str();
-  cmd->add_option("--tether", a->tether_max_m, "miniUGV taut tether budget L - l_0, m")->capture_default_str();
-  cmd->callback([a] { run(*a); });
-}};
+const CommandRegistration kBenchPlan{
+    "bench-plan", [](CLI::App& app) {
+      auto a = std::make_shared<Args>();
+      auto* cmd = app.add_subcommand(
+          "bench-plan", "Run OMPL's Benchmark on the UAV and miniUGV problems of a world");
+      add_world_option(cmd, a->world, true, "world YAML with hidden spaces");
+      add_out_option(cmd, a->out, "directory for the OMPL logs (<robot>_<k>.log)");
+      cmd->add_option("--robots", a->robots, "uav, ugv or both")->capture_default_str();
+      cmd->add_option(
+             "--planners", a->planners,
+             "OMPL planners to compare, comma-separated, each " + one_of(ompl_planner_names()))
+          ->capture_default_str();
+      add_robot_option(
+          cmd, a->robot,
+          "builtin: ferret's simple shapes; a URDF replaces the shapes of its kind, with --robots "
+          "naming that kind");
+      add_mission_option(cmd, a->mission);
+      cmd->add_option("--problems", a->problems, "problems per robot (one log each)")
+          ->capture_default_str();
+      cmd->add_option("--runs", a->runs, "runs per planner and problem")->capture_default_str();
+      cmd->add_option("--time-limit", a->time_limit_s, "seconds per run")->capture_default_str();
+      add_seed_option(cmd, a->seed, "seed of the problems and of OMPL");
+      add_tether_budget_option(cmd, a->tether_budget_m, "the mission's L - l_0, 14 m built in");
+      cmd->callback([a] { run(*a); });
+    }};
 
 }  // namespace
 }  // namespace ferret::cli

@@ -6,18 +6,9 @@
 
 namespace ferret {
 
-Waypoint approach_hover_pose(const HiddenSpace& space, double standoff_m, double hover_height_m) {
-  const Eigen::Vector2d inward(std::cos(space.entry_yaw_rad), std::sin(space.entry_yaw_rad));
-  Waypoint w;
-  w.x_m = space.p_WE.x() - standoff_m * inward.x();
-  w.y_m = space.p_WE.y() - standoff_m * inward.y();
-  w.z_m = space.floor_z_m + hover_height_m;
-  w.yaw_rad = space.entry_yaw_rad;
-  return w;
-}
-
-std::vector<PlanningProblem> uav_approach_problems(const WorldSpec& world, CollisionChecker& checker,
-                                                   const Aabb3& fence, int count, std::uint64_t seed) {
+std::vector<PlanningProblem> uav_approach_problems(const WorldSpec& world,
+                                                   CollisionChecker& checker, const Aabb3& fence,
+                                                   int count, std::uint64_t seed) {
   Rng rng(seed);
   std::vector<Waypoint> goals;
   for (const HiddenSpace& h : world.hidden_spaces) {
@@ -44,7 +35,8 @@ std::vector<PlanningProblem> uav_approach_problems(const WorldSpec& world, Colli
   return out;
 }
 
-std::vector<PlanningProblem> ugv_problems(UgvPlanner& planner, int count, std::uint64_t seed, double min_distance_m) {
+std::vector<PlanningProblem> ugv_problems(UgvPlanner& planner, int count, std::uint64_t seed,
+                                          double min_distance_m) {
   Rng rng(seed);
   const HiddenSpaceFrame& f = planner.space();
   auto draw = [&] {

@@ -44,7 +44,8 @@ std::string write_yard(const TempDir& dir, bool with_crate = false) {
 
 TEST(PlanCli, UgvDetourScenarioPlansAndValidates) {
   TempDir dir;
-  const auto r = run_cli("plan ugv --world " + kDetour + " " + kDetourArgs + " --tether 12.5 -o " + dir / "p.json");
+  const auto r = run_cli("plan ugv --world " + kDetour + " " + kDetourArgs + " --tether 12.5 -o " +
+                         dir / "p.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("1 wrap points"), std::string::npos) << r.out;
   const auto plan = nlohmann::json::parse(slurp(dir / "p.json"));
@@ -53,7 +54,8 @@ TEST(PlanCli, UgvDetourScenarioPlansAndValidates) {
   EXPECT_EQ(plan["tether"]["initial_wraps"].size(), 2u);
   const auto& last = plan["states"].back();
   EXPECT_NEAR(last["x_m"].get<double>(), 10.0, 1e-9);
-  EXPECT_NEAR(last["tether_length_m"].get<double>(), std::hypot(3.1, 1.5) + std::hypot(7.0, 1.0), 1e-6);
+  EXPECT_NEAR(last["tether_length_m"].get<double>(), std::hypot(3.1, 1.5) + std::hypot(7.0, 1.0),
+              1e-6);
   const auto v = run_cli("validate --world " + kDetour + " --plan " + dir / "p.json");
   EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
   EXPECT_NE(v.out.find("valid:"), std::string::npos);
@@ -104,9 +106,11 @@ TEST(PlanCli, UgvPlansAreByteIdenticalGivenTheSeed) {
 
 TEST(PlanCli, NoPathExitsOneAndWritesNothing) {
   TempDir dir;
-  const auto r = run_cli("plan ugv --world " + kDetour +
-                         " --driven '1,6.5;10,6.5' --from 10,4.5,-1.57 --to 11,0.5,-1.57 --tether 11"
-                         " --time-limit 0.3 -o " + dir / "none.json");
+  const auto r =
+      run_cli("plan ugv --world " + kDetour +
+              " --driven '1,6.5;10,6.5' --from 10,4.5,-1.57 --to 11,0.5,-1.57 --tether 11"
+              " --time-limit 0.3 -o " +
+              dir / "none.json");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("no tether-feasible path"), std::string::npos) << r.err;
   EXPECT_EQ(dir.count(), 0u);
@@ -115,7 +119,8 @@ TEST(PlanCli, NoPathExitsOneAndWritesNothing) {
 TEST(PlanCli, UavPlansAreByteIdenticalGivenTheSeed) {
   TempDir dir;
   const std::string world = write_yard(dir);
-  const std::string args = "plan uav --world " + world + " --from -5,-5,2,0 --to 5,-5,2,0 --seed 3 -o ";
+  const std::string args =
+      "plan uav --world " + world + " --from -5,-5,2,0 --to 5,-5,2,0 --seed 3 -o ";
   // Two at once (the machine busier than alone) and one after: the same bytes. The
   // plan ends on work (first solution, counted simplification rounds), not on time.
   ASSERT_EQ(run_two_at_once(args + dir / "a.json", args + dir / "b.json"), 0);
@@ -128,8 +133,8 @@ TEST(PlanCli, UavPlansAreByteIdenticalGivenTheSeed) {
   const auto v = run_cli("validate --world " + world + " --plan " + dir / "a.json");
   EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
   // With the miniUGV hanging 1 m below, too.
-  const auto t = run_cli("plan uav --world " + world + " --from -5,-5,2,0 --to 5,-5,2,0 --tether-length 1 -o " +
-                         dir / "t.json");
+  const auto t = run_cli("plan uav --world " + world +
+                         " --from -5,-5,2,0 --to 5,-5,2,0 --tether-length 1 -o " + dir / "t.json");
   ASSERT_EQ(t.exit_code, 0) << t.err;
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "t.json"))["robot"], "uav_with_ugv");
   EXPECT_EQ(run_cli("validate --world " + world + " --plan " + dir / "t.json").exit_code, 0);
@@ -137,8 +142,9 @@ TEST(PlanCli, UavPlansAreByteIdenticalGivenTheSeed) {
 
 TEST(PlanCli, UavApproachToAHiddenSpace) {
   TempDir dir;
-  const auto r = run_cli("plan uav --world examples/worlds/default.yaml --from -20,-20,3,0 --approach house_void -o " +
-                         dir / "a.json");
+  const auto r = run_cli(
+      "plan uav --world examples/worlds/default.yaml --from -20,-20,3,0 --approach house_void -o " +
+      dir / "a.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // house_void's entry is at (-6.85, 7) in its +x wall: the hover pose is 1 m out,
   // 1.5 m above the floor, facing the opening (yaw pi).
@@ -147,8 +153,129 @@ TEST(PlanCli, UavApproachToAHiddenSpace) {
   EXPECT_NEAR(goal["y_m"].get<double>(), 7.0, 1e-9);
   EXPECT_NEAR(goal["z_m"].get<double>(), 1.5, 1e-9);
   EXPECT_NEAR(std::abs(goal["yaw_rad"].get<double>()), M_PI, 1e-9);
-  EXPECT_EQ(run_cli("plan uav --world examples/worlds/default.yaml --from -20,-20,3,0 -o " + dir / "b.json").exit_code,
+  EXPECT_EQ(run_cli("plan uav --world examples/worlds/default.yaml --from -20,-20,3,0 -o " +
+                    dir / "b.json")
+                .exit_code,
             2);  // neither --to nor --approach
+}
+
+// The rover's wheels (r = 0.04 m at 12.5 rad/s) cap it at 0.5 m/s, below the mission's
+// 2 m/s: the plan ferret writes for it is timed at 0.5 m/s, so validating it against
+// the rover's own limits passes (with the mission's 2 m/s it was rejected as too fast).
+TEST(PlanCli, UgvPlanForTheRoverTakesItsWheelLimitAndValidatesWithIt) {
+  TempDir dir;
+  const std::string rover = "tests/data/robots/rover.urdf";
+  const auto r = run_cli("plan ugv --world " + kDetour + " " + kDetourArgs +
+                         " --tether-budget 12.5 --robot " + rover + " -o " + dir / "rover.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto plan = nlohmann::json::parse(slurp(dir / "rover.json"));
+  EXPECT_DOUBLE_EQ(plan["limits"]["max_velocity_mps"].get<double>(), 0.5);
+  EXPECT_EQ(plan["robot_model"], rover);
+  const auto v = run_cli("validate --world " + kDetour + " --robot " + rover + " --plan " +
+                         dir / "rover.json");
+  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
+  // The miniUGV's plan of the same path, driven at 2 m/s, is too fast for the rover.
+  ASSERT_EQ(run_cli("plan ugv --world " + kDetour + " " + kDetourArgs +
+                    " --tether-budget 12.5 -o " + dir / "miniugv.json")
+                .exit_code,
+            0);
+  const auto fast = run_cli("validate --world " + kDetour + " --robot " + rover + " --plan " +
+                            dir / "miniugv.json");
+  EXPECT_EQ(fast.exit_code, 1) << fast.out << fast.err;
+  EXPECT_NE(fast.out.find("too fast"), std::string::npos) << fast.out;
+}
+
+// docs/cli.md's names and the old spellings, kept as hidden aliases, give the same
+// bytes; --help shows the new names only.
+TEST(PlanCli, OldSpellingsStillWorkAndGiveTheSamePlan) {
+  TempDir dir;
+  const std::string ugv = "plan ugv --world " + kDetour + " " + kDetourArgs;
+  ASSERT_EQ(
+      run_cli(ugv +
+              " --tether-budget 12.5 --mission config/mission.yaml --bounds 0,0,0,12,8,0.4 --out " +
+              dir / "new.json")
+          .exit_code,
+      0);
+  const auto old =
+      run_cli(ugv + " --tether 12.5 --config config/mission.yaml --bounds 0,0,12,8 --output " +
+              dir / "old.json");
+  ASSERT_EQ(old.exit_code, 0) << old.err;
+  EXPECT_EQ(slurp(dir / "new.json"), slurp(dir / "old.json"));
+
+  const std::string world = write_yard(dir);
+  const std::string uav = "plan uav --world " + world + " --from -5,-5,2,0 --to 5,-5,2,0";
+  ASSERT_EQ(
+      run_cli(uav + " --tether-released 1 --bounds -9,-9,0.5,9,9,4.5 -o " + dir / "uav_new.json")
+          .exit_code,
+      0);
+  const auto uav_old =
+      run_cli(uav + " --tether-length 1 --geofence -9,-9,9,9 --altitude 0.5,4.5 --output-dir " +
+              dir / "uav_old.json");
+  ASSERT_EQ(uav_old.exit_code, 0) << uav_old.err;
+  EXPECT_EQ(slurp(dir / "uav_new.json"), slurp(dir / "uav_old.json"));
+  const auto plan = nlohmann::json::parse(slurp(dir / "uav_new.json"));
+  EXPECT_EQ(plan["robot"], "uav_with_ugv");
+  EXPECT_EQ(plan["bounds"]["min"], nlohmann::json::array({-9.0, -9.0, 0.5}));
+  EXPECT_EQ(plan["bounds"]["max"], nlohmann::json::array({9.0, 9.0, 4.5}));
+
+  const auto help = run_cli("plan uav --help");
+  for (const char* shown : {"--tether-released", "--bounds", "--mission", "--out",
+                            "the world's bounds", "rrtconnect", "=free"})
+    EXPECT_NE(help.out.find(shown), std::string::npos) << shown << "\n" << help.out;
+  for (const char* hidden : {"--tether-length", "--geofence", "--altitude", "--config", "--output"})
+    EXPECT_EQ(help.out.find(hidden), std::string::npos) << hidden << "\n" << help.out;
+}
+
+TEST(PlanCli, RobotIsAShippedNameAPathOrBuiltin) {
+  TempDir dir;
+  const std::string ugv =
+      "plan ugv --world " + kDetour + " " + kDetourArgs + " --tether-budget 12.5";
+  ASSERT_EQ(run_cli(ugv + " -o " + dir / "default.json").exit_code, 0);
+  ASSERT_EQ(run_cli(ugv + " --robot miniugv -o " + dir / "named.json").exit_code, 0);
+  EXPECT_EQ(slurp(dir / "default.json"), slurp(dir / "named.json"));
+  ASSERT_EQ(run_cli(ugv + " --robot builtin -o " + dir / "builtin.json").exit_code, 0);
+  EXPECT_FALSE(nlohmann::json::parse(slurp(dir / "builtin.json")).contains("robot_model"));
+  const auto bad = run_cli(ugv + " --robot rovr -o " + dir / "bad.json");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("m100, miniugv"), std::string::npos) << bad.err;
+  const auto aerial = run_cli(ugv + " --robot m100 -o " + dir / "aerial.json");
+  EXPECT_EQ(aerial.exit_code, 2) << aerial.err;
+  EXPECT_NE(aerial.err.find("--robot"), std::string::npos) << aerial.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.json"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "aerial.json"));
+}
+
+// Errors name the option typed (not the library's request field) and list the choices.
+TEST(PlanCli, BadValuesNameTheOptionAndListTheChoices) {
+  TempDir dir;
+  const std::string out = " -o " + dir / "p.json";
+  const std::string uav = "plan uav --world examples/worlds/default.yaml --from -20,-20,3,0";
+  auto err_of = [](const std::string& args) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    return r.err;
+  };
+  std::string e = err_of(uav + " --approach attic" + out);
+  EXPECT_NE(e.find("--approach: expected one of the hidden spaces"), std::string::npos) << e;
+  EXPECT_NE(e.find("house_void, garage_void"), std::string::npos) << e;
+  EXPECT_NE(e.find("attic"), std::string::npos) << e;
+  e = err_of(uav + " --approach house_void --planner rrt-connect" + out);
+  EXPECT_NE(e.find("--planner: expected one of bitstar, bkpiece"), std::string::npos) << e;
+  e = err_of(uav + " --approach house_void --tether-released 101" + out);
+  EXPECT_NE(e.find("--tether-released"), std::string::npos) << e;
+  e = err_of(uav + " --approach house_void --bounds 0,0,0,1,1" + out);  // five numbers
+  EXPECT_NE(e.find("--bounds"), std::string::npos) << e;
+  e = err_of(uav + " --approach house_void --bounds 0,0,3,10,10,3" + out);  // z0 = z1
+  EXPECT_NE(e.find("--bounds"), std::string::npos) << e;
+  e = err_of(
+      "plan ugv --world examples/worlds/default.yaml --from -7.3,7,0 --to -9,7,0 --hidden-space "
+      "attic" +
+      out);
+  EXPECT_NE(e.find("--hidden-space"), std::string::npos) << e;
+  EXPECT_NE(e.find("house_void, garage_void"), std::string::npos) << e;
+  e = err_of("plan ugv --world " + kDetour + " " + kDetourArgs + " --tether-budget inf" + out);
+  EXPECT_NE(e.find("--tether-budget"), std::string::npos) << e;
+  EXPECT_EQ(dir.count(), 0u);
 }
 
 // OMPL's console files ("ompl_<host>_<date>.console") in the directory the CLI runs in.
@@ -164,34 +291,58 @@ std::set<std::string> ompl_console_files() {
 TEST(PlanCli, BenchPlanWritesOmplLogs) {
   TempDir dir;
   const auto console_before = ompl_console_files();
-  const auto r = run_cli("bench-plan --world " + kDetour + " --robots ugv --runs 2 --time-limit 0.2 --planners rrtconnect -o " +
-                         dir / "logs");
+  const auto r =
+      run_cli("bench-plan --world " + kDetour +
+              " --robots ugv --runs 2 --time-limit 0.2 --planners rrtconnect -o " + dir / "logs");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string log = slurp(dir / "logs/ugv_0.log");
   EXPECT_NE(log.find("geometric_TetheredRRT"), std::string::npos);
   EXPECT_NE(log.find("geometric_RRTConnect"), std::string::npos);
   EXPECT_NE(log.find("2 runs"), std::string::npos) << log.substr(0, 400);
   EXPECT_EQ(ompl_console_files(), console_before);  // no stray console file
-  EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --robots boat -o " + dir / "x").exit_code, 2);
-  EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --planners nope -o " + dir / "x").exit_code, 2);
+  EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --robots boat -o " + dir / "x").exit_code,
+            2);
+  // The old spellings --output-dir and --tether, and the rover instead of the built-in shape.
+  const auto old =
+      run_cli("bench-plan --world " + kDetour +
+              " --robots ugv --runs 1 --time-limit 0.2 --planners rrt --tether 12 --robot "
+              "tests/data/robots/rover.urdf --output-dir " +
+              dir / "old");
+  ASSERT_EQ(old.exit_code, 0) << old.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "old/ugv_0.log"));
+  EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --robot tests/data/robots/rover.urdf -o " +
+                    dir / "y")
+                .exit_code,
+            2);  // one URDF for both robots
+  EXPECT_EQ(run_cli("bench-plan --world " + kDetour + " --planners nope -o " + dir / "x").exit_code,
+            2);
 }
 
 TEST(PlanCli, ExploreWithTheOmplFrontierPlanner) {
-  const auto r = run_cli("explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --method cdos --planner ompl");
+  const auto r = run_cli(
+      "explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --method cdos "
+      "--planner ompl");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("method: cdos+ompl"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("found: yes"), std::string::npos) << r.out;
-  EXPECT_EQ(run_cli("explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --planner tree").exit_code, 2);
-  EXPECT_EQ(run_cli("explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --method nearest "
-                    "--planner ompl").exit_code, 2);
+  EXPECT_EQ(
+      run_cli("explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --planner tree")
+          .exit_code,
+      2);
+  EXPECT_EQ(
+      run_cli(
+          "explore --map examples/maps/sparse.yaml --start 1,4,0 --object 4,4.2 --method nearest "
+          "--planner ompl")
+          .exit_code,
+      2);
 }
 
 TEST(PlanCli, BadInputExitsTwo) {
   TempDir dir;
   const std::string out = " -o " + dir / "p.json";
   for (const std::string& args : std::vector<std::string>{
-           "plan ugv --world " + kDetour + " --from 10,4.5 --to 10,1.5,0" + out,          // 2 numbers
-           "plan ugv --world " + kDetour + " --from 10,4.5,x --to 10,1.5,0" + out,        // not a number
+           "plan ugv --world " + kDetour + " --from 10,4.5 --to 10,1.5,0" + out,    // 2 numbers
+           "plan ugv --world " + kDetour + " --from 10,4.5,x --to 10,1.5,0" + out,  // not a number
            "plan ugv --world " + kDetour + " --from 1,1,0 --to 2,2,0 --tether -1" + out,  // budget
            "plan ugv --world " + kDetour + " --from 1,1,0 --to 2,2,0 --hidden-space x" + out,
            "plan ugv --world /nonexistent.yaml --from 1,1,0 --to 2,2,0" + out,

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "yaml_emit.hpp"
 
@@ -315,21 +316,11 @@ std::string robot_description_to_yaml(const RobotDescription& r) {
 // ---------------------------------------------------------------- shipped models
 
 std::filesystem::path find_model(std::string_view file_name) {
-  namespace fs = std::filesystem;
-  std::vector<fs::path> tried{fs::path("urdf") / "models" / file_name};
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec)
-    tried.push_back(exe.parent_path().parent_path() / "share" / "ferret" / "models" / file_name);
-#ifdef FERRET_URDF_MODELS_DIR
-  tried.push_back(fs::path(FERRET_URDF_MODELS_DIR) / file_name);
-#endif
-  std::string list;
-  for (const auto& p : tried) {
-    if (fs::is_regular_file(p, ec)) return p;
-    list += (list.empty() ? "" : ", ") + p.string();
-  }
-  throw InputError(std::string(file_name), "", "a model file in one of: " + list, "not found");
+  // The models beside the running ferret library: <prefix>/share/ferret/models when
+  // installed, urdf/models of the source tree for the build tree (data_path.hpp). Never
+  // the working directory or the running program's directory: a downstream program
+  // must read the models of the ferret it is linked against.
+  return data_path("models/" + std::string(file_name));
 }
 
 }  // namespace ferret

@@ -11,6 +11,7 @@
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/motion_check.hpp"
+#include "ferret/planning/planning_world.hpp"  // approach_hover_pose
 #include "ferret/planning/ugv_planner.hpp"
 
 namespace ferret {
@@ -20,20 +21,17 @@ struct PlanningProblem {
   Waypoint goal;
 };
 
-/// The hover pose over the landing point in front of a hidden space's opening:
-/// `standoff_m` out from the entry along the wall's normal, `hover_height_m` above
-/// the floor, facing the opening.
-[[nodiscard]] Waypoint approach_hover_pose(const HiddenSpace& space, double standoff_m = 1.0,
-                                           double hover_height_m = 1.5);
-
 /// `count` UAV approaches: random free starts inside `fence` (at its altitudes),
 /// goals cycling over the world's hidden spaces. Goals in collision are moved out
 /// along the opening's normal until free.
-[[nodiscard]] std::vector<PlanningProblem> uav_approach_problems(const WorldSpec& world, CollisionChecker& checker,
-                                                                 const Aabb3& fence, int count, std::uint64_t seed);
+[[nodiscard]] std::vector<PlanningProblem> uav_approach_problems(const WorldSpec& world,
+                                                                 CollisionChecker& checker,
+                                                                 const Aabb3& fence, int count,
+                                                                 std::uint64_t seed);
 
 /// `count` miniUGV start/goal pairs, free and at least `min_distance_m` apart.
-[[nodiscard]] std::vector<PlanningProblem> ugv_problems(UgvPlanner& planner, int count, std::uint64_t seed,
+[[nodiscard]] std::vector<PlanningProblem> ugv_problems(UgvPlanner& planner, int count,
+                                                        std::uint64_t seed,
                                                         double min_distance_m = 3.0);
 
 }  // namespace ferret

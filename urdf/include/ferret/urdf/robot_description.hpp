@@ -168,9 +168,9 @@ inline constexpr std::string_view kDepthCameraName = "depth_camera";    ///< UAV
 /// Angles are given in degrees and radians; lengths in metres.
 [[nodiscard]] std::string robot_description_to_yaml(const RobotDescription& robot);
 
-/// Finds a model shipped with ferret (e.g. "miniugv.urdf"): ./urdf/models/, then the
-/// install data dir (<prefix>/share/ferret/models beside the running binary), then the
-/// source tree ferret was built from. Throws InputError listing the places tried.
+/// Finds a model shipped with ferret (e.g. "miniugv.urdf") beside the running ferret
+/// library: <prefix>/share/ferret/models when installed, the source tree's urdf/models
+/// for the build tree (ferret/core/data_path.hpp). Throws InputError naming the path.
 [[nodiscard]] std::filesystem::path find_model(std::string_view file_name);
 
 }  // namespace ferret

@@ -1,0 +1,128 @@
+// ferret as a library (docs/library.md): load the shipped default world, plan the
+// UAV's approach to the hidden space house_void, plan a tether-aware miniUGV path
+// inside it, and check both plans with the validation API.
+//
+//   ferret_library_example [OUT_DIR]   (OUT_DIR: also write approach.json, ugv.json)
+//
+// Exit 0 when both plans are found and valid, 1 when not, 2 for bad input.
+
+#include <cstdio>
+#include <ferret/core/data_path.hpp>
+#include <ferret/core/error.hpp>
+#include <ferret/planning/collision_checker.hpp>
+#include <ferret/planning/plan_validation.hpp>
+#include <ferret/planning/planning_world.hpp>
+#include <ferret/planning/uav_approach.hpp>
+#include <ferret/planning/ugv_path.hpp>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace {
+
+double path_length_m(const ferret::PlanFile& plan) {
+  double length_m = 0.0;
+  for (std::size_t k = 1; k < plan.states.size(); ++k)
+    length_m += (plan.states[k].position() - plan.states[k - 1].position()).norm();
+  return length_m;
+}
+
+// Checks a plan as `ferret validate` does: FCL alone at the planners' resolution with the
+// plan's unknown-space policy, its bounds and limits, and a miniUGV plan's tether.
+std::optional<ferret::Violation> check(const ferret::PlanningWorld& world,
+                                       const ferret::PlanFile& plan) {
+  ferret::CollisionMapOptions map_options;
+  map_options.unknown = plan.unknown_policy.value_or(ferret::UnknownPolicy::kFree);
+  map_options.bounds = plan.bounds;
+  const auto map = ferret::CollisionMap::build(*world.tree, map_options);
+  // The robot the plan was made with: its URDF's shapes, as the planner checked them.
+  const ferret::LoadedPlanRobot robot = ferret::load_plan_robot(
+      plan.robot, {plan.robot_model, plan.robot_model.empty()}, {}, plan.released_length_m);
+  ferret::CollisionChecker exact(map, robot.shape);
+
+  ferret::ValidationOptions options;
+  options.resolution = ferret::default_resolution(plan.robot);
+  options.geofence = plan.bounds;
+  options.max_velocity_mps = plan.max_velocity_mps.value_or(robot.limits.max_velocity_mps);
+  options.max_yaw_rate_radps = plan.max_yaw_rate_radps.value_or(robot.limits.max_yaw_rate_radps);
+  std::shared_ptr<const ferret::TetherCorners> corners;
+  if (plan.robot == ferret::PlanRobot::kUgv) {
+    ferret::HiddenSpaceFrame space;
+    space.lo_m = plan.bounds->lo.head<2>();
+    space.hi_m = plan.bounds->hi.head<2>();
+    space.floor_z_m = plan.bounds->lo.z();
+    corners = ferret::tether_corners_from_map(*map, space, robot.ugv);
+  }
+  return ferret::validate_plan(plan, exact, corners, options);
+}
+
+bool report_check(const char* what, const ferret::PlanningWorld& world,
+                  const ferret::PlanFile& plan) {
+  const auto violation = check(world, plan);
+  if (violation) {
+    std::printf("%s check: invalid at state %zu: %s\n", what, violation->index,
+                violation->reason.c_str());
+    return false;
+  }
+  std::printf("%s check: valid\n", what);
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 2) {
+    std::fprintf(stderr, "usage: %s [OUT_DIR]\n", argv[0]);
+    return 2;
+  }
+  try {
+    // The world ships with ferret: data_path() finds it beside the installed library.
+    const std::filesystem::path world_file = ferret::data_path("worlds/default.yaml");
+    const ferret::PlanningWorld world = ferret::load_planning_world(world_file);
+    std::printf("world: %s\n", std::filesystem::absolute(world_file).c_str());
+
+    // 1. The UAV from the site's south-west corner to the hover pose in front of
+    //    house_void's opening, with the shipped M100 model (its shapes and limits).
+    ferret::UavApproachRequest approach;
+    approach.start = {.t_s = 0.0, .x_m = -20.0, .y_m = -20.0, .z_m = 3.0, .yaw_rad = 0.0};
+    approach.hidden_space = "house_void";
+    approach.seed = 7;
+    const ferret::PlanResult uav = ferret::plan_uav_approach(world, approach);
+    if (!uav.solved) {
+      std::printf("approach: not solved: %s\n", uav.status.c_str());
+      return 1;
+    }
+    std::printf("model: %s\n", std::filesystem::absolute(uav.plan.robot_model).c_str());
+    std::printf("approach: solved, %zu states, %.2f m, %.2f s to house_void\n",
+                uav.plan.states.size(), path_length_m(uav.plan), uav.plan.states.back().t_s);
+
+    // 2. The miniUGV, lowered at the opening, from just inside the entry to the far side
+    //    of the rubble, its tether held within the mission's budget (15 m - 1 m).
+    ferret::UgvPathRequest path;
+    path.start = {-7.3, 7.0, 3.14159};
+    path.goal = {-14.8, 6.665, 2.92};
+    path.seed = 7;
+    const ferret::UgvPathResult ugv = ferret::plan_ugv_path(world, path);
+    if (!ugv.solved) {
+      std::printf("ugv: not solved: %s\n", ugv.status.c_str());
+      return 1;
+    }
+    std::printf("ugv: solved, %zu states, %.2f m, tether %.2f m taut of %.2f m, %zu wrap points\n",
+                ugv.plan.states.size(), path_length_m(ugv.plan),
+                ugv.plan.states.back().tether_length_m, ugv.tether_budget_m,
+                ugv.final_wraps.size());
+
+    // 3. Both plans checked as `ferret validate` checks them.
+    const bool valid =
+        report_check("approach", world, uav.plan) & report_check("ugv", world, ugv.plan);
+    if (argc == 2) {
+      ferret::save_plan(uav.plan, std::filesystem::path(argv[1]) / "approach.json");
+      ferret::save_plan(ugv.plan, std::filesystem::path(argv[1]) / "ugv.json");
+    }
+    return valid ? 0 : 1;
+  } catch (const ferret::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+}

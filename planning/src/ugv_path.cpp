@@ -1,0 +1,128 @@
+#include "ferret/planning/ugv_path.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "ferret/core/error.hpp"
+#include "ferret/planning/ugv_planner.hpp"
+
+namespace ferret {
+namespace {
+
+constexpr const char* kSource = "UgvPathRequest";
+
+void check_pose(const Pose2& p, const char* field) {
+  if (!(std::isfinite(p.x_m) && std::isfinite(p.y_m) && std::isfinite(p.yaw_rad)))
+    throw InputError(kSource, field, "a finite pose x, y, yaw",
+                     fmt::format("{},{},{}", p.x_m, p.y_m, p.yaw_rad));
+}
+
+// The hidden space of a request: named, else the one holding the start (world YAML),
+// with the explicit box, floor and entry laid over it.
+HiddenSpaceFrame request_space(const PlanningWorld& world, const UgvPathRequest& r) {
+  HiddenSpaceFrame space;
+  bool have_space = false, have_entry = false;
+  if (!r.hidden_space.empty()) {
+    space = hidden_space_frame(find_hidden_space(world, r.hidden_space, kSource, "hidden_space"));
+    have_space = have_entry = true;
+  } else if (world.spec) {
+    const int index = hidden_space_at(*world.spec, r.start.position());
+    if (index >= 0) {
+      space = hidden_space_frame(world.spec->hidden_spaces[static_cast<std::size_t>(index)]);
+      have_space = have_entry = true;
+    }
+  }
+  if (r.bounds) {
+    const Aabb3& b = *r.bounds;
+    if (!(b.lo.allFinite() && b.hi.allFinite() && (b.lo.array() < b.hi.array()).all()))
+      throw InputError(kSource, "bounds", "a box with min < max on every axis");
+    space.lo_m = b.lo.head<2>();
+    space.hi_m = b.hi.head<2>();
+    space.floor_z_m = b.lo.z();
+    have_space = true;
+  }
+  if (r.floor_z_m) {
+    if (!std::isfinite(*r.floor_z_m))
+      throw InputError(kSource, "floor_z_m", "a finite height in metres");
+    space.floor_z_m = *r.floor_z_m;
+  }
+  if (r.p_WE) {
+    if (!r.p_WE->allFinite()) throw InputError(kSource, "p_WE", "a finite entry point x, y");
+    space.p_WE = *r.p_WE;
+    have_entry = true;
+  }
+  if (!have_space)
+    throw InputError(
+        kSource, "bounds",
+        "the hidden space's box (or a world YAML with a hidden space that holds the start)",
+        world.source.string());
+  if (!have_entry)
+    throw InputError(kSource, "p_WE", "the tether's entry point (a box alone does not give one)");
+  return space;
+}
+
+}  // namespace
+
+UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& request) {
+  const UgvPathRequest& r = request;
+  check_pose(r.start, "start");
+  check_pose(r.goal, "goal");
+  for (const Eigen::Vector2d& p : r.driven)
+    if (!p.allFinite()) throw InputError(kSource, "driven", "finite points x, y");
+  if (!(std::isfinite(r.time_limit_s) && r.time_limit_s > 0.0 && r.time_limit_s <= 3600.0))
+    throw InputError(kSource, "time_limit_s", "seconds in (0, 3600]",
+                     fmt::format("{}", r.time_limit_s));
+  TetherParams tether = r.mission.tether;
+  if (r.tether_budget_m) {
+    if (!(std::isfinite(*r.tether_budget_m) && *r.tether_budget_m > 0.0 &&
+          *r.tether_budget_m <= 1000.0))
+      throw InputError(kSource, "tether_budget_m", "a taut tether length in (0, 1000] m",
+                       fmt::format("{}", *r.tether_budget_m));
+    tether.total_length_m = tether.entry_offset_m + *r.tether_budget_m;
+  }
+  const HiddenSpaceFrame space = request_space(world, r);
+  const LoadedPlanRobot model =
+      load_plan_robot(PlanRobot::kUgv, r.robot, r.mission, 0.0, kSource, "robot");
+
+  const auto map = ugv_collision_map(*world.tree, space, model.ugv);
+  UgvPlannerOptions opt;
+  opt.shape = model.shape;
+  opt.time_limit_s = r.time_limit_s;
+  opt.seed = r.seed;
+  // The robot's limits: a URDF's wheel joints cap the mission's speed.
+  opt.max_velocity_mps = model.limits.max_velocity_mps;
+  opt.max_yaw_rate_radps = model.limits.max_yaw_rate_radps;
+  UgvPlanner planner(map, space, model.ugv, opt);
+  UgvPlanRequest req;
+  req.start = r.start;
+  req.goal = r.goal;
+  req.driven = r.driven;
+  req.tether = tether;
+  const UgvPlan found =
+      r.mode == UgvPathMode::kReturnAlongTether ? planner.plan_return(req) : planner.plan(req);
+
+  UgvPathResult out;
+  out.solved = found.solved;
+  out.status = found.status;
+  out.planning_time_s = found.planning_time_s;
+  out.final_wraps = found.final_wraps;
+  out.tether_budget_m = tether.total_length_m - tether.entry_offset_m;
+  PlanFile& plan = out.plan;
+  plan.robot = PlanRobot::kUgv;
+  plan.robot_model = model.model;
+  if (found.solved) plan.states = found.states;
+  plan.tether =
+      PlanTether{space.p_WE, found.initial_wraps, tether.total_length_m, tether.entry_offset_m};
+  plan.unknown_policy = UnknownPolicy::kOccupied;
+  plan.bounds = ugv_policy_bounds(space, model.ugv);
+  plan.max_velocity_mps = opt.max_velocity_mps;
+  plan.max_yaw_rate_radps = opt.max_yaw_rate_radps;
+  plan.planner = "TetheredRRT";
+  plan.planning_time_s = found.planning_time_s;
+  plan.seed = r.seed;
+  plan.world = world.source.string();
+  return out;
+}
+
+}  // namespace ferret
