@@ -9,14 +9,11 @@
 #include <cstdio>
 #include <ferret/core/data_path.hpp>
 #include <ferret/core/error.hpp>
-#include <ferret/planning/collision_checker.hpp>
 #include <ferret/planning/plan_validation.hpp>
 #include <ferret/planning/planning_world.hpp>
 #include <ferret/planning/uav_approach.hpp>
 #include <ferret/planning/ugv_path.hpp>
 #include <filesystem>
-#include <memory>
-#include <optional>
 #include <string>
 
 namespace {
@@ -28,44 +25,19 @@ double path_length_m(const ferret::PlanFile& plan) {
   return length_m;
 }
 
-// Checks a plan as `ferret validate` does: FCL alone at the planners' resolution with the
-// plan's unknown-space policy, its bounds and limits, and a miniUGV plan's tether.
-std::optional<ferret::Violation> check(const ferret::PlanningWorld& world,
-                                       const ferret::PlanFile& plan) {
-  ferret::CollisionMapOptions map_options;
-  map_options.unknown = plan.unknown_policy.value_or(ferret::UnknownPolicy::kFree);
-  map_options.bounds = plan.bounds;
-  const auto map = ferret::CollisionMap::build(*world.tree, map_options);
-  // The robot the plan was made with: its URDF's shapes, as the planner checked them.
-  const ferret::LoadedPlanRobot robot = ferret::load_plan_robot(
-      plan.robot, {plan.robot_model, plan.robot_model.empty()}, {}, plan.released_length_m);
-  ferret::CollisionChecker exact(map, robot.shape);
-
-  ferret::ValidationOptions options;
-  options.resolution = ferret::default_resolution(plan.robot);
-  options.geofence = plan.bounds;
-  options.max_velocity_mps = plan.max_velocity_mps.value_or(robot.limits.max_velocity_mps);
-  options.max_yaw_rate_radps = plan.max_yaw_rate_radps.value_or(robot.limits.max_yaw_rate_radps);
-  std::shared_ptr<const ferret::TetherCorners> corners;
-  if (plan.robot == ferret::PlanRobot::kUgv) {
-    ferret::HiddenSpaceFrame space;
-    space.lo_m = plan.bounds->lo.head<2>();
-    space.hi_m = plan.bounds->hi.head<2>();
-    space.floor_z_m = plan.bounds->lo.z();
-    corners = ferret::tether_corners_from_map(*map, space, robot.ugv);
-  }
-  return ferret::validate_plan(plan, exact, corners, options);
-}
-
+// Checks a plan as `ferret validate` does (docs/validate.md): the robot and limits the
+// plan was made with, its bounds, the tether replayed, FCL alone; every violation.
 bool report_check(const char* what, const ferret::PlanningWorld& world,
                   const ferret::PlanFile& plan) {
-  const auto violation = check(world, plan);
-  if (violation) {
-    std::printf("%s check: invalid at state %zu: %s\n", what, violation->index,
-                violation->reason.c_str());
+  const ferret::ValidationReport report = ferret::validate_plan(plan, world, {}, what);
+  if (!report.valid()) {
+    std::printf("%s check: invalid, %zu violations, first: %s\n", what,
+                report.violations.size(), report.violations.front().describe().c_str());
     return false;
   }
-  std::printf("%s check: valid\n", what);
+  std::printf("%s check: valid, clearance >= %.2f m, peak %.2f m/s, %.2f m/s^2\n", what,
+              report.margins.min_clearance_m, report.margins.peak_speed_mps,
+              report.margins.peak_acceleration_mps2);
   return true;
 }
 

@@ -1,3 +1,4 @@
+#include <cmath>
 #include "ferret/planning/motion_check.hpp"
 
 #include <algorithm>
@@ -73,11 +74,22 @@ std::vector<Waypoint> turn_drive_turn(const Waypoint& a, const Waypoint& b) {
   return out;
 }
 
-void assign_times(std::vector<Waypoint>& path, double max_velocity_mps, double max_yaw_rate_radps) {
+double rest_to_rest_time_s(double distance_m, double max_velocity_mps,
+                           double max_acceleration_mps2) {
+  const double v = max_velocity_mps, a = max_acceleration_mps2;
+  // Accelerating to v and braking from it takes v^2 / a of the distance.
+  if (distance_m >= v * v / a) return distance_m / v + v / a;
+  return 2.0 * std::sqrt(distance_m / a);
+}
+
+void assign_times(std::vector<Waypoint>& path, double max_velocity_mps, double max_yaw_rate_radps,
+                  double max_acceleration_mps2) {
   for (std::size_t k = 1; k < path.size(); ++k) {
     const double dp = (path[k].position() - path[k - 1].position()).norm();
     const double dyaw = std::abs(wrap_angle_rad(path[k].yaw_rad - path[k - 1].yaw_rad));
-    path[k].t_s = path[k - 1].t_s + std::max(dp / max_velocity_mps, dyaw / max_yaw_rate_radps);
+    path[k].t_s = path[k - 1].t_s +
+                  std::max(rest_to_rest_time_s(dp, max_velocity_mps, max_acceleration_mps2),
+                           dyaw / max_yaw_rate_radps);
   }
 }
 

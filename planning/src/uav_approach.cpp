@@ -61,6 +61,7 @@ PlanResult plan_uav_approach(const PlanningWorld& world, const UavApproachReques
   opt.seed = r.seed;
   opt.max_velocity_mps = model.limits.max_velocity_mps;
   opt.max_yaw_rate_radps = model.limits.max_yaw_rate_radps;
+  opt.max_acceleration_mps2 = model.limits.max_acceleration_mps2;
   seed_ompl_once(r.seed);
   const auto map =
       CollisionMap::build(*world.tree, uav_map_options(world.spec, r.unknown, opt.geofence));
@@ -80,6 +81,7 @@ PlanResult plan_uav_approach(const PlanningWorld& world, const UavApproachReques
   plan.bounds = opt.geofence;
   plan.max_velocity_mps = opt.max_velocity_mps;
   plan.max_yaw_rate_radps = opt.max_yaw_rate_radps;
+  plan.max_acceleration_mps2 = opt.max_acceleration_mps2;
   plan.planner = opt.planner;
   plan.planning_time_s = found.planning_time_s;
   plan.seed = r.seed;

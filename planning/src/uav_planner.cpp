@@ -149,7 +149,8 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
   }
   std::vector<Waypoint> states;
   for (const ob::State* s : path.getStates()) states.push_back(to_waypoint(s));
-  assign_times(states, options_.max_velocity_mps, options_.max_yaw_rate_radps);
+  assign_times(states, options_.max_velocity_mps, options_.max_yaw_rate_radps,
+               options_.max_acceleration_mps2);
   // Simplified paths can touch invalid regions (OMPL #221, #1292): check every
   // segment again at the validation resolution, with the checker (same answers as
   // FCL) or, on request, with FCL alone.

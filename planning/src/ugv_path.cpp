@@ -93,6 +93,7 @@ UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& re
   // The robot's limits: a URDF's wheel joints cap the mission's speed.
   opt.max_velocity_mps = model.limits.max_velocity_mps;
   opt.max_yaw_rate_radps = model.limits.max_yaw_rate_radps;
+  opt.max_acceleration_mps2 = model.limits.max_acceleration_mps2;
   UgvPlanner planner(map, space, model.ugv, opt);
   UgvPlanRequest req;
   req.start = r.start;
@@ -118,6 +119,7 @@ UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& re
   plan.bounds = ugv_policy_bounds(space, model.ugv);
   plan.max_velocity_mps = opt.max_velocity_mps;
   plan.max_yaw_rate_radps = opt.max_yaw_rate_radps;
+  plan.max_acceleration_mps2 = opt.max_acceleration_mps2;
   plan.planner = "TetheredRRT";
   plan.planning_time_s = found.planning_time_s;
   plan.seed = r.seed;

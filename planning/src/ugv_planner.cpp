@@ -231,7 +231,8 @@ UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether
   for (std::size_t k = 1; k < nodes.size(); ++k)
     for (const Waypoint& w : turn_drive_turn(nodes[k - 1], nodes[k])) dense.push_back(w);
   dense.front().t_s = t0_s;
-  assign_times(dense, options_.max_velocity_mps, options_.max_yaw_rate_radps);
+  assign_times(dense, options_.max_velocity_mps, options_.max_yaw_rate_radps,
+               options_.max_acceleration_mps2);
   TautTether t = tether0;
   if (replay_tether(t, dense, max_taut_m) >= 0) {
     out.status = "final path exceeds the tether length";

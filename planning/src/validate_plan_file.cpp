@@ -61,14 +61,51 @@ std::function<std::string(const Eigen::Vector3d&)> world_namer(const WorldSpec& 
   };
 }
 
+void check_request(const ValidateRequest& request) {
+  if (request.tether_budget_m &&
+      !(std::isfinite(*request.tether_budget_m) && *request.tether_budget_m > 0 &&
+        *request.tether_budget_m <= 1000))
+    throw InputError("--tether-budget", "", "a taut tether length in (0, 1000] m",
+                     fmt::format("{}", *request.tether_budget_m));
+  if (request.floor_z_m && !std::isfinite(*request.floor_z_m))
+    throw InputError("--floor-z", "", "a finite height in metres",
+                     fmt::format("{}", *request.floor_z_m));
+  if (request.bounds && !(request.bounds->lo.allFinite() && request.bounds->hi.allFinite() &&
+                          (request.bounds->lo.array() < request.bounds->hi.array()).all()))
+    throw InputError("--bounds", "", "x0,y0,z0,x1,y1,z1: finite, with min < max on every axis");
+  if (request.p_WE && !request.p_WE->allFinite())
+    throw InputError("--entry", "", "a finite point x,y");
+}
+
+// Everything after the plan's and the request's own checks.
+ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world,
+                                       const ValidateRequest& request, const std::string& source);
+
 }  // namespace
 
 ValidationReport validate_plan_file(const std::filesystem::path& plan_path,
                                     const std::filesystem::path& world_path,
                                     const ValidateRequest& request) {
-  const std::string source = plan_path.string();
   PlanFile plan = load_plan(plan_path);
+  check_yaw_is_radians(plan, plan_path.string());
+  // The request is checked before the (slow) world is built.
+  check_request(request);
+  return validate_checked_plan(std::move(plan), load_planning_world(world_path), request,
+                               plan_path.string());
+}
+
+ValidationReport validate_plan(PlanFile plan, const PlanningWorld& world,
+                               const ValidateRequest& request, const std::string& source) {
   check_yaw_is_radians(plan, source);
+  check_request(request);
+  return validate_checked_plan(std::move(plan), world, request, source);
+}
+
+namespace {
+
+ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world,
+                                       const ValidateRequest& request, const std::string& source) {
+  const std::filesystem::path world_path = world.source;
   const MissionConfig mission =
       request.mission ? load_mission_config(*request.mission) : MissionConfig{};
 
@@ -93,20 +130,6 @@ ValidationReport validate_plan_file(const std::filesystem::path& plan_path,
                      urdf->source);
   }
   const bool ugv = plan.robot == PlanRobot::kUgv;
-  if (request.tether_budget_m &&
-      !(std::isfinite(*request.tether_budget_m) && *request.tether_budget_m > 0 &&
-        *request.tether_budget_m <= 1000))
-    throw InputError("--tether-budget", "", "a taut tether length in (0, 1000] m",
-                     fmt::format("{}", *request.tether_budget_m));
-  if (request.floor_z_m && !std::isfinite(*request.floor_z_m))
-    throw InputError("--floor-z", "", "a finite height in metres",
-                     fmt::format("{}", *request.floor_z_m));
-  if (request.bounds && !(request.bounds->lo.allFinite() && request.bounds->hi.allFinite() &&
-                          (request.bounds->lo.array() < request.bounds->hi.array()).all()))
-    throw InputError("--bounds", "", "x0,y0,z0,x1,y1,z1: finite, with min < max on every axis");
-  if (request.p_WE && !request.p_WE->allFinite())
-    throw InputError("--entry", "", "a finite point x,y");
-  const PlanningWorld world = load_planning_world(world_path);
 
   // The box: the request's, else the plan's, else (miniUGV in a world YAML) the hidden
   // space the plan starts in. It is where unknown space is occupied, the geofence,
@@ -239,5 +262,7 @@ ValidationReport validate_plan_file(const std::filesystem::path& plan_path,
   }
   return report;
 }
+
+}  // namespace
 
 }  // namespace ferret

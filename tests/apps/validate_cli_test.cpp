@@ -125,15 +125,17 @@ TEST(ValidateCli, ExamplePlans) {
   EXPECT_EQ(
       run_cli("validate --world " + kDetour + " --plan examples/plans/detour_ugv.json").exit_code,
       0);
-  // The planner timed it at the speed limits without an acceleration model (its
-  // limits have no acceleration); with the robot's 2 m/s^2 it fails on that alone.
+  // The planner times every segment rest to rest within the robot's limits, so the
+  // plan also holds with the robot's own 2 m/s^2, and its segment-to-segment
+  // acceleration stays within half of it (motion_check.hpp's assign_times).
   const auto accel = run_cli("validate --world " + kDetour +
                              " --plan examples/plans/detour_ugv.json --robot miniugv --json");
-  EXPECT_EQ(accel.exit_code, 1);
+  EXPECT_EQ(accel.exit_code, 0) << accel.out;
   const auto doc = nlohmann::json::parse(accel.out);
-  ASSERT_FALSE(doc["violations"].empty());
-  for (const auto& v : doc["violations"]) EXPECT_EQ(v["kind"], "acceleration") << v["message"];
-  EXPECT_NEAR(doc["margins"]["peak_acceleration_mps2"].get<double>(), 2.952, 1e-3);
+  EXPECT_TRUE(doc["violations"].empty());
+  EXPECT_EQ(doc["inputs"]["limits"]["max_acceleration_mps2"], 2.0);
+  EXPECT_GT(doc["margins"]["peak_acceleration_mps2"].get<double>(), 0.1);
+  EXPECT_LE(doc["margins"]["peak_acceleration_mps2"].get<double>(), 1.0 + 1e-9);
   EXPECT_EQ(run_cli("validate --world " + kDetour +
                     " --plan examples/plans/states_only_ugv.json --robot miniugv")
                 .exit_code,

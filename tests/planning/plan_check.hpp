@@ -3,6 +3,7 @@
 // FCL alone at the planners' resolution, the plan's unknown-space policy, bounds and
 // limits (or the given ones), and a miniUGV plan's tether replayed from its wraps.
 
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -22,12 +23,13 @@ inline std::optional<Violation> check_plan(
   const LoadedPlanRobot robot = load_plan_robot(
       plan.robot, {plan.robot_model, plan.robot_model.empty()}, {}, plan.released_length_m);
   CollisionChecker exact(map, robot.shape);
-  ValidationOptions options;
-  options.resolution = default_resolution(plan.robot);
+  MotionLimits plan_limits;
+  plan_limits.max_velocity_mps = plan.max_velocity_mps.value();
+  plan_limits.max_yaw_rate_radps = plan.max_yaw_rate_radps.value();
+  plan_limits.max_acceleration_mps2 =
+      plan.max_acceleration_mps2.value_or(std::numeric_limits<double>::infinity());
+  ValidationOptions options(limits.value_or(plan_limits), default_resolution(plan.robot));
   options.geofence = plan.bounds;
-  options.max_velocity_mps = limits ? limits->max_velocity_mps : plan.max_velocity_mps.value();
-  options.max_yaw_rate_radps =
-      limits ? limits->max_yaw_rate_radps : plan.max_yaw_rate_radps.value();
   std::shared_ptr<const TetherCorners> corners;
   if (plan.robot == PlanRobot::kUgv) {
     HiddenSpaceFrame space;
@@ -36,7 +38,9 @@ inline std::optional<Violation> check_plan(
     space.floor_z_m = plan.bounds->lo.z();
     corners = tether_corners_from_map(*map, space, UgvGeometry{});
   }
-  return validate_plan(plan, exact, corners, options);
+  const ValidationReport report = validate_plan(plan, exact, corners, options);
+  if (report.valid()) return std::nullopt;
+  return report.violations.front();
 }
 
 }  // namespace ferret::test

@@ -57,8 +57,21 @@ struct CheckResolution {
 /// the one that asks the smaller turn at a.
 [[nodiscard]] double free_drive_heading_rad(const Waypoint& a, const Eigen::Vector2d& b);
 
-/// Sets times along a path driven at the velocity and yaw-rate limits (each segment
-/// takes the longer of its translation and rotation times). @pre limits > 0
-void assign_times(std::vector<Waypoint>& path, double max_velocity_mps, double max_yaw_rate_radps);
+/// Time to drive `distance_m` in a straight line from rest to rest with speed <=
+/// max_velocity_mps and |acceleration| <= max_acceleration_mps2: a trapezoidal
+/// profile, or a triangular one when the drive is too short to reach the speed limit.
+/// An infinite acceleration limit gives distance / speed. @pre limits > 0
+[[nodiscard]] double rest_to_rest_time_s(double distance_m, double max_velocity_mps,
+                                         double max_acceleration_mps2);
+
+/// Sets times along a path whose every segment is driven from rest to rest within
+/// the velocity and acceleration limits (rest_to_rest_time_s), turning at the yaw-rate
+/// limit: each segment takes the longer of its translation and rotation times. The
+/// robot stops at every state, which a turn-in-place miniUGV does anyway and a
+/// multirotor can. Between states the plan reads as constant speed (docs/validate.md):
+/// with these times its segment-to-segment acceleration stays <= half the limit.
+/// @pre limits > 0
+void assign_times(std::vector<Waypoint>& path, double max_velocity_mps, double max_yaw_rate_radps,
+                  double max_acceleration_mps2);
 
 }  // namespace ferret

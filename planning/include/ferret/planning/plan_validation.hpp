@@ -28,6 +28,8 @@ class OcTree;
 
 namespace ferret {
 
+struct PlanningWorld;
+
 enum class ViolationKind {
   kCollision,     ///< a robot part overlaps an occupied voxel
   kUnknownSpace,  ///< ... a voxel that was never observed (occupied by the policy)
@@ -169,6 +171,12 @@ struct ValidateRequest {
 [[nodiscard]] ValidationReport validate_plan_file(const std::filesystem::path& plan,
                                                   const std::filesystem::path& world,
                                                   const ValidateRequest& request);
+
+/// The same for a plan already in memory, against a world already loaded (a program
+/// that plans and checks without files); `source` names the plan in errors.
+[[nodiscard]] ValidationReport validate_plan(PlanFile plan, const PlanningWorld& world,
+                                             const ValidateRequest& request,
+                                             const std::string& source = "plan");
 
 /// The report as JSON (docs/validate.md, docs/validate.schema.json), one document.
 [[nodiscard]] std::string validation_report_to_json(const ValidationReport& report);

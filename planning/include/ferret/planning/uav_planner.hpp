@@ -36,6 +36,7 @@ struct UavPlannerOptions {
   std::uint64_t seed = 1;              ///< seeds OMPL once per process (seed_ompl_once)
   double max_velocity_mps = 5.0;       ///< for time stamps (MissionConfig::uav_limits)
   double max_yaw_rate_radps = 1.0;
+  double max_acceleration_mps2 = 2.0;  ///< for time stamps: every segment rest to rest
 };
 
 struct UavPlan {

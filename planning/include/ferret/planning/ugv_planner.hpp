@@ -43,6 +43,7 @@ struct UgvPlannerOptions {
   std::uint64_t seed = 1;
   double max_velocity_mps = 2.0;     ///< for time stamps (MissionConfig::ugv_limits)
   double max_yaw_rate_radps = 2.0;
+  double max_acceleration_mps2 = 2.0;  ///< for time stamps: every segment rest to rest
   /// The collision shape (e.g. from the URDF, planning_world.hpp's plan_robot_shape);
   /// empty: ugv_shape() of the geometry.
   std::optional<RobotShape> shape;
