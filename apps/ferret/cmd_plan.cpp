@@ -231,10 +231,11 @@ const CommandRegistration kPlan{
           "uav", "UAV in x, y, z, yaw inside a geofence box (its z range the altitude band)");
       add_common(uav, ua->common, "m100");
       uav->add_option("--from", ua->from, "start x,y,z,yaw (m, rad)")->required();
-      uav->add_option("--to", ua->to, "goal x,y,z,yaw (m, rad)");
+      uav->add_option("--to", ua->to, "goal x,y,z,yaw (m, rad); required unless --approach");
       uav->add_option(
           "--approach", ua->approach,
-          "goal: the hover pose 1 m in front of this hidden space's opening, 1.5 m up, facing it");
+          "goal: the hover pose 1 m in front of this hidden space's opening, 1.5 m up, facing it "
+          "(required unless --to)");
       uav->add_option(
           "--tether-released", ua->tether_released_m,
           "plan with the miniUGV hanging on this much released tether l_t, metres in [0, 100] "
@@ -261,8 +262,10 @@ const CommandRegistration kPlan{
       ugv->add_option("--entry", ga->entry, "tether entry point x,y (default: the hidden space's)");
       add_tether_budget_option(ugv, ga->tether_budget_m,
                                "the mission's L - l_0, 15 - 1 m built in");
-      ugv->add_option("--driven", ga->driven,
-                      "path driven since the entry, \"x,y;x,y;...\" (gives the tether's wraps)");
+      ugv->add_option(
+          "--driven", ga->driven,
+          "path driven since the entry, \"x,y;x,y;...\" (gives the tether's wraps; default: "
+          "none, the tether straight from the entry)");
       ugv->add_option("--hidden-space", ga->hidden_space,
                       "hidden space of a world YAML (default: the one holding --from)");
       add_bounds_option(

@@ -86,7 +86,7 @@ const CommandRegistration kValidate{
                         "else the world's bounds / the map's extent)");
       cmd->add_option(
           "--floor-z", args->floor_z_m,
-          "floor height (m) for the tether's obstacles, overriding the one found in the map");
+          "floor height (m) for the tether's obstacles (default: the one found in the map)");
       cmd->add_flag("--json", args->json,
                     "the report as JSON on stdout (docs/validate.md; lists every violation)");
       cmd->add_flag("--all", args->all, "print every violation (default: the first)");
