@@ -147,10 +147,11 @@ void run(const Options& o) {
   log["start"] = {start.x_m, start.y_m, start.yaw_rad};
   log["object"] = {object.x(), object.y()};
   // The values the simulator and the search used, wherever they came from.
-  log["sensors"] = {{"camera_fov_deg", rad_to_deg(s.sensors.camera_fov_rad)},
+  auto deg = [](double rad) { return std::round(rad_to_deg(rad) * 1e9) / 1e9; };  // no 29.999..
+  log["sensors"] = {{"camera_fov_deg", deg(s.sensors.camera_fov_rad)},
                     {"camera_range_m", s.sensors.camera_range_m},
                     {"image_width_px", s.sensors.image_width_px},
-                    {"ir_fov_deg", rad_to_deg(s.sensors.ir_fov_rad)},
+                    {"ir_fov_deg", deg(s.sensors.ir_fov_rad)},
                     {"ir_range_m", s.sensors.ir_range_m},
                     {"ir_beams", s.sensors.ir_bearings_rad.empty()
                                      ? nlohmann::json(s.sensors.ir_beams)
@@ -192,7 +193,9 @@ const CommandRegistration kExplore{
       sub->add_option("--method", o->method, "cdos, cdos-literal, rapid, nearest or oracle")
           ->capture_default_str();
       add_seed_option(sub, o->seed, "Seed of the sensor noise");
-      sub->add_option("-o,--out", o->out, "Directory for G.png, O.png, G_O.png and log.json");
+      sub->add_option("-o,--out", o->out,
+                      "Directory for G.png, O.png, G_O.png and log.json (default: none, the "
+                      "summary only)");
       add_hidden_alias(sub, "--output", o->out);
       add_hidden_alias(sub, "--output-dir", o->out);
       add_mission_option(sub, o->mission);

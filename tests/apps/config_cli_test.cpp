@@ -266,5 +266,30 @@ TEST(ConfigCli, MissionRolesNamingAMissingSensorAreBadInput) {
       "roles.rover.object_camera");
 }
 
+TEST(ConfigCli, BadMeshesAndRolesExitTwoNamingTheLine) {
+  TempDir dir;
+  // A mesh that is not there: the URDF line of the <mesh> and the path tried.
+  const std::string missing = dir / "missing_mesh.urdf";
+  write_text(missing, edited_miniugv("<collision><geometry><box size=\"0.130 0.090 0.040\"/>",
+                                     "<collision><geometry><mesh filename=\"meshes/body.stl\"/>"));
+  auto r = run_cli("config --dump --robot " + missing);
+  expect_bad_input(r, missing + ":", "link[chassis_link]/collision[0]/geometry/mesh@filename");
+  EXPECT_TRUE(contains(r.err, dir / "meshes/body.stl")) << r.err;
+  // A corrupt one: assimp's refusal, one line.
+  std::filesystem::create_directories(dir.path() / "meshes");
+  write_text(dir / "meshes/body.stl",
+             "solid nothing\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n");
+  r = run_cli("config --dump --robot " + missing);
+  expect_bad_input(r, missing + ":", "a mesh file assimp can read");
+  // A role on a sensor of the wrong type: depth_camera on an IR sensor.
+  const std::string wrong = dir / "wrong_role.urdf";
+  write_text(wrong,
+             edited_miniugv(
+                 "<sensor type=\"ray\" name=\"ir_left\">\n      <ferret role=\"ir\"/>",
+                 "<sensor type=\"ray\" name=\"ir_left\">\n      <ferret role=\"depth_camera\"/>"));
+  expect_bad_input(run_cli("config --dump --robot " + wrong), wrong + ":",
+                   "sensor[ir_left]/role[depth_camera]: expected a depth camera");
+}
+
 }  // namespace
 }  // namespace ferret::test
