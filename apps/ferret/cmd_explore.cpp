@@ -116,7 +116,11 @@ void run(const Options& o) {
   } else if (o.planner != "grid") {
     throw InputError("ferret explore", "--planner", "grid or ompl", o.planner);
   }
-  if (!robot) s.robot.max_acceleration_mps2 = s.mission.ugv_limits.max_acceleration_mps2;
+  if (!robot) {  // the mission's ugv_limits, as a robot's limits would be
+    s.robot.max_velocity_mps = mission.ugv_limits.max_velocity_mps;
+    s.robot.max_yaw_rate_radps = mission.ugv_limits.max_yaw_rate_radps;
+    s.robot.max_acceleration_mps2 = mission.ugv_limits.max_acceleration_mps2;
+  }
   if (o.camera_fov_deg) s.sensors.camera_fov_rad = deg_to_rad(*o.camera_fov_deg);
   if (o.ir_fov_deg) {
     s.sensors.ir_fov_rad = deg_to_rad(*o.ir_fov_deg);
@@ -217,9 +221,9 @@ const CommandRegistration kExplore{
       override_option("--ir-range-m", "--ir-range", o->ir_range_m,
                       "D_IR, metres (default: the robot's, else 4)");
       override_option("--max-velocity-mps", "--max-velocity", o->max_velocity_mps,
-                      "v_max, m/s (default: the robot's limit, else 2)");
+                      "v_max, m/s (default: the robot's limit, else the mission's ugv_limits, 2)");
       override_option("--max-yaw-rate-radps", "--max-yaw-rate", o->max_yaw_rate_radps,
-                      "rad/s (default: the robot's limit, else 2)");
+                      "rad/s (default: the robot's limit, else the mission's ugv_limits, 2)");
       sub->add_option("--time-limit", o->time_limit_s, "Simulated seconds before giving up")
           ->capture_default_str();
       sub->add_option("--planner", o->planner,

@@ -190,6 +190,9 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
   if (r.has("mission")) c.base.mission = load_mission_config(base / r.get<std::string>("mission"));
   c.base.time_limit_s = r.get_in_range_or("time_limit_s", 1, 1e6, 300);
   c.object_clearance_m = r.get_in_range_or("object_clearance_m", 0, 10, 0.25);
+  // The mission's ugv_limits unless the robot's URDF or the robot: keys say otherwise.
+  c.base.robot.max_velocity_mps = c.base.mission.ugv_limits.max_velocity_mps;
+  c.base.robot.max_yaw_rate_radps = c.base.mission.ugv_limits.max_yaw_rate_radps;
   c.base.robot.max_acceleration_mps2 = c.base.mission.ugv_limits.max_acceleration_mps2;
   if (const auto robot = r.optional_child("robot")) {
     robot->allow_only({"urdf", "max_velocity", "max_yaw_rate", "clearance"});
@@ -211,10 +214,10 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
       c.base.sensors = sensor_options_for(d, c.base.sensors);
       c.base.robot = robot_options_for(d, c.base.robot);
     }
-    c.base.robot.max_velocity_mps = robot->get_in_range_or(
-        "max_velocity", 1e-3, 100, c.robot_urdf.empty() ? 2.0 : c.base.robot.max_velocity_mps);
-    c.base.robot.max_yaw_rate_radps = robot->get_in_range_or(
-        "max_yaw_rate", 1e-3, 100, c.robot_urdf.empty() ? 2.0 : c.base.robot.max_yaw_rate_radps);
+    c.base.robot.max_velocity_mps =
+        robot->get_in_range_or("max_velocity", 1e-3, 100, c.base.robot.max_velocity_mps);
+    c.base.robot.max_yaw_rate_radps =
+        robot->get_in_range_or("max_yaw_rate", 1e-3, 100, c.base.robot.max_yaw_rate_radps);
     c.base.robot.clearance_m = robot->get_in_range_or("clearance", 0, 5, c.base.robot.clearance_m);
   }
   if (const auto s = r.optional_child("sensors")) {
