@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_options.hpp"
 #include "command.hpp"
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
@@ -26,23 +27,11 @@ std::string indent(const std::string& text) {
   return out;
 }
 
-/// --robot takes a path, or the name of a shipped model ("m100", "miniugv.urdf").
-fs::path resolve_robot(const std::string& robot) {
-  if (robot.empty()) return find_model("miniugv.urdf");
-  const fs::path p(robot);
-  if (fs::exists(p) || p.has_parent_path()) return p;
-  try {
-    return find_model(p.has_extension() ? robot : robot + ".urdf");
-  } catch (const InputError&) {
-    return p;  // the loader reports the path the user gave
-  }
-}
-
 struct Options {
   bool dump = false;
   std::string robot;
-  std::string config;
-  std::string output;
+  std::string mission;
+  std::string out;
 };
 
 void run(const Options& o) {
@@ -50,23 +39,26 @@ void run(const Options& o) {
     throw InputError("ferret config", "--dump", "the --dump flag (the only action so far)");
   std::string mission_source = "(built-in defaults)";
   MissionConfig mission;
-  if (!o.config.empty()) {
-    mission = load_mission_config(o.config);
-    mission_source = o.config;
+  if (!o.mission.empty()) {
+    mission = load_mission_config(o.mission);
+    mission_source = o.mission;
   } else if (fs::is_regular_file("config/mission.yaml")) {
     mission = load_mission_config("config/mission.yaml");
     mission_source = "config/mission.yaml";
   }
-  const RobotDescription robot = load_robot_description(resolve_robot(o.robot), mission);
+  const RobotDescription robot =
+      load_robot_description(resolve_robot(o.robot, "miniugv.urdf"), mission);
 
   std::string text = "# ferret effective configuration (ferret config --dump)\n";
+  text += "# provenance: where each value came from (urdf:FILE:LINE, mission:FILE, default)\n";
   text += "robot:\n" + indent(robot_description_to_yaml(robot));
   text += "mission:\n" +
-          indent("source: \"" + mission_source + "\"\n" + mission_config_to_yaml(mission));
-  if (o.output.empty() || o.output == "-")
+          indent("source: \"" + mission_source + "\"\n" + mission_config_to_yaml(mission) +
+                 "provenance:\n" + indent(mission_provenance_to_yaml(mission)));
+  if (o.out.empty() || o.out == "-")
     std::cout << text;
   else
-    write_text_atomically(o.output, text);
+    write_text_atomically(o.out, text);
 }
 
 const CommandRegistration kConfig{
@@ -75,12 +67,13 @@ const CommandRegistration kConfig{
       auto* sub =
           app.add_subcommand("config", "Show the effective robot and mission configuration");
       sub->add_flag("--dump", options->dump, "Print the effective configuration as YAML");
-      sub->add_option("--robot", options->robot,
-                      "Robot URDF, or a shipped model name (m100, miniugv); default: miniugv.urdf");
-      sub->add_option("--config", options->config,
-                      "Mission YAML; default: config/mission.yaml if present");
-      sub->add_option("-o,--output", options->output,
-                      "Write the YAML to this file instead of stdout");
+      add_robot_option(sub, options->robot, "miniugv");
+      auto* mission = add_mission_option(sub, options->mission);
+      mission->description(
+          "mission YAML: motion limits, tether L and l_0, object search, roles (default: "
+          "config/mission.yaml if present, else the built-in values)");
+      sub->add_option("-o,--out", options->out, "Write the YAML to this file (default: stdout)");
+      add_hidden_alias(sub, "--output", options->out);
       sub->callback([options] { run(*options); });
     }};
 

@@ -1,4 +1,4 @@
-// `ferret experiment CONFIG.yaml --out DIR [--jobs N] [--shard I/N]`: the paper's
+// `ferret experiment CONFIG.yaml -o DIR [--jobs N] [--shard I/N]`: the paper's
 // exploration experiment (sim/experiment.hpp). Writes runs.csv, summary.csv and the
 // sweep CSVs into DIR, then draws the plots with examples/plot_experiment.py when it
 // can find it (unsharded runs only: shards are merged first, see docs/object_search.md).
@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "cli_options.hpp"
 #include "command.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/sim/experiment.hpp"
@@ -64,6 +65,7 @@ fs::path find_plot_script(const Options& o) {
 }
 
 void run(const Options& o) {
+  require_out(o.out, "an output directory");
   const auto [shard_index, shard_count] = parse_shard(o.shard);
   if (o.jobs < 1)
     throw InputError("ferret experiment", "--jobs", "an integer >= 1", std::to_string(o.jobs));
@@ -123,7 +125,7 @@ const CommandRegistration kExperiment{
       auto* sub = app.add_subcommand(
           "experiment", "Run the object-search experiment of a config (CDOS vs. baselines)");
       sub->add_option("config", o->config, "Experiment YAML (docs/object_search.md)")->required();
-      sub->add_option("--out", o->out, "Output directory")->required();
+      add_out_option(sub, o->out, "Output directory");
       sub->add_option("--jobs", o->jobs, "Worker threads")->capture_default_str();
       sub->add_option("--planner", o->planner,
                       "grid, or ompl: cdos and rapid with the OMPL frontier sampler")

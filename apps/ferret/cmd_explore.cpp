@@ -6,21 +6,26 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_options.hpp"
 #include "command.hpp"
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/exploration_run.hpp"
+#include "ferret/sim/search_robot.hpp"
 #include "ferret/urdf/mission_config.hpp"
+#include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {
 namespace {
@@ -28,10 +33,12 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-  std::string map, start, object, method = "cdos", out, mission;
+  std::string map, start, object, method = "cdos", out, mission, robot;
   std::uint64_t seed = 1;
-  double camera_fov_deg = 90, ir_fov_deg = 30, camera_range_m = 4, ir_range_m = 4;
-  double max_velocity_mps = 2, max_yaw_rate_radps = 2, time_limit_s = 300;
+  // Unset: the robot's value (--robot), else the paper's miniUGV model (SensorOptions).
+  std::optional<double> camera_fov_deg, ir_fov_deg, camera_range_m, ir_range_m;
+  std::optional<double> max_velocity_mps, max_yaw_rate_radps;
+  double time_limit_s = 300;
   std::string candidates = "fv";
   bool closest_approach = false;
   std::string planner =
@@ -71,17 +78,23 @@ void run(const Options& o) {
   }
   if (o.candidates != "fv" && o.candidates != "fg")
     throw InputError("ferret explore", "--cdos-candidates", "fv or fg", o.candidates);
-  for (const auto& [v, name] : {std::pair{o.camera_fov_deg, "--camera-fov"},
-                                {o.ir_fov_deg, "--ir-fov"},
-                                {o.camera_range_m, "--camera-range"},
-                                {o.ir_range_m, "--ir-range"},
-                                {o.max_velocity_mps, "--max-velocity"},
-                                {o.max_yaw_rate_radps, "--max-yaw-rate"},
-                                {o.time_limit_s, "--time-limit"}})
-    check_positive(v, name);
-  if (o.camera_fov_deg >= 360 || o.ir_fov_deg >= 360)
-    throw InputError("ferret explore", "--camera-fov/--ir-fov",
-                     "a field of view below 360 degrees");
+  for (const auto& [v, name] : {std::pair{o.camera_fov_deg, "--camera-fov-deg"},
+                                {o.ir_fov_deg, "--ir-fov-deg"},
+                                {o.camera_range_m, "--camera-range-m"},
+                                {o.ir_range_m, "--ir-range-m"},
+                                {o.max_velocity_mps, "--max-velocity-mps"},
+                                {o.max_yaw_rate_radps, "--max-yaw-rate-radps"},
+                                {std::optional<double>(o.time_limit_s), "--time-limit"}})
+    if (v) {
+      check_positive(*v, name);
+      if (!std::isfinite(*v) || *v > 1e6)
+        throw InputError("ferret explore", name, "a finite number <= 1e6", std::to_string(*v));
+    }
+  for (const auto& [v, name] :
+       {std::pair{o.camera_fov_deg, "--camera-fov-deg"}, {o.ir_fov_deg, "--ir-fov-deg"}})
+    if (v && *v >= 360)
+      throw InputError("ferret explore", name, "a field of view below 360 degrees",
+                       std::to_string(*v));
 
   const OccupancyMap2D map = load_map_server(o.map);
   const Pose2 start{start_v[0], start_v[1], start_v[2]};
@@ -92,7 +105,11 @@ void run(const Options& o) {
     throw InputError("ferret explore", "--object", "a position on a free cell of " + o.map,
                      o.object);
 
-  ExplorationSettings s;
+  const MissionConfig mission = load_mission_or_defaults(o.mission);
+  std::optional<RobotDescription> robot;
+  if (!o.robot.empty()) robot = load_robot_description(resolve_robot(o.robot, ""), mission);
+  ExplorationSettings s = robot ? exploration_settings_for(*robot, mission) : ExplorationSettings{};
+  s.mission = mission;
   s.method = o.method;
   if (o.planner == "ompl") {
     if (o.method != "cdos" && o.method != "rapid")
@@ -101,14 +118,20 @@ void run(const Options& o) {
   } else if (o.planner != "grid") {
     throw InputError("ferret explore", "--planner", "grid or ompl", o.planner);
   }
-  if (!o.mission.empty()) s.mission = load_mission_config(o.mission);
-  s.sensors.camera_fov_rad = deg_to_rad(o.camera_fov_deg);
-  s.sensors.ir_fov_rad = deg_to_rad(o.ir_fov_deg);
-  s.sensors.camera_range_m = o.camera_range_m;
-  s.sensors.ir_range_m = o.ir_range_m;
-  s.robot.max_velocity_mps = o.max_velocity_mps;
-  s.robot.max_yaw_rate_radps = o.max_yaw_rate_radps;
-  s.robot.max_acceleration_mps2 = s.mission.ugv_limits.max_acceleration_mps2;
+  if (!robot) {  // the mission's ugv_limits, as a robot's limits would be
+    s.robot.max_velocity_mps = mission.ugv_limits.max_velocity_mps;
+    s.robot.max_yaw_rate_radps = mission.ugv_limits.max_yaw_rate_radps;
+    s.robot.max_acceleration_mps2 = mission.ugv_limits.max_acceleration_mps2;
+  }
+  if (o.camera_fov_deg) s.sensors.camera_fov_rad = deg_to_rad(*o.camera_fov_deg);
+  if (o.ir_fov_deg) {
+    s.sensors.ir_fov_rad = deg_to_rad(*o.ir_fov_deg);
+    s.sensors.ir_bearings_rad.clear();  // the robot's beams, spread evenly over the new fov
+  }
+  if (o.camera_range_m) s.sensors.camera_range_m = *o.camera_range_m;
+  if (o.ir_range_m) s.sensors.ir_range_m = *o.ir_range_m;
+  if (o.max_velocity_mps) s.robot.max_velocity_mps = *o.max_velocity_mps;
+  if (o.max_yaw_rate_radps) s.robot.max_yaw_rate_radps = *o.max_yaw_rate_radps;
   s.time_limit_s = o.time_limit_s;
   s.cdos_candidates_global = o.candidates == "fg";
   s.cdos_closest_approach = o.closest_approach;
@@ -124,20 +147,31 @@ void run(const Options& o) {
   const fs::path out(o.out);
   write_exploration_images(
       map, object, r, out,
-      fmt::format("{}, {}, object at ({:g}, {:g}), seed {}", fs::path(o.map).filename().string(),
-                  s.method, object.x(), object.y(), o.seed));
+      fmt::format("{}, {}{}, object at ({:g}, {:g}), seed {}", fs::path(o.map).filename().string(),
+                  s.method, robot ? ", robot " + robot->name : std::string(), object.x(),
+                  object.y(), o.seed));
   nlohmann::json log;
   log["map"] = o.map;
   log["method"] = o.method;
   log["seed"] = o.seed;
   log["start"] = {start.x_m, start.y_m, start.yaw_rad};
   log["object"] = {object.x(), object.y()};
-  log["sensors"] = {{"camera_fov_deg", o.camera_fov_deg},
-                    {"camera_range_m", o.camera_range_m},
-                    {"ir_fov_deg", o.ir_fov_deg},
-                    {"ir_range_m", o.ir_range_m}};
-  log["robot"] = {{"max_velocity_mps", o.max_velocity_mps},
-                  {"max_yaw_rate_radps", o.max_yaw_rate_radps}};
+  // The values the simulator and the search used, wherever they came from.
+  auto deg = [](double rad) { return std::round(rad_to_deg(rad) * 1e9) / 1e9; };  // no 29.999..
+  log["sensors"] = {{"camera_fov_deg", deg(s.sensors.camera_fov_rad)},
+                    {"camera_range_m", s.sensors.camera_range_m},
+                    {"image_width_px", s.sensors.image_width_px},
+                    {"ir_fov_deg", deg(s.sensors.ir_fov_rad)},
+                    {"ir_range_m", s.sensors.ir_range_m},
+                    {"ir_beams", s.sensors.ir_bearings_rad.empty()
+                                     ? nlohmann::json(s.sensors.ir_beams)
+                                     : nlohmann::json(s.sensors.ir_bearings_rad.size())}};
+  log["robot"] = {{"urdf", robot ? nlohmann::json(robot->source) : nlohmann::json()},
+                  {"max_velocity_mps", s.robot.max_velocity_mps},
+                  {"max_yaw_rate_radps", s.robot.max_yaw_rate_radps},
+                  {"max_acceleration_mps2", s.robot.max_acceleration_mps2},
+                  {"clearance_m", s.robot.clearance_m}};
+  log["dt_s"] = 1.0 / s.sensors.ir_rate_hz;
   log["result"] = {{"found", r.found},    {"time_s", r.time_s},
                    {"path_m", r.path_m},  {"decisions", r.decisions},
                    {"end", r.end_reason}, {"found_at", {r.found_W.x(), r.found_W.y()}}};
@@ -168,17 +202,34 @@ const CommandRegistration kExplore{
       sub->add_option("--object", o->object, "Object position x,y (m)")->required();
       sub->add_option("--method", o->method, "cdos, cdos-literal, rapid, nearest or oracle")
           ->capture_default_str();
-      sub->add_option("--seed", o->seed, "Seed of the sensor noise")->capture_default_str();
-      sub->add_option("--out", o->out, "Directory for G.png, O.png, G_O.png and log.json");
-      sub->add_option("--mission", o->mission,
-                      "Mission YAML (curiosity and object-search constants)");
-      sub->add_option("--camera-fov", o->camera_fov_deg, "Camera fov alpha (deg)")
-          ->capture_default_str();
-      sub->add_option("--ir-fov", o->ir_fov_deg, "IR fov beta (deg)")->capture_default_str();
-      sub->add_option("--camera-range", o->camera_range_m, "D_cam (m)")->capture_default_str();
-      sub->add_option("--ir-range", o->ir_range_m, "D_IR (m)")->capture_default_str();
-      sub->add_option("--max-velocity", o->max_velocity_mps, "m/s")->capture_default_str();
-      sub->add_option("--max-yaw-rate", o->max_yaw_rate_radps, "rad/s")->capture_default_str();
+      add_seed_option(sub, o->seed, "Seed of the sensor noise");
+      sub->add_option("-o,--out", o->out,
+                      "Directory for G.png, O.png, G_O.png and log.json (default: none, the "
+                      "summary only)");
+      add_hidden_alias(sub, "--output", o->out);
+      add_hidden_alias(sub, "--output-dir", o->out);
+      add_mission_option(sub, o->mission);
+      add_robot_option(sub, o->robot,
+                       "none: the paper's miniUGV sensor model, 90 deg / 4 m camera, 30 deg / "
+                       "4 m IR, 2 m/s");
+      // Each overrides the robot's value (docs/object_search.md); old spellings hidden.
+      auto override_option = [&](const std::string& name, const std::string& old,
+                                 std::optional<double>& value, const std::string& help) {
+        sub->add_option(name, value, help);
+        add_hidden_alias(sub, old, value);
+      };
+      override_option("--camera-fov-deg", "--camera-fov", o->camera_fov_deg,
+                      "Camera fov alpha, degrees (default: the robot's, else 90)");
+      override_option("--ir-fov-deg", "--ir-fov", o->ir_fov_deg,
+                      "IR fov beta, degrees (default: the robot's, else 30)");
+      override_option("--camera-range-m", "--camera-range", o->camera_range_m,
+                      "D_cam, metres (default: the robot's, else 4)");
+      override_option("--ir-range-m", "--ir-range", o->ir_range_m,
+                      "D_IR, metres (default: the robot's, else 4)");
+      override_option("--max-velocity-mps", "--max-velocity", o->max_velocity_mps,
+                      "v_max, m/s (default: the robot's limit, else the mission's ugv_limits, 2)");
+      override_option("--max-yaw-rate-radps", "--max-yaw-rate", o->max_yaw_rate_radps,
+                      "rad/s (default: the robot's limit, else the mission's ugv_limits, 2)");
       sub->add_option("--time-limit", o->time_limit_s, "Simulated seconds before giving up")
           ->capture_default_str();
       sub->add_option("--planner", o->planner,

@@ -8,10 +8,14 @@ namespace ferret {
 
 double ShapePart::bounding_radius_m() const {
   switch (kind) {
-    case Kind::kBox: return 0.5 * box_size_m.norm();
-    case Kind::kCylinder: return std::hypot(radius_m, 0.5 * length_m);
-    case Kind::kCapsule: return 0.5 * length_m + radius_m;
-    case Kind::kSphere: return radius_m;
+    case Kind::kBox:
+      return 0.5 * box_size_m.norm();
+    case Kind::kCylinder:
+      return std::hypot(radius_m, 0.5 * length_m);
+    case Kind::kCapsule:
+      return 0.5 * length_m + radius_m;
+    case Kind::kSphere:
+      return radius_m;
   }
   return 0.0;
 }
@@ -59,15 +63,20 @@ RobotShape uav_with_suspended_ugv_shape(double released_length_m, const UavGeome
 }
 
 RobotShape ugv_shape(const UgvGeometry& ugv) {
-  return {"ugv", {box("ugv_body", ugv.body_size_m, {0, 0, ugv.ground_clearance_m + 0.5 * ugv.body_size_m.z()})}};
+  return {"ugv",
+          {box("ugv_body", ugv.body_size_m,
+               {0, 0, ugv.ground_clearance_m + 0.5 * ugv.body_size_m.z()})}};
 }
 
 RobotShape robot_shape_from_description(const RobotDescription& robot) {
   RobotShape s{robot.name, {}};
+  // X_GB: a ground robot's planning frame G is on the floor below B.
+  const Eigen::Vector3d p_GB(0, 0, robot.kind == RobotKind::kUgv ? robot.ground_offset_m : 0.0);
   for (const CollisionShape& c : robot.collision_shapes) {
     ShapePart p;
     p.name = c.link;
     p.X_BS = c.X_BS;
+    p.X_BS.translation() += p_GB;
     switch (c.type) {
       case CollisionShape::Type::kBox:
         p.kind = ShapePart::Kind::kBox;
@@ -86,6 +95,12 @@ RobotShape robot_shape_from_description(const RobotDescription& robot) {
     s.parts.push_back(p);
   }
   return s;
+}
+
+UgvGeometry ugv_geometry_from_description(const RobotDescription& robot) {
+  UgvGeometry g;
+  g.body_size_m = robot.bounding_box_B.sizes();
+  return g;
 }
 
 }  // namespace ferret

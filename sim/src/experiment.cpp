@@ -14,6 +14,8 @@
 #include "ferret/core/random.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/sim/search_robot.hpp"
+#include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {
 namespace {
@@ -198,19 +200,49 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
   if (r.has("mission")) c.base.mission = load_mission_config(base / r.get<std::string>("mission"));
   c.base.time_limit_s = r.get_in_range_or("time_limit_s", 1, 1e6, 300);
   c.object_clearance_m = r.get_in_range_or("object_clearance_m", 0, 10, 0.25);
+  // The mission's ugv_limits unless the robot's URDF or the robot: keys say otherwise.
+  c.base.robot.max_velocity_mps = c.base.mission.ugv_limits.max_velocity_mps;
+  c.base.robot.max_yaw_rate_radps = c.base.mission.ugv_limits.max_yaw_rate_radps;
   c.base.robot.max_acceleration_mps2 = c.base.mission.ugv_limits.max_acceleration_mps2;
   if (const auto robot = r.optional_child("robot")) {
-    robot->allow_only({"max_velocity", "max_yaw_rate", "clearance"});
-    c.base.robot.max_velocity_mps = robot->get_in_range_or("max_velocity", 1e-3, 100, 2.0);
-    c.base.robot.max_yaw_rate_radps = robot->get_in_range_or("max_yaw_rate", 1e-3, 100, 2.0);
+    robot->allow_only({"urdf", "max_velocity", "max_yaw_rate", "clearance"});
+    // A URDF gives the sensors and limits; the keys beside it and `sensors:` override.
+    if (robot->has("urdf")) {
+      const auto urdf = robot->get<std::string>("urdf");
+      fs::path file = base / urdf;
+      std::error_code ec;
+      if (!fs::is_regular_file(file, ec)) {
+        try {
+          file = find_model(fs::path(urdf).has_extension() ? urdf : urdf + ".urdf");
+        } catch (const InputError&) {
+          robot->fail("urdf", "a URDF file (relative to this YAML) or a shipped model (miniugv)",
+                      file.string());
+        }
+      }
+      c.robot_urdf = file;
+      const RobotDescription d = load_robot_description(file, c.base.mission);
+      c.base.sensors = sensor_options_for(d, c.base.sensors);
+      c.base.robot = robot_options_for(d, c.base.robot);
+    }
+    c.base.robot.max_velocity_mps =
+        robot->get_in_range_or("max_velocity", 1e-3, 100, c.base.robot.max_velocity_mps);
+    c.base.robot.max_yaw_rate_radps =
+        robot->get_in_range_or("max_yaw_rate", 1e-3, 100, c.base.robot.max_yaw_rate_radps);
     c.base.robot.clearance_m = robot->get_in_range_or("clearance", 0, 5, c.base.robot.clearance_m);
   }
   if (const auto s = r.optional_child("sensors")) {
+    // Only the keys given change a value: the defaults are the robot's (the paper's
+    // miniUGV without a URDF: SensorOptions' 90 deg, 4 m, 30 deg, 4 m).
     s->allow_only({"camera_fov_deg", "camera_range", "ir_fov_deg", "ir_range"});
-    c.base.sensors.camera_fov_rad = deg_to_rad(s->get_in_range_or("camera_fov_deg", 1, 359, 90));
-    c.base.sensors.camera_range_m = s->get_in_range_or("camera_range", 0.1, 100, 4.0);
-    c.base.sensors.ir_fov_rad = deg_to_rad(s->get_in_range_or("ir_fov_deg", 1, 359, 30));
-    c.base.sensors.ir_range_m = s->get_in_range_or("ir_range", 0.1, 100, 4.0);
+    if (s->has("camera_fov_deg"))
+      c.base.sensors.camera_fov_rad = deg_to_rad(s->get_in_range("camera_fov_deg", 1, 359));
+    if (s->has("camera_range"))
+      c.base.sensors.camera_range_m = s->get_in_range("camera_range", 0.1, 100);
+    if (s->has("ir_fov_deg")) {
+      c.base.sensors.ir_fov_rad = deg_to_rad(s->get_in_range("ir_fov_deg", 1, 359));
+      c.base.sensors.ir_bearings_rad.clear();  // the robot's beams, spread evenly over it
+    }
+    if (s->has("ir_range")) c.base.sensors.ir_range_m = s->get_in_range("ir_range", 0.1, 100);
   }
   const auto maps = r.child_list("maps");
   if (maps.empty()) r.fail("maps", "at least one map");
@@ -315,6 +347,8 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
       settings.method = s.method;
       settings.sensors.camera_fov_rad = deg_to_rad(s.camera_fov_deg);
       settings.sensors.ir_fov_rad = deg_to_rad(s.ir_fov_deg);
+      // A swept IR fov spreads the robot's beams evenly over it.
+      if (s.experiment == "ir_fov") settings.sensors.ir_bearings_rad.clear();
       try {
         outcomes[k].result = run_exploration(c.maps[s.map_index].map, c.maps[s.map_index].start,
                                              s.object_W, settings, s.seed);

@@ -20,8 +20,9 @@ HiddenSpaceSim::HiddenSpaceSim(const OccupancyMap2D& truth, const Eigen::Vector2
   if (truth.cells.size() != truth.geometry.size())
     throw std::invalid_argument("HiddenSpaceSim: malformed truth map");
   const double res = truth.geometry.resolution_m;
-  ir_beams_ = options.ir_beams > 0 ? options.ir_beams
-                                   : beams_for(options.ir_fov_rad, options.ir_range_m, res);
+  ir_beams_ = !options.ir_bearings_rad.empty() ? static_cast<int>(options.ir_bearings_rad.size())
+              : options.ir_beams > 0           ? options.ir_beams
+                                     : beams_for(options.ir_fov_rad, options.ir_range_m, res);
   camera_beams_ = options.camera_beams > 0
                       ? options.camera_beams
                       : beams_for(options.camera_fov_rad, options.camera_range_m, res);
@@ -67,7 +68,9 @@ RangeScan HiddenSpaceSim::ir_scan(const Pose2& X_WS) {
   scan.beams.reserve(static_cast<std::size_t>(ir_beams_));
   const Eigen::Vector2d p = X_WS.position();
   for (int k = 0; k < ir_beams_; ++k) {
-    const double bearing = beam_bearing(k, ir_beams_, options_.ir_fov_rad);
+    const double bearing = options_.ir_bearings_rad.empty()
+                               ? beam_bearing(k, ir_beams_, options_.ir_fov_rad)
+                               : options_.ir_bearings_rad[static_cast<std::size_t>(k)];
     const double range = cast(p, X_WS.yaw_rad + bearing, options_.ir_range_m);
     const double noise = rng_.normal(0.0, options_.ir_noise_m);
     if (rng_.bernoulli(options_.ir_dropout))

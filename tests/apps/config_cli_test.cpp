@@ -1,7 +1,9 @@
 // `ferret config --dump`: the effective configuration comes from the URDF and the
 // mission YAML, and every bad input is one line naming file and field, exit code 2.
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -165,8 +167,8 @@ TEST(ConfigCli, BadUrdfFiles) {
       {"missing_fov.urdf", "hfov=\"1.5707963267948966\"", "",
        "sensor[front_camera]/horizontal_fov"},
       // Only urdfdom notices a second root; its console message must come out as our one line.
-      {"two_roots.urdf", "<link name=\"imu_link\"/>",
-       "<link name=\"imu_link\"/><link name=\"orphan\"/>",
+      {"two_roots.urdf", "<link name=\"imu_link\"><ferret role=\"imu\"/></link>",
+       "<link name=\"imu_link\"><ferret role=\"imu\"/></link><link name=\"orphan\"/>",
        "robot: expected a URDF that urdfdom accepts"},
   };
   for (const auto& c : cases) {
@@ -175,7 +177,7 @@ TEST(ConfigCli, BadUrdfFiles) {
     expect_bad_input(run_cli("config --dump --robot '" + dir / c.name + "'"), c.name, c.field);
   }
   expect_bad_input(run_cli("config --dump --robot '" + dir / "absent.urdf" + "'"), "absent.urdf",
-                   "a readable URDF file");
+                   "--robot: expected a URDF file, or a shipped model");
 }
 
 TEST(ConfigCli, BadMissionFiles) {
@@ -209,6 +211,84 @@ TEST(ConfigCli, WithoutDumpIsBadInput) {
   const auto r = run_cli("config");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--dump")) << r.err;
+}
+
+TEST(ConfigCli, TheRoversValuesAndWhereTheyCameFrom) {
+  const std::string rover = "tests/data/robots/rover.urdf";  // run_cli runs in the source tree
+  TempDir dir;
+  const std::string mission = dir / "mission.yaml";
+  write_text(mission, "ugv_limits: {max_yaw_rate_radps: 1.5}\n");
+  const std::string out = dir / "dump.yaml";
+  const auto r = run_cli("config --dump --robot " + rover + " --mission " + mission + " -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const YAML::Node y = YAML::LoadFile(out);
+  const YAML::Node robot = y["robot"];
+  const YAML::Node cam = robot["cameras"][0];
+  EXPECT_EQ(cam["name"].as<std::string>(), "cam_main");
+  EXPECT_NEAR(cam["horizontal_fov_deg"].as<double>(), 68.754935, 1e-6);
+  EXPECT_EQ(cam["image_px"][0].as<int>(), 320);
+  EXPECT_DOUBLE_EQ(robot["ir_array"]["range_max_m"].as<double>(), 2.5);
+  EXPECT_DOUBLE_EQ(robot["ir_array"]["fov_deg"].as<double>(), 50.0);
+  EXPECT_DOUBLE_EQ(robot["motion_limits"]["max_velocity_mps"].as<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(robot["motion_limits"]["max_yaw_rate_radps"].as<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(robot["ground_offset_m"].as<double>(), 0.07);
+  EXPECT_EQ(robot["roles"]["ir"].size(), 2u);
+
+  const YAML::Node from = robot["provenance"];
+  EXPECT_EQ(from["roles.object_camera"].as<std::string>(), "urdf:" + rover + ":38");
+  EXPECT_EQ(from["cameras.cam_main.horizontal_fov"].as<std::string>(), "urdf:" + rover + ":41");
+  EXPECT_EQ(from["cameras.cam_main.image_width_px"].as<std::string>(), "urdf:" + rover + ":42");
+  EXPECT_EQ(from["range_sensors.range_l.range_max_m"].as<std::string>(), "urdf:" + rover + ":58");
+  EXPECT_THAT(from["motion_limits.max_velocity_mps"].as<std::string>(),
+              ::testing::StartsWith("urdf:" + rover + ":"));
+  EXPECT_THAT(from["motion_limits.max_velocity_mps"].as<std::string>(),
+              ::testing::HasSubstr("12.5 rad/s x wheel radius 0.04 m"));
+  EXPECT_EQ(from["motion_limits.max_yaw_rate_radps"].as<std::string>(), "mission:" + mission);
+  EXPECT_EQ(from["motion_limits.max_acceleration_mps2"].as<std::string>(), "default");
+  const YAML::Node mission_from = y["mission"]["provenance"];
+  EXPECT_EQ(mission_from["ugv_limits.max_yaw_rate_radps"].as<std::string>(), "mission:" + mission);
+  EXPECT_EQ(mission_from["curiosity.K"].as<std::string>(), "default");
+
+  // The old spellings --config and --output are hidden aliases of --mission and --out.
+  const std::string old_out = dir / "old.yaml";
+  const auto old =
+      run_cli("config --dump --robot " + rover + " --config " + mission + " --output " + old_out);
+  ASSERT_EQ(old.exit_code, 0) << old.err;
+  EXPECT_EQ(read_text(old_out), read_text(out));
+}
+
+TEST(ConfigCli, MissionRolesNamingAMissingSensorAreBadInput) {
+  TempDir dir;
+  const std::string mission = dir / "mission.yaml";
+  write_text(mission, "roles: {rover: {object_camera: no_such_camera}}\n");
+  expect_bad_input(
+      run_cli("config --dump --robot tests/data/robots/rover.urdf --mission " + mission), mission,
+      "roles.rover.object_camera");
+}
+
+TEST(ConfigCli, BadMeshesAndRolesExitTwoNamingTheLine) {
+  TempDir dir;
+  // A mesh that is not there: the URDF line of the <mesh> and the path tried.
+  const std::string missing = dir / "missing_mesh.urdf";
+  write_text(missing, edited_miniugv("<collision><geometry><box size=\"0.130 0.090 0.040\"/>",
+                                     "<collision><geometry><mesh filename=\"meshes/body.stl\"/>"));
+  auto r = run_cli("config --dump --robot " + missing);
+  expect_bad_input(r, missing + ":", "link[chassis_link]/collision[0]/geometry/mesh@filename");
+  EXPECT_TRUE(contains(r.err, dir / "meshes/body.stl")) << r.err;
+  // A corrupt one: assimp's refusal, one line.
+  std::filesystem::create_directories(dir.path() / "meshes");
+  write_text(dir / "meshes/body.stl",
+             "solid nothing\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n");
+  r = run_cli("config --dump --robot " + missing);
+  expect_bad_input(r, missing + ":", "a mesh file assimp can read");
+  // A role on a sensor of the wrong type: depth_camera on an IR sensor.
+  const std::string wrong = dir / "wrong_role.urdf";
+  write_text(wrong,
+             edited_miniugv(
+                 "<sensor type=\"ray\" name=\"ir_left\">\n      <ferret role=\"ir\"/>",
+                 "<sensor type=\"ray\" name=\"ir_left\">\n      <ferret role=\"depth_camera\"/>"));
+  expect_bad_input(run_cli("config --dump --robot " + wrong), wrong + ":",
+                   "sensor[ir_left]/role[depth_camera]: expected a depth camera");
 }
 
 }  // namespace

@@ -112,5 +112,38 @@ TEST(ExperimentCli, DrawsThePlotsFromTheCsvs) {
   EXPECT_THAT(ratios, HasSubstr("room,1,rapid,"));
 }
 
+TEST(ExperimentCli, ARobotUrdfGivesTheSensorsOfEveryRun) {
+  ExperimentDir s;
+  const std::string rover = std::string(FERRET_SOURCE_DIR) + "/tests/data/robots/rover.urdf";
+  std::filesystem::copy_file(rover, s.dir.path() / "rover.urdf");
+  const std::string out = s.dir / "out";
+  // robot.urdf is relative to the experiment YAML.
+  const auto r = run_cli(
+      "experiment " + s.config("      1: [1.0, 0.5, 1.8, 1.5]\n", "robot: {urdf: rover.urdf}\n") +
+      " --out " + out + " --no-plots --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream runs(slurp(std::filesystem::path(out) / "runs.csv"));
+  std::string line;
+  std::getline(runs, line);
+  EXPECT_EQ(line.substr(0, line.find(",seed")),
+            "experiment,map,zone,object,method,camera_fov_deg,ir_fov_deg");
+  int rows = 0;
+  while (std::getline(runs, line)) {
+    ++rows;
+    // The rover's 1.2 rad camera and 50 deg IR array, not the miniUGV's 90 and 30.
+    EXPECT_THAT(line, HasSubstr(",68.7549,50,")) << line;
+  }
+  EXPECT_EQ(rows, 3 * 2);
+
+  // A URDF that is not there names the experiment's field.
+  std::ofstream(s.dir.path() / "bad.yaml")
+      << slurp(s.config(kZones, "robot: {urdf: no_such.urdf}\n"));
+  const auto bad = run_cli("experiment " + (s.dir / "bad.yaml") + " --out " + (s.dir / "o2") +
+                           " --no-plots --quiet");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("robot.urdf"));
+  EXPECT_FALSE(std::filesystem::exists(s.dir.path() / "o2"));
+}
+
 }  // namespace
 }  // namespace ferret::test

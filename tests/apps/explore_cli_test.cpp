@@ -60,5 +60,68 @@ TEST(ExploreCli, BadInputExitsTwoNamingTheOption) {
   EXPECT_THAT(r.err, HasSubstr("missing.yaml"));
 }
 
+const std::string kRover = std::string(FERRET_SOURCE_DIR) + "/tests/data/robots/rover.urdf";
+
+TEST(ExploreCli, TheRobotsUrdfGivesTheSensorsAndTheSpeed) {
+  Room room;
+  const std::string out = room.dir / "out";
+  const auto r = run_cli("explore --map " + room.map + " --start 0.5,1,0 --object 3.2,0.8" +
+                         " --method cdos --seed 1 --robot " + kRover + " -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(std::filesystem::path(out) / "log.json");
+  const auto log = nlohmann::json::parse(in);
+  // The rover's values, none of them the miniUGV's (90 deg, 640 px, 30 deg, 4 m, 2 m/s).
+  EXPECT_NEAR(log["sensors"]["camera_fov_deg"].get<double>(), 68.754935, 1e-5);
+  EXPECT_EQ(log["sensors"]["image_width_px"].get<int>(), 320);
+  EXPECT_DOUBLE_EQ(log["sensors"]["camera_range_m"].get<double>(), 3.0);
+  EXPECT_NEAR(log["sensors"]["ir_fov_deg"].get<double>(), 50.0, 1e-9);
+  EXPECT_DOUBLE_EQ(log["sensors"]["ir_range_m"].get<double>(), 2.5);
+  EXPECT_EQ(log["sensors"]["ir_beams"].get<int>(), 10);
+  EXPECT_DOUBLE_EQ(log["robot"]["max_velocity_mps"].get<double>(), 0.5);
+  EXPECT_EQ(log["robot"]["urdf"].get<std::string>(), kRover);
+  // The speed: consecutive logged poses (every 2 steps of dt_s) never 0.5 m/s apart.
+  const double dt = 2 * log["dt_s"].get<double>();
+  const auto& t = log["trajectory"];
+  ASSERT_GT(t.size(), 10u);
+  double fastest = 0.0;
+  for (std::size_t k = 1; k < t.size(); ++k)
+    fastest = std::max(fastest, std::hypot(t[k][0].get<double>() - t[k - 1][0].get<double>(),
+                                           t[k][1].get<double>() - t[k - 1][1].get<double>()) /
+                                    dt);
+  EXPECT_LE(fastest, 0.5 + 1e-6);
+  EXPECT_GT(fastest, 0.25);
+}
+
+TEST(ExploreCli, OptionsOverrideTheUrdfAndOldSpellingsStillWork) {
+  Room room;
+  const std::string out = room.dir / "out";
+  const auto r = run_cli("explore --map " + room.map + " --start 0.5,1,0 --object 3.2,0.8" +
+                         " --robot " + kRover + " --camera-fov-deg 100 --ir-range 1.5" +
+                         " --max-velocity-mps 0.3 --time-limit 5 --output " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(std::filesystem::path(out) / "log.json");
+  const auto log = nlohmann::json::parse(in);
+  EXPECT_DOUBLE_EQ(log["sensors"]["camera_fov_deg"].get<double>(), 100.0);
+  EXPECT_DOUBLE_EQ(log["sensors"]["ir_range_m"].get<double>(), 1.5);
+  EXPECT_EQ(log["sensors"]["image_width_px"].get<int>(), 320);  // still the rover's
+  EXPECT_DOUBLE_EQ(log["robot"]["max_velocity_mps"].get<double>(), 0.3);
+}
+
+TEST(ExploreCli, ARobotWithoutTheSensorRolesIsBadInputNamingTheRole) {
+  Room room;
+  const std::string urdf = room.dir / "bare.urdf";
+  std::ofstream(urdf) << "<robot name=\"bare\"><link name=\"b\"><collision><geometry>"
+                         "<box size=\"0.2 0.2 0.1\"/></geometry></collision></link></robot>\n";
+  const std::string out = room.dir / "out";
+  const auto r = run_cli("explore --map " + room.map + " --start 0.5,1,0 --object 3.2,0.8" +
+                         " --robot " + urdf + " -o " + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr(urdf));
+  EXPECT_THAT(r.err, HasSubstr("role[object_camera]"));
+  EXPECT_THAT(r.err, HasSubstr("<ferret role=\"object_camera\"/>"));
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 }  // namespace
 }  // namespace ferret::test

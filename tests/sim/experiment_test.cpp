@@ -254,5 +254,41 @@ TEST(Experiment, ShardsPartitionTheRunsAndConcatenateToTheWhole) {
   }
 }
 
+TEST(Experiment, ARobotUrdfGivesSensorsAndLimitsAndTheConfigsKeysOverrideThem) {
+  ExperimentDir s;
+  std::filesystem::copy_file(std::string(FERRET_SOURCE_DIR) + "/tests/data/robots/rover.urdf",
+                             s.dir.path() / "rover.urdf");
+  auto c = load_experiment_config(s.config(kZones, "robot: {urdf: rover.urdf}\n"));
+  EXPECT_EQ(c.robot_urdf, s.dir.path() / "rover.urdf");
+  EXPECT_DOUBLE_EQ(c.base.sensors.camera_fov_rad, 1.2);
+  EXPECT_EQ(c.base.sensors.image_width_px, 320);
+  EXPECT_DOUBLE_EQ(c.base.sensors.ir_range_m, 2.5);
+  EXPECT_EQ(c.base.sensors.ir_bearings_rad.size(), 10u);
+  EXPECT_DOUBLE_EQ(c.base.robot.max_velocity_mps, 0.5);
+  // Keys beside the URDF override single values; an IR fov spreads the beams over it.
+  c = load_experiment_config(s.config(kZones,
+                                      "robot: {urdf: rover.urdf, max_velocity: 0.2}\n"
+                                      "sensors: {ir_fov_deg: 40, camera_range: 1.5}\n"));
+  EXPECT_DOUBLE_EQ(c.base.robot.max_velocity_mps, 0.2);
+  EXPECT_DOUBLE_EQ(c.base.sensors.camera_range_m, 1.5);
+  EXPECT_DOUBLE_EQ(c.base.sensors.camera_fov_rad, 1.2);  // still the rover's
+  EXPECT_TRUE(c.base.sensors.ir_bearings_rad.empty());
+  EXPECT_EQ(c.base.sensors.ir_beams, 10);
+  expect_input_error(s.config(kZones, "robot: {urdf: absent.urdf}\n"), "robot.urdf");
+}
+
+TEST(Experiment, WithoutARobotTheMissionsUgvLimitsDriveTheSearch) {
+  ExperimentDir s;
+  std::ofstream(s.dir.path() / "m.yaml")
+      << "ugv_limits: {max_velocity_mps: 0.7, max_yaw_rate_radps: 1.1}\n";
+  const auto c = load_experiment_config(s.config(kZones, "mission: m.yaml\n"));
+  EXPECT_DOUBLE_EQ(c.base.robot.max_velocity_mps, 0.7);
+  EXPECT_DOUBLE_EQ(c.base.robot.max_yaw_rate_radps, 1.1);
+  // Without a mission: the paper's 2 m/s and 2 rad/s.
+  const auto d = load_experiment_config(s.config(kZones));
+  EXPECT_DOUBLE_EQ(d.base.robot.max_velocity_mps, 2.0);
+  EXPECT_TRUE(d.base.sensors.ir_bearings_rad.empty());  // the dense fan
+}
+
 }  // namespace
 }  // namespace ferret

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "ferret/core/error.hpp"
 
@@ -106,6 +107,23 @@ TEST(MissionConfig, MissingFile) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.source(), "/nonexistent/mission.yaml");
   }
+}
+
+TEST(MissionConfig, RolesAndProvenanceReadBack) {
+  const MissionConfig c = mission_config_from_yaml(
+      YAML::Load("roles: {rover: {object_camera: cam_main, ir: [range_l, range_r]}}\n"
+                 "ugv_limits: {max_velocity_mps: 0.4}\n"),
+      "m.yaml");
+  ASSERT_EQ(c.roles.count("rover"), 1u);
+  EXPECT_EQ(c.roles.at("rover").at("object_camera"), std::vector<std::string>{"cam_main"});
+  EXPECT_EQ(c.roles.at("rover").at("ir"), (std::vector<std::string>{"range_l", "range_r"}));
+  EXPECT_EQ(c.provenance("ugv_limits.max_velocity_mps"), "mission:m.yaml");
+  EXPECT_EQ(c.provenance("ugv_limits.max_yaw_rate_radps"), "default");
+  // The dump reads back to the same roles.
+  const MissionConfig again =
+      mission_config_from_yaml(YAML::Load(mission_config_to_yaml(c)), "dump.yaml");
+  EXPECT_EQ(again.roles, c.roles);
+  EXPECT_EQ(MissionConfig{}.provenance("curiosity.K"), "default");
 }
 
 }  // namespace

@@ -60,7 +60,7 @@ TEST(MiniUgvModel, EnvelopeIsThePapers130By120By55mm) {
 
 TEST(MiniUgvModel, CameraAndIrMatchThePaperExperiments) {
   const auto r = load_robot_description(models("miniugv.urdf"));
-  const auto& cam = r.camera(kFrontCameraName);
+  const auto& cam = r.object_camera();
   EXPECT_FALSE(cam.depth);
   EXPECT_NEAR(cam.horizontal_fov_rad, kPi / 2, kTol);  // alpha = 90 deg
   EXPECT_EQ(cam.image_width_px, 640);
@@ -131,7 +131,7 @@ TEST(M100Model, RotorsDepthCameraAndWinch) {
   EXPECT_NEAR(r.circumscribed_radius_m, 0.325 + 0.1651, 1e-5);
 
   const auto& depth = r.depth_camera();
-  EXPECT_EQ(depth.name, kDepthCameraName);
+  EXPECT_EQ(depth.name, "depth_camera");
   EXPECT_NEAR(depth.horizontal_fov_rad, 65 * kPi / 180, 1e-12);
   EXPECT_NEAR(depth.vertical_fov_rad * 180 / kPi, 39.43, 0.01);  // D415: ~65 x 40 deg
   EXPECT_EQ(depth.image_width_px, 1280);
@@ -140,7 +140,7 @@ TEST(M100Model, RotorsDepthCameraAndWinch) {
   EXPECT_DOUBLE_EQ(depth.range_max_m, 10.0);
   expect_vec(depth.X_BS.linear().col(0), {0, 0, -1});  // looks straight down
 
-  const auto& marker = r.camera(kMarkerCameraName);
+  const auto& marker = r.marker_camera();
   EXPECT_FALSE(marker.depth);
   // Forward, pitched 30 deg down.
   expect_vec(marker.X_BS.linear().col(0), {std::cos(kPi / 6), 0, -std::sin(kPi / 6)});
@@ -243,6 +243,7 @@ TEST(Sensors, GazeboBlocksWithPose) {
   const auto r = from(robot_xml(R"(
     <gazebo reference="sensor_link">
       <sensor type="depth" name="d">
+        <ferret role="depth_camera"/>
         <pose>0 0 -0.01 0 1.5707963267948966 0</pose>
         <camera><horizontal_fov>1.0</horizontal_fov><image><width>200</width><height>100</height></image>
           <clip><near>0.2</near><far>8</far></clip></camera>
@@ -262,7 +263,7 @@ TEST(Sensors, GazeboBlocksWithPose) {
   ASSERT_NE(lidar, nullptr);
   EXPECT_EQ(lidar->fov_rad(), 0.0);  // a single beam
   EXPECT_EQ(lidar->beam_angle_rad(0), 0.0);
-  EXPECT_THROW((void)r.ir_array(), InputError);  // no sensor named ir*
+  EXPECT_THROW((void)r.ir_array(), InputError);  // no sensor with the role ir
 }
 
 TEST(Sensors, UrdfAndGazeboDeclarationsOfOneSensorMerge) {
@@ -286,9 +287,9 @@ TEST(Sensors, IrArrayAcrossTheRearWrapsAroundPi) {
       <origin rpy="0 0 2.9670597283903604"/></joint>
     <link name="l2"/><joint name="j2" type="fixed"><parent link="base_link"/><child link="l2"/>
       <origin rpy="0 0 -2.9670597283903604"/></joint>
-    <sensor name="ir1" parent_link_name="l1"><ray><horizontal samples="2" min_angle="-0.17453292519943295"
+    <sensor name="ir1" parent_link_name="l1"><ferret role="ir"/><ray><horizontal samples="2" min_angle="-0.17453292519943295"
       max_angle="0.17453292519943295"/><range min="0" max="3"/></ray></sensor>
-    <sensor name="ir2" parent_link_name="l2"><ray><horizontal samples="2" min_angle="-0.17453292519943295"
+    <sensor name="ir2" parent_link_name="l2"><ferret role="ir"/><ray><horizontal samples="2" min_angle="-0.17453292519943295"
       max_angle="0.17453292519943295"/><range min="0.1" max="2"/></ray></sensor>)"));
   const IrArray ir = r.ir_array();
   EXPECT_NEAR(ir.fov_rad, 40 * kPi / 180, 1e-9);
@@ -340,6 +341,157 @@ TEST(FindModel, FindsShippedModelsAndNamesThePlacesTried) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("urdf/models/no_such_robot.urdf"), std::string::npos);
   }
+}
+
+}  // namespace
+}  // namespace ferret
+
+// ---------------------------------------------------------------- roles
+
+namespace ferret {
+namespace {
+
+std::string rover() { return std::string(FERRET_SOURCE_DIR) + "/tests/data/robots/rover.urdf"; }
+
+TEST(RoverModel, SensorsAndFramesComeFromTheirRolesNotTheirNames) {
+  const auto r = load_robot_description(rover());
+  const CameraSensor& cam = r.object_camera();
+  EXPECT_EQ(cam.name, "cam_main");
+  EXPECT_DOUBLE_EQ(cam.horizontal_fov_rad, 1.2);
+  EXPECT_EQ(cam.image_width_px, 320);
+  EXPECT_DOUBLE_EQ(cam.range_max_m, 3.0);
+  // Two fans of +-10 deg aimed at +-15 deg: from -25 to +25 deg, 2 x 5 beams, 2.5 m.
+  const IrArray ir = r.ir_array();
+  EXPECT_NEAR(ir.fov_rad, 50 * kPi / 180, 1e-9);
+  EXPECT_NEAR(ir.center_yaw_B_rad, 0.0, 1e-9);
+  EXPECT_EQ(ir.beams.size(), 10u);
+  EXPECT_DOUBLE_EQ(ir.range_max_m, 2.5);
+  ASSERT_TRUE(r.epm);
+  EXPECT_EQ(r.epm->name, "magnet");
+  expect_vec(r.epm->X_BF.linear().col(0), {-1, 0, 0});
+  ASSERT_EQ(r.tether_attachments.size(), 1u);
+  EXPECT_EQ(r.tether_attachments[0].name, "tow_point");
+  EXPECT_FALSE(r.imu);
+  EXPECT_THROW((void)r.depth_camera(), InputError);  // a ground robot has none
+  // 12.5 rad/s x 0.04 m caps the mission's 2 m/s.
+  EXPECT_DOUBLE_EQ(r.limits.max_velocity_mps, 0.5);
+}
+
+TEST(RoverModel, GroundOffsetAndFootprintFollowTheCollisionGeometry) {
+  const auto r = load_robot_description(rover());
+  // Wheels: centres 0.03 m below B, radius 0.04: the lowest point is 0.07 m below B.
+  EXPECT_NEAR(r.ground_offset_m, 0.07, 1e-12);
+  const Eigen::AlignedBox2d f = r.footprint_B();
+  // Body +-0.15 in x; wheels at y = +-0.115, 0.03 wide: +-0.13 in y.
+  EXPECT_NEAR(f.min().x(), -0.15, 1e-12);
+  EXPECT_NEAR(f.max().x(), 0.15, 1e-12);
+  EXPECT_NEAR(f.min().y(), -0.13, 1e-12);
+  EXPECT_NEAR(f.max().y(), 0.13, 1e-12);
+  // The miniUGV's base frame is on the ground.
+  EXPECT_NEAR(load_robot_description(models("miniugv.urdf")).ground_offset_m, 0.0, 1e-12);
+}
+
+TEST(RoverModel, ProvenanceNamesTheUrdfLinesAndTheMission) {
+  const auto r = load_robot_description(rover());
+  auto from = [&](const std::string& key) {
+    const auto it = r.provenance.find(key);
+    return it == r.provenance.end() ? std::string("(none)") : it->second;
+  };
+  // The role marker of cam_main is on line 38 of rover.urdf, its fov on line 41.
+  EXPECT_EQ(from("roles.object_camera"), "urdf:" + rover() + ":38");
+  EXPECT_EQ(from("cameras.cam_main.horizontal_fov"), "urdf:" + rover() + ":41");
+  EXPECT_EQ(from("motion_limits.max_velocity_mps").rfind("urdf:" + rover() + ":", 0), 0u)
+      << from("motion_limits.max_velocity_mps");
+  EXPECT_EQ(from("motion_limits.max_yaw_rate_radps"), "default");
+  YAML::Node node = YAML::Load("ugv_limits: {max_yaw_rate_radps: 1.5, max_velocity_mps: 0.3}");
+  const MissionConfig mission = mission_config_from_yaml(node, "m.yaml");
+  const auto m = load_robot_description(rover(), mission);
+  EXPECT_EQ(m.provenance.at("motion_limits.max_yaw_rate_radps"), "mission:m.yaml");
+  // The mission's 0.3 m/s is below the wheels' 0.5: the mission's value holds.
+  EXPECT_DOUBLE_EQ(m.limits.max_velocity_mps, 0.3);
+  EXPECT_EQ(m.provenance.at("motion_limits.max_velocity_mps"), "mission:m.yaml");
+}
+
+TEST(Roles, TheMissionNamesSensorsForRolesAndOverridesMarkers) {
+  const std::string sensors = R"(
+    <sensor name="c1" parent_link_name="sensor_link">
+      <camera><image width="100" height="100" hfov="1.0" near="0.1" far="2"/></camera></sensor>
+    <sensor name="r1" parent_link_name="sensor_link"><ferret role="ir"/>
+      <ray><horizontal samples="3" min_angle="-0.1" max_angle="0.1"/><range min="0" max="1.5"/></ray></sensor>
+    <sensor name="r2" parent_link_name="sensor_link">
+      <ray><horizontal samples="2" min_angle="-0.3" max_angle="0.3"/><range min="0" max="1"/></ray></sensor>)";
+  const auto plain = from(robot_xml(sensors));
+  EXPECT_EQ(plain.find_object_camera(), nullptr);  // no marker, no mission: no role
+  EXPECT_EQ(plain.ir_array().beams.size(), 3u);
+
+  const MissionConfig mission = mission_config_from_yaml(
+      YAML::Load("roles: {t: {object_camera: c1, ir: [r2], epm: sensor_link}, other: {ir: x}}"),
+      "m.yaml");
+  const auto r = from(robot_xml(sensors), mission);
+  EXPECT_EQ(r.object_camera().name, "c1");
+  EXPECT_EQ(r.provenance.at("roles.object_camera"), "mission:m.yaml");
+  // The mission's ir replaces r1's marker.
+  const IrArray ir = r.ir_array();
+  EXPECT_EQ(ir.beams.size(), 2u);
+  EXPECT_NEAR(ir.fov_rad, 0.6, 1e-12);
+  EXPECT_DOUBLE_EQ(ir.range_max_m, 1.0);
+  ASSERT_TRUE(r.epm);
+  EXPECT_EQ(r.epm->name, "sensor_link");
+}
+
+TEST(Roles, AMissingRoleNamesTheUrdfTheRoleAndHowToDeclareIt) {
+  const auto r = from(robot_xml(""));
+  try {
+    (void)r.object_camera();
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "t.urdf");
+    EXPECT_EQ(e.field(), "role[object_camera]");
+    EXPECT_NE(e.expected().find("<ferret role=\"object_camera\"/>"), std::string::npos);
+    EXPECT_NE(e.expected().find("roles: {t: {object_camera: NAME}}"), std::string::npos);
+  }
+  try {
+    (void)r.ir_array();
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "role[ir]");
+  }
+  EXPECT_THROW((void)r.marker_camera(), InputError);
+  EXPECT_FALSE(r.has_ir());
+}
+
+TEST(Roles, OldNameConventionsNoLongerGiveRoles) {
+  // A sensor named front_camera and ray sensors named ir_* without markers play no role.
+  const auto r = from(robot_xml(R"(
+    <sensor name="front_camera" parent_link_name="sensor_link">
+      <camera><image width="100" height="100" hfov="1.0" near="0.1" far="2"/></camera></sensor>
+    <sensor name="ir_a" parent_link_name="sensor_link">
+      <ray><horizontal samples="3" min_angle="-0.1" max_angle="0.1"/><range min="0" max="1.5"/></ray></sensor>
+    <link name="epm_link"/><joint name="e" type="fixed"><parent link="base_link"/><child link="epm_link"/></joint>)"));
+  EXPECT_EQ(r.find_object_camera(), nullptr);
+  EXPECT_FALSE(r.has_ir());
+  EXPECT_FALSE(r.epm);
+}
+
+TEST(Roles, ShippedModelsCarryEveryRoleTheirConsumersNeed) {
+  const auto ugv = load_robot_description(models("miniugv.urdf"));
+  EXPECT_EQ(ugv.object_camera().name, "front_camera");
+  EXPECT_EQ(ugv.ir_array().beams.size(), 9u);
+  EXPECT_TRUE(ugv.epm && ugv.imu);
+  const auto uav = load_robot_description(models("m100.urdf"));
+  EXPECT_EQ(uav.marker_camera().name, "marker_camera");
+  EXPECT_TRUE(uav.depth_camera().depth);
+  EXPECT_TRUE(uav.winch_spool);
+  EXPECT_EQ(uav.tether_attachments.size(), 1u);
+}
+
+TEST(LoadRobot, ShippedNamesAndPathsGiveTheSameDescription) {
+  const auto by_name = load_robot("miniugv");
+  const auto by_file = load_robot(models("miniugv.urdf"));
+  EXPECT_EQ(by_name.name, "miniugv");
+  EXPECT_EQ(by_file.object_camera().image_width_px, by_name.object_camera().image_width_px);
+  EXPECT_EQ(load_robot(rover()).name, "rover");
+  EXPECT_THROW((void)load_robot("/no/such/robot.urdf"), InputError);
 }
 
 }  // namespace

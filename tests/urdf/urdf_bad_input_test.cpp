@@ -3,6 +3,7 @@
 // console output never reaches the user.
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <filesystem>
 #include <string>
@@ -188,12 +189,19 @@ TEST(UrdfBadInput, ErrorsPointAtTheLine) {
             "bad.urdf:" + std::to_string(kBodyLine));
 }
 
-TEST(UrdfBadInput, MeshCollisionAndMalformedOrigin) {
+TEST(UrdfBadInput, MissingMeshAndMalformedOrigin) {
   auto f =
       load_failure(robot("<link name=\"m\"><collision><geometry><mesh "
-                         "filename=\"m.stl\"/></geometry></collision></link>"));
+                         "filename=\"no_such_mesh.stl\"/></geometry></collision></link>"));
+  EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine));
+  EXPECT_EQ(f.field, "link[m]/collision[0]/geometry/mesh@filename");
+  EXPECT_NE(f.expected.find("a mesh file that exists"), std::string::npos) << f.expected;
+  EXPECT_NE(f.what.find("no_such_mesh.stl"), std::string::npos) << f.what;
+  f =
+      load_failure(robot("<link name=\"m\"><collision><geometry><cone "
+                         "radius=\"1\"/></geometry></collision></link>"));
   EXPECT_EQ(f.field, "link[m]/collision[0]/geometry");
-  EXPECT_NE(f.expected.find("box, cylinder or sphere"), std::string::npos);
+  EXPECT_NE(f.expected.find("box, cylinder, sphere or mesh"), std::string::npos);
   f =
       load_failure(robot("<link name=\"o\"><collision><origin xyz=\"1 2\"/><geometry><sphere "
                          "radius=\"1\"/></geometry></collision></link>"));
@@ -205,7 +213,7 @@ TEST(UrdfBadInput, DuplicateLinkAndNoCollisionGeometry) {
   auto f = load_failure(robot("<link name=\"cam_link\"/>"));
   EXPECT_EQ(f.field, "link[cam_link]");
   f = load_failure("<robot name=\"x\"><link name=\"a\"/></robot>");
-  EXPECT_EQ(f.expected, "at least one <collision> with a box, cylinder or sphere");
+  EXPECT_EQ(f.expected, "at least one <collision> with a box, cylinder, sphere or mesh");
 }
 
 TEST(UrdfBadInput, UrdfdomRejectionIsCapturedIntoOneLine) {
@@ -237,6 +245,104 @@ TEST(UrdfBadInput, ConflictingUrdfAndGazeboDeclarations) {
   EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine + 1));
   EXPECT_EQ(f.field, "gazebo[cam_link]/sensor[cam]/camera/horizontal_fov");
   EXPECT_NE(f.expected.find("sensor[cam]/camera/image@hfov"), std::string::npos) << f.expected;
+}
+
+// ---------------------------------------------------------------- roles
+
+TEST(UrdfBadInput, UnknownRolesAndRolesInTheWrongPlace) {
+  auto f = load_failure(
+      robot(gazebo_camera("<ferret role=\"front_camera\"/><camera>"
+                          "<horizontal_fov>1</horizontal_fov>" +
+                          kGoodImage + "<clip><near>0.1</near><far>4</far></clip></camera>")));
+  EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine));
+  EXPECT_EQ(f.field, "gazebo[cam_link]/sensor[cam]/ferret@role");
+  EXPECT_NE(f.expected.find("one of object_camera, ir, marker_camera, depth_camera"),
+            std::string::npos)
+      << f.expected;
+  // A frame role inside a sensor, a sensor role on a link.
+  f = load_failure(robot(gazebo_camera("<ferret role=\"epm\"/>")));
+  EXPECT_EQ(f.field, "gazebo[cam_link]/sensor[cam]/ferret@role");
+  f = load_failure(robot("<link name=\"x\"><ferret role=\"object_camera\"/></link>"));
+  EXPECT_EQ(f.field, "link[x]/ferret@role");
+  EXPECT_NE(f.expected.find("sensor roles go inside the <sensor>"), std::string::npos);
+}
+
+TEST(UrdfBadInput, ARoleOnASensorOfTheWrongType) {
+  const std::string clip = "<clip><near>0.1</near><far>4</far></clip>";
+  // object_camera on a depth camera: a colour camera is needed.
+  auto f =
+      load_failure(robot("<gazebo reference=\"cam_link\"><sensor type=\"depth\" name=\"d\"><ferret "
+                         "role=\"object_camera\"/><camera><horizontal_fov>1</horizontal_fov>" +
+                         kGoodImage + clip + "</camera></sensor></gazebo>"));
+  EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine));
+  EXPECT_EQ(f.field, "sensor[d]/role[object_camera]");
+  EXPECT_EQ(f.expected, "a colour camera for the role object_camera");
+  // depth_camera on a colour camera, ir on a camera.
+  f =
+      load_failure(robot(gazebo_camera("<ferret role=\"depth_camera\"/><camera><horizontal_fov>1"
+                                       "</horizontal_fov>" +
+                                       kGoodImage + clip + "</camera>")));
+  EXPECT_EQ(f.expected, "a depth camera for the role depth_camera");
+  f =
+      load_failure(robot(gazebo_camera("<ferret role=\"ir\"/><camera><horizontal_fov>1"
+                                       "</horizontal_fov>" +
+                                       kGoodImage + clip + "</camera>")));
+  EXPECT_EQ(f.expected, "a range (ray) sensor for the role ir");
+}
+
+TEST(UrdfBadInput, TwoSensorsForARoleThatTakesOne) {
+  const std::string cam = "<camera><horizontal_fov>1</horizontal_fov>" + kGoodImage +
+                          "<clip><near>0.1</near><far>4</far></clip></camera>";
+  auto f = load_failure(
+      robot("<gazebo reference=\"cam_link\"><sensor type=\"camera\" name=\"a\"><ferret "
+            "role=\"object_camera\"/>" +
+            cam +
+            "</sensor>\n<sensor type=\"camera\" name=\"b\"><ferret "
+            "role=\"object_camera\"/>" +
+            cam + "</sensor></gazebo>"));
+  EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine + 1));
+  EXPECT_EQ(f.field, "role[object_camera]");
+  EXPECT_NE(f.what.find("also 'b'"), std::string::npos) << f.what;
+}
+
+TEST(UrdfBadInput, MissionRolesNamingNoSensorOrLinkOfTheUrdf) {
+  YAML::Node node = YAML::Load("roles: {bad: {object_camera: nothing_here}}");
+  const MissionConfig mission = mission_config_from_yaml(node, "mission.yaml");
+  try {
+    (void)robot_description_from_string(robot(""), "bad.urdf", mission);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "mission.yaml");
+    EXPECT_EQ(e.field(), "roles.bad.object_camera");
+    EXPECT_NE(e.expected().find("the name of a sensor of bad.urdf"), std::string::npos) << e.what();
+  }
+  node = YAML::Load("roles: {bad: {epm: no_link}}");
+  try {
+    (void)robot_description_from_string(robot(""), "bad.urdf",
+                                        mission_config_from_yaml(node, "mission.yaml"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "roles.bad.epm");
+    EXPECT_NE(e.expected().find("one of base_link, cam_link"), std::string::npos) << e.what();
+  }
+}
+
+TEST(UrdfBadInput, MissionRolesSectionIsChecked) {
+  auto fails = [](const std::string& yaml, const std::string& field, const std::string& expect) {
+    SCOPED_TRACE(yaml);
+    try {
+      (void)mission_config_from_yaml(YAML::Load(yaml), "mission.yaml");
+      ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), "mission.yaml");
+      EXPECT_EQ(e.field(), field);
+      EXPECT_NE(e.expected().find(expect), std::string::npos) << e.what();
+    }
+  };
+  fails("roles: {rover: {camera: cam}}", "roles.rover.camera", "a role: one of object_camera");
+  fails("roles: {rover: cam}", "roles.rover", "a mapping of roles");
+  fails("roles: {rover: {ir: []}}", "roles.rover.ir", "non-empty list");
+  fails("roles: {rover: {ir: {a: 1}}}", "roles.rover.ir", "a list");
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
 #include "ferret/urdf/mission_config.hpp"
 
+#include <algorithm>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "ferret/core/yaml_config.hpp"
 #include "yaml_emit.hpp"
@@ -8,6 +11,46 @@
 namespace ferret {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Records the keys of a section the file gave.
+void note(const yaml::MapReader& r, const std::string& section, std::set<std::string>& given) {
+  for (const auto& entry : r.node()) given.insert(section + "." + entry.first.as<std::string>());
+}
+
+const std::vector<std::string>& known_roles() {
+  static const std::vector<std::string> roles{
+      "object_camera", "ir",  "marker_camera", "depth_camera",
+      "epm",           "imu", "winch_spool",   "tether_attachment"};
+  return roles;
+}
+
+void read_roles(const yaml::MapReader& r, MissionConfig& c) {
+  for (const auto& robot : r.node()) {
+    const auto robot_name = robot.first.as<std::string>();
+    if (!robot.second.IsMap() || robot.second.size() == 0)
+      r.fail(robot_name, "a mapping of roles to sensor or link names for the robot '" + robot_name +
+                             "' (e.g. {object_camera: cam, ir: [ir_l, ir_r]})");
+    const yaml::MapReader rr(robot.second, r.source(), r.field_path(robot_name));
+    auto& out = c.roles[robot_name];
+    for (const auto& entry : robot.second) {
+      const auto role = entry.first.as<std::string>();
+      if (std::find(known_roles().begin(), known_roles().end(), role) == known_roles().end()) {
+        std::string list;
+        for (const auto& k : known_roles()) list += (list.empty() ? "" : ", ") + k;
+        rr.fail(role, "a role: one of " + list, role);
+      }
+      std::vector<std::string> names;
+      if (entry.second.IsScalar())
+        names.push_back(rr.get<std::string>(role));
+      else
+        names = rr.get_list<std::string>(role);
+      if (names.empty()) rr.fail(role, "a sensor or link name, or a non-empty list of them");
+      for (const auto& n : names)
+        if (n.empty()) rr.fail(role, "non-empty sensor or link names");
+      out[role] = names;
+    }
+  }
+}
 
 void read_limits(const yaml::MapReader& r, MotionLimits& l) {
   r.allow_only({"max_velocity_mps", "max_acceleration_mps2", "max_yaw_rate_radps"});
@@ -32,7 +75,11 @@ MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string
   MissionConfig c;
   if (!node.IsDefined() || node.IsNull()) return c;  // an empty file means all defaults
   const yaml::MapReader root(node, source);
-  root.allow_only({"curiosity", "object_search", "tether", "ugv_limits", "uav_limits"});
+  root.allow_only({"curiosity", "object_search", "tether", "ugv_limits", "uav_limits", "roles"});
+  c.source = source;
+  for (const char* section : {"curiosity", "object_search", "tether", "ugv_limits", "uav_limits"})
+    if (const auto r = root.optional_child(section)) note(*r, section, c.given);
+  if (const auto r = root.optional_child("roles")) read_roles(*r, c);
   if (const auto r = root.optional_child("curiosity")) {
     r->allow_only({"a", "b", "K"});
     c.curiosity.a = r->get_or("a", c.curiosity.a);
@@ -64,6 +111,30 @@ MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string
   return c;
 }
 
+std::string MissionConfig::provenance(const std::string& key) const {
+  return given.count(key) > 0 ? "mission:" + source : "default";
+}
+
+std::string mission_provenance_to_yaml(const MissionConfig& c) {
+  static const std::vector<std::pair<const char*, std::vector<const char*>>> keys{
+      {"curiosity", {"a", "b", "K"}},
+      {"object_search",
+       {"lambda1", "lambda2", "eta_m", "conf_floor", "conf_cap", "miss_likelihood"}},
+      {"tether", {"total_length_m", "entry_offset_m"}},
+      {"ugv_limits", {"max_velocity_mps", "max_acceleration_mps2", "max_yaw_rate_radps"}},
+      {"uav_limits", {"max_velocity_mps", "max_acceleration_mps2", "max_yaw_rate_radps"}},
+  };
+  YAML::Emitter e;
+  e << YAML::BeginMap;
+  for (const auto& [section, names] : keys)
+    for (const char* name : names) {
+      const std::string key = std::string(section) + "." + name;
+      e << YAML::Key << key << YAML::Value << c.provenance(key);
+    }
+  e << YAML::EndMap;
+  return std::string(e.c_str()) + "\n";
+}
+
 MissionConfig load_mission_config(const std::filesystem::path& path) {
   return mission_config_from_yaml(yaml::load_file(path), path.string());
 }
@@ -91,6 +162,16 @@ std::string mission_config_to_yaml(const MissionConfig& c) {
     << internal::yaml_number(c.tether.entry_offset_m) << YAML::EndMap;
   emit_limits(e, "ugv_limits", c.ugv_limits);
   emit_limits(e, "uav_limits", c.uav_limits);
+  if (!c.roles.empty()) {
+    e << YAML::Key << "roles" << YAML::Value << YAML::BeginMap;
+    for (const auto& [robot, roles] : c.roles) {
+      e << YAML::Key << robot << YAML::Value << YAML::BeginMap;
+      for (const auto& [role, names] : roles)
+        e << YAML::Key << role << YAML::Value << YAML::Flow << names;
+      e << YAML::EndMap;
+    }
+    e << YAML::EndMap;
+  }
   e << YAML::EndMap;
   return std::string(e.c_str()) + "\n";
 }

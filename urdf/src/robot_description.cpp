@@ -101,13 +101,6 @@ const CameraSensor& RobotDescription::camera(std::string_view camera_name) const
       "a camera sensor named '" + std::string(camera_name) + "' (docs/configuration.md)", "none");
 }
 
-const CameraSensor& RobotDescription::depth_camera() const {
-  for (const auto& c : cameras)
-    if (c.depth) return c;
-  throw InputError(source, "sensor[" + std::string(kDepthCameraName) + "]",
-                   "a depth camera (Gazebo <sensor type=\"depth\">)", "none");
-}
-
 const RangeSensor* RobotDescription::find_range_sensor(std::string_view sensor_name) const {
   for (const auto& r : range_sensors)
     if (r.name == sensor_name) return &r;
@@ -122,13 +115,74 @@ const Pose3& RobotDescription::frame(std::string_view frame_name) const {
   return it->second;
 }
 
+const std::vector<std::string>& sensor_role_names() {
+  static const std::vector<std::string> names{std::string(kRoleObjectCamera), std::string(kRoleIr),
+                                              std::string(kRoleMarkerCamera),
+                                              std::string(kRoleDepthCamera)};
+  return names;
+}
+
+const std::vector<std::string>& frame_role_names() {
+  static const std::vector<std::string> names{std::string(kRoleEpm), std::string(kRoleImu),
+                                              std::string(kRoleWinchSpool),
+                                              std::string(kRoleTetherAttachment)};
+  return names;
+}
+
+Eigen::AlignedBox2d RobotDescription::footprint_B() const {
+  return {bounding_box_B.min().head<2>(), bounding_box_B.max().head<2>()};
+}
+
+void RobotDescription::missing_role(std::string_view role, std::string_view what) const {
+  const bool sensor = std::find(sensor_role_names().begin(), sensor_role_names().end(),
+                                std::string(role)) != sensor_role_names().end();
+  throw InputError(source, "role[" + std::string(role) + "]",
+                   std::string(what) + " with the role " + std::string(role) +
+                       ": declare it with <ferret role=\"" + std::string(role) +
+                       "\"/> inside its " + (sensor ? "<sensor>" : "<link>") +
+                       ", or in the mission YAML as roles: {" + name + ": {" + std::string(role) +
+                       ": NAME}} (docs/configuration.md)",
+                   "none");
+}
+
+namespace {
+const CameraSensor* camera_of_role(const RobotDescription& r, std::string_view role) {
+  const auto it = r.roles.find(std::string(role));
+  if (it == r.roles.end() || it->second.empty()) return nullptr;
+  return r.find_camera(it->second.front());
+}
+}  // namespace
+
+const CameraSensor* RobotDescription::find_object_camera() const {
+  return camera_of_role(*this, kRoleObjectCamera);
+}
+
+const CameraSensor& RobotDescription::object_camera() const {
+  if (const auto* c = find_object_camera()) return *c;
+  missing_role(kRoleObjectCamera, "a colour camera");
+}
+
+const CameraSensor& RobotDescription::marker_camera() const {
+  if (const auto* c = camera_of_role(*this, kRoleMarkerCamera)) return *c;
+  missing_role(kRoleMarkerCamera, "a colour camera");
+}
+
+const CameraSensor& RobotDescription::depth_camera() const {
+  if (const auto* c = camera_of_role(*this, kRoleDepthCamera)) return *c;
+  missing_role(kRoleDepthCamera, "a depth camera (Gazebo <sensor type=\"depth\">)");
+}
+
+bool RobotDescription::has_ir() const {
+  const auto it = roles.find(std::string(kRoleIr));
+  return it != roles.end() && !it->second.empty();
+}
+
 IrArray RobotDescription::ir_array() const {
   std::vector<const RangeSensor*> ir;
-  for (const auto& r : range_sensors)
-    if (r.name.rfind("ir", 0) == 0) ir.push_back(&r);
-  if (ir.empty())
-    throw InputError(source, "sensor[ir_*]", "one or more ray sensors whose names start with 'ir'",
-                     "none");
+  if (const auto it = roles.find(std::string(kRoleIr)); it != roles.end())
+    for (const auto& n : it->second)
+      if (const auto* r = find_range_sensor(n)) ir.push_back(r);
+  if (ir.empty()) missing_role(kRoleIr, "one or more range (ray) sensors");
 
   // Beam yaw in B; sensors are taken as level (their scan plane parallel to B's xy).
   auto yaw_B = [](const RangeSensor& r, double angle) {
@@ -234,6 +288,7 @@ std::string robot_description_to_yaml(const RobotDescription& r) {
   emit_key_numbers(e, "size", {clean(size.x()), clean(size.y()), clean(size.z())});
   e << YAML::EndMap;
   emit_key_number(e, "circumscribed_radius_m", clean(r.circumscribed_radius_m));
+  emit_key_number(e, "ground_offset_m", clean(r.ground_offset_m));
 
   e << YAML::Key << "motion_limits" << YAML::Value << YAML::BeginMap;
   emit_key_number(e, "max_velocity_mps", r.limits.max_velocity_mps);
@@ -266,9 +321,7 @@ std::string robot_description_to_yaml(const RobotDescription& r) {
   }
   e << YAML::EndSeq;
 
-  const bool has_ir = std::any_of(r.range_sensors.begin(), r.range_sensors.end(),
-                                  [](const auto& s) { return s.name.rfind("ir", 0) == 0; });
-  if (has_ir) {
+  if (r.has_ir()) {
     const IrArray ir = r.ir_array();
     e << YAML::Key << "ir_array" << YAML::Value << YAML::BeginMap;
     emit_angle(e, "fov", ir.fov_rad);
@@ -296,10 +349,12 @@ std::string robot_description_to_yaml(const RobotDescription& r) {
     e << YAML::Key << "link" << YAML::Value << s.link;
     e << YAML::Key << "type" << YAML::Value << to_string(s.type);
     if (s.type == CollisionShape::Type::kBox)
-      emit_key_numbers(e, "size_m", {s.box_size_m.x(), s.box_size_m.y(), s.box_size_m.z()});
+      emit_key_numbers(e, "size_m",
+                       {clean(s.box_size_m.x()), clean(s.box_size_m.y()), clean(s.box_size_m.z())});
     else
       emit_key_number(e, "radius_m", s.radius_m);
     if (s.type == CollisionShape::Type::kCylinder) emit_key_number(e, "length_m", s.length_m);
+    if (!s.mesh.empty()) e << YAML::Key << "mesh_bounding_box_of" << YAML::Value << s.mesh;
     emit_pose(e, "X_BS", s.X_BS);
     e << YAML::EndMap;
   }
@@ -307,6 +362,16 @@ std::string robot_description_to_yaml(const RobotDescription& r) {
 
   e << YAML::Key << "frames" << YAML::Value << YAML::BeginMap;
   for (const auto& [name, X] : r.frames) emit_pose(e, name.c_str(), X);
+  e << YAML::EndMap;
+
+  e << YAML::Key << "roles" << YAML::Value << YAML::BeginMap;
+  for (const auto& [role, names] : r.roles)
+    e << YAML::Key << role << YAML::Value << YAML::Flow << names;
+  e << YAML::EndMap;
+
+  // Where each value came from: urdf:FILE:LINE, mission:FILE or default.
+  e << YAML::Key << "provenance" << YAML::Value << YAML::BeginMap;
+  for (const auto& [key, from] : r.provenance) e << YAML::Key << key << YAML::Value << from;
   e << YAML::EndMap;
 
   e << YAML::EndMap;

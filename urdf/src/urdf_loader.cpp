@@ -2,8 +2,9 @@
 //
 // Three passes over one document:
 //  1. TinyXML (the XML library urdfdom itself is built on) checks what urdfdom
-//     accepts silently or reports only on the console: shape sizes <= 0, mesh
-//     collision geometry, joints naming missing links. Errors carry file:line.
+//     accepts silently or reports only on the console: shape sizes <= 0, joints
+//     naming missing links; it reads the meshes (their bounding boxes, with assimp)
+//     and the links' <ferret role> markers. Errors carry file:line.
 //  2. urdfdom builds the kinematic tree and the collision geometry; its console
 //     messages are captured (console_bridge) and folded into one InputError.
 //  3. TinyXML reads the sensors, both urdfdom's <sensor> elements and Gazebo's
@@ -30,6 +31,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/urdf/robot_description.hpp"
+#include "mesh_bounds.hpp"
 
 namespace ferret {
 namespace {
@@ -133,7 +135,99 @@ void check_positive(const XmlSource& src, const TiXmlElement* e, const char* key
 
 // ---------------------------------------------------------------- pass 1: structure
 
-void check_structure(const XmlSource& src, const TiXmlElement* robot) {
+/// A <ferret role=".."/> marker: the role and where it was written.
+struct RoleMark {
+  std::string role;
+  std::string at;  ///< file:line
+};
+
+/// A mesh collision element, read in pass 1 (urdfdom knows no line numbers).
+struct MeshBox {
+  Eigen::AlignedBox3d box_C;  ///< the scaled vertices' bounds in the collision frame C
+  std::string path;           ///< the resolved file
+};
+
+struct Structure {
+  std::map<std::pair<std::string, int>, MeshBox> meshes;     ///< (link, collision index)
+  std::vector<std::pair<std::string, RoleMark>> link_roles;  ///< (link, marker), URDF order
+  std::map<std::string, std::string> joint_at;               ///< joint name -> file:line
+};
+
+bool contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+std::string join(const std::vector<std::string>& list) {
+  std::string out;
+  for (const auto& item : list) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+/// The <ferret role=".."/> children of a sensor or link; roles outside `allowed` fail
+/// with `hint` (where such a role goes instead).
+std::vector<RoleMark> read_role_marks(const XmlSource& src, const TiXmlElement* e,
+                                      const std::string& field,
+                                      const std::vector<std::string>& allowed,
+                                      const std::string& hint) {
+  std::vector<RoleMark> marks;
+  for (const TiXmlElement* m = e->FirstChildElement("ferret"); m != nullptr;
+       m = m->NextSiblingElement("ferret")) {
+    const std::string role = attr_or_empty(m, "role");
+    if (!contains(allowed, role))
+      src.fail(m, field + "/ferret@role", "a role: one of " + join(allowed) + hint,
+               quoted(m->Attribute("role")));
+    marks.push_back({role, src.at(m)});
+  }
+  return marks;
+}
+
+MeshBox read_mesh(const XmlSource& src, const TiXmlElement* mesh, const std::string& field,
+                  const std::filesystem::path& urdf_dir) {
+  const std::string filename = attr_or_empty(mesh, "filename");
+  if (filename.empty())
+    src.fail(mesh, field + "@filename", "a mesh file (package://, file:// or a path)");
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  if (const char* text = mesh->Attribute("scale")) {
+    const auto values = parse_numbers(text);
+    bool ok = values && values->size() == 3;
+    if (ok)
+      for (const double v : *values) ok = ok && v != 0.0;
+    if (!ok) src.fail(mesh, field + "@scale", "three non-zero numbers", quoted(text));
+    scale = Eigen::Vector3d((*values)[0], (*values)[1], (*values)[2]);
+  }
+  std::vector<std::string> tried;
+  const auto path = internal::resolve_mesh_path(filename, urdf_dir, tried);
+  if (path.empty())
+    src.fail(mesh, field + "@filename", "a mesh file that exists (tried " + join(tried) + ")",
+             quoted(filename.c_str()));
+  Eigen::AlignedBox3d raw;
+  try {
+    raw = internal::mesh_vertex_bounds(path);
+  } catch (const std::exception& e) {
+    std::string why = e.what();
+    for (char& c : why)
+      if (c == '\n' || c == '\r') c = ' ';
+    src.fail(mesh, field + "@filename",
+             "a mesh file assimp can read (STL, OBJ, DAE, ...) with vertices",
+             "'" + path.string() + "': " + why);
+  }
+  // Scaling is per axis about C's origin; a negative factor mirrors, so take both corners.
+  MeshBox out;
+  out.path = path.string();
+  out.box_C.setEmpty();
+  out.box_C.extend(raw.min().cwiseProduct(scale));
+  out.box_C.extend(raw.max().cwiseProduct(scale));
+  const Eigen::Vector3d size = out.box_C.sizes();
+  if ((size.array() <= 0.0).any())
+    src.fail(mesh, field + "@filename", "a mesh with extent along x, y and z",
+             "'" + path.string() + "': bounding box " + num(size.x()) + " x " + num(size.y()) +
+                 " x " + num(size.z()) + " m");
+  return out;
+}
+
+Structure check_structure(const XmlSource& src, const TiXmlElement* robot,
+                          const std::filesystem::path& urdf_dir) {
+  Structure out;
   std::set<std::string> links;
   for (const TiXmlElement* link = robot->FirstChildElement("link"); link != nullptr;
        link = link->NextSiblingElement("link")) {
@@ -141,6 +235,9 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
     if (name.empty()) src.fail(link, "link@name", "a link name");
     if (!links.insert(name).second)
       src.fail(link, "link[" + name + "]", "a unique link name", "a duplicate");
+    for (auto& mark : read_role_marks(src, link, "link[" + name + "]", frame_role_names(),
+                                      " (sensor roles go inside the <sensor>)"))
+      out.link_roles.emplace_back(name, std::move(mark));
     int index = 0;
     for (const TiXmlElement* col = link->FirstChildElement("collision"); col != nullptr;
          col = col->NextSiblingElement("collision"), ++index) {
@@ -149,7 +246,7 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
       const TiXmlElement* geometry = col->FirstChildElement("geometry");
       const TiXmlElement* shape = geometry != nullptr ? geometry->FirstChildElement() : nullptr;
       if (shape == nullptr)
-        src.fail(col, field + "/geometry", "a <geometry> with a box, cylinder or sphere");
+        src.fail(col, field + "/geometry", "a <geometry> with a box, cylinder, sphere or mesh");
       const std::string type = shape->Value();
       const std::string shape_field = field + "/geometry/" + type;
       if (type == "box") {
@@ -159,10 +256,10 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
         check_positive(src, shape, "length", shape_field, 1);
       } else if (type == "sphere") {
         check_positive(src, shape, "radius", shape_field, 1);
+      } else if (type == "mesh") {
+        out.meshes[{name, index}] = read_mesh(src, shape, shape_field, urdf_dir);
       } else {
-        src.fail(shape, field + "/geometry",
-                 "a box, cylinder or sphere (planning needs primitive collision shapes)",
-                 "<" + type + ">");
+        src.fail(shape, field + "/geometry", "a box, cylinder, sphere or mesh", "<" + type + ">");
       }
     }
   }
@@ -172,6 +269,7 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
        joint = joint->NextSiblingElement("joint")) {
     const std::string name = attr_or_empty(joint, "name");
     if (name.empty()) src.fail(joint, "joint@name", "a joint name");
+    out.joint_at[name] = src.at(joint);
     const std::string field = "joint[" + name + "]";
     (void)read_origin(src, joint->FirstChildElement("origin"), field + "/origin");
     for (const char* role : {"parent", "child"}) {
@@ -184,6 +282,7 @@ void check_structure(const XmlSource& src, const TiXmlElement* robot) {
                  "'" + link + "'");
     }
   }
+  return out;
 }
 
 // ---------------------------------------------------------------- pass 2: urdfdom
@@ -268,7 +367,13 @@ struct SensorSpec {
   std::string pose_at, pose_field;
   std::map<std::string, SensorValue> values;  ///< keys: see value_names()
   bool from_urdf = false, from_gazebo = false;
+  std::vector<RoleMark> roles;  ///< its <ferret role> markers
 };
+
+std::vector<RoleMark> sensor_role_marks(const XmlSource& src, const TiXmlElement* e,
+                                        const std::string& field) {
+  return read_role_marks(src, e, field, sensor_role_names(), " (frame roles go inside the <link>)");
+}
 
 /// How a missing sensor value is named in errors, and where a user can write it.
 struct ValueName {
@@ -338,6 +443,7 @@ SensorSpec read_urdf_sensor(const XmlSource& src, const TiXmlElement* e) {
     s.pose_field = s.field + "/origin";
   }
   attr_value(src, s, "update_rate", e, "update_rate", s.field);
+  s.roles = sensor_role_marks(src, e, s.field);
   if (const TiXmlElement* camera = e->FirstChildElement("camera")) {
     s.kind = SensorSpec::Kind::kCamera;
     const TiXmlElement* image = camera->FirstChildElement("image");
@@ -394,6 +500,7 @@ SensorSpec read_gazebo_sensor(const XmlSource& src, const TiXmlElement* e,
     s.pose_field = s.field + "/pose";
   }
   text_value(src, s, "update_rate", e, "update_rate", s.field);
+  s.roles = sensor_role_marks(src, e, s.field);
   if (s.kind == SensorSpec::Kind::kCamera || s.kind == SensorSpec::Kind::kDepth) {
     const TiXmlElement* camera = e->FirstChildElement("camera");
     if (camera == nullptr) src.fail(e, s.field + "/camera", "a <camera> element");
@@ -454,6 +561,7 @@ void merge_into(SensorSpec& into, const SensorSpec& from) {
                it->second.at + " (" + it->second.field + ")", "'" + num(v.value) + "'");
     into.values[key] = v;
   }
+  into.roles.insert(into.roles.end(), from.roles.begin(), from.roles.end());
 }
 
 /// A required value checked against a predicate; errors point at the value's own
@@ -537,8 +645,9 @@ RangeSensor make_range_sensor(const SensorSpec& s, const Pose3& X_BS) {
   return r;
 }
 
-void read_sensors(const XmlSource& src, const TiXmlElement* robot,
-                  const std::map<std::string, Pose3>& X_BL, RobotDescription& out) {
+std::vector<SensorSpec> read_sensors(const XmlSource& src, const TiXmlElement* robot,
+                                     const std::map<std::string, Pose3>& X_BL,
+                                     RobotDescription& out) {
   std::vector<SensorSpec> specs;
   auto add = [&](SensorSpec s, const TiXmlElement* e) {
     if (X_BL.count(s.link) == 0)
@@ -586,21 +695,173 @@ void read_sensors(const XmlSource& src, const TiXmlElement* robot,
         break;  // an IMU or the like: a frame, nothing more
     }
   }
+  return specs;
+}
+
+// ---------------------------------------------------------------- roles, provenance
+
+/// Where each value of the sensors came from ("urdf:FILE:LINE").
+void sensor_provenance(const std::vector<SensorSpec>& specs, RobotDescription& out) {
+  for (const auto& s : specs) {
+    auto put = [&](const std::string& key, const char* value) {
+      const auto it = s.values.find(value);
+      if (it != s.values.end()) out.provenance[key] = "urdf:" + it->second.at;
+    };
+    if (s.kind == SensorSpec::Kind::kCamera || s.kind == SensorSpec::Kind::kDepth) {
+      const std::string k = "cameras." + s.name + ".";
+      put(k + "horizontal_fov", "hfov");
+      put(k + "image_width_px", "width");
+      put(k + "image_height_px", "height");
+      put(k + "range_max_m", "far");
+    } else if (s.kind == SensorSpec::Kind::kRay) {
+      const std::string k = "range_sensors." + s.name + ".";
+      put(k + "fov", "max_angle");
+      put(k + "samples", "samples");
+      put(k + "range_max_m", "range_max");
+    }
+  }
+}
+
+const char* kind_name(SensorSpec::Kind kind) {
+  switch (kind) {
+    case SensorSpec::Kind::kCamera:
+      return "a colour camera";
+    case SensorSpec::Kind::kDepth:
+      return "a depth camera";
+    case SensorSpec::Kind::kRay:
+      return "a range (ray) sensor";
+    case SensorSpec::Kind::kOther:
+      break;
+  }
+  return "a sensor that is no camera or range sensor";
+}
+
+/// The sensor kind a role needs.
+SensorSpec::Kind role_kind(const std::string& role) {
+  if (role == kRoleDepthCamera) return SensorSpec::Kind::kDepth;
+  if (role == kRoleIr) return SensorSpec::Kind::kRay;
+  return SensorSpec::Kind::kCamera;  // object_camera, marker_camera
+}
+
+bool single_role(const std::string& role) {
+  return role != kRoleIr && role != kRoleTetherAttachment;
+}
+
+/// Roles from the <ferret role> markers, replaced role by role by the mission's
+/// `roles: {ROBOT: {...}}` entries; every role checked for the kind of sensor it needs.
+void assign_roles(const XmlSource& src, const std::vector<SensorSpec>& specs,
+                  const Structure& structure, const std::vector<std::string>& links,
+                  const MissionConfig& mission, RobotDescription& out) {
+  struct Holder {
+    std::string name;
+    std::string at;  ///< where the role was given: file:line, or the mission file
+  };
+  std::map<std::string, std::vector<Holder>> holders;
+  for (const auto& s : specs)
+    for (const auto& m : s.roles) holders[m.role].push_back({s.name, m.at});
+  for (const auto& [link, m] : structure.link_roles) holders[m.role].push_back({link, m.at});
+  std::map<std::string, std::string> from;  // role -> provenance
+  for (const auto& [role, list] : holders) from[role] = "urdf:" + list.front().at;
+
+  const auto mission_roles = mission.roles.find(out.name);
+  if (mission_roles != mission.roles.end()) {
+    const std::string source = mission.source.empty() ? "mission" : mission.source;
+    for (const auto& [role, names] : mission_roles->second) {
+      const std::string field = "roles." + out.name + "." + role;
+      const bool sensor_role = contains(sensor_role_names(), role);
+      std::vector<std::string> choices;
+      if (sensor_role)
+        for (const auto& s : specs) choices.push_back(s.name);
+      else
+        choices = links;
+      auto& list = holders[role];
+      list.clear();
+      for (const auto& name : names) {
+        if (!contains(choices, name))
+          throw InputError(source, field,
+                           std::string("the name of a ") + (sensor_role ? "sensor" : "link") +
+                               " of " + src.source() + ": one of " + join(choices),
+                           "'" + name + "'");
+        list.push_back({name, source});
+      }
+      from[role] = "mission:" + source;
+    }
+  }
+
+  for (const auto& [role, list] : holders) {
+    if (list.empty()) continue;
+    if (single_role(role) && list.size() > 1)
+      throw InputError(list[1].at, "role[" + role + "]",
+                       "one sensor or link with the role " + role + " (given to '" + list[0].name +
+                           "' at " + list[0].at + ")",
+                       "also '" + list[1].name + "'");
+    if (contains(sensor_role_names(), role)) {
+      for (const auto& h : list) {
+        const auto spec = std::find_if(specs.begin(), specs.end(),
+                                       [&](const SensorSpec& s) { return s.name == h.name; });
+        if (spec->kind != role_kind(role))
+          throw InputError(h.at, "sensor[" + h.name + "]/role[" + role + "]",
+                           std::string(kind_name(role_kind(role))) + " for the role " + role,
+                           std::string(kind_name(spec->kind)) + " '" + h.name + "'");
+      }
+    }
+    auto& names = out.roles[role];
+    for (const auto& h : list) names.push_back(h.name);
+    out.provenance["roles." + role] = from[role];
+  }
+
+  // Frames of the link roles, in URDF link order for tether attachments.
+  auto frame_of = [&](const std::string& name) { return Frame{name, out.frames.at(name)}; };
+  auto one = [&](std::string_view role, std::optional<Frame>& slot) {
+    const auto it = out.roles.find(std::string(role));
+    if (it != out.roles.end()) slot = frame_of(it->second.front());
+  };
+  one(kRoleEpm, out.epm);
+  one(kRoleImu, out.imu);
+  one(kRoleWinchSpool, out.winch_spool);
+  if (const auto it = out.roles.find(std::string(kRoleTetherAttachment)); it != out.roles.end())
+    for (const auto& name : it->second) out.tether_attachments.push_back(frame_of(name));
+
+  // The IR array's values follow from its sensors'.
+  if (const auto it = out.roles.find(std::string(kRoleIr)); it != out.roles.end()) {
+    std::string range, fov;
+    for (const auto& name : it->second) {
+      const auto r = out.provenance.find("range_sensors." + name + ".range_max_m");
+      const auto f = out.provenance.find("range_sensors." + name + ".fov");
+      if (r != out.provenance.end()) range += (range.empty() ? "" : ", ") + r->second;
+      if (f != out.provenance.end()) fov += (fov.empty() ? "" : ", ") + f->second;
+    }
+    out.provenance["ir_array.range_max_m"] = range + " (the smallest)";
+    out.provenance["ir_array.fov"] = fov + " (spans and poses together)";
+  }
 }
 
 // ---------------------------------------------------------------- geometry, roles
 
 void read_collision_shapes(const urdf::ModelInterface& model,
-                           const std::map<std::string, Pose3>& X_BL, RobotDescription& out) {
+                           const std::map<std::string, Pose3>& X_BL, const Structure& structure,
+                           RobotDescription& out) {
   for (const auto& [name, link] : model.links_) {
     const auto pose = X_BL.find(name);
     if (pose == X_BL.end()) continue;
+    int index = -1;
     for (const auto& col : link->collision_array) {
+      ++index;  // urdfdom keeps a link's <collision> elements in file order
       if (!col || !col->geometry) continue;
       CollisionShape s;
       s.link = name;
       s.X_BS = pose->second * to_pose(col->origin);
       switch (col->geometry->type) {
+        case urdf::Geometry::MESH: {
+          const auto mesh = structure.meshes.find({name, index});
+          if (mesh == structure.meshes.end()) continue;
+          // The box around the mesh, centred on S: X_BS = X_BC * translation(centre in C).
+          s.type = CollisionShape::Type::kBox;
+          s.box_size_m = mesh->second.box_C.sizes();
+          s.X_BS = s.X_BS * Eigen::Translation3d(mesh->second.box_C.center());
+          s.mesh = mesh->second.path;
+          break;
+        }
         case urdf::Geometry::BOX: {
           const auto& d = static_cast<const urdf::Box&>(*col->geometry).dim;
           s.type = CollisionShape::Type::kBox;
@@ -641,8 +902,9 @@ bool is_wheel_joint(const urdf::Joint& j) {
 }
 
 void read_limits(const urdf::ModelInterface& model, const MissionConfig& mission,
-                 RobotDescription& out) {
+                 const Structure& structure, RobotDescription& out) {
   bool has_wheels = false;
+  std::string wheel_note;
   for (const auto& [name, joint] : model.joints_) {
     if (!joint || !is_wheel_joint(*joint)) continue;
     has_wheels = true;
@@ -650,26 +912,27 @@ void read_limits(const urdf::ModelInterface& model, const MissionConfig& mission
     const auto link = model.getLink(joint->child_link_name);
     for (const auto& col : link->collision_array) {
       if (!col || !col->geometry || col->geometry->type != urdf::Geometry::CYLINDER) continue;
-      const double v =
-          joint->limits->velocity * static_cast<const urdf::Cylinder&>(*col->geometry).radius;
-      out.wheel_speed_limit_mps =
-          out.wheel_speed_limit_mps ? std::min(*out.wheel_speed_limit_mps, v) : v;
+      const double r = static_cast<const urdf::Cylinder&>(*col->geometry).radius;
+      const double v = joint->limits->velocity * r;
+      if (!out.wheel_speed_limit_mps || v < *out.wheel_speed_limit_mps) {
+        out.wheel_speed_limit_mps = v;
+        wheel_note = "urdf:" + structure.joint_at.at(name) + " (joint " + name + ": " +
+                     num(joint->limits->velocity) + " rad/s x wheel radius " + num(r) + " m)";
+      }
       break;
     }
   }
   out.kind = has_wheels ? RobotKind::kUgv : RobotKind::kUav;
   out.limits = has_wheels ? mission.ugv_limits : mission.uav_limits;
-  if (out.wheel_speed_limit_mps)
-    out.limits.max_velocity_mps = std::min(out.limits.max_velocity_mps, *out.wheel_speed_limit_mps);
-}
-
-void read_roles(const std::vector<std::string>& links, RobotDescription& out) {
-  for (const auto& name : links) {
-    const Frame f{name, out.frames.at(name)};
-    if (name == "epm_link") out.epm = f;
-    if (name == "imu_link") out.imu = f;
-    if (name == "winch_spool_link") out.winch_spool = f;
-    if (name.rfind("tether_attach", 0) == 0) out.tether_attachments.push_back(f);
+  const std::string section = has_wheels ? "ugv_limits." : "uav_limits.";
+  for (const char* key : {"max_velocity_mps", "max_acceleration_mps2", "max_yaw_rate_radps"})
+    out.provenance[std::string("motion_limits.") + key] = mission.provenance(section + key);
+  if (out.wheel_speed_limit_mps) {
+    out.provenance["motion_limits.wheel_speed_limit_mps"] = wheel_note;
+    if (*out.wheel_speed_limit_mps < out.limits.max_velocity_mps) {
+      out.limits.max_velocity_mps = *out.wheel_speed_limit_mps;
+      out.provenance["motion_limits.max_velocity_mps"] = wheel_note;
+    }
   }
 }
 
@@ -688,7 +951,8 @@ RobotDescription robot_description_from_string(const std::string& urdf_xml,
   if (robot == nullptr || std::string(robot->Value()) != "robot")
     src.fail(robot, "(document)", "a <robot> root element",
              robot == nullptr ? "nothing" : "<" + std::string(robot->Value()) + ">");
-  check_structure(src, robot);
+  const Structure structure =
+      check_structure(src, robot, std::filesystem::path(source).parent_path());
   const auto model = parse_with_urdfdom(src, urdf_xml);
 
   RobotDescription out;
@@ -699,7 +963,7 @@ RobotDescription robot_description_from_string(const std::string& urdf_xml,
   place_links(*model, root, Pose3::Identity(), out.frames);
   const std::map<std::string, Pose3> X_BL = out.frames;
 
-  read_collision_shapes(*model, X_BL, out);
+  read_collision_shapes(*model, X_BL, structure, out);
   // Shapes in URDF link order (urdfdom keeps links in a map).
   const auto order = link_order(robot);
   std::stable_sort(out.collision_shapes.begin(), out.collision_shapes.end(),
@@ -708,17 +972,28 @@ RobotDescription robot_description_from_string(const std::string& urdf_xml,
                             std::find(order.begin(), order.end(), b.link);
                    });
   if (out.collision_shapes.empty())
-    src.fail(robot, "robot", "at least one <collision> with a box, cylinder or sphere");
+    src.fail(robot, "robot", "at least one <collision> with a box, cylinder, sphere or mesh");
   out.bounding_box_B.setEmpty();
   for (const auto& s : out.collision_shapes) out.bounding_box_B.extend(s.aabb_B());
   out.circumscribed_radius_m = 0.0;
   for (const auto& s : out.collision_shapes)
     out.circumscribed_radius_m = std::max(out.circumscribed_radius_m, s.xy_reach_m());
+  out.ground_offset_m = -out.bounding_box_B.min().z();
+  out.provenance["ground_offset_m"] = "urdf:" + source + " (lowest collision point)";
+  out.provenance["bounding_box_m"] = "urdf:" + source + " (collision geometry)";
 
-  read_sensors(src, robot, X_BL, out);
-  read_limits(*model, mission, out);
-  read_roles(order, out);
+  const auto specs = read_sensors(src, robot, X_BL, out);
+  sensor_provenance(specs, out);
+  read_limits(*model, mission, structure, out);
+  assign_roles(src, specs, structure, order, mission, out);
   return out;
+}
+
+RobotDescription load_robot(const std::string& urdf_or_name, const MissionConfig& mission) {
+  for (const char* name : {"miniugv", "m100"})
+    if (urdf_or_name == name || urdf_or_name == std::string(name) + ".urdf")
+      return load_robot_description(find_model(std::string(name) + ".urdf"), mission);
+  return load_robot_description(urdf_or_name, mission);
 }
 
 RobotDescription load_robot_description(const std::filesystem::path& urdf_path,

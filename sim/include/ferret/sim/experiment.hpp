@@ -40,6 +40,7 @@ struct ExperimentConfig {
   int objects_per_zone = 20;
   std::vector<std::string> methods;
   ExplorationSettings base;          ///< robot, sensors, mission, time limit (method set per run)
+  std::filesystem::path robot_urdf;  ///< robot.urdf when given: the sensors and limits came from it
   double object_clearance_m = 0.25;  ///< sampled objects keep this far from non-free cells
   std::vector<ExperimentMap> maps;
   std::vector<double> sweep_camera_fov_deg;  ///< IR fov held at the base value

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <vector>
 
 #include "ferret/core/pose.hpp"
 #include "ferret/core/random.hpp"
@@ -24,7 +25,10 @@ struct SensorOptions {
   double ir_fov_rad = deg_to_rad(30.0);  ///< beta
   double ir_range_m = 4.0;               ///< D_IR
   double ir_rate_hz = 20.0;
-  int ir_beams = 0;                          ///< 0: enough to touch every cell at D_IR
+  int ir_beams = 0;  ///< 0: enough to touch every cell at D_IR
+  /// The IR beams' bearings from the heading (a URDF's beams, search_robot.hpp); when
+  /// given they replace the even fan of ir_beams over ir_fov_rad.
+  std::vector<double> ir_bearings_rad;
   double ir_noise_m = 0.01;                  ///< range noise (standard deviation)
   double ir_dropout = 0.02;                  ///< probability that a beam returns nothing usable
   double camera_fov_rad = deg_to_rad(90.0);  ///< alpha

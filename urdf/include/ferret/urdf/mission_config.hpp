@@ -4,7 +4,10 @@
 // paper's value where the paper gives one (docs/configuration.md lists them all).
 
 #include <filesystem>
+#include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 namespace YAML {
 class Node;
@@ -22,10 +25,10 @@ struct CuriosityParams {
 /// Object map O and the detection model (paper sect. IV-A, pinned down in
 /// docs/object_search.md).
 struct ObjectSearchParams {
-  double lambda1 = 0.10;      ///< below: labelled free of the object
-  double lambda2 = 0.95;      ///< above: the object; found when its cell passes this
-  double eta_m = 1.0;         ///< conf = eta / d (d in metres)
-  double conf_floor = 0.55;   ///< a detection is always weak positive evidence
+  double lambda1 = 0.10;     ///< below: labelled free of the object
+  double lambda2 = 0.95;     ///< above: the object; found when its cell passes this
+  double eta_m = 1.0;        ///< conf = eta / d (d in metres)
+  double conf_floor = 0.55;  ///< a detection is always weak positive evidence
   double conf_cap = 0.99;
   double miss_likelihood = 0.4;  ///< "no object" likelihood for a cell seen at zero distance
 };
@@ -49,15 +52,30 @@ struct MissionConfig {
   TetherParams tether;
   MotionLimits ugv_limits;
   MotionLimits uav_limits{5.0, 2.0, 1.0};
+  /// `roles: {ROBOT: {ROLE: NAME or [NAMES]}}`: which sensors or links of the robot
+  /// whose URDF is <robot name="ROBOT"> play a role; overrides that role's <ferret
+  /// role> markers (docs/configuration.md). Role names are checked here, sensor and
+  /// link names when the URDF is loaded.
+  std::map<std::string, std::map<std::string, std::vector<std::string>>> roles;
+
+  /// The file the values came from; empty for the built-in defaults.
+  std::string source;
+  /// The dotted keys the file set ("ugv_limits.max_velocity_mps"); the rest are defaults.
+  std::set<std::string> given;
+  /// "mission:FILE" when the file set `key`, else "default".
+  [[nodiscard]] std::string provenance(const std::string& key) const;
 };
 
 /// Reads a mission YAML (sections: curiosity, object_search, tether, ugv_limits,
-/// uav_limits; every key optional, unknown keys rejected). Throws InputError naming
+/// uav_limits, roles; every key optional, unknown keys rejected). Throws InputError naming
 /// the file and field for a wrong type, a value out of range or an unknown key.
 [[nodiscard]] MissionConfig load_mission_config(const std::filesystem::path& path);
 /// The same from a parsed node; `source` names it in errors.
-[[nodiscard]] MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string& source);
+[[nodiscard]] MissionConfig mission_config_from_yaml(const YAML::Node& node,
+                                                     const std::string& source);
 /// YAML text that load_mission_config reads back to the same values.
 [[nodiscard]] std::string mission_config_to_yaml(const MissionConfig& config);
+/// YAML map of every numeric key of the mission -> its provenance (see above).
+[[nodiscard]] std::string mission_provenance_to_yaml(const MissionConfig& config);
 
 }  // namespace ferret

@@ -2,8 +2,9 @@
 // A robot as the rest of ferret sees it: collision shapes, sensor frames and
 // parameters, special frames (EPM, IMU, tether attachments, winch spool) and motion
 // limits, all read from a URDF plus the mission YAML. Everything is expressed in the
-// base frame B (the URDF's root link) at zero joint positions. docs/configuration.md
-// lists the naming conventions a URDF must follow.
+// base frame B (the URDF's root link) at zero joint positions. Sensors and special
+// frames are found by role, never by name: a <ferret role=".."/> marker inside the
+// <sensor> or <link>, or the mission YAML's `roles:` section (docs/configuration.md).
 //
 // Frames follow monogram notation: X_BS is the pose of a shape or sensor S in the
 // base frame B; p_BO a position in B. Sensor frames look along their +x axis, with
@@ -24,11 +25,13 @@ namespace ferret {
 
 /// One primitive of a link's collision geometry, placed in the base frame.
 /// Boxes are centred on S; cylinders are centred on S with their axis along S's z
-/// (as in URDF, FCL and Gazebo); spheres are centred on S.
+/// (as in URDF, FCL and Gazebo); spheres are centred on S. A <mesh> becomes the box
+/// that bounds its (scaled) vertices in the collision frame; `mesh` names its file.
 struct CollisionShape {
   enum class Type { kBox, kCylinder, kSphere };
   Type type = Type::kBox;
   std::string link;  ///< the URDF link the shape belongs to
+  std::string mesh;  ///< the resolved mesh file a box was made from; empty for primitives
   Pose3 X_BS = Pose3::Identity();
   Eigen::Vector3d box_size_m = Eigen::Vector3d::Zero();  ///< full extents (boxes)
   double radius_m = 0.0;                                 ///< cylinders and spheres
@@ -98,6 +101,25 @@ struct Frame {
   Pose3 X_BF = Pose3::Identity();
 };
 
+/// The roles a sensor can play (docs/configuration.md). A role names what a consumer
+/// needs, whatever the sensor is called: `object_camera` (the miniUGV's colour camera
+/// for the object detector), `ir` (the miniUGV's IR array: one or more range sensors),
+/// `marker_camera` (the UAV's colour camera for ArUco markers), `depth_camera` (the
+/// UAV's landing-zone camera, a depth camera).
+inline constexpr std::string_view kRoleObjectCamera = "object_camera";
+inline constexpr std::string_view kRoleIr = "ir";
+inline constexpr std::string_view kRoleMarkerCamera = "marker_camera";
+inline constexpr std::string_view kRoleDepthCamera = "depth_camera";
+/// The roles of links: `epm` (x out of the magnet face), `imu`, `winch_spool` (spool
+/// axis = z), `tether_attachment` (several allowed).
+inline constexpr std::string_view kRoleEpm = "epm";
+inline constexpr std::string_view kRoleImu = "imu";
+inline constexpr std::string_view kRoleWinchSpool = "winch_spool";
+inline constexpr std::string_view kRoleTetherAttachment = "tether_attachment";
+/// Every sensor role, then every frame role.
+[[nodiscard]] const std::vector<std::string>& sensor_role_names();
+[[nodiscard]] const std::vector<std::string>& frame_role_names();
+
 /// What kind of robot a URDF describes: one with wheel joints is a ground vehicle and
 /// takes the mission's ugv_limits, any other one an aerial vehicle with uav_limits.
 enum class RobotKind { kUgv, kUav };
@@ -121,48 +143,82 @@ struct RobotDescription {
   MotionLimits limits;
   std::optional<double> wheel_speed_limit_mps;  ///< from the wheel joints, if any
 
-  std::optional<Frame> epm;               ///< link `epm_link` (x out of the magnet face)
-  std::optional<Frame> imu;               ///< link `imu_link`
-  std::optional<Frame> winch_spool;       ///< link `winch_spool_link` (spool axis = z)
-  std::vector<Frame> tether_attachments;  ///< links named `tether_attach*`, in URDF order
+  std::optional<Frame> epm;               ///< the link with role `epm` (x out of the magnet face)
+  std::optional<Frame> imu;               ///< the link with role `imu`
+  std::optional<Frame> winch_spool;       ///< the link with role `winch_spool` (spool axis = z)
+  std::vector<Frame> tether_attachments;  ///< links with role `tether_attachment`, in URDF order
+
+  /// Role -> the sensors (or links) that play it, in URDF order; only roles that are
+  /// declared appear (a <ferret role> marker or the mission's `roles:` section).
+  std::map<std::string, std::vector<std::string>> roles;
+
+  /// Where each value came from, for `ferret config --dump`: key (a dotted path such as
+  /// "roles.object_camera", "cameras.cam_main.horizontal_fov",
+  /// "motion_limits.max_velocity_mps") -> "urdf:FILE:LINE", "mission:FILE" or "default",
+  /// with a note in parentheses where a value is computed.
+  std::map<std::string, std::string> provenance;
 
   /// Axis-aligned box around all collision shapes, in B.
   Eigen::AlignedBox3d bounding_box_B;
   /// Largest distance in B's xy plane from B's origin to any collision geometry:
   /// a disc of this radius around the base covers the robot at any heading.
   double circumscribed_radius_m = 0.0;
+  /// Height of B above the lowest point of the collision geometry: for a ground robot
+  /// resting on its lowest point, where B sits above the floor (0 when B is on the
+  /// ground, as in the miniUGV; 0.07 m for a base frame at a body centre 7 cm up).
+  double ground_offset_m = 0.0;
+
+  /// The footprint at the ground: the bounding box's xy extent, in B's xy.
+  [[nodiscard]] Eigen::AlignedBox2d footprint_B() const;
 
   /// The camera with this name, or nullptr.
   [[nodiscard]] const CameraSensor* find_camera(std::string_view camera_name) const;
   /// The camera with this name; throws InputError naming the URDF when it is missing.
   [[nodiscard]] const CameraSensor& camera(std::string_view camera_name) const;
-  /// The first depth camera; throws InputError when there is none.
-  [[nodiscard]] const CameraSensor& depth_camera() const;
   /// The range sensor with this name, or nullptr.
   [[nodiscard]] const RangeSensor* find_range_sensor(std::string_view sensor_name) const;
-  /// The range sensors whose names start with "ir" taken together; throws InputError
-  /// when there is none.
+
+  /// The camera with role `object_camera` (a colour camera), or nullptr.
+  [[nodiscard]] const CameraSensor* find_object_camera() const;
+  /// The cameras of the roles; each throws InputError naming the URDF, the role and
+  /// how to declare it when the role is missing.
+  [[nodiscard]] const CameraSensor& object_camera() const;
+  [[nodiscard]] const CameraSensor& marker_camera() const;
+  [[nodiscard]] const CameraSensor& depth_camera() const;
+  /// True when some range sensor has the role `ir`.
+  [[nodiscard]] bool has_ir() const;
+  /// The range sensors with role `ir` taken together; throws InputError when none.
   [[nodiscard]] IrArray ir_array() const;
   /// X_BF of a link or sensor; throws InputError when there is no such frame.
   [[nodiscard]] const Pose3& frame(std::string_view frame_name) const;
+  /// The InputError for a role a consumer needs and the robot does not declare.
+  [[noreturn]] void missing_role(std::string_view role, std::string_view what) const;
 };
 
-/// Conventional sensor names (docs/configuration.md).
-inline constexpr std::string_view kFrontCameraName = "front_camera";    ///< miniUGV object camera
-inline constexpr std::string_view kMarkerCameraName = "marker_camera";  ///< UAV ArUco camera
-inline constexpr std::string_view kDepthCameraName = "depth_camera";    ///< UAV landing-zone camera
-
-/// Reads a URDF and completes it with the mission's motion limits. Throws InputError
-/// naming the file (with line), the element and what was expected for: a missing file,
-/// malformed XML, joints naming missing links, non-positive shape sizes, mesh collision
-/// geometry, sensors with missing or non-positive fov or range, conflicting sensor
-/// definitions. urdfdom's console messages are captured, never printed.
+/// Reads a URDF and completes it with the mission's motion limits and role
+/// assignments. Throws InputError naming the file (with line), the element and what
+/// was expected for: a missing file, malformed XML, joints naming missing links,
+/// non-positive shape sizes, a missing or unreadable mesh, sensors with missing or
+/// non-positive fov or range, conflicting sensor definitions, an unknown role or a role
+/// on a sensor of the wrong type (the mission's `roles:` entries likewise, naming the
+/// mission file). urdfdom's console messages are captured, never printed.
+///
+/// Mesh files: `package://PKG/PATH` is looked up as DIR/PKG/PATH for every DIR of
+/// ROS_PACKAGE_PATH, then beside the URDF (each ancestor A of its folder: A/PATH
+/// when A is named PKG, else A/PKG/PATH); `file://PATH` and plain names are paths,
+/// relative ones to the URDF's folder.
 [[nodiscard]] RobotDescription load_robot_description(const std::filesystem::path& urdf_path,
                                                       const MissionConfig& mission = {});
 /// The same from URDF text; `source` names it in errors.
 [[nodiscard]] RobotDescription robot_description_from_string(const std::string& urdf_xml,
                                                              const std::string& source,
                                                              const MissionConfig& mission = {});
+
+/// A URDF path, or the name of a shipped model ("miniugv", "m100", with or without
+/// ".urdf"), loaded with the mission: the one call that gives a robot and where each
+/// of its values came from (RobotDescription::provenance).
+[[nodiscard]] RobotDescription load_robot(const std::string& urdf_or_name,
+                                          const MissionConfig& mission = {});
 
 /// YAML summary of a description (what `ferret config --dump` prints under `robot:`).
 /// Angles are given in degrees and radians; lengths in metres.
