@@ -201,11 +201,8 @@ LoadedPlanRobot load_plan_robot(PlanRobot robot, const PlanRobotModel& model,
     throw InputError(source, field, std::string("a URDF of a ") + to_string(expected),
                      path.string());
   const RobotShape urdf_shape = robot_shape_from_description(description);
-  if (ground && !urdf_shape.parts.empty()) {
-    // The ground robot's box, for the bands over the floor and the retrace offsets.
-    const Eigen::AlignedBox3d box = shape_box_B(urdf_shape);
-    out.ugv.body_size_m = box.sizes();
-  }
+  // The ground robot's box, for the bands over the floor and the retrace offsets.
+  if (ground) out.ugv = ugv_geometry_from_description(description);
   out.shape = plan_robot_shape(robot, released_length_m, &urdf_shape, out.ugv);
   out.limits = description.limits;
   // Relative to the working directory when it lies below it (the plan then reads the

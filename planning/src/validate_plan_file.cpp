@@ -130,6 +130,9 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
                      urdf->source);
   }
   const bool ugv = plan.robot == PlanRobot::kUgv;
+  // A ground robot's box (the unknown-is-occupied band, the tether's obstacle band):
+  // its URDF's, as the planner used it; the miniUGV's defaults for built-in shapes.
+  const UgvGeometry ugv_box = ugv && urdf ? ugv_geometry_from_description(*urdf) : UgvGeometry{};
 
   // The box: the request's, else the plan's, else (miniUGV in a world YAML) the hidden
   // space the plan starts in. It is where unknown space is occupied, the geofence,
@@ -146,7 +149,7 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
       const HiddenSpace& h = world.spec->hidden_spaces[static_cast<std::size_t>(index)];
       const HiddenSpaceFrame space = hidden_space_frame(h);
       if (!bounds) {
-        bounds = ugv_policy_bounds(space);
+        bounds = ugv_policy_bounds(space, ugv_box);
         bounds_source = "hidden space " + h.name;
       }
       if (!entry && !plan.tether) entry = space.p_WE;
@@ -245,7 +248,7 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
     f.lo_m = bounds->lo.head<2>();
     f.hi_m = bounds->hi.head<2>();
     f.floor_z_m = *floor_z;
-    corners = tether_corners_from_map(*map, f, UgvGeometry{});
+    corners = tether_corners_from_map(*map, f, ugv_box);
   }
   ValidationReport report = validate_plan(plan, checker, corners, opt);
   ValidationInputs& r = report.inputs;

@@ -415,3 +415,27 @@ boxes:
 
 }  // namespace
 }  // namespace ferret::test
+
+namespace ferret::test {
+namespace {
+
+// A ground robot's own box sets the hidden space's unknown-is-occupied band (and the
+// tether's obstacle band): a CSV plan with no bounds gets a geofence as tall as the
+// robot, the rover's 0.12 m against the miniUGV's 0.055 m.
+TEST(ValidateCli, TheGroundRobotsBoxSetsTheHiddenSpaceBand) {
+  TempDir dir;
+  const std::string plan =
+      write(dir, "slow.csv", "t,x,y,z,yaw\n0,10,4.5,0,-1.57\n10,10,3.5,0,-1.57\n");
+  auto top_m = [&](const std::string& robot) {
+    const auto r = run_cli("validate --world " + kDetour + " --plan " + plan + " --robot " + robot +
+                           " --json");
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_EQ(doc["inputs"]["geofence_source"], "hidden space cellar") << r.out;
+    return doc["inputs"]["geofence"]["max"][2].get<double>();
+  };
+  EXPECT_NEAR(top_m("tests/data/robots/rover.urdf") - top_m("miniugv"), 0.12 - 0.055, 1e-9);
+}
+
+}  // namespace
+}  // namespace ferret::test
