@@ -1,6 +1,7 @@
 // ferret as a library (docs/library.md): load the shipped default world, plan the
 // UAV's approach to the hidden space house_void, plan a tether-aware miniUGV path
-// inside it, and check both plans with the validation API.
+// inside it, check both plans with the validation API, and run one curiosity-driven
+// object search with the shipped miniUGV's sensors in a shipped hidden-space map.
 //
 //   ferret_library_example [OUT_DIR]   (OUT_DIR: also write approach.json, ugv.json)
 //
@@ -9,10 +10,13 @@
 #include <cstdio>
 #include <ferret/core/data_path.hpp>
 #include <ferret/core/error.hpp>
+#include <ferret/mapping/occupancy_map_2d.hpp>
 #include <ferret/planning/plan_validation.hpp>
 #include <ferret/planning/planning_world.hpp>
 #include <ferret/planning/uav_approach.hpp>
 #include <ferret/planning/ugv_path.hpp>
+#include <ferret/sim/search_robot.hpp>
+#include <ferret/urdf/robot_description.hpp>
 #include <filesystem>
 #include <string>
 
@@ -31,8 +35,8 @@ bool report_check(const char* what, const ferret::PlanningWorld& world,
                   const ferret::PlanFile& plan) {
   const ferret::ValidationReport report = ferret::validate_plan(plan, world, {}, what);
   if (!report.valid()) {
-    std::printf("%s check: invalid, %zu violations, first: %s\n", what,
-                report.violations.size(), report.violations.front().describe().c_str());
+    std::printf("%s check: invalid, %zu violations, first: %s\n", what, report.violations.size(),
+                report.violations.front().describe().c_str());
     return false;
   }
   std::printf("%s check: valid, clearance >= %.2f m, peak %.2f m/s, %.2f m/s^2\n", what,
@@ -88,11 +92,22 @@ int main(int argc, char** argv) {
     // 3. Both plans checked as `ferret validate` checks them.
     const bool valid =
         report_check("approach", world, uav.plan) & report_check("ugv", world, ugv.plan);
+
+    // 4. One object search (CDOS) in the sparse hidden space, with the miniUGV's own
+    //    camera and IR sensors and speed limit from its URDF.
+    const ferret::RobotDescription miniugv = ferret::load_robot("miniugv");
+    const ferret::OccupancyMap2D hidden =
+        ferret::load_map_server(ferret::data_path("maps/sparse.yaml"));
+    const ferret::EpisodeResult search = ferret::run_search(
+        hidden, ferret::Pose2{1.0, 4.0, 0.0}, {9.0, 6.0}, "cdos", miniugv, /*seed=*/1);
+    std::printf("search: cdos %s in %.1f s, %.1f m, %d decisions (%s)\n",
+                search.found ? "found the object" : "did not find the object", search.time_s,
+                search.path_m, search.decisions, search.end_reason.c_str());
     if (argc == 2) {
       ferret::save_plan(uav.plan, std::filesystem::path(argv[1]) / "approach.json");
       ferret::save_plan(ugv.plan, std::filesystem::path(argv[1]) / "ugv.json");
     }
-    return valid ? 0 : 1;
+    return valid && search.found ? 0 : 1;
   } catch (const ferret::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -15,6 +15,7 @@ foreach(required bin/ferret include/ferret/core/error.hpp include/ferret/mapping
                  include/ferret/planning/uav_approach.hpp include/ferret/planning/ugv_path.hpp
                  share/ferret/models/miniugv.urdf share/ferret/models/m100.urdf
                  share/ferret/worlds/default.yaml share/ferret/plans/detour_ugv.json
+                 share/ferret/maps/sparse.yaml share/ferret/maps/sparse.pgm
                  share/ferret/config/mission.yaml share/ferret/plot_experiment.py
                  share/ferret/examples/library/main.cpp share/ferret/examples/library/CMakeLists.txt)
   if(NOT EXISTS ${prefix}/${required})
@@ -50,7 +51,7 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "library example failed (${rc}):\n${out}\n${err}")
 endif()
 foreach(expected "approach: solved, [0-9]+ states" "ugv: solved, [0-9]+ states" "approach check: valid"
-                 "ugv check: valid")
+                 "ugv check: valid" "search: cdos found the object in")
   if(NOT out MATCHES "${expected}")
     message(FATAL_ERROR "library example did not print '${expected}':\n${out}")
   endif()
