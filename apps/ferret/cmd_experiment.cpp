@@ -13,6 +13,7 @@
 
 #include "cli_options.hpp"
 #include "command.hpp"
+#include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/sim/experiment.hpp"
 
@@ -58,10 +59,13 @@ std::string format_duration(double s) {
 fs::path find_plot_script(const Options& o) {
   if (!o.plot_script.empty()) return o.plot_script;
   if (const char* env = std::getenv("FERRET_PLOT_SCRIPT")) return env;
-  for (const fs::path& p : {fs::path(o.config).parent_path() / ".." / "plot_experiment.py",
-                            fs::path("examples") / "plot_experiment.py"})
-    if (fs::is_regular_file(p)) return p;
-  return {};
+  // The script of the ferret this binary belongs to (installed, or the source tree of
+  // a build), wherever the experiment config lies.
+  try {
+    return data_path("plot_experiment.py");
+  } catch (const InputError&) {
+    return {};
+  }
 }
 
 void run(const Options& o) {
@@ -133,7 +137,7 @@ const CommandRegistration kExperiment{
       sub->add_option("--shard", o->shard, "Run slice I of N (groups g with g % N == I)")
           ->capture_default_str();
       sub->add_option("--plot-script", o->plot_script,
-                      "Plot script (default: examples/plot_experiment.py)");
+                      "Plot script (default: the installed plot_experiment.py, data_path())");
       sub->add_flag("--no-plots", o->no_plots, "Write the CSVs only");
       sub->add_flag("--quiet", o->quiet, "No progress line");
       sub->callback([o] { run(*o); });
