@@ -69,6 +69,13 @@ void run(const RenderArgs& a) {
   std::string title;
   std::optional<OccupancyMap2D> whole;  // the unwindowed slice, for a tether to wrap on
   if (is_map_server_yaml(a.input)) {
+    // A 2D map has no slice to cut: options that only 3D inputs take are mistakes.
+    if (!a.space.empty())
+      throw InputError("--space", "", "a world YAML input (a map_server map has no hidden spaces)",
+                       a.input);
+    if (!a.window.empty())
+      throw InputError("--window", "",
+                       "a world YAML or .bt/.ot input (a map_server map is drawn whole)", a.input);
     map = load_map_server(a.input);
     title = fmt::format("{} (map_server map, {:g} m cells)", fs::path(a.input).filename().string(),
                         map.geometry.resolution_m);

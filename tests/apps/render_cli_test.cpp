@@ -180,6 +180,21 @@ TEST(RenderCli, BadPlanExitsTwoNamingTheFileWithoutPng) {
   EXPECT_EQ(dir.count(), before);  // no out.png
 }
 
+// --space and --window cut 3D slices; on a map_server map they would be ignored, so a
+// user who thought the picture was cut is told instead.
+TEST(RenderCli, SliceOnlyOptionsOnAMapServerMapAreBadInput) {
+  TempDir dir;
+  write_free_map(dir);
+  const std::size_t before = dir.count();
+  for (const std::string option : {"--space house_void", "--window 0,0,1,1"}) {
+    const auto r =
+        run_cli("render " + (dir / "f.yaml") + " " + option + " -o " + (dir / "out.png"));
+    EXPECT_EQ(r.exit_code, 2) << option;
+    EXPECT_THAT(r.err, HasSubstr(option.substr(0, option.find(' '))));
+  }
+  EXPECT_EQ(dir.count(), before);
+}
+
 TEST(RenderCli, OutFollowsTheCliConvention) {
   TempDir dir;
   write_free_map(dir);
