@@ -5,8 +5,12 @@
 
 #include <cmath>
 
+#include "waypoints.hpp"
+
 namespace ferret {
 namespace {
+
+using test::ugv_at;
 using ::testing::HasSubstr;
 
 bool same(Rgb a, Rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
@@ -19,21 +23,12 @@ OccupancyMap2D boxed_room() {
   return m;
 }
 
-Waypoint at(double t, double x, double y, double yaw) {
-  Waypoint w;
-  w.t_s = t;
-  w.x_m = x;
-  w.y_m = y;
-  w.yaw_rad = yaw;
-  return w;
-}
-
 // A miniUGV plan that drives over the box and down its far side, its tether entering at
 // (0.5, 2): the tether wraps the box's corners (2, 2.5) and (3, 2.5).
 PlanFile round_the_box() {
   PlanFile p;
   p.robot = PlanRobot::kUgv;
-  p.states = {at(0, 1.0, 3.5, 0.0), at(3, 4.0, 3.5, 0.0), at(6, 4.0, 1.0, -M_PI / 2)};
+  p.states = {ugv_at(0, 1.0, 3.5, 0.0), ugv_at(3, 4.0, 3.5, 0.0), ugv_at(6, 4.0, 1.0, -M_PI / 2)};
   p.tether = PlanTether{};
   p.tether->p_WE = {0.5, 2.0};
   return p;
@@ -84,7 +79,8 @@ TEST(PlanOverlay, APlanPartlyOutsideTheMapIsClippedAndCounted) {
   const OccupancyMap2D map = boxed_room();
   PlanFile p;
   p.robot = PlanRobot::kUav;
-  p.states = {at(0, 1.0, 3.5, 0), at(1, 5.0, 3.5, 0), at(2, 8.0, 3.5, 0), at(3, 9.0, 5.0, 0)};
+  p.states = {ugv_at(0, 1.0, 3.5, 0), ugv_at(1, 5.0, 3.5, 0), ugv_at(2, 8.0, 3.5, 0),
+              ugv_at(3, 9.0, 5.0, 0)};
   RenderOptions o;
   o.pixels_per_cell = 5;
   MapCanvas canvas(map, o);

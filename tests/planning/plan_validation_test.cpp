@@ -15,9 +15,12 @@
 #include "ferret/urdf/robot_description.hpp"
 #include "support/cli_runner.hpp"
 #include "test_maps.hpp"
+#include "waypoints.hpp"
 
 namespace ferret {
 namespace {
+
+using test::ugv_at;
 
 // The detour scenario's hidden space in code: 12 x 8 m, a 6 x 3 m block, and an
 // unobserved 1 x 0.9 m patch at [10.5, 11.5] x [7, 7.9] (unknown, not free).
@@ -33,15 +36,6 @@ struct Fixture {
     corners = tether_corners_from_map(*map, space, UgvGeometry{});
   }
 };
-
-Waypoint at(double t, double x, double y, double yaw) {
-  Waypoint w;
-  w.t_s = t;
-  w.x_m = x;
-  w.y_m = y;
-  w.yaw_rad = yaw;
-  return w;
-}
 
 PlanFile ugv_plan(std::vector<Waypoint> states, double budget_m = 14.0) {
   PlanFile p;
@@ -98,7 +92,7 @@ TEST(PlanValidation, PlannerOutputIsValid) {
 TEST(PlanValidation, ThroughAWall) {
   Fixture f;
   // Straight through the block from (2, 4) to (10, 4), at 1 m/s.
-  const auto r = check(f, ugv_plan({at(0, 2, 4, 0), at(8, 10, 4, 0)}));
+  const auto r = check(f, ugv_plan({ugv_at(0, 2, 4, 0), ugv_at(8, 10, 4, 0)}));
   ASSERT_EQ(r.violations.size(), 1u);  // one segment, one collision (its first pose)
   const Violation& v = r.violations[0];
   EXPECT_EQ(v.kind, ViolationKind::kCollision);
@@ -119,7 +113,7 @@ TEST(PlanValidation, ThroughAWall) {
 
 TEST(PlanValidation, ThroughUnknownSpace) {
   Fixture f;
-  const PlanFile p = ugv_plan({at(0, 9.5, 7.4, 0), at(2.5, 11.9, 7.4, 0)});
+  const PlanFile p = ugv_plan({ugv_at(0, 9.5, 7.4, 0), ugv_at(2.5, 11.9, 7.4, 0)});
   const auto r = check(f, p);
   ASSERT_EQ(r.violations.size(), 1u);
   EXPECT_EQ(r.violations[0].kind, ViolationKind::kUnknownSpace);
@@ -144,8 +138,8 @@ TEST(PlanValidation, ThroughUnknownSpace) {
 TEST(PlanValidation, OverTheTetherLimit) {
   Fixture f;
   // Round the right end of the block from the top: 3.354 + 6 + |(9,5.5) - (10,1.5)|.
-  const std::vector<Waypoint> s{at(0, 1, 6.5, 0), at(5, 10, 6.5, 0), at(6, 10, 6.5, -1.5708),
-                                at(9, 10, 1.5, -1.5708)};
+  const std::vector<Waypoint> s{ugv_at(0, 1, 6.5, 0), ugv_at(5, 10, 6.5, 0),
+                                ugv_at(6, 10, 6.5, -1.5708), ugv_at(9, 10, 1.5, -1.5708)};
   const double need = std::hypot(3.0, 1.5) + 6.0 + std::hypot(1.0, 4.0);
   const auto fits = check(f, ugv_plan(s, need + 0.01));
   EXPECT_TRUE(fits.valid());
@@ -177,12 +171,12 @@ TEST(PlanValidation, SpeedYawRateTimeAndFence) {
     const auto r = check(f, ugv_plan(std::move(s)));
     return r.valid() ? std::string("valid") : std::string(to_string(r.violations.front().kind));
   };
-  EXPECT_EQ(kind({at(0, 1, 1, 0), at(1, 3, 1, 0)}), "valid");  // 2 m/s: the limit
-  EXPECT_EQ(kind({at(0, 1, 1, 0), at(0.9, 3, 1, 0)}), "speed");
-  EXPECT_EQ(kind({at(0, 1, 1, 0), at(0.5, 1, 1, 1.5)}), "yaw_rate");
-  EXPECT_EQ(kind({at(1, 1, 1, 0), at(0, 1.5, 1, 0)}), "time_order");
-  EXPECT_EQ(kind({at(0, 1, 1, 0), at(10, 1, -1, 0)}), "geofence");
-  const auto fast = check(f, ugv_plan({at(0, 1, 1, 0), at(0.5, 3, 1, 0)}));
+  EXPECT_EQ(kind({ugv_at(0, 1, 1, 0), ugv_at(1, 3, 1, 0)}), "valid");  // 2 m/s: the limit
+  EXPECT_EQ(kind({ugv_at(0, 1, 1, 0), ugv_at(0.9, 3, 1, 0)}), "speed");
+  EXPECT_EQ(kind({ugv_at(0, 1, 1, 0), ugv_at(0.5, 1, 1, 1.5)}), "yaw_rate");
+  EXPECT_EQ(kind({ugv_at(1, 1, 1, 0), ugv_at(0, 1.5, 1, 0)}), "time_order");
+  EXPECT_EQ(kind({ugv_at(0, 1, 1, 0), ugv_at(10, 1, -1, 0)}), "geofence");
+  const auto fast = check(f, ugv_plan({ugv_at(0, 1, 1, 0), ugv_at(0.5, 3, 1, 0)}));
   ASSERT_EQ(fast.violations.size(), 1u);
   EXPECT_NEAR(fast.violations[0].value, 4.0, 1e-12);
   EXPECT_EQ(fast.violations[0].limit, 2.0);
@@ -193,7 +187,8 @@ TEST(PlanValidation, Acceleration) {
   Fixture f;
   // At rest for 0.1 s, then 1.9 m/s for 0.1 s: 1.9 m/s in the 0.1 s mean of the two
   // segments' durations is 19 m/s^2, reported at state 1 across segments 0-1 and 1-2.
-  const auto r = check(f, ugv_plan({at(0, 1, 1, 0), at(0.1, 1, 1, 0), at(0.2, 1.19, 1, 0)}));
+  const auto r =
+      check(f, ugv_plan({ugv_at(0, 1, 1, 0), ugv_at(0.1, 1, 1, 0), ugv_at(0.2, 1.19, 1, 0)}));
   ASSERT_EQ(r.violations.size(), 1u);
   const Violation& v = r.violations[0];
   EXPECT_EQ(v.kind, ViolationKind::kAcceleration);
@@ -205,34 +200,38 @@ TEST(PlanValidation, Acceleration) {
   EXPECT_EQ(v.limit, 2.0);
   // Just legal: 0.9 s at rest, 1.9 m/s for 1 s, 0.9 s at rest: 1.9 / 0.95 = 2 m/s^2
   // at both ends. 0.1 s less at rest is 1.9 / 0.9 = 2.11 m/s^2: over.
-  const auto legal = check(
-      f, ugv_plan({at(0, 1, 1, 0), at(0.9, 1, 1, 0), at(1.9, 2.9, 1, 0), at(2.8, 2.9, 1, 0)}));
+  const auto legal = check(f, ugv_plan({ugv_at(0, 1, 1, 0), ugv_at(0.9, 1, 1, 0),
+                                        ugv_at(1.9, 2.9, 1, 0), ugv_at(2.8, 2.9, 1, 0)}));
   EXPECT_TRUE(legal.valid()) << legal.violations.front().describe();
   EXPECT_NEAR(legal.margins.peak_acceleration_mps2, 2.0, 1e-9);
-  const auto over = check(f, ugv_plan({at(0, 1, 1, 0), at(0.8, 1, 1, 0), at(1.8, 2.9, 1, 0)}));
+  const auto over =
+      check(f, ugv_plan({ugv_at(0, 1, 1, 0), ugv_at(0.8, 1, 1, 0), ugv_at(1.8, 2.9, 1, 0)}));
   ASSERT_EQ(kinds(over), std::vector{ViolationKind::kAcceleration});
   EXPECT_NEAR(over.violations[0].value, 1.9 / 0.9, 1e-9);
   // A 90 degree corner at 1 m/s without stopping: |(0,1) - (1,0)| / 1 s = 1.414 m/s^2.
-  const auto corner = check(f, ugv_plan({at(0, 1, 1, 0), at(1, 2, 1, 0), at(2, 2, 2, 0)}));
+  const auto corner =
+      check(f, ugv_plan({ugv_at(0, 1, 1, 0), ugv_at(1, 2, 1, 0), ugv_at(2, 2, 2, 0)}));
   EXPECT_TRUE(corner.valid());
   EXPECT_NEAR(corner.margins.peak_acceleration_mps2, std::sqrt(2.0), 1e-9);
   // A repeated state (no time, no motion) is not a stop.
-  EXPECT_TRUE(
-      check(f, ugv_plan({at(0, 1, 1, 0), at(1, 2, 1, 0), at(1, 2, 1, 0), at(2, 3, 1, 0)})).valid());
+  EXPECT_TRUE(check(f, ugv_plan({ugv_at(0, 1, 1, 0), ugv_at(1, 2, 1, 0), ugv_at(1, 2, 1, 0),
+                                 ugv_at(2, 3, 1, 0)}))
+                  .valid());
   // Across a jump back in time there is no acceleration to speak of (at rest, then
   // 1.9 m/s for 0.5 s after it would be 2.53 m/s^2): time order only.
-  EXPECT_EQ(kinds(check(f, ugv_plan({at(0, 2, 1, 0), at(1, 2, 1, 0), at(0.5, 2, 1, 0),
-                                     at(1.0, 2.95, 1, 0)}))),
+  EXPECT_EQ(kinds(check(f, ugv_plan({ugv_at(0, 2, 1, 0), ugv_at(1, 2, 1, 0), ugv_at(0.5, 2, 1, 0),
+                                     ugv_at(1.0, 2.95, 1, 0)}))),
             std::vector{ViolationKind::kTimeOrder});
 }
 
 TEST(PlanValidation, EveryViolationWithItsSegment) {
   Fixture f;
   const std::vector<Waypoint> s{
-      at(0, 1, 1, 0),        at(2, 2, 4, 0), at(10, 10, 4, 0),  // 1-2: through the block
-      at(10.5, 11, 4, 0),                                       //
-      at(10.6, 11.5, 4, 0),   // 3-4: 5 m/s; at 3: 1 -> 5 m/s over 0.3 s
-      at(20.6, 11.5, -1, 0),  // 5: outside the geofence
+      ugv_at(0, 1, 1, 0),        ugv_at(2, 2, 4, 0),
+      ugv_at(10, 10, 4, 0),       // 1-2: through the block
+      ugv_at(10.5, 11, 4, 0),     //
+      ugv_at(10.6, 11.5, 4, 0),   // 3-4: 5 m/s; at 3: 1 -> 5 m/s over 0.3 s
+      ugv_at(20.6, 11.5, -1, 0),  // 5: outside the geofence
   };
   const auto r = check(f, ugv_plan(s, 100.0));
   ASSERT_EQ(kinds(r), (std::vector{ViolationKind::kCollision, ViolationKind::kAcceleration,
@@ -255,8 +254,8 @@ TEST(PlanValidation, PartIsTheUrdfLink) {
   const RobotDescription ugv = load_robot_description(find_model("miniugv.urdf"));
   const RobotShape urdf_shape = robot_shape_from_description(ugv);
   CollisionChecker checker(f.map, plan_robot_shape(PlanRobot::kUgv, 0.0, &urdf_shape));
-  const auto r =
-      validate_plan(ugv_plan({at(0, 2, 4, 0), at(8, 10, 4, 0)}), checker, f.corners, options(f));
+  const auto r = validate_plan(ugv_plan({ugv_at(0, 2, 4, 0), ugv_at(8, 10, 4, 0)}), checker,
+                               f.corners, options(f));
   ASSERT_EQ(r.violations.size(), 1u);
   // The chassis reaches furthest forward (6.5 cm): it meets the block first.
   EXPECT_EQ(r.violations[0].part, "chassis_link");
@@ -265,9 +264,9 @@ TEST(PlanValidation, PartIsTheUrdfLink) {
 }
 
 TEST(PlanValidation, YawMustBeRadians) {
-  PlanFile p = ugv_plan({at(0, 1, 1, 3.1416), at(1, 2, 1, -3.1416)});
+  PlanFile p = ugv_plan({ugv_at(0, 1, 1, 3.1416), ugv_at(1, 2, 1, -3.1416)});
   EXPECT_NO_THROW(check_yaw_is_radians(p, "plan.csv"));  // pi, rounded
-  p.states.push_back(at(2, 3, 1, 90.0));
+  p.states.push_back(ugv_at(2, 3, 1, 90.0));
   try {
     check_yaw_is_radians(p, "plan.csv");
     FAIL() << "degrees accepted";

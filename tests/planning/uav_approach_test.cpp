@@ -10,21 +10,15 @@
 
 #include "ferret/core/error.hpp"
 #include "plan_check.hpp"
+#include "waypoints.hpp"
 
 namespace ferret {
 namespace {
 
+using test::uav_at;
+
 const std::string kDefaultWorld = std::string(FERRET_SOURCE_DIR) + "/examples/worlds/default.yaml";
 const std::string kRover = std::string(FERRET_SOURCE_DIR) + "/tests/data/robots/rover.urdf";
-
-Waypoint pose(double x, double y, double z, double yaw) {
-  Waypoint w;
-  w.x_m = x;
-  w.y_m = y;
-  w.z_m = z;
-  w.yaw_rad = yaw;
-  return w;
-}
 
 const PlanningWorld& default_world() {
   static const PlanningWorld world = load_planning_world(kDefaultWorld);
@@ -44,7 +38,7 @@ std::filesystem::path write_yard() {
 
 TEST(UavApproach, PlansToTheHoverPoseOfAHiddenSpaceAndThePlanIsValid) {
   UavApproachRequest req;
-  req.start = pose(-20, -20, 3, 0);
+  req.start = uav_at(-20, -20, 3, 0);
   req.hidden_space = "house_void";
   const PlanResult r = plan_uav_approach(default_world(), req);
   ASSERT_TRUE(r.solved) << r.status;
@@ -71,8 +65,8 @@ TEST(UavApproach, TheGeofenceDefaultsToTheWorldsBounds) {
   const auto yard = write_yard();
   const PlanningWorld world = load_planning_world(yard);
   UavApproachRequest req;
-  req.start = pose(-5, -5, 2, 0);
-  req.goal = pose(5, -5, 2, 0);
+  req.start = uav_at(-5, -5, 2, 0);
+  req.goal = uav_at(5, -5, 2, 0);
   const PlanResult r = plan_uav_approach(world, req);
   ASSERT_TRUE(r.solved) << r.status;
   // bounds_m {[-10, -10, -0.2], [10, 10, 5]}: x, y as they are; z from 0.5 m above
@@ -96,7 +90,7 @@ TEST(UavApproach, TheGeofenceDefaultsToTheWorldsBounds) {
 
 TEST(UavApproach, WithTheMiniUgvHangingThePlanIsOfTheLoadedUav) {
   UavApproachRequest req;
-  req.start = pose(-20, -20, 3, 0);
+  req.start = uav_at(-20, -20, 3, 0);
   req.hidden_space = "house_void";
   req.tether_released_m = 0.5;  // hovering 1.5 m up, the miniUGV hangs clear of the ground
   const PlanResult r = plan_uav_approach(default_world(), req);
@@ -108,7 +102,7 @@ TEST(UavApproach, WithTheMiniUgvHangingThePlanIsOfTheLoadedUav) {
 
 TEST(UavApproach, AHiddenSpaceTheWorldLacksIsAnInputErrorListingThoseItHas) {
   UavApproachRequest req;
-  req.start = pose(-20, -20, 3, 0);
+  req.start = uav_at(-20, -20, 3, 0);
   req.hidden_space = "wine_cellar";
   try {
     (void)plan_uav_approach(default_world(), req);
@@ -131,11 +125,11 @@ TEST(UavApproach, BadRequestsAreInputErrorsNamingTheField) {
     return "(no error)";
   };
   UavApproachRequest ok;
-  ok.start = pose(-20, -20, 3, 0);
+  ok.start = uav_at(-20, -20, 3, 0);
   ok.hidden_space = "house_void";
 
   UavApproachRequest both = ok;
-  both.goal = pose(0, 0, 2, 0);
+  both.goal = uav_at(0, 0, 2, 0);
   EXPECT_EQ(field_of(both), "goal");
   UavApproachRequest neither = ok;
   neither.hidden_space.clear();

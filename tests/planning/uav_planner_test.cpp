@@ -2,13 +2,16 @@
 
 #include <gtest/gtest.h>
 
-#include "ferret/planning/collision_checker.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/ompl_setup.hpp"
 #include "test_maps.hpp"
+#include "waypoints.hpp"
 
 namespace ferret {
 namespace {
+
+using test::uav_at;
 
 // A 10 x 10 x 5 m yard at 0.1 m: ground, and a wall across x = 0 with one window
 // (y in [1, 3], z in [1.5, 3]).
@@ -21,15 +24,6 @@ std::shared_ptr<const CollisionMap> yard() {
       for (double x = -0.15; x < 0.2; x += 0.1) tree.setNodeValue(x, y, z, octomap::logodds(0.2));
   tree.updateInnerOccupancy();
   return CollisionMap::build(tree);
-}
-
-Waypoint at(double x, double y, double z, double yaw) {
-  Waypoint w;
-  w.x_m = x;
-  w.y_m = y;
-  w.z_m = z;
-  w.yaw_rad = yaw;
-  return w;
 }
 
 UavPlannerOptions yard_options() {
@@ -54,7 +48,7 @@ void expect_valid(UavPlanner& planner, const UavPlan& plan, const Aabb3& fence) 
 TEST(UavPlanner, FliesThroughTheWindow) {
   ASSERT_TRUE(seed_ompl_once(7));
   UavPlanner planner(yard(), uav_shape(), yard_options());
-  const UavPlan plan = planner.plan(at(-3, -3, 2, 0), at(3, 3, 2, 1.0));
+  const UavPlan plan = planner.plan(uav_at(-3, -3, 2, 0), uav_at(3, 3, 2, 1.0));
   ASSERT_NO_FATAL_FAILURE(expect_valid(planner, plan, yard_options().geofence));
   EXPECT_NEAR(plan.states.back().yaw_rad, 1.0, 1e-9);
   // It crosses the wall through the window.
@@ -81,22 +75,23 @@ TEST(UavPlanner, SuspendedMiniUgvDoesNotFitThroughTheWindow) {
   UavPlannerOptions o = yard_options();
   o.time_limit_s = 0.5;
   UavPlanner planner(yard(), uav_with_suspended_ugv_shape(2.0), o);
-  const UavPlan plan = planner.plan(at(-3, -3, 3.5, 0), at(3, 3, 3.5, 0));
+  const UavPlan plan = planner.plan(uav_at(-3, -3, 3.5, 0), uav_at(3, 3, 3.5, 0));
   EXPECT_FALSE(plan.solved);
   // With 0.3 m it fits.
   UavPlanner short_tether(yard(), uav_with_suspended_ugv_shape(0.3), yard_options());
-  const UavPlan ok = short_tether.plan(at(-3, -3, 2.5, 0), at(3, 3, 2.5, 0));
+  const UavPlan ok = short_tether.plan(uav_at(-3, -3, 2.5, 0), uav_at(3, 3, 2.5, 0));
   ASSERT_NO_FATAL_FAILURE(expect_valid(short_tether, ok, yard_options().geofence));
 }
 
 TEST(UavPlanner, RejectsBadEndpointsAndPlanners) {
   UavPlanner planner(yard(), uav_shape(), yard_options());
-  EXPECT_EQ(planner.plan(at(-3, -3, 0.2, 0), at(3, 3, 2, 0)).status, "start outside the geofence");
-  EXPECT_EQ(planner.plan(at(-3, -3, 2, 0), at(0, -3, 2, 0)).status, "goal in collision");
+  EXPECT_EQ(planner.plan(uav_at(-3, -3, 0.2, 0), uav_at(3, 3, 2, 0)).status,
+            "start outside the geofence");
+  EXPECT_EQ(planner.plan(uav_at(-3, -3, 2, 0), uav_at(0, -3, 2, 0)).status, "goal in collision");
   UavPlannerOptions o = yard_options();
   o.planner = "nope";
   UavPlanner bad(yard(), uav_shape(), o);
-  EXPECT_THROW((void)bad.plan(at(-3, -3, 2, 0), at(3, 3, 2, 0)), InputError);
+  EXPECT_THROW((void)bad.plan(uav_at(-3, -3, 2, 0), uav_at(3, 3, 2, 0)), InputError);
 }
 
 TEST(OmplSetup, SeedsOncePerProcess) {
