@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "ferret/core/error.hpp"
+#include "ferret/core/output_set.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -41,6 +42,23 @@ CLI::Option* add_out_option(CLI::App* cmd, std::string& out, std::string_view wh
 
 void require_out(const std::string& out, std::string_view what) {
   if (out.empty()) throw InputError("--out", "", std::string(what) + " (-o/--out is required)");
+}
+
+std::filesystem::path checked_out_file(const std::string& out, std::string_view what) {
+  require_out(out, what);
+  return check_output_target(out, OutputKind::kFile, "--out");
+}
+
+std::filesystem::path checked_out_dir(const std::string& out, std::string_view what) {
+  require_out(out, what);
+  return check_output_target(out, OutputKind::kDirectory, "--out");
+}
+
+void refuse_empty_out(const CLI::App* cmd, const std::string& out) {
+  if (!out.empty()) return;
+  for (const char* name : {"--out", "--output", "--output-dir"})
+    if (cmd->get_option_no_throw(name) != nullptr && cmd->count(name) > 0)
+      throw InputError("--out", "", "a non-empty output path", "''");
 }
 
 CLI::Option* add_tether_budget_option(CLI::App* cmd, std::optional<double>& budget_m,

@@ -38,6 +38,16 @@ CLI::Option* add_mission_option(CLI::App* cmd, std::string& mission, bool config
 CLI::Option* add_out_option(CLI::App* cmd, std::string& out, std::string_view what);
 /// Throws InputError("--out", ...) when `out` is empty.
 void require_out(const std::string& out, std::string_view what);
+/// The output file `out`, required (require_out) and checked before any work is done
+/// (check_output_target): InputError for a directory, a FIFO, a device, a path under
+/// a regular file or an unwritable directory.
+[[nodiscard]] std::filesystem::path checked_out_file(const std::string& out, std::string_view what);
+/// The output directory `out`, required and checked the same way (not an existing
+/// non-directory).
+[[nodiscard]] std::filesystem::path checked_out_dir(const std::string& out, std::string_view what);
+/// For an optional -o: InputError when -o/--out (or an alias) was given an empty value,
+/// which would otherwise mean "no output" (or the working directory).
+void refuse_empty_out(const CLI::App* cmd, const std::string& out);
 
 /// `--tether-budget M`: the taut tether length the miniUGV may use on the floor,
 /// L - l_0 (hidden aliases: --tether, --tether-max).

@@ -41,7 +41,7 @@ std::vector<std::string> split(const std::string& text) {
 }
 
 void run(const Args& a) {
-  require_out(a.out, "the directory for the OMPL logs");
+  (void)checked_out_dir(a.out, "the directory for the OMPL logs");
   PlanBenchmarkRequest req;
   req.uav = req.ugv = false;
   for (const auto& r : split(a.robots)) {

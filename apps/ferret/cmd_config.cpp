@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/core/output_set.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -37,6 +38,8 @@ struct Options {
 void run(const Options& o) {
   if (!o.dump)
     throw InputError("ferret config", "--dump", "the --dump flag (the only action so far)");
+  const bool to_stdout = o.out.empty() || o.out == "-";
+  if (!to_stdout) (void)check_output_target(o.out, OutputKind::kFile, "--out");
   std::string mission_source = "(built-in defaults)";
   MissionConfig mission;
   if (!o.mission.empty()) {
@@ -55,7 +58,7 @@ void run(const Options& o) {
   text += "mission:\n" +
           indent("source: \"" + mission_source + "\"\n" + mission_config_to_yaml(mission) +
                  "provenance:\n" + indent(mission_provenance_to_yaml(mission)));
-  if (o.out.empty() || o.out == "-")
+  if (to_stdout)
     std::cout << text;
   else
     write_text_atomically(o.out, text);
@@ -74,7 +77,10 @@ const CommandRegistration kConfig{
           "config/mission.yaml if present, else the built-in values)");
       sub->add_option("-o,--out", options->out, "Write the YAML to this file (default: stdout)");
       add_hidden_alias(sub, "--output", options->out);
-      sub->callback([options] { run(*options); });
+      sub->callback([options, sub] {
+        refuse_empty_out(sub, options->out);
+        run(*options);
+      });
     }};
 
 }  // namespace

@@ -3,13 +3,16 @@
 // sweep CSVs into DIR, then draws the plots with examples/plot_experiment.py when it
 // can find it (unsharded runs only: shards are merged first, see docs/object_search.md).
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "cli_options.hpp"
 #include "command.hpp"
@@ -68,8 +71,38 @@ fs::path find_plot_script(const Options& o) {
   }
 }
 
+// Draws the plots into the output set's staging directory, so they appear with the CSVs.
+// A failed script is a warning: its partial plots are removed, the CSVs still appear.
+// Returns the plots drawn.
+std::vector<std::string> draw_plots(const fs::path& script, const fs::path& staging) {
+  std::set<fs::path> before;
+  for (const auto& e : fs::directory_iterator(staging)) before.insert(e.path());
+  // Debian's python3 has python3-matplotlib; a python3 earlier on PATH (pyenv, venv) may not.
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  // Its stdout would name the staging directory: the command lists the plots instead.
+  const std::string cmd = python + " '" + script.string() + "' '" + staging.string() + "'";
+  const bool ok = std::system((cmd + " >/dev/null").c_str()) == 0;
+  std::vector<std::string> drawn;
+  for (const auto& e : fs::directory_iterator(staging)) {
+    if (before.count(e.path()) != 0) continue;
+    if (ok) {
+      drawn.push_back(e.path().filename().string());
+    } else {
+      std::error_code ec;
+      fs::remove_all(e.path(), ec);
+    }
+  }
+  if (!ok)
+    std::fprintf(stderr,
+                 "ferret: warning: plotting failed (%s DIR); no plots written, the CSVs are "
+                 "complete\n",
+                 (python + " " + script.string()).c_str());
+  std::sort(drawn.begin(), drawn.end());
+  return drawn;
+}
+
 void run(const Options& o) {
-  require_out(o.out, "an output directory");
+  const fs::path out = checked_out_dir(o.out, "an output directory");
   const auto [shard_index, shard_count] = parse_shard(o.shard);
   if (o.jobs < 1)
     throw InputError("ferret experiment", "--jobs", "an integer >= 1", std::to_string(o.jobs));
@@ -100,7 +133,17 @@ void run(const Options& o) {
       if (done == total) std::fprintf(stderr, "\n");
       std::fflush(stderr);
     };
-  run_experiment(config, o.out, eo);
+  fs::path script;
+  if (!o.no_plots && shard_count == 1) {
+    script = find_plot_script(o);
+    if (script.empty())
+      std::fprintf(stderr,
+                   "ferret: warning: examples/plot_experiment.py not found; no plots drawn\n");
+  }
+  std::vector<std::string> plots;
+  if (!script.empty())
+    eo.before_commit = [&](const fs::path& staging) { plots = draw_plots(script, staging); };
+  run_experiment(config, out, eo);
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("wrote %s (runs.csv, summary.csv%s%s) in %s\n", o.out.c_str(),
@@ -108,19 +151,11 @@ void run(const Options& o) {
               config.sweep_ir_fov_deg.empty() ? "" : ", sweep_ir_fov.csv",
               format_duration(elapsed).c_str());
 
-  if (o.no_plots || shard_count > 1) return;
-  const fs::path script = find_plot_script(o);
-  if (script.empty()) {
-    std::fprintf(stderr,
-                 "ferret: warning: examples/plot_experiment.py not found; no plots drawn\n");
-    return;
+  if (!plots.empty()) {
+    std::string list;
+    for (const auto& p : plots) list += " " + p;
+    std::printf("plotted:%s\n", list.c_str());
   }
-  // Debian's python3 has python3-matplotlib; a python3 earlier on PATH (pyenv, venv) may not.
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string cmd = python + " '" + script.string() + "' '" + o.out + "'";
-  if (std::system(cmd.c_str()) != 0)
-    std::fprintf(stderr, "ferret: warning: plotting failed (%s); the CSVs are complete\n",
-                 cmd.c_str());
 }
 
 const CommandRegistration kExperiment{

@@ -18,8 +18,8 @@
 
 #include "cli_options.hpp"
 #include "command.hpp"
-#include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/core/output_set.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/exploration_run.hpp"
@@ -96,6 +96,8 @@ void run(const Options& o) {
       throw InputError("ferret explore", name, "a field of view below 360 degrees",
                        std::to_string(*v));
 
+  // The output directory is checked before the search runs.
+  if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
   const OccupancyMap2D map = load_map_server(o.map);
   const Pose2 start{start_v[0], start_v[1], start_v[2]};
   const Eigen::Vector2d object(object_v[0], object_v[1]);
@@ -145,8 +147,9 @@ void run(const Options& o) {
   if (o.out.empty()) return;
 
   const fs::path out(o.out);
+  OutputSet files(out, OutputKind::kDirectory);  // the images and the log: all or none
   write_exploration_images(
-      map, object, r, out,
+      map, object, r, files.staging_dir(),
       fmt::format("{}, {}{}, object at ({:g}, {:g}), seed {}", fs::path(o.map).filename().string(),
                   s.method, robot ? ", robot " + robot->name : std::string(), object.x(),
                   object.y(), o.seed));
@@ -188,7 +191,8 @@ void run(const Options& o) {
   auto& trajectory = log["trajectory"] = nlohmann::json::array();  // every 0.1 s
   for (std::size_t k = 0; k < r.trajectory.size(); k += 2)
     trajectory.push_back({r.trajectory[k].x_m, r.trajectory[k].y_m, r.trajectory[k].yaw_rad});
-  write_text_atomically(out / "log.json", log.dump(1) + "\n");
+  files.write_text("log.json", log.dump(1) + "\n");
+  files.commit();
   std::printf("wrote: %s %s %s %s\n", (out / "G.png").c_str(), (out / "O.png").c_str(),
               (out / "G_O.png").c_str(), (out / "log.json").c_str());
 }
@@ -239,7 +243,10 @@ const CommandRegistration kExplore{
           ->capture_default_str();
       sub->add_flag("--closest-approach", o->closest_approach,
                     "cdos: d_{t+1} is the closest approach on the way");
-      sub->callback([o] { run(*o); });
+      sub->callback([o, sub] {
+        refuse_empty_out(sub, o->out);
+        run(*o);
+      });
     }};
 
 }  // namespace

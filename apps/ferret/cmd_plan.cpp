@@ -120,7 +120,7 @@ std::optional<Aabb3> uav_bounds(const UavArgs& a, const PlanningWorld& world) {
 }
 
 void run_uav(const UavArgs& a) {
-  require_out(a.common.out, "the plan JSON to write");
+  (void)checked_out_file(a.common.out, "the plan JSON to write");
   if (a.to.empty() == a.approach.empty())
     throw InputError("--to", "", "either --to x,y,z,yaw or --approach HIDDEN_SPACE (not both)");
   check_choice("--planner", a.planner, ompl_planner_names());
@@ -163,7 +163,7 @@ struct UgvArgs {
 };
 
 void run_ugv(const UgvArgs& a) {
-  require_out(a.common.out, "the plan JSON to write");
+  (void)checked_out_file(a.common.out, "the plan JSON to write");
   UgvPathRequest req;
   req.start = xy_yaw(a.from, "--from");
   req.goal = xy_yaw(a.to, "--to");

@@ -50,7 +50,7 @@ std::string slice_caption(const SliceOptions& s) {
 }
 
 void run(const RenderArgs& a) {
-  require_out(a.output, "an output PNG");
+  (void)checked_out_file(a.output, "an output PNG");
   if (fs::path(a.output).extension() != ".png")
     throw InputError("--out", "", "an output path ending in .png", a.output);
   if (a.render.pixels_per_cell < 0 || a.render.pixels_per_cell > 64)

@@ -14,8 +14,8 @@
 
 #include "cli_options.hpp"
 #include "command.hpp"
-#include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/core/output_set.hpp"
 #include "ferret/sim/tether_sim.hpp"
 #include "ferret/tether_model/feedforward_pid.hpp"
 #include "ferret/tether_model/taut_mpc.hpp"
@@ -34,7 +34,7 @@ struct Options {
 };
 
 void run(const Options& o) {
-  require_out(o.out, "the output directory");
+  const fs::path out = checked_out_dir(o.out, "the output directory");
   if (o.controller != "mpc" && o.controller != "baseline")
     throw InputError("ferret tether-sim", "--controller", "mpc or baseline", o.controller);
   if (o.horizon && (*o.horizon < 2 || *o.horizon > 200))
@@ -87,10 +87,10 @@ void run(const Options& o) {
   std::printf("step_time_median_us: %.1f\nstep_time_max_us: %.1f\n", m.step_time_median_us,
               m.step_time_max_us);
 
-  const fs::path out(o.out);
   const std::string stem = "tether_" + o.controller;
-  sim::write_tether_sim_csv(r, out / (stem + ".csv"));
-  sim::write_tether_sim_plot(r, c.max_slack_m, c.limits.total_length_m, out / (stem + ".png"));
+  OutputSet files(out, OutputKind::kDirectory);  // CSV, plot and JSON: all or none
+  sim::write_tether_sim_csv(r, files.path(stem + ".csv"));
+  sim::write_tether_sim_plot(r, c.max_slack_m, c.limits.total_length_m, files.path(stem + ".png"));
   nlohmann::json j;
   j["scenario"] = r.scenario;
   j["trajectory"] = o.trajectory.empty() ? "(built-in default)" : o.trajectory;
@@ -115,7 +115,8 @@ void run(const Options& o) {
                   {"duration_s", m.duration_s},
                   {"control_cycles", m.control_cycles}};
   if (mpc_controller) j["metrics"]["mpc_fallback_cycles"] = mpc_controller->fallback_count();
-  write_text_atomically(out / (stem + ".json"), j.dump(2) + "\n");
+  files.write_text(stem + ".json", j.dump(2) + "\n");
+  files.commit();
 }
 
 const CommandRegistration kTetherSim{

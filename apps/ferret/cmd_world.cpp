@@ -82,7 +82,7 @@ void add_build(CLI::App& world) {
   build->add_option("world", args->input, "world YAML")->required();
   add_out_option(build, args->output, "output .bt (max-likelihood) or .ot (log-odds)");
   build->callback([args] {
-    require_out(args->output, "an output .bt or .ot");
+    (void)checked_out_file(args->output, "an output .bt or .ot");
     require_extension(args->output, {".bt", ".ot"}, "an output path ending in .bt or .ot");
     const auto t0 = std::chrono::steady_clock::now();
     const WorldSpec w = load_world(args->input);
@@ -123,11 +123,13 @@ void add_slice(CLI::App& world) {
                     "the whole world)");
   add_out_option(slice, args->output, "output map_server YAML (the PGM is written beside it)");
   slice->callback([args] {
-    require_out(args->output, "an output map_server YAML");
+    (void)checked_out_file(args->output, "an output map_server YAML");
     if (!std::isfinite(args->options.z_m)) throw InputError("--z", "", "a finite height in metres");
     if (!(args->options.half_band_m >= 0 && args->options.half_band_m < 1e3))
       throw InputError("--band", "", "a half band in [0, 1000) m");
     require_extension(args->output, {".yaml"}, "an output path ending in .yaml");
+    (void)checked_out_file(fs::path(args->output).replace_extension(".pgm").string(),
+                           "the PGM beside the YAML");
     std::optional<WorldSpec> spec;
     const auto tree = load_or_build_octree(args->input, &spec);
     SliceOptions options = args->options;

@@ -566,7 +566,13 @@ void write_png(const RgbImage& image, const fs::path& path) {
     throw InputError(path.string(), "", "a non-empty image to write");
   const cv::Mat mat = to_bgr_mat(image);
   write_file_atomically(path, [&](const fs::path& tmp) {
-    if (!cv::imwrite(tmp.string(), mat)) throw InputError(path.string(), "", "a writable PNG file");
+    bool ok = false;
+    try {
+      ok = cv::imwrite(tmp.string(), mat);
+    } catch (const cv::Exception& e) {  // OpenCV throws for some I/O failures
+      throw InputError(path.string(), "", "a writable PNG file", e.what());
+    }
+    if (!ok) throw InputError(path.string(), "", "a writable PNG file");
   });
 }
 

@@ -13,6 +13,7 @@
 
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/core/output_set.hpp"
 #include "ferret/core/yaml_config.hpp"
 
 namespace ferret {
@@ -312,17 +313,24 @@ void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path) {
   }
   fs::path pgm_path = yaml_path;
   pgm_path.replace_extension(".pgm");
-  write_pgm(img, pgm_path);
+  // The YAML and its PGM are one set: both appear, or neither (a map without its image,
+  // or an image the old YAML does not describe, would be worse than no map).
+  check_output_target(yaml_path, OutputKind::kFile);
+  check_output_target(pgm_path, OutputKind::kFile);
+  OutputSet out(yaml_path.parent_path().empty() ? fs::path(".") : yaml_path.parent_path(),
+                OutputKind::kDirectory);
+  write_pgm(img, out.path(pgm_path.filename()));
   std::string name = pgm_path.filename().string();
   std::string quoted = "\"";
   for (const char c : name)
     quoted += (c == '"' || c == '\\') ? std::string{'\\', c} : std::string(1, c);
   quoted += '"';
   // fmt's "{}" prints the shortest text that reads back as the same double.
-  write_text_atomically(
-      yaml_path, fmt::format("image: {}\nmode: trinary\nresolution: {}\norigin: [{}, {}, 0]\n"
+  out.write_text(yaml_path.filename(),
+                 fmt::format("image: {}\nmode: trinary\nresolution: {}\norigin: [{}, {}, 0]\n"
                              "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
                              quoted, g.resolution_m, g.origin_x_m, g.origin_y_m));
+  out.commit();
 }
 
 }  // namespace ferret

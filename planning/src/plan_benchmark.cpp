@@ -10,8 +10,8 @@
 #include <cmath>
 #include <memory>
 
-#include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/core/output_set.hpp"
 #include "ferret/planning/benchmark_problems.hpp"
 #include "ferret/planning/ompl_setup.hpp"
 #include "ferret/planning/tethered_rrt.hpp"
@@ -26,9 +26,11 @@ namespace og = ompl::geometric;
 
 constexpr const char* kSource = "PlanBenchmarkRequest";
 
+// Writes the log into the output set as `file`; the result names its final path.
 PlanBenchmarkLog run_benchmark(og::SimpleSetup& setup, const std::vector<ob::PlannerPtr>& planners,
                                const PlanBenchmarkRequest& r, const std::string& name,
-                               const fs::path& log) {
+                               OutputSet& out, const std::string& file) {
+  const fs::path log = out.target() / file;
   ompl::tools::Benchmark benchmark(setup, name);
   for (const auto& p : planners) benchmark.addPlanner(p);
   // saveConsoleOutput off: OMPL would write an "ompl_<host>_<date>.console" file into
@@ -38,8 +40,8 @@ PlanBenchmarkLog run_benchmark(og::SimpleSetup& setup, const std::vector<ob::Pla
                                           /*displayProgress=*/true, /*saveConsoleOutput=*/false,
                                           /*simplify=*/true);
   benchmark.benchmark(request);
-  write_file_atomically(log, [&](const fs::path& tmp) {
-    if (!benchmark.saveResultsToFile(tmp.c_str()))
+  out.write(file, [&](const fs::path& staged) {
+    if (!benchmark.saveResultsToFile(staged.c_str()))
       throw InputError(log.string(), "", "a writable log file");
   });
   return {name, log, planners.size()};
@@ -75,6 +77,8 @@ std::vector<PlanBenchmarkLog> run_plan_benchmarks(const PlanningWorld& world,
                                                   const PlanBenchmarkRequest& r,
                                                   const fs::path& out_dir) {
   check(world, r);
+  // Every log of the request, or none: staged while the benchmarks run, moved in at the end.
+  OutputSet out(out_dir, OutputKind::kDirectory);
   seed_ompl_once(r.seed);
   const WorldSpec& w = *world.spec;
   std::vector<PlanBenchmarkLog> logs;
@@ -101,8 +105,8 @@ std::vector<PlanBenchmarkLog> run_plan_benchmarks(const PlanningWorld& world,
       std::vector<ob::PlannerPtr> planners;
       for (const auto& n : r.planners) planners.push_back(make_ompl_planner(n, si, kSource));
       logs.push_back(run_benchmark(setup, planners, r,
-                                   fmt::format("ferret uav approach {} ({})", k, w.name),
-                                   out_dir / fmt::format("uav_{}.log", k)));
+                                   fmt::format("ferret uav approach {} ({})", k, w.name), out,
+                                   fmt::format("uav_{}.log", k)));
     }
   }
   if (r.ugv) {
@@ -136,9 +140,10 @@ std::vector<PlanBenchmarkLog> run_plan_benchmarks(const PlanningWorld& world,
       for (const auto& n : r.planners) planners.push_back(make_ompl_planner(n, si, kSource));
       logs.push_back(run_benchmark(
           setup, planners, r, fmt::format("ferret ugv {} ({})", k, w.hidden_spaces.front().name),
-          out_dir / fmt::format("ugv_{}.log", k)));
+          out, fmt::format("ugv_{}.log", k)));
     }
   }
+  out.commit();
   return logs;
 }
 

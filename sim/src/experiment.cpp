@@ -9,8 +9,8 @@
 #include <thread>
 #include <tuple>
 
-#include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/core/output_set.hpp"
 #include "ferret/core/random.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/planning/exploration_policy.hpp"
@@ -329,6 +329,7 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
   if (options.shard_count < 1 || options.shard_index < 0 ||
       options.shard_index >= options.shard_count)
     throw InputError("--shard", "", "I/N with 0 <= I < N");
+  check_output_target(out_dir, OutputKind::kDirectory);  // before hours of runs, not after
   std::vector<RunSpec> runs;
   for (const auto& s : plan_runs(c))
     if (static_cast<int>(s.group % static_cast<std::size_t>(options.shard_count)) ==
@@ -420,13 +421,13 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
     if (s.experiment == "ir_fov") sweep_ir << key << fovs << stats.str();
     k = end;
   }
-  fs::create_directories(out_dir);
-  write_text_atomically(out_dir / "runs.csv", runs_csv.str());
-  write_text_atomically(out_dir / "summary.csv", summary.str());
-  if (!c.sweep_camera_fov_deg.empty())
-    write_text_atomically(out_dir / "sweep_camera_fov.csv", sweep_cam.str());
-  if (!c.sweep_ir_fov_deg.empty())
-    write_text_atomically(out_dir / "sweep_ir_fov.csv", sweep_ir.str());
+  OutputSet out(out_dir, OutputKind::kDirectory);
+  out.write_text("runs.csv", runs_csv.str());
+  out.write_text("summary.csv", summary.str());
+  if (!c.sweep_camera_fov_deg.empty()) out.write_text("sweep_camera_fov.csv", sweep_cam.str());
+  if (!c.sweep_ir_fov_deg.empty()) out.write_text("sweep_ir_fov.csv", sweep_ir.str());
+  if (options.before_commit) options.before_commit(out.staging_dir());
+  out.commit();
 }
 
 }  // namespace ferret

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "ferret/core/output_set.hpp"
 #include "ferret/mapping/map_render.hpp"
 #include "ferret/sim/exploration_run.hpp"
 
@@ -153,10 +154,11 @@ void write_exploration_images(const OccupancyMap2D& truth, const Eigen::Vector2d
   draw_evidence(img_go, *r.objects);
   draw_run(img_go, g, object_W, r);
 
-  std::filesystem::create_directories(dir);
-  img_g.save_png(dir / "G.png");
-  img_o.save_png(dir / "O.png");
-  img_go.save_png(dir / "G_O.png");
+  OutputSet out(dir, OutputKind::kDirectory);
+  img_g.save_png(out.path("G.png"));
+  img_o.save_png(out.path("O.png"));
+  img_go.save_png(out.path("G_O.png"));
+  out.commit();
 }
 
 }  // namespace ferret

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "ferret/core/atomic_file.hpp"
+#include "ferret/core/error.hpp"
 #include "ferret/sim/tether_sim.hpp"
 
 namespace ferret::sim {
@@ -172,7 +173,7 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
     // imwrite picks the format from the extension, so the temporary keeps ".png".
     const auto png = tmp.string() + ".png";
-    if (!cv::imwrite(png, img)) throw std::runtime_error("cannot write " + path.string());
+    if (!cv::imwrite(png, img)) throw InputError(path.string(), "", "a writable PNG file");
     std::filesystem::rename(png, tmp);
   });
 }

@@ -1,6 +1,6 @@
 #pragma once
-// Outputs appear whole or not at all: writers write a temporary file beside the
-// target and rename it into place, so a failure never leaves a partial file.
+// One-file outputs appear whole or not at all: an OutputSet (output_set.hpp) of one
+// file, staged beside the target and renamed into place.
 
 #include <filesystem>
 #include <functional>
@@ -8,10 +8,11 @@
 
 namespace ferret {
 
-/// Calls `write(tmp_path)` to produce the file at a temporary path in the same
-/// directory, then renames it to `path`. If `write` throws, or leaves no file, the
-/// temporary is removed, `path` is untouched, and the exception propagates.
-/// Creates missing parent directories of `path`.
+/// Calls `write(tmp_path)` to produce the file at a temporary path (same extension) in a
+/// staging directory beside `path`, then renames it to `path`. If `write` throws, or
+/// leaves no file, the staging directory is removed, `path` is untouched, and the
+/// exception propagates. Creates missing parent directories of `path`; InputError for
+/// a path that is empty, a directory, a FIFO, a device or under a regular file.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path& tmp_path)>& write);
 

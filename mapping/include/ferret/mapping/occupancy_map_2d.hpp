@@ -64,8 +64,9 @@ struct MapServerMeta {
 [[nodiscard]] OccupancyMap2D load_map_server(const std::filesystem::path& yaml_path);
 
 /// Writes `<stem>.yaml` and `<stem>.pgm` (trinary: 0 occupied, 254 free, 205
-/// unknown; thresholds 0.65/0.196, negate 0) atomically, the PGM first so a
-/// YAML never names a missing image. `yaml_path` must end in .yaml.
+/// unknown; thresholds 0.65/0.196, negate 0) as one output set: both appear or
+/// neither. `yaml_path` must end in .yaml; InputError for a YAML or PGM path that is a
+/// directory, a FIFO or a device.
 void save_map_server(const OccupancyMap2D& map, const std::filesystem::path& yaml_path);
 
 /// A greyscale image: rows top to bottom, `width * height` 8-bit values.

@@ -40,7 +40,7 @@ struct PlanBenchmarkLog {
 };
 
 /// Runs the benchmarks of `request` in `world` and writes one log per problem into
-/// `out_dir` (created; each log written whole). Throws InputError (source
+/// `out_dir` (created; all the logs appear together at the end, or none). Throws InputError (source
 /// "PlanBenchmarkRequest") for counts or limits out of range, an unknown planner (the
 /// message lists them), no robot, or a world without hidden spaces.
 std::vector<PlanBenchmarkLog> run_plan_benchmarks(const PlanningWorld& world,

@@ -82,6 +82,10 @@ struct ExperimentOptions {
   int shard_count = 1;
   /// Called after each run with (runs done, runs in this shard); from worker threads, serialised.
   std::function<void(std::size_t, std::size_t)> progress;
+  /// Called with the staging directory once the CSVs are written there, before any of
+  /// them appears in `out_dir`: what it writes there (the plots) is part of the same
+  /// output set. An exception from it leaves nothing in `out_dir`.
+  std::function<void(const std::filesystem::path& staging_dir)> before_commit;
 };
 
 /// The exact header of summary.csv.
@@ -89,7 +93,8 @@ inline constexpr const char* kSummaryHeader =
     "map,zone,method,runs,found,mean_time_s,ci95_lo_time_s,ci95_hi_time_s,mean_path_m";
 
 /// Runs this shard's part of the experiment and writes runs.csv, summary.csv and (with
-/// sweeps) sweep_camera_fov.csv / sweep_ir_fov.csv into `out_dir`, each atomically.
+/// sweeps) sweep_camera_fov.csv / sweep_ir_fov.csv into `out_dir`, all of them or none
+/// (one OutputSet). `out_dir` is checked before the first run (InputError).
 void run_experiment(const ExperimentConfig& config, const std::filesystem::path& out_dir,
                     const ExperimentOptions& options);
 
