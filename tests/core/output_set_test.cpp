@@ -227,6 +227,17 @@ TEST_F(OutputSetTest, ReadOnlyParentIsInputError) {
   EXPECT_EQ(entries(ro), 0U);
 }
 
+TEST_F(OutputSetTest, UnwritableLocationIsInputErrorEvenForRoot) {
+  // sysfs refuses new entries to everyone, root included.
+  if (!fs::is_directory("/sys/kernel")) GTEST_SKIP() << "no /sys";
+  for (const auto kind : {OutputKind::kFile, OutputKind::kDirectory}) {
+    const InputError e = error_of([&] { OutputSet set("/sys/kernel/ferret_out/x.json", kind); });
+    EXPECT_EQ(e.source(), "/sys/kernel/ferret_out/x.json");
+    EXPECT_EQ(e.expected(), "a writable directory");
+  }
+  EXPECT_FALSE(fs::exists("/sys/kernel/ferret_out"));
+}
+
 TEST_F(OutputSetTest, FilesWrittenIntoTheStagingDirectoryByOthersAreCommitted) {
   // The experiment's plot script writes into the staging directory itself.
   const fs::path out = dir_ / "run";
