@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <system_error>
 
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
@@ -170,11 +171,19 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
               cv::LINE_AA);
   cv::putText(img, "time [s]", cv::Point(540, 735), cv::FONT_HERSHEY_SIMPLEX, 0.45,
               cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
-  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    // imwrite picks the format from the extension, so the temporary keeps ".png".
-    const auto png = tmp.string() + ".png";
-    if (!cv::imwrite(png, img)) throw InputError(path.string(), "", "a writable PNG file");
-    std::filesystem::rename(png, tmp);
+  write_file_atomically(path, [&](const std::filesystem::path& staged) {
+    // imwrite picks the format from the extension: PNG whatever the target is called.
+    const auto png = staged.string() + ".png";
+    bool ok = false;
+    try {
+      ok = cv::imwrite(png, img);
+    } catch (const cv::Exception& e) {  // OpenCV throws for some I/O failures
+      throw InputError(path.string(), "", "a writable PNG file", e.what());
+    }
+    if (!ok) throw InputError(path.string(), "", "a writable PNG file");
+    std::error_code ec;
+    std::filesystem::rename(png, staged, ec);
+    if (ec) throw InputError(path.string(), "", "a writable directory", ec.message());
   });
 }
 
