@@ -36,7 +36,7 @@ struct Options {
 
 void run(const Options& o) {
   if (!o.dump)
-    throw InputError("ferret config", "--dump", "the --dump flag (the only action so far)");
+    throw InputError("--dump", "", "the --dump flag (the only action so far)");
   std::string mission_source = "(built-in defaults)";
   MissionConfig mission;
   if (!o.mission.empty()) {
