@@ -10,6 +10,7 @@ find_package(octomap REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(URDFDOM REQUIRED IMPORTED_TARGET urdfdom)
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(PNG REQUIRED)            # map images: libpng reports errors to ferret, not stderr
 if(FERRET_BUILD_TESTS)
   find_package(GTest REQUIRED)
   include(GoogleTest)

@@ -37,7 +37,7 @@ struct Options {
 
 void run(const Options& o) {
   if (!o.dump)
-    throw InputError("ferret config", "--dump", "the --dump flag (the only action so far)");
+    throw InputError("--dump", "", "the --dump flag (the only action so far)");
   const bool to_stdout = o.out.empty() || o.out == "-";
   if (!to_stdout) (void)check_output_target(o.out, OutputKind::kFile, "--out");
   std::string mission_source = "(built-in defaults)";

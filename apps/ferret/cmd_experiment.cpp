@@ -3,6 +3,8 @@
 // sweep CSVs into DIR, then draws the plots with examples/plot_experiment.py when it
 // can find it (unsharded runs only: shards are merged first, see docs/object_search.md).
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -43,7 +45,7 @@ std::pair<int, int> parse_shard(const std::string& text) {
       throw std::invalid_argument(text);
     return {i, n};
   } catch (const std::exception&) {
-    throw InputError("ferret experiment", "--shard", "I/N with integers 0 <= I < N", text);
+    throw InputError("--shard", "", "I/N with integers 0 <= I < N", text);
   }
 }
 
@@ -101,14 +103,18 @@ std::vector<std::string> draw_plots(const fs::path& script, const fs::path& stag
   return drawn;
 }
 
+constexpr int kMaxJobs = 256;
+
 void run(const Options& o) {
   const fs::path out = checked_out_dir(o.out, "an output directory");
   const auto [shard_index, shard_count] = parse_shard(o.shard);
-  if (o.jobs < 1)
-    throw InputError("ferret experiment", "--jobs", "an integer >= 1", std::to_string(o.jobs));
+  // A bound, so that a typo (--jobs 100000) is an error and not a machine brought down.
+  if (o.jobs < 1 || o.jobs > kMaxJobs)
+    throw InputError("--jobs", "", fmt::format("a number of worker threads in [1, {}]", kMaxJobs),
+                     std::to_string(o.jobs));
   ExperimentConfig config = load_experiment_config(o.config);
   if (o.planner != "grid" && o.planner != "ompl")
-    throw InputError("ferret experiment", "--planner", "grid or ompl", o.planner);
+    throw InputError("--planner", "", "grid or ompl", o.planner);
   if (o.planner == "ompl")
     for (auto* list : {&config.methods, &config.sweep_methods})
       for (auto& m : *list)

@@ -20,6 +20,7 @@
 #include "command.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
+#include "ferret/planning/planning_world.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/exploration_run.hpp"
@@ -45,39 +46,21 @@ struct Options {
       "grid";  // "ompl": the frontier valid-state sampler with PRM (docs/planning.md)
 };
 
-std::vector<double> parse_numbers(const std::string& text, std::size_t count,
-                                  const std::string& option, const std::string& what) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      std::size_t used = 0;
-      values.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InputError("ferret explore", option, what, text);
-    }
-  }
-  if (values.size() != count) throw InputError("ferret explore", option, what, text);
-  return values;
-}
-
 void check_positive(double value, const char* option) {
   if (!(value > 0))
-    throw InputError("ferret explore", option, "a number > 0", std::to_string(value));
+    throw InputError(option, "", "a number > 0", std::to_string(value));
 }
 
 void run(const Options& o) {
-  const auto start_v = parse_numbers(o.start, 3, "--start", "x,y,yaw (metres, metres, radians)");
-  const auto object_v = parse_numbers(o.object, 2, "--object", "x,y (metres)");
+  const auto start_v = parse_number_list(o.start, 3, "--start");
+  const auto object_v = parse_number_list(o.object, 2, "--object");
   if (!has_exploration_policy(o.method)) {
     std::string names;
     for (const auto& n : exploration_policy_names()) names += (names.empty() ? "" : ", ") + n;
-    throw InputError("ferret explore", "--method", "one of " + names, o.method);
+    throw InputError("--method", "", "one of " + names, o.method);
   }
   if (o.candidates != "fv" && o.candidates != "fg")
-    throw InputError("ferret explore", "--cdos-candidates", "fv or fg", o.candidates);
+    throw InputError("--cdos-candidates", "", "fv or fg", o.candidates);
   for (const auto& [v, name] : {std::pair{o.camera_fov_deg, "--camera-fov-deg"},
                                 {o.ir_fov_deg, "--ir-fov-deg"},
                                 {o.camera_range_m, "--camera-range-m"},
@@ -88,12 +71,12 @@ void run(const Options& o) {
     if (v) {
       check_positive(*v, name);
       if (!std::isfinite(*v) || *v > 1e6)
-        throw InputError("ferret explore", name, "a finite number <= 1e6", std::to_string(*v));
+        throw InputError(name, "", "a finite number <= 1e6", std::to_string(*v));
     }
   for (const auto& [v, name] :
        {std::pair{o.camera_fov_deg, "--camera-fov-deg"}, {o.ir_fov_deg, "--ir-fov-deg"}})
     if (v && *v >= 360)
-      throw InputError("ferret explore", name, "a field of view below 360 degrees",
+      throw InputError(name, "", "a field of view below 360 degrees",
                        std::to_string(*v));
 
   // The output directory is checked before the search runs.
@@ -102,9 +85,9 @@ void run(const Options& o) {
   const Pose2 start{start_v[0], start_v[1], start_v[2]};
   const Eigen::Vector2d object(object_v[0], object_v[1]);
   if (!map.is_free(map.geometry.cell_at(start.x_m, start.y_m)))
-    throw InputError("ferret explore", "--start", "a position on a free cell of " + o.map, o.start);
+    throw InputError("--start", "", "a position on a free cell of " + o.map, o.start);
   if (!map.is_free(map.geometry.cell_at(object.x(), object.y())))
-    throw InputError("ferret explore", "--object", "a position on a free cell of " + o.map,
+    throw InputError("--object", "", "a position on a free cell of " + o.map,
                      o.object);
 
   const MissionConfig mission = load_mission_or_defaults(o.mission);
@@ -115,10 +98,10 @@ void run(const Options& o) {
   s.method = o.method;
   if (o.planner == "ompl") {
     if (o.method != "cdos" && o.method != "rapid")
-      throw InputError("ferret explore", "--planner", "ompl with --method cdos or rapid", o.method);
+      throw InputError("--planner", "", "ompl with --method cdos or rapid", o.method);
     s.method = o.method + "+ompl";  // the OMPL frontier policies of planning/frontier_sampler.hpp
   } else if (o.planner != "grid") {
-    throw InputError("ferret explore", "--planner", "grid or ompl", o.planner);
+    throw InputError("--planner", "", "grid or ompl", o.planner);
   }
   if (!robot) {  // the mission's ugv_limits, as a robot's limits would be
     s.robot.max_velocity_mps = mission.ugv_limits.max_velocity_mps;

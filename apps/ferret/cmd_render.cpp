@@ -92,7 +92,16 @@ void run(const RenderArgs& a) {
     if (!a.space.empty()) title += ", hidden space " + a.space;
     title += ", " + slice_caption(slice);
   }
-  MapCanvas canvas(map, a.render);
+  MapCanvas canvas = [&] {
+    try {
+      return MapCanvas(map, a.render);
+    } catch (const InputError& e) {
+      // The renderer names its own fields; the user gave them as options.
+      if (e.field() == "grid_spacing_m") throw InputError("--grid", "", e.expected(), fmt::format("{:g}", a.render.grid_spacing_m));
+      if (e.field() == "pixels_per_cell") throw InputError("--scale", "", e.expected(), std::to_string(a.render.pixels_per_cell));
+      throw;
+    }
+  }();
   if (world && a.annotate) draw_world_annotations(canvas, *world);
   if (plan) {
     const PlanOverlaySummary s = draw_plan(canvas, *plan, whole ? *whole : map);

@@ -36,12 +36,12 @@ struct Options {
 void run(const Options& o) {
   const fs::path out = checked_out_dir(o.out, "the output directory");
   if (o.controller != "mpc" && o.controller != "baseline")
-    throw InputError("ferret tether-sim", "--controller", "mpc or baseline", o.controller);
+    throw InputError("--controller", "", "mpc or baseline", o.controller);
   if (o.horizon && (*o.horizon < 2 || *o.horizon > 200))
-    throw InputError("ferret tether-sim", "--horizon", "an integer in [2, 200]",
+    throw InputError("--horizon", "", "an integer in [2, 200]",
                      std::to_string(*o.horizon));
   if (o.latency_s && !(*o.latency_s >= 0.0 && *o.latency_s <= 1.0))
-    throw InputError("ferret tether-sim", "--latency", "seconds in [0, 1]",
+    throw InputError("--latency", "", "seconds in [0, 1]",
                      std::to_string(*o.latency_s));
   // All input is read and checked before anything is written.
   const MissionConfig mission =

@@ -33,15 +33,15 @@ struct WinchOptions {
 // Runs `body` and turns driver errors into the CLI's exit codes.
 void guarded(const WinchOptions& o, const std::function<void()>& body) {
   if (o.id < 0 || o.id > 252)
-    throw InputError("ferret winch", "--id", "a Dynamixel id in [0, 252]", std::to_string(o.id));
+    throw InputError("--id", "", "a Dynamixel id in [0, 252]", std::to_string(o.id));
   if (o.timeout_ms <= 0 || o.retries < 0)
-    throw InputError("ferret winch", "--timeout-ms/--retries", "a timeout > 0 and retries >= 0");
+    throw InputError("--timeout-ms/--retries", "", "a timeout > 0 and retries >= 0");
   try {
     body();
   } catch (const tether::DynamixelError& e) {
     throw CheckFailed(e.what());
   } catch (const tether::SerialError& e) {
-    throw InputError("ferret winch", "--port", "a serial port that can be opened", e.what());
+    throw InputError("--port", "", "a serial port that can be opened", e.what());
   }
 }
 

@@ -56,17 +56,20 @@ void MapReader::fail(std::string_view key, const std::string& expected, const st
   throw InputError(source_, field_path(key), expected, got);
 }
 
+bool MapReader::given_empty(std::string_view key) const {
+  const YAML::Node value = node_[std::string(key)];
+  return value.IsDefined() && value.IsNull();
+}
+
 double MapReader::get_in_range(std::string_view key, double lo, double hi) const {
-  const auto value = get<double>(key);
-  if (!std::isfinite(value) || value < lo || value > hi) {
-    std::ostringstream what;
-    what << "a number in [" << lo << ", " << hi << "]";
-    fail(key, what.str(), internal::describe(node_[std::string(key)]));
-  }
-  return value;
+  if (!has(key)) fail(key, "a number (required field missing)");
+  const YAML::Node value = node_[std::string(key)];
+  if (!value.IsScalar()) fail(key, NumberRange::closed(lo, hi).describe(), internal::describe(value));
+  return parse_number(value.Scalar(), NumberRange::closed(lo, hi), source_, field_path(key));
 }
 
 double MapReader::get_in_range_or(std::string_view key, double lo, double hi, double fallback) const {
+  if (given_empty(key)) fail(key, NumberRange::closed(lo, hi).describe(), "a key without a value");
   return has(key) ? get_in_range(key, lo, hi) : fallback;
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <png.h>
 #include <sstream>
 
 #include "ferret/core/atomic_file.hpp"
@@ -34,14 +35,8 @@ std::string read_binary_file(const fs::path& path, const char* what) {
   return std::move(data).str();
 }
 
-std::string printable(std::string_view bytes) {
-  std::string out;
-  for (const char c : bytes.substr(0, 16))
-    out += std::isprint(static_cast<unsigned char>(c))
-               ? std::string(1, c)
-               : fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
-  return "'" + out + "'";
-}
+// Bytes of a header as a quoted, printable snippet (ferret::printable escapes them).
+std::string quoted_bytes(std::string_view bytes) { return fmt::format("'{}'", printable(bytes.substr(0, 16))); }
 
 // Netpbm header/ASCII-raster tokenizer: whitespace and '#' comments separate
 // decimal numbers; every failure names the field being read.
@@ -75,7 +70,7 @@ class PgmReader {
     const std::string expected = fmt::format("an integer in [{}, {}]", lo, hi);
     if (at_end()) fail(field, expected, "end of file (truncated)");
     if (!std::isdigit(static_cast<unsigned char>(peek())))
-      fail(field, expected, printable(data_.substr(pos_, 8)));
+      fail(field, expected, quoted_bytes(data_.substr(pos_, 8)));
     std::uint64_t value = 0;
     while (!at_end() && std::isdigit(static_cast<unsigned char>(peek()))) {
       value = value * 10 + static_cast<std::uint64_t>(peek() - '0');
@@ -130,6 +125,42 @@ GreyImage read_with_opencv(const fs::path& path) {
   return out;
 }
 
+// PNG through libpng's simplified API: its errors and warnings come back as text in
+// png_image::message instead of being printed to stderr (as OpenCV's use of libpng
+// does), so a broken PNG gives ferret's one line and nothing else.
+GreyImage read_png(const fs::path& path, const std::string& data) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  struct Free {
+    png_image* i;
+    ~Free() { png_image_free(i); }
+  } free_on_exit{&image};
+  if (png_image_begin_read_from_memory(&image, data.data(), data.size()) == 0)
+    throw InputError(path.string(), "", "a PNG image", image.message);
+  if (static_cast<std::uint64_t>(image.width) * image.height > kMaxPixels)
+    throw InputError(path.string(), "", fmt::format("at most {} pixels", kMaxPixels),
+                     fmt::format("{} x {} pixels", image.width, image.height));
+  // RGBA, 8 bits: grey, grey+alpha, palette and 16-bit images all arrive as sRGB bytes;
+  // the grey value is the mean of R, G and B, alpha does not count (as for OpenCV).
+  image.format = PNG_FORMAT_RGBA;
+  std::vector<std::uint8_t> rgba(PNG_IMAGE_SIZE(image));
+  if (png_image_finish_read(&image, nullptr, rgba.data(), 0, nullptr) == 0)
+    throw InputError(path.string(), "", "a PNG image", image.message);
+  const int w = static_cast<int>(image.width), h = static_cast<int>(image.height);
+  GreyImage out{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * h)};
+  for (std::size_t k = 0; k < out.pixels.size(); ++k) {
+    const unsigned sum = rgba[4 * k] + rgba[4 * k + 1] + rgba[4 * k + 2];
+    out.pixels[k] = static_cast<std::uint8_t>((sum + 1) / 3);
+  }
+  return out;
+}
+
+bool is_png(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char sig[8] = {};
+  return in.read(sig, 8) && std::string_view(sig, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8);
+}
+
 bool has_extension(const fs::path& p, std::string_view ext) {
   std::string e = p.extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -158,12 +189,12 @@ GreyImage read_pgm(const fs::path& path) {
   const std::string_view data = in.data();
   if (data.size() < 2 || data[0] != 'P' || (data[1] != '5' && data[1] != '2'))
     in.fail("magic", "'P5' (binary PGM) or 'P2' (ASCII PGM)",
-            data.empty() ? "an empty file" : printable(data.substr(0, 2)));
+            data.empty() ? "an empty file" : quoted_bytes(data.substr(0, 2)));
   const bool binary = data[1] == '5';
   in.skip(2);
   if (in.at_end() || !std::isspace(static_cast<unsigned char>(in.peek())))
     in.fail("magic", "whitespace after the magic number",
-            in.at_end() ? "end of file (truncated)" : printable(data.substr(2, 4)));
+            in.at_end() ? "end of file (truncated)" : quoted_bytes(data.substr(2, 4)));
   const auto width = in.number("header.width", 1, kMaxSide);
   const auto height = in.number("header.height", 1, kMaxSide);
   if (width * height > kMaxPixels)
@@ -178,7 +209,7 @@ GreyImage read_pgm(const fs::path& path) {
     // Exactly one whitespace byte separates maxval from the raster.
     if (in.at_end() || !std::isspace(static_cast<unsigned char>(in.peek())))
       in.fail("header.maxval", "one whitespace byte before the pixel data",
-              in.at_end() ? "end of file (truncated)" : printable(data.substr(in.pos(), 4)));
+              in.at_end() ? "end of file (truncated)" : quoted_bytes(data.substr(in.pos(), 4)));
     in.skip(1);
     const std::uint64_t bytes_per_sample = maxval < 256 ? 1 : 2;
     const std::uint64_t needed = samples * bytes_per_sample;
@@ -272,7 +303,9 @@ OccupancyMap2D load_map_server(const fs::path& yaml_path) {
   if (!fs::is_regular_file(image_path, ec))
     throw InputError(yaml_path.string(), "image", "an existing image file", image_path.string());
   const GreyImage img =
-      has_extension(image_path, ".pgm") ? read_pgm(image_path) : read_with_opencv(image_path);
+      has_extension(image_path, ".pgm") ? read_pgm(image_path)
+      : is_png(image_path) ? read_png(image_path, read_binary_file(image_path, "a readable PNG file"))
+                           : read_with_opencv(image_path);
 
   OccupancyMap2D map;
   map.geometry =

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "ferret/core/error.hpp"
+#include "ferret/core/number.hpp"
 #include "ferret/mapping/world_octree.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -219,19 +220,15 @@ LoadedPlanRobot load_plan_robot(PlanRobot robot, const PlanRobotModel& model,
 std::vector<double> parse_number_list(const std::string& text, std::size_t count,
                                       const std::string& option) {
   std::vector<double> out;
-  std::stringstream ss(text);
-  const std::string expected = std::to_string(count) + " comma-separated numbers";
-  for (std::string cell; std::getline(ss, cell, ',');) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-      v = std::stod(cell, &used);
-    } catch (const std::exception&) {
-      throw InputError(option, "", expected, text);
-    }
-    if (cell.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v))
-      throw InputError(option, "", expected, text);
-    out.push_back(v);
+  const std::string expected = std::to_string(count) + " comma-separated finite numbers";
+  std::size_t start = 0;
+  while (out.size() <= count) {
+    const auto comma = text.find(',', start);
+    const std::string cell = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (!number_error(cell, NumberRange::finite()).empty()) throw InputError(option, "", expected, text);
+    out.push_back(parse_number(cell, NumberRange::finite(), option));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
   }
   if (out.size() != count) throw InputError(option, "", expected, text);
   return out;

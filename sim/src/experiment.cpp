@@ -6,8 +6,11 @@
 #include <map>
 #include <mutex>
 #include <sstream>
+#include <system_error>
 #include <thread>
 #include <tuple>
+
+#include <spdlog/spdlog.h>
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
@@ -364,9 +367,21 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
       if (options.progress) options.progress(done, runs.size());
     }
   };
-  const int jobs = std::max(1, options.jobs);
+  // More workers than runs would idle; a thread the system refuses is not an error:
+  // the runs already started share the rest (a joinable std::thread left behind by an
+  // exception would call std::terminate).
+  const int jobs = static_cast<int>(std::clamp<std::size_t>(
+      static_cast<std::size_t>(std::max(1, options.jobs)), 1, std::max<std::size_t>(1, runs.size())));
   std::vector<std::thread> threads;
-  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+  threads.reserve(static_cast<std::size_t>(jobs));
+  for (int j = 1; j < jobs; ++j) {
+    try {
+      threads.emplace_back(worker);
+    } catch (const std::system_error& e) {
+      spdlog::warn("experiment: started {} of {} worker threads ({})", j, jobs, e.what());
+      break;
+    }
+  }
   worker();
   for (auto& t : threads) t.join();
   if (failure) std::rethrow_exception(failure);

@@ -1,6 +1,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -48,6 +49,7 @@ std::vector<std::string> subcommands(const std::string& help) {
 /// "  --seed UINT=1   what", "  --all   what" (the columns are two or more spaces apart).
 struct HelpOption {
   std::string short_name, long_name, text;
+  std::string type;  ///< the value's type as help prints it: FLOAT, UINT, INT, TEXT, ...
   bool flag = true, required = false, has_default = false;
 };
 
@@ -69,6 +71,7 @@ HelpOption parse_help_option(const std::string& line) {
       o.required = true;
     } else {
       o.flag = false;  // a value's type: TEXT, UINT=1, FLOAT x 4
+      if (o.type.empty()) o.type = token.substr(0, token.find_first_of("=:"));
       o.has_default = o.has_default || token.find('=') != std::string::npos;
     }
   }
@@ -110,6 +113,63 @@ TEST(Cli, EveryCommandFollowsTheConvention) {
     }
   }
   EXPECT_GE(options_checked, 60u);
+}
+
+/// Every command's help, depth first: (command, options).
+std::vector<std::pair<std::string, std::vector<HelpOption>>> every_command() {
+  std::vector<std::pair<std::string, std::vector<HelpOption>>> out;
+  std::vector<std::string> todo = subcommands(run_cli("--help").out);
+  while (!todo.empty()) {
+    const std::string command = todo.back();
+    todo.pop_back();
+    const auto r = run_cli(command + " --help");
+    for (const auto& sub : subcommands(r.out)) todo.push_back(command + " " + sub);
+    std::vector<HelpOption> options;
+    std::istringstream in(r.out);
+    for (std::string line; std::getline(in, line);) {
+      const HelpOption o = parse_help_option(line);
+      if (!o.long_name.empty() && !o.flag) options.push_back(o);
+    }
+    out.emplace_back(command, options);
+  }
+  return out;
+}
+
+/// One number parser behind every numeric option, whoever declared it: NaN, infinities,
+/// overflow, hex, garbage and empty values are bad input (exit 2) with one line naming
+/// the option, for every FLOAT, INT and UINT option of every command; a negative or
+/// 20-digit value for an unsigned option (a seed) is refused instead of wrapped.
+TEST(Cli, EveryNumericOptionRejectsNonNumbers) {
+  std::size_t checked = 0;
+  for (const auto& [command, options] : every_command()) {
+    for (const auto& o : options) {
+      std::vector<std::string> bad;
+      // The parser's cases are in Number.*; here one of each kind per option, to prove
+      // that every option goes through it.
+      if (o.type == "FLOAT") bad = {"nan", "-inf", "1e400", "''"};
+      else if (o.type == "UINT") bad = {"-1", "99999999999999999999"};
+      else if (o.type == "INT") bad = {"1.5"};
+      for (const auto& value : bad) {
+        const auto r = run_cli(command + " " + o.long_name + "=" + value);
+        ++checked;
+        EXPECT_EQ(r.exit_code, 2) << command << " " << o.long_name << "=" << value << ": " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1)
+            << command << " " << o.long_name << "=" << value << ": " << r.err;
+        EXPECT_NE(r.err.find("ferret: error: " + o.long_name), std::string::npos)
+            << command << " " << o.long_name << "=" << value << ": " << r.err;
+      }
+    }
+  }
+  EXPECT_GE(checked, 100u);  // about 40 numeric options over the commands
+}
+
+TEST(Cli, ParseErrorsAreOneLine) {
+  for (const char* args : {"explore --no-such-option", "validate", "plan ugv --start 1,2"}) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("ferret: error: ", 0), 0u) << r.err;
+  }
 }
 
 }  // namespace

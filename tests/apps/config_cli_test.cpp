@@ -187,7 +187,11 @@ TEST(ConfigCli, BadMissionFiles) {
   };
   const Case cases[] = {
       {"wrong_type.yaml", "object_search:\n  lambda1: high\n",
-       "object_search.lambda1: expected a number"},
+       "object_search.lambda1: expected a number in [0, 0.5] (got 'high')"},
+      {"nan.yaml", "object_search:\n  lambda1: .nan\n",
+       "object_search.lambda1: expected a number in [0, 0.5] (got '.nan')"},
+      {"empty.yaml", "object_search:\n  lambda1:\n", "object_search.lambda1: expected a number in"},
+      {"inf_entry.yaml", "tether:\n  entry_offset_m: .inf\n", "tether.entry_offset_m: expected"},
       {"unknown_key.yaml", "curiosty:\n  a: -0.5\n", "curiosty: expected a known key"},
       {"unknown_nested.yaml", "tether:\n  length_m: 3\n", "tether.length_m: expected a known key"},
       {"out_of_range.yaml", "object_search:\n  lambda2: 1.5\n",

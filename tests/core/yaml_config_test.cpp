@@ -25,7 +25,7 @@ TEST(YamlConfig, WrongTypeNamesFileFieldAndExpectation) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.source(), "mission.yaml");
     EXPECT_EQ(e.field(), "sensors.camera_fov_deg");
-    EXPECT_STREQ(e.what(), "mission.yaml: sensors.camera_fov_deg: expected a number (got 'wide')");
+    EXPECT_STREQ(e.what(), "mission.yaml: sensors.camera_fov_deg: expected a finite number (got 'wide')");
   }
 }
 

@@ -161,7 +161,12 @@ rubble:
     EXPECT_GT((c.head<2>() - a.drop_zone->center_m).norm(), 0.7 + r - 1e-9);
     EXPECT_NEAR(c.z(), a.rubble[i].size_m.z() / 2, 1e-12);  // resting on flat ground
   }
-  (void)h;
+  // The enclosure's box the check above uses, from the world's own geometry.
+  const auto box = h.outer_bounds_m();
+  EXPECT_NEAR(box.min().x(), -0.6, 1e-9);
+  EXPECT_NEAR(box.max().x(), 1.6, 1e-9);
+  EXPECT_NEAR(box.min().y(), -1.7, 1e-9);
+  EXPECT_NEAR(box.max().y(), -0.3, 1e-9);
 }
 
 TEST(WorldSpec, BadInputNamesFileAndField) {

@@ -1,6 +1,7 @@
 #include "ferret/planning/uav_planner.hpp"
 
 #include <gtest/gtest.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include "ferret/core/error.hpp"
 #include "ferret/planning/collision_checker.hpp"
@@ -95,9 +96,18 @@ TEST(UavPlanner, RejectsBadEndpointsAndPlanners) {
 }
 
 TEST(OmplSetup, SeedsOncePerProcess) {
-  ASSERT_TRUE(seed_ompl_once(7));   // the first test seeded 7 (or this one does)
-  EXPECT_TRUE(seed_ompl_once(7));   // the same seed: nothing to change
-  EXPECT_FALSE(seed_ompl_once(8));  // a different one can no longer take effect
+  // In a fresh process (a re-executed test binary), whatever ran before in this one:
+  // the first seed takes effect in OMPL, the same seed again is fine, another is refused.
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        const bool first = seed_ompl_once(7);
+        const bool again = seed_ompl_once(7);
+        const bool other = seed_ompl_once(8);
+        // 7 folded to OMPL's 32 bits is 7.
+        std::exit(first && again && !other && ompl::RNG::getSeed() == 7u ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
   EXPECT_GE(ompl_planner_names().size(), 5u);
 }
 

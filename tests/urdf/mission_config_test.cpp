@@ -72,7 +72,7 @@ TEST(MissionConfig, WrongType) {
   const auto e = parse_error("object_search:\n  lambda1: high\n");
   EXPECT_EQ(e.source(), "mission.yaml");
   EXPECT_EQ(e.field(), "object_search.lambda1");
-  EXPECT_EQ(e.expected(), "a number");
+  EXPECT_EQ(e.expected(), "a number in [0, 0.5]");  // the range, even when the type is wrong
   EXPECT_EQ(parse_error("curiosity: 3\n").field(), "curiosity");
   EXPECT_EQ(parse_error("tether:\n  total_length_m: [1, 2]\n").field(), "tether.total_length_m");
 }

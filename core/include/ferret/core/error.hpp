@@ -5,8 +5,14 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace ferret {
+
+/// `text` as one printable line: control bytes and bytes that are not UTF-8 as \xNN,
+/// tabs as spaces, cut after about `max_chars` characters ("..."). Every message ferret
+/// prints about input goes through it.
+[[nodiscard]] std::string printable(std::string_view text, std::size_t max_chars = 400);
 
 /// Malformed or inconsistent user input. Exit code 2 at the CLI.
 class InputError : public std::runtime_error {

@@ -7,12 +7,14 @@
 
 #include <filesystem>
 #include <initializer_list>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "ferret/core/error.hpp"
+#include "ferret/core/number.hpp"
 
 namespace ferret::yaml {
 
@@ -55,8 +57,12 @@ class MapReader {
   /// Optional scalar field with a default.
   template <class T>
   [[nodiscard]] T get_or(std::string_view key, T fallback) const {
+    if (given_empty(key)) fail(key, std::string(internal::type_description<T>()), "a key without a value");
     return has(key) ? convert<T>(node_[std::string(key)], field_path(key)) : fallback;
   }
+  /// True when `key` is written with no value (`key:` or `key: null`): for a scalar
+  /// with a default that is a mistake, not a request for the default.
+  [[nodiscard]] bool given_empty(std::string_view key) const;
   /// Required number in [lo, hi].
   [[nodiscard]] double get_in_range(std::string_view key, double lo, double hi) const;
   /// Optional number in [lo, hi] with a default.
@@ -95,6 +101,17 @@ class MapReader {
   [[nodiscard]] T convert(const YAML::Node& value, const std::string& path) const {
     if constexpr (!std::is_same_v<T, std::string>) {
       if (!value.IsScalar()) throw InputError(source_, path, internal::type_description<T>(), internal::describe(value));
+    }
+    // Numbers through ferret's one number parser: finite, whole text, no wrapping.
+    if constexpr (std::is_floating_point_v<T>) {
+      return static_cast<T>(parse_number(value.Scalar(), NumberRange::finite(), source_, path));
+    } else if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+      if constexpr (std::is_unsigned_v<T>)
+        return static_cast<T>(parse_unsigned(value.Scalar(), source_, path,
+                                             std::numeric_limits<T>::max()));
+      else
+        return static_cast<T>(parse_integer(value.Scalar(), std::numeric_limits<T>::min(),
+                                            std::numeric_limits<T>::max(), source_, path));
     }
     try {
       return value.as<T>();

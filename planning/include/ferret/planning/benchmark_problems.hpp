@@ -29,7 +29,8 @@ struct PlanningProblem {
                                                                  const Aabb3& fence, int count,
                                                                  std::uint64_t seed);
 
-/// `count` miniUGV start/goal pairs, free and at least `min_distance_m` apart.
+/// `count` miniUGV start/goal pairs, free and at least `min_distance_m` apart (half the
+/// space's diagonal in a smaller space). InputError when rejection sampling finds none.
 [[nodiscard]] std::vector<PlanningProblem> ugv_problems(UgvPlanner& planner, int count,
                                                         std::uint64_t seed,
                                                         double min_distance_m = 3.0);
