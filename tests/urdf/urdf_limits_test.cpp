@@ -312,6 +312,33 @@ TEST(UrdfLimits, AFiftyThousandLinkChainIsRefusedWithoutRecursion) {
   EXPECT_EQ(f.expected, "a URDF of at most 100000 elements");
 }
 
+TEST(UrdfLimits, MoreThanAThousandSensorsAreRefused) {
+  // urdfdom <sensor>s and Gazebo ones count together: 600 + 401, one a line from line 3.
+  auto sensors = [](int urdf, int gazebo) {
+    std::string body;
+    for (int i = 0; i < urdf; ++i) {
+      const std::string name = numbered("u", i);
+      body += "<sensor name=\"" + name +
+              "\" parent_link_name=\"base_link\"><camera><image "
+              "width=\"4\" height=\"3\" hfov=\"1\" near=\"0\" far=\"1\"/></camera></sensor>\n";
+    }
+    body += "<gazebo reference=\"base_link\">\n";
+    for (int i = 0; i < gazebo; ++i) {
+      const std::string name = numbered("g", i);
+      body += "<sensor type=\"imu\" name=\"" + name + "\"/>\n";
+    }
+    return robot(body + "</gazebo>");
+  };
+  const auto r = robot_description_from_string(sensors(600, 400), "ok.urdf");
+  EXPECT_EQ(r.cameras.size(), 600u);
+  EXPECT_EQ(r.frames.size(), 1001u);  // base_link and every sensor
+  const auto f = load_failure(sensors(600, 401));
+  // g400 is the 1001st: line 3 + 600 sensors + the <gazebo> line + 400.
+  EXPECT_EQ(f.source, "bad.urdf:1004");
+  EXPECT_EQ(f.field, "sensor[g400]");
+  EXPECT_EQ(f.expected, "a robot of at most 1000 sensors");
+}
+
 std::string joint(const std::string& name, const std::string& parent, const std::string& child,
                   const std::string& type = "fixed", const std::string& inner = "") {
   return "<joint name=\"" + name + "\" type=\"" + type + "\">" + inner + "<parent link=\"" +

@@ -26,6 +26,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -272,8 +273,16 @@ std::vector<RoleMark> read_role_marks(const XmlSource& src, const TiXmlElement* 
   return marks;
 }
 
+/// Meshes larger than this are refused before assimp reads them (about 1.3 million
+/// triangles of binary STL; robot collision meshes are far smaller).
+constexpr std::uintmax_t kMaxMeshBytes = std::uintmax_t{64} << 20;
+
+/// Raw vertex bounds of each mesh file read so far: a URDF naming one file in many
+/// collisions reads it once.
+using MeshCache = std::map<std::string, Eigen::AlignedBox3d>;
+
 MeshBox read_mesh(const XmlSource& src, const TiXmlElement* mesh, const std::string& field,
-                  const std::filesystem::path& urdf_dir) {
+                  const std::filesystem::path& urdf_dir, MeshCache& cache) {
   const std::string filename = attr_or_empty(mesh, "filename");
   if (filename.empty())
     src.fail(mesh, field + "@filename", "a mesh file (package://, file:// or a path)");
@@ -291,9 +300,16 @@ MeshBox read_mesh(const XmlSource& src, const TiXmlElement* mesh, const std::str
   if (path.empty())
     src.fail(mesh, field + "@filename", "a mesh file that exists (tried " + join(tried) + ")",
              quoted(filename.c_str()));
+  std::error_code ec;
+  if (const auto bytes = std::filesystem::file_size(path, ec); !ec && bytes > kMaxMeshBytes)
+    src.fail(mesh, field + "@filename", "a mesh file of at most 64 MiB",
+             "'" + internal::printable(path.string()) + "': " + std::to_string(bytes) + " bytes");
   Eigen::AlignedBox3d raw;
   try {
-    raw = internal::mesh_vertex_bounds(path);
+    const auto known = cache.find(path.string());
+    raw = known != cache.end()
+              ? known->second
+              : cache.emplace(path.string(), internal::mesh_vertex_bounds(path)).first->second;
   } catch (const std::exception& e) {
     std::string why = e.what();
     for (char& c : why)
@@ -327,8 +343,27 @@ const std::vector<std::string>& joint_types() {
   return types;
 }
 
-/// Counts the <link> and <joint> children of <robot> against their limits.
+/// Sensors are matched by name pairwise (urdfdom and Gazebo declarations): bounded so
+/// the matching stays small.
+constexpr std::size_t kMaxSensors = 1000;
+
+/// Counts the <link>, <joint> and sensor elements of <robot> against their limits.
 void check_counts(const XmlSource& src, const TiXmlElement* robot) {
+  std::size_t sensors = 0;
+  auto count_sensor = [&](const TiXmlElement* e) {
+    if (++sensors > kMaxSensors)
+      src.fail(e, "sensor[" + attr_or_empty(e, "name") + "]",
+               "a robot of at most " + std::to_string(kMaxSensors) + " sensors",
+               "<sensor> number " + std::to_string(sensors));
+  };
+  for (const TiXmlElement* e = robot->FirstChildElement("sensor"); e != nullptr;
+       e = e->NextSiblingElement("sensor"))
+    count_sensor(e);
+  for (const TiXmlElement* g = robot->FirstChildElement("gazebo"); g != nullptr;
+       g = g->NextSiblingElement("gazebo"))
+    for (const TiXmlElement* e = g->FirstChildElement("sensor"); e != nullptr;
+         e = e->NextSiblingElement("sensor"))
+      count_sensor(e);
   for (const auto& [tag, limit] : {std::pair<std::string, std::size_t>{"link", kMaxLinks},
                                    std::pair<std::string, std::size_t>{"joint", kMaxJoints}}) {
     std::size_t count = 0;
@@ -364,6 +399,7 @@ void check_joint(const XmlSource& src, const TiXmlElement* joint, const std::str
 Structure check_structure(const XmlSource& src, const TiXmlElement* robot,
                           const std::filesystem::path& urdf_dir) {
   Structure out;
+  MeshCache mesh_cache;
   std::set<std::string> links;
   std::vector<std::string> link_names;  // file order
   std::map<std::string, const TiXmlElement*> link_element;
@@ -411,7 +447,7 @@ Structure check_structure(const XmlSource& src, const TiXmlElement* robot,
       // Box, cylinder and sphere sizes were checked with every other number.
       ++out.collisions[name];
       if (type == "mesh") {
-        out.meshes[{name, index}] = read_mesh(src, shape, shape_field, urdf_dir);
+        out.meshes[{name, index}] = read_mesh(src, shape, shape_field, urdf_dir, mesh_cache);
       } else if (type != "box" && type != "cylinder" && type != "sphere") {
         src.fail(shape, field + "/geometry", "a box, cylinder, sphere or mesh", "<" + type + ">");
       }
