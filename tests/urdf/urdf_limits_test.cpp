@@ -399,6 +399,26 @@ TEST(UrdfLimits, JointsUrdfdomWouldRejectOnItsConsole) {
   EXPECT_EQ(f.expected, "a number >= lower (1)");
 }
 
+TEST(UrdfLimits, RobotNameVersionAndMaterialsUrdfdomWouldRejectOnItsConsole) {
+  auto f = load_failure("<robot>\n" + kBase + "\n</robot>");
+  EXPECT_EQ(f.source, "bad.urdf:1");
+  EXPECT_EQ(f.field, "robot@name");
+  for (const std::string version : {"nan", "2.0", "1.0.1", "", "1.", "-1.0"}) {
+    SCOPED_TRACE(version);
+    f = load_failure("<robot name=\"r\" version=\"" + version + "\">\n" + kBase + "\n</robot>");
+    EXPECT_EQ(f.field, "robot@version");
+    EXPECT_EQ(f.expected, "version 1.0 (the only one urdfdom reads)");
+  }
+  EXPECT_EQ(robot_description_from_string("<robot name=\"r\" version=\"1.0\">" + kBase + "</robot>",
+                                          "ok.urdf")
+                .name,
+            "r");
+  f = load_failure(robot("<material name=\"m\"/>\n<material name=\"m\"/>"));
+  EXPECT_EQ(f.source, "bad.urdf:4");
+  EXPECT_EQ(f.field, "material[m]");
+  EXPECT_EQ(f.expected, "a unique material name (first at bad.urdf:3)");
+}
+
 // ---------------------------------------------------------------- numbers
 
 /// `{}` in a template is replaced by the bad value.

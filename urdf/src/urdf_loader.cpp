@@ -376,6 +376,36 @@ void check_counts(const XmlSource& src, const TiXmlElement* robot) {
   }
 }
 
+/// <robot name=".." version="1.0">, and unique top-level <material> names: urdfdom's
+/// checks, named at their element.
+void check_robot_element(const XmlSource& src, const TiXmlElement* robot) {
+  if (attr_or_empty(robot, "name").empty())
+    src.fail(robot, "robot@name", "a robot name", "nothing");
+  if (const char* version = robot->Attribute("version")) {
+    // urdfdom 3.0 reads "MAJOR.MINOR" and supports only 1.0.
+    const std::string v = version;
+    const auto dot = v.find('.');
+    auto digits = [](const std::string& t) {
+      return !t.empty() && t.size() < 9 &&
+             std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    const bool ok = dot != std::string::npos && digits(v.substr(0, dot)) &&
+                    digits(v.substr(dot + 1)) && std::stoi(v.substr(0, dot)) == 1 &&
+                    std::stoi(v.substr(dot + 1)) == 0;
+    if (!ok)
+      src.fail(robot, "robot@version", "version 1.0 (the only one urdfdom reads)", quoted(version));
+  }
+  std::map<std::string, std::string> materials;
+  for (const TiXmlElement* m = robot->FirstChildElement("material"); m != nullptr;
+       m = m->NextSiblingElement("material")) {
+    const std::string name = attr_or_empty(m, "name");
+    if (name.empty()) src.fail(m, "material@name", "a material name", "nothing");
+    if (const auto [it, fresh] = materials.emplace(name, src.at(m)); !fresh)
+      src.fail(m, "material[" + name + "]", "a unique material name (first at " + it->second + ")",
+               "a duplicate");
+  }
+}
+
 /// The joints' checks urdfdom would otherwise report only on its console.
 void check_joint(const XmlSource& src, const TiXmlElement* joint, const std::string& field) {
   const char* type = joint->Attribute("type");
@@ -1229,6 +1259,7 @@ RobotDescription describe_robot(const std::string& urdf_xml, const std::string& 
     src.fail(robot, "(document)", "a <robot> root element",
              robot == nullptr ? "nothing" : "<" + internal::printable(robot->Value()) + ">");
   check_counts(src, robot);
+  check_robot_element(src, robot);
   check_numbers(src, robot);
   const Structure structure =
       check_structure(src, robot, std::filesystem::path(source).parent_path());
