@@ -9,6 +9,9 @@ find_package(CLI11 CONFIG REQUIRED)
 find_package(octomap REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(URDFDOM REQUIRED IMPORTED_TARGET urdfdom)
+# libxml2 (Debian libxml2-dev): the strict, iterative XML check a URDF passes before
+# TinyXML's recursive parser sees it (urdf/src/xml_check.cpp).
+pkg_check_modules(LIBXML2 REQUIRED IMPORTED_TARGET libxml-2.0)
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
 find_package(PNG REQUIRED)            # map images: libpng reports errors to ferret, not stderr
 if(FERRET_BUILD_TESTS)

@@ -147,7 +147,7 @@ TEST(ConfigCli, BadUrdfFiles) {
     std::string name, from, to, field;
   };
   const Case cases[] = {
-      {"malformed.urdf", "</robot>", "</robt>", "xml"},
+      {"malformed.urdf", "</robot>", "</robt>", ": expected an end tag matching the open element"},
       {"missing_link.urdf", "<child link=\"imu_link\"/>", "<child link=\"imu_lnk\"/>",
        "joint[imu_joint]/child@link"},
       {"negative_size.urdf", "<box size=\"0.130 0.090 0.040\"/></geometry></collision>",
@@ -166,10 +166,10 @@ TEST(ConfigCli, BadUrdfFiles) {
        "sensor[front_camera]/camera/image@hfov"},
       {"missing_fov.urdf", "hfov=\"1.5707963267948966\"", "",
        "sensor[front_camera]/horizontal_fov"},
-      // Only urdfdom notices a second root; its console message must come out as our one line.
+      // A second root, named with its line (urdfdom told only its console).
       {"two_roots.urdf", "<link name=\"imu_link\"><ferret role=\"imu\"/></link>",
        "<link name=\"imu_link\"><ferret role=\"imu\"/></link><link name=\"orphan\"/>",
-       "robot: expected a URDF that urdfdom accepts"},
+       "link[orphan]: expected one root link"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -148,6 +149,77 @@ TEST(MeshCollision, MissingAndCorruptFilesNameTheUrdfLineAndTheMeshPath) {
   EXPECT_EQ(e.field(), "link[base_link]/collision[0]/geometry/mesh@scale");
   e = load_error(urdf, mesh_robot("package://nopkg/tetra.stl"));
   EXPECT_NE(e.expected().find("tried"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ferret
+
+namespace ferret {
+namespace {
+
+TEST(MeshCollision, OneMeshInManyCollisionsKeepsEachPlacement) {
+  // 500 collisions of one file (read once): each box at its own origin.
+  const fs::path dir = scratch("many");
+  write(dir / "tetra.stl", tetra_stl());
+  std::string xml = "<robot name=\"m\">\n<link name=\"base_link\">\n";
+  for (int i = 0; i < 500; ++i) {
+    std::string x = std::to_string(i);
+    xml += "<collision><origin xyz=\"" + x + " 0 0\"/><geometry><mesh filename=\"tetra.stl\"/>";
+    xml += "</geometry></collision>\n";
+  }
+  xml += "</link>\n</robot>\n";
+  const auto r = load_at(dir / "r.urdf", xml);
+  ASSERT_EQ(r.collision_shapes.size(), 500u);
+  // The tetrahedron spans x in [0, 2]: shape i spans [i, i + 2].
+  EXPECT_NEAR(r.collision_shapes[499].aabb_B().min().x(), 499.0, 1e-6);
+  EXPECT_NEAR(r.bounding_box_B.max().x(), 501.0, 1e-6);
+}
+
+TEST(MeshCollision, MeshFilesAboveSixtyFourMebibytesAreRefusedUnread) {
+  const fs::path dir = scratch("huge");
+  { std::ofstream(dir / "huge.stl") << "solid x\n"; }
+  fs::resize_file(dir / "huge.stl", (std::uintmax_t{64} << 20) + 1);  // sparse: nothing written
+  const auto e = load_error(dir / "r.urdf", mesh_robot("huge.stl"));
+  EXPECT_EQ(e.source(), (dir / "r.urdf").string() + ":5");
+  EXPECT_EQ(e.field(), "link[base_link]/collision[0]/geometry/mesh@filename");
+  EXPECT_EQ(e.expected(), "a mesh file of at most 64 MiB");
+}
+
+TEST(MeshCollision, NestedSceneNodesComposeTheirTransforms) {
+  // Walked with an explicit stack. A Wavefront OBJ has no node tree; a Collada file
+  // does. 2000 nested <node>s, each
+  // translating by 0.001 along x, hold the tetrahedron: it ends up 2 m along x.
+  const fs::path dir = scratch("nested");
+  std::string dae =
+      "<?xml version=\"1.0\"?>\n<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" "
+      "version=\"1.4.1\">\n<asset><unit meter=\"1\"/><up_axis>Y_UP</up_axis></asset>\n"
+      "<library_geometries><geometry id=\"g\"><mesh>\n"
+      "<source id=\"p\"><float_array id=\"pa\" count=\"12\">0 -1 0 2 -1 0 0 1 0 0 0 0.5"
+      "</float_array><technique_common><accessor source=\"#pa\" count=\"4\" stride=\"3\">"
+      "<param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/>"
+      "<param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
+      "<vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>\n"
+      "<triangles count=\"4\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/>"
+      "<p>0 2 1 0 1 3 1 2 3 2 0 3</p></triangles>\n"
+      "</mesh></geometry></library_geometries>\n"
+      "<library_visual_scenes><visual_scene id=\"s\">\n";
+  constexpr int kDepth = 2000;
+  for (int i = 0; i < kDepth; ++i) dae += "<node><translate>0.001 0 0</translate>";
+  dae += "<instance_geometry url=\"#g\"/>";
+  for (int i = 0; i < kDepth; ++i) dae += "</node>";
+  dae +=
+      "\n</visual_scene></library_visual_scenes>\n"
+      "<scene><instance_visual_scene url=\"#s\"/></scene>\n</COLLADA>\n";
+  write(dir / "nested.dae", dae);
+  const auto r = load_at(dir / "r.urdf", mesh_robot("nested.dae"));
+  // [0, 2] shifted by 2000 x 0.001 m and the collision origin's 1 m; assimp composes
+  // the 2000 transforms in float, so x is good to 1e-4. Y_UP: assimp rotates nothing.
+  ASSERT_EQ(r.collision_shapes.size(), 1u);
+  const Eigen::AlignedBox3d b = r.collision_shapes[0].aabb_B();
+  EXPECT_NEAR(b.min().x(), 3.0, 1e-4);
+  EXPECT_NEAR(b.max().x(), 5.0, 1e-4);
+  EXPECT_NEAR(b.min().y(), -1.0, 1e-6);
+  EXPECT_NEAR(b.max().z(), 0.7, 1e-6);
 }
 
 }  // namespace

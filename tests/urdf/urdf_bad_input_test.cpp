@@ -67,9 +67,9 @@ TEST(UrdfBadInput, MissingFile) {
 
 TEST(UrdfBadInput, MalformedXmlNamesTheLine) {
   const auto f = load_failure("<robot name=\"x\">\n<link name=\"a\">\n</robot>\n");
-  EXPECT_EQ(f.source, "bad.urdf:3");
-  EXPECT_EQ(f.field, "xml");
-  EXPECT_EQ(f.expected, "well-formed XML");
+  EXPECT_EQ(f.source, "bad.urdf");
+  EXPECT_EQ(f.field, "line 3 column 9");  // the "</robot>" that closes nothing open
+  EXPECT_EQ(f.expected, "an end tag matching the open element");
 }
 
 TEST(UrdfBadInput, RootMustBeRobot) {
@@ -118,14 +118,14 @@ TEST(UrdfBadInput, EachBadValueNamesItsElement) {
   const std::string ir = "gazebo[cam_link]/sensor[ir]/ray/";
   const BadCase cases[] = {
       {"negative box", shape("<box size=\"0.1 -0.2 0.3\"/>"),
-       "link[s]/collision[0]/geometry/box@size", "3 numbers > 0 (metres)"},
+       "link[s]/collision[0]/geometry/box@size", "3 numbers > 0 and <= 1000 (metres)"},
       {"zero box", shape("<box size=\"0.1 0 0.3\"/>"), "link[s]/collision[0]/geometry/box@size",
        "> 0"},
       {"short box", shape("<box size=\"0.1 0.3\"/>"), "link[s]/collision[0]/geometry/box@size",
        "3 numbers"},
       {"sizeless box", shape("<box/>"), "link[s]/collision[0]/geometry/box@size", "3 numbers"},
       {"zero radius", shape("<cylinder radius=\"0\" length=\"1\"/>"),
-       "link[s]/collision[0]/geometry/cylinder@radius", "a number > 0 (metres)"},
+       "link[s]/collision[0]/geometry/cylinder@radius", "a number > 0 and <= 1000 (metres)"},
       {"negative length", shape("<cylinder radius=\"0.1\" length=\"-1\"/>"),
        "link[s]/collision[0]/geometry/cylinder@length", "> 0"},
       {"negative sphere", shape("<sphere radius=\"-0.5\"/>"),
@@ -135,7 +135,7 @@ TEST(UrdfBadInput, EachBadValueNamesItsElement) {
       {"negative fov", camera_clip("-1", "0.1", "4"), cam + "horizontal_fov",
        "a horizontal fov in (0, pi) radians"},
       {"fov past pi", camera_clip("3.5", "0.1", "4"), cam + "horizontal_fov", "(0, pi)"},
-      {"text fov", camera_clip("wide", "0.1", "4"), cam + "horizontal_fov", "a number"},
+      {"text fov", camera_clip("wide", "0.1", "4"), cam + "horizontal_fov", "a finite number"},
       {"negative far", camera_clip("1", "0.1", "-4"), cam + "clip/far", "> 0"},
       {"far before near", camera_clip("1", "5", "4"), cam + "clip/far",
        "clip far > clip near (5 m)"},
@@ -144,7 +144,7 @@ TEST(UrdfBadInput, EachBadValueNamesItsElement) {
        robot("<sensor name=\"cam\" parent_link_name=\"cam_link\"><camera><image width=\"0\" "
              "height=\"10\" "
              "hfov=\"1\" near=\"0\" far=\"1\"/></camera></sensor>"),
-       "sensor[cam]/camera/image@width", "an integer in [1, 1000000]"},
+       "sensor[cam]/camera/image@width", "an integer in [1, 100000]"},
       {"ray without range", ray(kGoodScan, ""), "gazebo[cam_link]/sensor[ir]/range_min",
        "required: <ray><range min=..> or Gazebo"},
       {"negative range max", ray(kGoodScan, "<range><min>0.1</min><max>-2</max></range>"),
@@ -206,7 +206,7 @@ TEST(UrdfBadInput, MissingMeshAndMalformedOrigin) {
       load_failure(robot("<link name=\"o\"><collision><origin xyz=\"1 2\"/><geometry><sphere "
                          "radius=\"1\"/></geometry></collision></link>"));
   EXPECT_EQ(f.field, "link[o]/collision[0]/origin@xyz");
-  EXPECT_EQ(f.expected, "three numbers");
+  EXPECT_EQ(f.expected, "3 numbers >= -1000 and <= 1000 (metres)");
 }
 
 TEST(UrdfBadInput, DuplicateLinkAndNoCollisionGeometry) {
@@ -216,13 +216,22 @@ TEST(UrdfBadInput, DuplicateLinkAndNoCollisionGeometry) {
   EXPECT_EQ(f.expected, "at least one <collision> with a box, cylinder, sphere or mesh");
 }
 
-TEST(UrdfBadInput, UrdfdomRejectionIsCapturedIntoOneLine) {
-  // Two roots: only urdfdom's tree building notices; its console message becomes the "got".
-  const auto f = load_failure(robot("<link name=\"orphan\"/>"));
-  EXPECT_EQ(f.source, "bad.urdf");
-  EXPECT_EQ(f.field, "robot");
-  EXPECT_EQ(f.expected, "a URDF that urdfdom accepts");
-  EXPECT_NE(f.what.find("urdfdom:"), std::string::npos) << f.what;
+TEST(UrdfBadInput, TwoRootsAndBrokenVisualsAreNamedBeforeUrdfdom) {
+  // Two roots: urdfdom's tree building noticed only on its console; ferret names the link.
+  auto f = load_failure(robot("<link name=\"orphan\"/>"));
+  EXPECT_EQ(f.source, "bad.urdf:" + std::to_string(kBodyLine));
+  EXPECT_EQ(f.field, "link[orphan]");
+  EXPECT_NE(f.expected.find("one root link"), std::string::npos) << f.what;
+  // A <visual> without geometry made urdfdom drop the link's collisions silently.
+  f = load_failure(
+      "<robot name=\"r\">\n<link name=\"base_link\"><visual><origin/></visual><collision><geometry>"
+      "<box size=\"1 1 1\"/></geometry></collision></link>\n</robot>");
+  EXPECT_EQ(f.source, "bad.urdf:2");
+  EXPECT_EQ(f.field, "link[base_link]/visual[0]/geometry");
+  f = load_failure(
+      "<robot name=\"r\">\n<link name=\"base_link\"><inertial><origin/></inertial><collision>"
+      "<geometry><box size=\"1 1 1\"/></geometry></collision></link>\n</robot>");
+  EXPECT_EQ(f.field, "link[base_link]/inertial/mass");
 }
 
 TEST(UrdfBadInput, CameraWithoutRange) {

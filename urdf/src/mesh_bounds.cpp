@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace ferret::internal {
 namespace {
@@ -18,17 +20,23 @@ bool starts_with(const std::string& s, std::string_view prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
 }
 
-void extend(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
-            Eigen::AlignedBox3d& box) {
-  const aiMatrix4x4 X = parent * node.mTransformation;
-  for (unsigned m = 0; m < node.mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
-    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-      const aiVector3D p = X * mesh.mVertices[v];
-      box.extend(Eigen::Vector3d(p.x, p.y, p.z));
+/// Bounds of every vertex under `root`, walking assimp's node tree with an explicit
+/// stack (a scene file may nest nodes deeply).
+void extend(const aiScene& scene, const aiNode& root, Eigen::AlignedBox3d& box) {
+  std::vector<std::pair<const aiNode*, aiMatrix4x4>> stack{{&root, aiMatrix4x4()}};
+  while (!stack.empty()) {
+    const auto [node, parent] = stack.back();
+    stack.pop_back();
+    const aiMatrix4x4 X = parent * node->mTransformation;
+    for (unsigned m = 0; m < node->mNumMeshes; ++m) {
+      const aiMesh& mesh = *scene.mMeshes[node->mMeshes[m]];
+      for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+        const aiVector3D p = X * mesh.mVertices[v];
+        box.extend(Eigen::Vector3d(p.x, p.y, p.z));
+      }
     }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) stack.emplace_back(node->mChildren[c], X);
   }
-  for (unsigned c = 0; c < node.mNumChildren; ++c) extend(scene, *node.mChildren[c], X, box);
 }
 
 }  // namespace
@@ -74,7 +82,7 @@ Eigen::AlignedBox3d mesh_vertex_bounds(const fs::path& path) {
     throw std::runtime_error(importer.GetErrorString());
   Eigen::AlignedBox3d box;
   box.setEmpty();
-  extend(*scene, *scene->mRootNode, aiMatrix4x4(), box);
+  extend(*scene, *scene->mRootNode, box);
   if (box.isEmpty()) throw std::runtime_error("the file holds no mesh vertices");
   for (int i = 0; i < 3; ++i)
     if (!std::isfinite(box.min()[i]) || !std::isfinite(box.max()[i]))
