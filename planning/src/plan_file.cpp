@@ -256,14 +256,17 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
     if (!doc.contains("states"))
       throw InputError(source, "",
                        "a ferret plan (\"format\": \"ferret-plan\") or an object with \"states\"");
-    r.known_keys(doc, "", {"states"});
+    r.known_keys(doc, "", {"comment", "states"});
+    if (doc.contains("comment")) (void)r.string_at(doc, "comment", "");
     plan.robot_known = false;
     read_states(r, doc, plan);
     return plan;
   }
   r.known_keys(doc, "",
-               {"format", "version", "robot", "frame", "robot_model", "planner", "unknown_policy",
-                "bounds", "limits", "released_length_m", "tether", "states"});
+               {"comment", "format", "version", "robot", "frame", "robot_model", "planner",
+                "unknown_policy", "bounds", "limits", "released_length_m", "tether", "states"});
+  // JSON has no comments: a "comment" string is the plan's note to its reader.
+  if (doc.contains("comment")) (void)r.string_at(doc, "comment", "");
   if (r.string_at(doc, "format", "") != "ferret-plan")
     throw InputError(source, "format", "\"ferret-plan\"", doc["format"].dump());
   const double version = r.number_at(doc, "version", "");

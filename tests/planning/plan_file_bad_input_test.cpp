@@ -156,9 +156,10 @@ TEST(PlanFileBadInput, JsonUnknownKeysAtEveryLevel) {
   // A JSON of another tool's states: the same per-state schema, only "states" on top.
   expect_error(R"({"states": [{"t_s": 0, "x_m": 0, "y_m": 0, "z_m": 0, "yaw_rad": 0, "v": 1}]})",
                "states[0].v", "one of the keys t_s, x_m, y_m, z_m, yaw_rad, tether_length_m");
+  expect_error(R"({"comment": 1, "states": []})", "comment", "a string");
   expect_error(
       R"({"name": "a", "states": [{"t_s": 0, "x_m": 0, "y_m": 0, "z_m": 0, "yaw_rad": 0}]})",
-      "name", "one of the keys states");
+      "name", "one of the keys comment, states");
 }
 
 TEST(PlanFileBadInput, JsonDuplicateKeysAtEveryLevel) {

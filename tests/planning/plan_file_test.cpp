@@ -4,8 +4,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "ferret/core/error.hpp"
+#include "support/json_schema.hpp"
 
 namespace ferret {
 namespace {
@@ -97,6 +99,40 @@ TEST(PlanFile, BadFilesNameTheFieldAndTheExpectation) {
   expect_error("0,1,2,3,0\nt,x,y,z,yaw\n", "line 1 column 1", "a header");  // header first
   expect_error("t,x,y,z,yaw\n0,1,2,3,abc\n", "line 2 column 5 (yaw)", "a finite number");
   EXPECT_THROW((void)load_plan("/nonexistent/plan.json"), InputError);
+}
+
+test::JsonSchema plan_schema() {
+  std::ifstream in(std::string(FERRET_SOURCE_DIR) + "/docs/plan.schema.json");
+  return test::JsonSchema(nlohmann::json::parse(in));
+}
+
+// docs/plan.schema.json and the reader agree: what ferret writes and every shipped JSON
+// plan conform and parse; documents the schema refuses, the reader refuses too.
+TEST(PlanFile, ShippedAndWrittenPlansMatchTheSchema) {
+  const test::JsonSchema schema = plan_schema();
+  const auto written = nlohmann::json::parse(plan_to_json(sample()));
+  const auto errors = schema.errors(written);
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  int shipped = 0;
+  for (const auto& f :
+       std::filesystem::directory_iterator(std::string(FERRET_SOURCE_DIR) + "/examples/plans")) {
+    if (f.path().extension() != ".json") continue;
+    ++shipped;
+    std::ifstream in(f.path());
+    const auto doc = nlohmann::json::parse(in);
+    const auto e = schema.errors(doc);
+    EXPECT_TRUE(e.empty()) << f.path() << ": " << e.front();
+    EXPECT_NO_THROW((void)load_plan(f.path())) << f.path();
+  }
+  EXPECT_GE(shipped, 4);
+  for (
+      const std::string bad :
+      {R"({"states": [{"t_s": 0, "x_m": 0, "y_m": 0, "z_m": 0, "yaw_rad": 0, "v": 1}]})",
+       R"({"format": "ferret-plan", "version": 1, "robot": "uav", "states": [], "x": 1})",
+       R"({"format": "ferret-plan", "version": 1, "robot": "uav", "states": [{"t_s": 0, "x_m": 1e6, "y_m": 0, "z_m": 0, "yaw_rad": 0}]})"}) {
+    EXPECT_FALSE(schema.errors(nlohmann::json::parse(bad)).empty()) << bad;
+    EXPECT_THROW((void)parse_plan(bad, "bad.json"), InputError) << bad;
+  }
 }
 
 TEST(PlanFile, SaveIsAtomicAndReadable) {
