@@ -32,6 +32,22 @@ const std::string kCoordinate = "a coordinate within +-100000 m";
 
 std::string show(double v) { return fmt::format("{}", v); }
 
+// Messages are one printable line: control and non-ASCII bytes of a file's text are
+// escaped, and an echoed value is cut short (a whole array could be megabytes).
+std::string printable(const std::string& text, std::size_t max_chars = 80) {
+  std::string out;
+  for (const char c : text) {
+    if (out.size() >= max_chars) return out + "...";
+    const auto u = static_cast<unsigned char>(c);
+    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
+  }
+  return out;
+}
+InputError input_error(const std::string& source, const std::string& field,
+                       const std::string& expected, const std::string& got = {}) {
+  return InputError(source, printable(field, 200), expected, printable(got));
+}
+
 // Strict CSV cells: a decimal number, no hex, no nan/inf, no trailing text; out of
 // range (1e400) is not finite.
 std::optional<double> strict_number(std::string cell) {
@@ -64,9 +80,9 @@ void check_depth(const std::string& text, const std::string& source) {
       in_string = true;
     } else if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth)
-        throw InputError(source, fmt::format("line {}", line),
-                         fmt::format("JSON nested at most {} levels deep", kMaxJsonDepth),
-                         "deeper nesting");
+        throw input_error(source, fmt::format("line {}", line),
+                          fmt::format("JSON nested at most {} levels deep", kMaxJsonDepth),
+                          "deeper nesting");
     } else if (c == ']' || c == '}') {
       --depth;
     }
@@ -91,7 +107,7 @@ class PathTracker {
         Frame& f = frames_.back();
         f.key = parsed.get<std::string>();
         if (!f.keys.insert(f.key).second)
-          throw InputError(source_, path(), "each key once in an object", "a duplicate key");
+          throw input_error(source_, path(), "each key once in an object", "a duplicate key");
         break;
       }
       case json::parse_event_t::object_end:
@@ -142,8 +158,8 @@ json parse_json_text(const std::string& text, const std::string& source) {
     // nlohmann refuses a number beyond double's range ("1e400"): name the number.
     const std::string what = e.what();
     const auto a = what.find('\''), b = what.rfind('\'');
-    throw InputError(source, tracker.path(), kFinite,
-                     a != std::string::npos && b > a ? what.substr(a + 1, b - a - 1) : what);
+    throw input_error(source, tracker.path(), kFinite,
+                      a != std::string::npos && b > a ? what.substr(a + 1, b - a - 1) : what);
   } catch (const json::parse_error& e) {
     // The byte offset as line and column (nlohmann counts from 1, past the fault).
     const std::size_t at = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
@@ -153,7 +169,7 @@ json parse_json_text(const std::string& text, const std::string& source) {
     const std::size_t column = at - (bol == std::string::npos || at == 0 ? 0 : bol + 1) + 1;
     std::string what = e.what();
     if (const auto k = what.find("syntax error"); k != std::string::npos) what = what.substr(k);
-    throw InputError(source, fmt::format("line {} column {}", line, column), "valid JSON", what);
+    throw input_error(source, fmt::format("line {} column {}", line, column), "valid JSON", what);
   }
 }
 
@@ -165,30 +181,30 @@ struct Reader {
   void known_keys(const json& obj, const std::string& path,
                   std::initializer_list<const char*> keys) const {
     if (!obj.is_object())
-      throw InputError(source, path.empty() ? "" : path.substr(0, path.size() - 1), "an object",
-                       obj.dump());
+      throw input_error(source, path.empty() ? "" : path.substr(0, path.size() - 1), "an object",
+                        obj.dump());
     for (const auto& [key, value] : obj.items()) {
       if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return key == k; }) !=
           keys.end())
         continue;
       std::string list;
       for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
-      throw InputError(source, path + key, "one of the keys " + list, "an unknown key");
+      throw input_error(source, path + key, "one of the keys " + list, "an unknown key");
     }
   }
   const json& need(const json& obj, const std::string& key, const std::string& path) const {
     if (!obj.is_object() || !obj.contains(key))
-      throw InputError(source, path + key, "a value (required field missing)");
+      throw input_error(source, path + key, "a value (required field missing)");
     return obj.at(key);
   }
   double number(const json& v, const std::string& path) const {
     if (!v.is_number() || !std::isfinite(v.get<double>()))
-      throw InputError(source, path, kFinite, v.dump());
+      throw input_error(source, path, kFinite, v.dump());
     return v.get<double>();
   }
   double coordinate(const json& v, const std::string& path) const {
     const double x = number(v, path);
-    if (!(std::abs(x) <= kMaxCoordinate_m)) throw InputError(source, path, kCoordinate, show(x));
+    if (!(std::abs(x) <= kMaxCoordinate_m)) throw input_error(source, path, kCoordinate, show(x));
     return x;
   }
   double number_at(const json& obj, const std::string& key, const std::string& path) const {
@@ -196,7 +212,7 @@ struct Reader {
   }
   double positive_at(const json& obj, const std::string& key, const std::string& path) const {
     const double x = number_at(obj, key, path);
-    if (!(x > 0)) throw InputError(source, path + key, "a number > 0", show(x));
+    if (!(x > 0)) throw input_error(source, path + key, "a number > 0", show(x));
     return x;
   }
   double coordinate_at(const json& obj, const std::string& key, const std::string& path) const {
@@ -204,12 +220,12 @@ struct Reader {
   }
   std::string string_at(const json& obj, const std::string& key, const std::string& path) const {
     const json& v = need(obj, key, path);
-    if (!v.is_string()) throw InputError(source, path + key, "a string", v.dump());
+    if (!v.is_string()) throw input_error(source, path + key, "a string", v.dump());
     return v.get<std::string>();
   }
   Eigen::VectorXd coordinates(const json& v, std::size_t n, const std::string& path) const {
     if (!v.is_array() || v.size() != n)
-      throw InputError(source, path, "a list of " + std::to_string(n) + " numbers", v.dump());
+      throw input_error(source, path, "a list of " + std::to_string(n) + " numbers", v.dump());
     Eigen::VectorXd out(static_cast<Eigen::Index>(n));
     for (std::size_t i = 0; i < n; ++i)
       out[static_cast<Eigen::Index>(i)] = coordinate(v[i], path + "[" + std::to_string(i) + "]");
@@ -219,15 +235,15 @@ struct Reader {
 
 void check_state_count(std::size_t n, const std::string& source) {
   if (n > kMaxStates)
-    throw InputError(source, "states", fmt::format("at most {} states", kMaxStates),
-                     fmt::format("{} states", n));
+    throw input_error(source, "states", fmt::format("at most {} states", kMaxStates),
+                      fmt::format("{} states", n));
 }
 
 void read_states(const Reader& r, const json& doc, PlanFile& plan) {
   const json& states = r.need(doc, "states", "");
   if (!states.is_array() || states.empty())
-    throw InputError(r.source, "states", "a non-empty list of states",
-                     states.is_array() ? "[]" : states.type_name());
+    throw input_error(r.source, "states", "a non-empty list of states",
+                      states.is_array() ? "[]" : states.type_name());
   check_state_count(states.size(), r.source);
   plan.states.reserve(states.size());
   for (std::size_t i = 0; i < states.size(); ++i) {
@@ -249,13 +265,13 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
   const json doc = parse_json_text(text, source);
   const Reader r{source};
   if (!doc.is_object())
-    throw InputError(source, "", "a JSON object (a ferret plan)", doc.type_name());
+    throw input_error(source, "", "a JSON object (a ferret plan)", doc.type_name());
   PlanFile plan;
   if (!doc.contains("format")) {
     // Another tool's plan: its states, nothing else (the robot is the command line's).
     if (!doc.contains("states"))
-      throw InputError(source, "",
-                       "a ferret plan (\"format\": \"ferret-plan\") or an object with \"states\"");
+      throw input_error(source, "",
+                        "a ferret plan (\"format\": \"ferret-plan\") or an object with \"states\"");
     r.known_keys(doc, "", {"comment", "states"});
     if (doc.contains("comment")) (void)r.string_at(doc, "comment", "");
     plan.robot_known = false;
@@ -268,9 +284,9 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
   // JSON has no comments: a "comment" string is the plan's note to its reader.
   if (doc.contains("comment")) (void)r.string_at(doc, "comment", "");
   if (r.string_at(doc, "format", "") != "ferret-plan")
-    throw InputError(source, "format", "\"ferret-plan\"", doc["format"].dump());
+    throw input_error(source, "format", "\"ferret-plan\"", doc["format"].dump());
   const double version = r.number_at(doc, "version", "");
-  if (version != 1.0) throw InputError(source, "version", "1", doc["version"].dump());
+  if (version != 1.0) throw input_error(source, "version", "1", doc["version"].dump());
   const std::string robot = r.string_at(doc, "robot", "");
   if (robot == "uav")
     plan.robot = PlanRobot::kUav;
@@ -279,13 +295,13 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
   else if (robot == "ugv")
     plan.robot = PlanRobot::kUgv;
   else
-    throw InputError(source, "robot", "\"uav\", \"uav_with_ugv\" or \"ugv\"", robot);
+    throw input_error(source, "robot", "\"uav\", \"uav_with_ugv\" or \"ugv\"", robot);
   if (doc.contains("frame")) plan.frame = r.string_at(doc, "frame", "");
-  if (plan.frame != "world") throw InputError(source, "frame", "\"world\"", plan.frame);
+  if (plan.frame != "world") throw input_error(source, "frame", "\"world\"", plan.frame);
   if (doc.contains("unknown_policy")) {
     const std::string policy = r.string_at(doc, "unknown_policy", "");
     if (policy != "free" && policy != "occupied")
-      throw InputError(source, "unknown_policy", "\"free\" or \"occupied\"", policy);
+      throw input_error(source, "unknown_policy", "\"free\" or \"occupied\"", policy);
     plan.unknown_policy = parse_unknown_policy(policy, source);
   }
   if (doc.contains("bounds")) {
@@ -294,7 +310,7 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
     Aabb3 box{r.coordinates(r.need(b, "min", "bounds."), 3, "bounds.min"),
               r.coordinates(r.need(b, "max", "bounds."), 3, "bounds.max")};
     if ((box.lo.array() > box.hi.array()).any())
-      throw InputError(source, "bounds", "min <= max on every axis");
+      throw input_error(source, "bounds", "min <= max on every axis");
     plan.bounds = box;
   }
   if (doc.contains("limits")) {
@@ -311,7 +327,7 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
   if (doc.contains("released_length_m")) {
     plan.released_length_m = r.coordinate_at(doc, "released_length_m", "");
     if (plan.released_length_m < 0)
-      throw InputError(source, "released_length_m", "a length >= 0", show(plan.released_length_m));
+      throw input_error(source, "released_length_m", "a length >= 0", show(plan.released_length_m));
   }
   if (doc.contains("tether")) {
     const json& t = doc["tether"];
@@ -322,12 +338,15 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
     tether.entry_offset_m = r.coordinate_at(t, "entry_offset_m", "tether.");
     if (tether.total_length_m <= 0 || tether.entry_offset_m < 0 ||
         tether.entry_offset_m > tether.total_length_m)
-      throw InputError(source, "tether",
-                       "0 <= entry_offset_m <= total_length_m and total_length_m > 0");
+      throw input_error(source, "tether",
+                        "0 <= entry_offset_m <= total_length_m and total_length_m > 0");
     if (t.contains("initial_wraps")) {
       const json& w = t["initial_wraps"];
-      if (!w.is_array()) throw InputError(source, "tether.initial_wraps", "a list", w.dump());
-      check_state_count(w.size(), source);
+      if (!w.is_array()) throw input_error(source, "tether.initial_wraps", "a list", w.dump());
+      if (w.size() > kMaxStates)
+        throw input_error(source, "tether.initial_wraps",
+                          fmt::format("at most {} wrap points", kMaxStates),
+                          std::to_string(w.size()));
       for (std::size_t i = 0; i < w.size(); ++i) {
         const std::string path = "tether.initial_wraps[" + std::to_string(i) + "].";
         r.known_keys(w[i], path, {"p", "side"});
@@ -335,7 +354,7 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
         wp.p_W = r.coordinates(r.need(w[i], "p", path), 2, path + "p");
         const double side = r.number_at(w[i], "side", path);
         if (side != 1.0 && side != -1.0)
-          throw InputError(source, path + "side", "1 or -1", w[i]["side"].dump());
+          throw input_error(source, path + "side", "1 or -1", w[i]["side"].dump());
         wp.side = static_cast<int>(side);
         tether.initial_wraps.push_back(wp);
       }
@@ -343,7 +362,7 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
     plan.tether = tether;
   }
   if (plan.robot == PlanRobot::kUgv && !plan.tether)
-    throw InputError(source, "tether", "a tether section for a miniUGV plan");
+    throw input_error(source, "tether", "a tether section for a miniUGV plan");
   read_states(r, doc, plan);
   if (doc.contains("planner")) {
     const json& p = doc["planner"];
@@ -352,12 +371,12 @@ PlanFile parse_json(const std::string& text, const std::string& source) {
     if (p.contains("planning_time_s")) {
       plan.planning_time_s = r.number_at(p, "planning_time_s", "planner.");
       if (plan.planning_time_s < 0)
-        throw InputError(source, "planner.planning_time_s", "a time >= 0 s",
-                         show(plan.planning_time_s));
+        throw input_error(source, "planner.planning_time_s", "a time >= 0 s",
+                          show(plan.planning_time_s));
     }
     if (p.contains("seed")) {
       if (!p["seed"].is_number_unsigned())
-        throw InputError(source, "planner.seed", "an unsigned integer", p["seed"].dump());
+        throw input_error(source, "planner.seed", "an unsigned integer", p["seed"].dump());
       plan.seed = p["seed"];
     }
     if (p.contains("world")) plan.world = r.string_at(p, "world", "planner.");
@@ -410,22 +429,23 @@ PlanFile parse_csv(const std::string& text, const std::string& source) {
         for (int k = 0; k < 5; ++k)
           if (name == kCsvColumns[k][0] || name == kCsvColumns[k][1]) field = k;
         if (field < 0)
-          throw InputError(source, at, kCsvHeader,
-                           strict_number(name) ? "a number (no header line)" : "'" + name + "'");
+          throw input_error(source, at, kCsvHeader,
+                            strict_number(name) ? "a number (no header line)" : "'" + name + "'");
         if (seen[field])
-          throw InputError(source, at, kCsvHeader + ", each once", fmt::format("'{}' again", name));
+          throw input_error(source, at, kCsvHeader + ", each once",
+                            fmt::format("'{}' again", name));
         seen[field] = true;
         column_of.push_back(field);
         names.push_back(name);
       }
       for (int k = 0; k < 5; ++k)
         if (!seen[k])
-          throw InputError(source, where, kCsvHeader,
-                           fmt::format("no column '{}'", kCsvColumns[k][0]));
+          throw input_error(source, where, kCsvHeader,
+                            fmt::format("no column '{}'", kCsvColumns[k][0]));
       continue;
     }
     if (cells.size() != column_of.size())
-      throw InputError(
+      throw input_error(
           source, where,
           fmt::format("{} comma-separated numbers (the header's columns)", column_of.size()),
           fmt::format("{} cells", cells.size()));
@@ -433,10 +453,10 @@ PlanFile parse_csv(const std::string& text, const std::string& source) {
     for (std::size_t c = 0; c < cells.size(); ++c) {
       const auto x = strict_number(cells[c]);
       const std::string at = fmt::format("{} column {} ({})", where, c + 1, names[c]);
-      if (!x) throw InputError(source, at, kFinite, "'" + cells[c] + "'");
+      if (!x) throw input_error(source, at, kFinite, "'" + cells[c] + "'");
       const int field = column_of[c];
       if (field >= 1 && field <= 3 && !(std::abs(*x) <= kMaxCoordinate_m))
-        throw InputError(source, at, kCoordinate, cells[c]);
+        throw input_error(source, at, kCoordinate, cells[c]);
       v[field] = *x;
     }
     check_state_count(plan.states.size() + 1, source);
@@ -448,9 +468,9 @@ PlanFile parse_csv(const std::string& text, const std::string& source) {
     w.yaw_rad = v[4];
     plan.states.push_back(w);
   }
-  if (column_of.empty()) throw InputError(source, "", kCsvHeader, "no header line");
+  if (column_of.empty()) throw input_error(source, "", kCsvHeader, "no header line");
   if (plan.states.empty())
-    throw InputError(source, "", "at least one state after the header", "none");
+    throw input_error(source, "", "at least one state after the header", "none");
   return plan;
 }
 
@@ -514,15 +534,15 @@ void save_plan(const PlanFile& plan, const std::filesystem::path& path) {
 PlanFile parse_plan(const std::string& text, const std::string& source) {
   const auto first = text.find_first_not_of(" \t\r\n");
   if (first == std::string::npos)
-    throw InputError(source, "", "a plan (JSON, or CSV with a header t,x,y,z,yaw)",
-                     "an empty file");
+    throw input_error(source, "", "a plan (JSON, or CSV with a header t,x,y,z,yaw)",
+                      "an empty file");
   return text[first] == '{' || text[first] == '[' ? parse_json(text, source)
                                                   : parse_csv(text, source);
 }
 
 PlanFile load_plan(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "", "a readable plan file");
+  if (!in) throw input_error(path.string(), "", "a readable plan file");
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_plan(ss.str(), path.string());

@@ -133,6 +133,18 @@ constexpr double kMaxDuration_s = 3600.0;
 constexpr std::size_t kMaxSamples = 1'000'000;
 constexpr double kMaxCoordinate_m = 1e5;
 
+// Messages are one printable line: control and non-ASCII bytes of the file are
+// escaped, a long echo cut short.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (out.size() >= 80) return out + "...";
+    const auto u = static_cast<unsigned char>(c);
+    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
+  }
+  return out;
+}
+
 // The one place trajectory numbers are judged (the shared number type replaces it):
 // a decimal number, no hex, no nan/inf, nothing after it; 1e400 is out of range.
 double parse_number(const std::string& text, const std::string& source, const std::string& field) {
@@ -145,7 +157,7 @@ double parse_number(const std::string& text, const std::string& source, const st
   double v = 0.0;
   const auto [ptr, ec] = std::from_chars(b, e, v, std::chars_format::general);
   if (trimmed.empty() || ec != std::errc() || ptr != e || !std::isfinite(v))
-    throw InputError(source, field, "a finite number", "'" + trimmed + "'");
+    throw InputError(source, field, "a finite number", "'" + printable(trimmed) + "'");
   return v;
 }
 
@@ -222,7 +234,7 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
       }
       if (fields != kShortHeader && fields != kLongHeader)
         throw InputError(source, fmt::format("line {}", number),
-                         "the header t,x,y,yaw or t,x,y,yaw,vx,vy,ax,ay", line);
+                         "the header t,x,y,yaw or t,x,y,yaw,vx,vy,ax,ay", printable(line));
       header = fields;
       continue;
     }

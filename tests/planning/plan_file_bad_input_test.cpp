@@ -227,6 +227,19 @@ TEST(PlanFileBadInput, JsonNestingIsBoundedBeforeParsing) {
   EXPECT_EQ(p.world.size(), 1000u);
 }
 
+TEST(PlanFileBadInput, MessagesAreOnePrintableLine) {
+  // A newline, a NUL and a non-ASCII byte in a header name, a key with an escaped
+  // newline, a cell of 10000 characters: escaped and cut, never a second line.
+  expect_error(std::string("t,x,y,z,ya\nw\n0,0,0,0,0\n"), "line 1 column 5", "a header", "'ya'");
+  expect_error(std::string("t,x,y,z,y") + '\0' + "\xc3\xa9\n0,0,0,0,0\n", "line 1 column 5",
+               "a header", "'y\\x00\\xc3\\xa9'");
+  expect_error(tweak(R"("frame": "world",)", R"("frame": "world", "a\nb": 1,)"), "a\\x0ab",
+               "one of the keys");
+  const InputError e = error_of("t,x,y,z,yaw\n0," + std::string(10000, '7') + "x,0,0,0\n");
+  EXPECT_EQ(e.field(), "line 2 column 2 (x)");
+  EXPECT_LT(std::string(e.what()).size(), 300u) << e.what();
+}
+
 TEST(PlanFileBadInput, StatesAtMostAMillion) {
   std::string text = "t,x,y,z,yaw\n";
   for (int k = 0; k <= 1'000'000; ++k) text += "0,0,0,0,0\n";
