@@ -29,6 +29,9 @@ constexpr std::size_t kMaxStates = 1'000'000;
 constexpr int kMaxJsonDepth = 64;
 const std::string kFinite = "a finite number";
 const std::string kCoordinate = "a coordinate within +-100000 m";
+// Times differ by at most 2e12 s, so no duration overflows (Unix times fit).
+constexpr double kMaxTime_s = 1e12;
+const std::string kTime = "a time within +-1e12 s";
 
 std::string show(double v) { return fmt::format("{}", v); }
 
@@ -251,6 +254,8 @@ void read_states(const Reader& r, const json& doc, PlanFile& plan) {
     r.known_keys(states[i], path, {"t_s", "x_m", "y_m", "z_m", "yaw_rad", "tether_length_m"});
     Waypoint w;
     w.t_s = r.number_at(states[i], "t_s", path);
+    if (!(std::abs(w.t_s) <= kMaxTime_s))
+      throw input_error(r.source, path + "t_s", kTime, show(w.t_s));
     w.x_m = r.coordinate_at(states[i], "x_m", path);
     w.y_m = r.coordinate_at(states[i], "y_m", path);
     w.z_m = r.coordinate_at(states[i], "z_m", path);
@@ -457,6 +462,8 @@ PlanFile parse_csv(const std::string& text, const std::string& source) {
       const int field = column_of[c];
       if (field >= 1 && field <= 3 && !(std::abs(*x) <= kMaxCoordinate_m))
         throw input_error(source, at, kCoordinate, cells[c]);
+      if (field == 0 && !(std::abs(*x) <= kMaxTime_s))
+        throw input_error(source, at, kTime, cells[c]);
       v[field] = *x;
     }
     check_state_count(plan.states.size() + 1, source);

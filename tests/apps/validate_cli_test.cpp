@@ -256,6 +256,11 @@ TEST(ValidateCli, MessagesNameThePlanNotAnOptionNeverGiven) {
       "unknown_policy": "occupied", "bounds": {"min": [-90000, -1, 0], "max": [90000, 9, 3]},
       "states": [)" + state(0, 1, -0.5, 0) +
                            "]}";
+  // A box of no voxel: the plan's field is named, not the map.
+  const std::string flat =
+      ugv_plan(state(0, 1, 1, 0), 15, R"( "bounds": {"min": [1, 1, 0.01], "max": [2, 2, 0.01]},)");
+  expect_bad_plan(validate(write(dir, "flat.json", flat)),
+                  "flat.json: bounds: expected a box holding a voxel centre on every axis");
   expect_bad_plan(validate(write(dir, "huge.json", huge)),
                   "huge.json: bounds: expected a box within");
 }

@@ -131,6 +131,11 @@ TEST(PlanFileBadInput, CoordinatesWithinTheStatedBound) {
                "a coordinate within");
   expect_error(tweak(R"("entry": [-0.1, 4.0])", R"("entry": [-0.1, 1e300])"), "tether.entry[1]",
                "a coordinate within");
+  // Times: far enough apart to overflow a duration (1e308 - -1e308 is inf) are refused.
+  expect_error("t,x,y,z,yaw\n-1e308,0,0,0,0\n1e308,1,0,0,0\n", "line 2 column 1 (t)",
+               "a time within +-1e12 s");
+  expect_error(tweak(R"("t_s": 1,)", R"("t_s": 1e13,)"), "states[1].t_s", "a time within");
+  EXPECT_EQ(parse_plan("t,x,y,z,yaw\n1.7e9,0,0,0,0\n", "p.csv").states[0].t_s, 1.7e9);  // Unix time
   // On the bound is still a plan.
   EXPECT_EQ(parse_plan("t,x,y,z,yaw\n0,-100000,100000,0,0\n", "p.csv").states[0].y_m, 1e5);
 }
