@@ -218,6 +218,7 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
   if (!in) throw InputError(source, "", "a readable trajectory CSV file", "cannot open");
   std::string line;
   std::vector<std::string> header;
+  std::vector<std::size_t> column;  // cell index -> index in kLongHeader
   std::vector<std::vector<double>> rows;
   std::vector<int> line_numbers;
   int number = 0;
@@ -228,13 +229,28 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
     if (first == std::string::npos || line[first] == '#') continue;
     auto fields = split_csv(line);
     if (header.empty()) {
-      for (auto& f : fields) {
+      // The header: each column named once, in any order; vx,vy,ax,ay all or none.
+      const std::string expected = "a header naming t,x,y,yaw (and optionally vx,vy,ax,ay)";
+      column.assign(fields.size(), 0);
+      std::vector<bool> seen(kLongHeader.size(), false);
+      for (std::size_t c = 0; c < fields.size(); ++c) {
+        std::string f = fields[c];
         f.erase(0, f.find_first_not_of(" \t"));
         f.erase(f.find_last_not_of(" \t") + 1);
+        const auto it = std::find(kLongHeader.begin(), kLongHeader.end(), f);
+        const std::string at = fmt::format("line {} column {}", number, c + 1);
+        if (it == kLongHeader.end())
+          throw InputError(source, at, expected, "'" + printable(f) + "'");
+        const auto k = static_cast<std::size_t>(it - kLongHeader.begin());
+        if (seen[k]) throw InputError(source, at, expected + ", each once", "'" + f + "' again");
+        seen[k] = true;
+        column[c] = k;
       }
-      if (fields != kShortHeader && fields != kLongHeader)
-        throw InputError(source, fmt::format("line {}", number),
-                         "the header t,x,y,yaw or t,x,y,yaw,vx,vy,ax,ay", printable(line));
+      const bool derivatives = seen[4] || seen[5] || seen[6] || seen[7];
+      for (std::size_t k = 0; k < (derivatives ? kLongHeader.size() : kShortHeader.size()); ++k)
+        if (!seen[k])
+          throw InputError(source, fmt::format("line {}", number), expected,
+                           fmt::format("no column '{}'", kLongHeader[k]));
       header = fields;
       continue;
     }
@@ -245,10 +261,11 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
     if (rows.size() >= kMaxSamples)
       throw InputError(source, fmt::format("line {}", number),
                        fmt::format("at most {} trajectory samples", kMaxSamples), "more samples");
-    std::vector<double> row;
+    // Cells land in t,x,y,yaw[,vx,vy,ax,ay] order, whatever the header's.
+    std::vector<double> row(fields.size());
     for (std::size_t i = 0; i < fields.size(); ++i)
-      row.push_back(
-          parse_number(fields[i], source, fmt::format("line {}, field '{}'", number, header[i])));
+      row[column[i]] = parse_number(
+          fields[i], source, fmt::format("line {}, field '{}'", number, kLongHeader[column[i]]));
     rows.push_back(row);
     line_numbers.push_back(number);
   }

@@ -53,6 +53,28 @@ TEST(TrajectoryBadInput, CsvCellsAreStrictDecimalNumbers) {
   EXPECT_DOUBLE_EQ(load_tether_scenario(ok).samples.back().p_WG.x(), 0.2);
 }
 
+TEST(TrajectoryBadInput, CsvColumnsByNameAnyOrder) {
+  test::TempDir dir;
+  // yaw first, time last: the values land by name.
+  const auto s = load_tether_scenario(write(dir, "p.csv", "yaw,y,x,t\n0.5,2,1,0\n0.5,3,1,2\n"));
+  ASSERT_EQ(s.samples.size(), 2u);
+  EXPECT_EQ(s.samples[1].t_s, 2.0);
+  EXPECT_EQ(s.samples[1].p_WG.x(), 1.0);
+  EXPECT_EQ(s.samples[1].p_WG.y(), 3.0);
+  EXPECT_EQ(s.samples[1].yaw_rad, 0.5);
+  EXPECT_DOUBLE_EQ(s.samples[0].v_WG.y(), 0.5);  // differentiated: 1 m in 2 s
+  const auto d = load_tether_scenario(
+      write(dir, "d.csv", "ay,ax,vy,vx,yaw,y,x,t\n8,7,6,5,0,0,0,0\n0,0,0,0,0,0,1,1\n"));
+  EXPECT_EQ(d.samples[0].v_WG, Eigen::Vector2d(5, 6));
+  EXPECT_EQ(d.samples[0].a_WG, Eigen::Vector2d(7, 8));
+  expect_error(write(dir, "ab.csv", "a,b\n1,2\n"), "line 1 column 1", "a header naming", "'a'");
+  expect_error(write(dir, "dup.csv", "t,x,y,yaw,x\n0,0,0,0,0\n"), "line 1 column 5", "each once");
+  expect_error(write(dir, "miss.csv", "t,x,yaw\n0,0,0\n"), "line 1", "a header naming",
+               "no column 'y'");
+  expect_error(write(dir, "half.csv", "t,x,y,yaw,vx\n0,0,0,0,0\n"), "line 1", "a header naming",
+               "no column 'vy'");
+}
+
 TEST(TrajectoryBadInput, DurationBoundedNotTheGap) {
   test::TempDir dir;
   // Two samples 1e7 s apart: 5e8 sim steps at 0.02 s; refused, naming the limit.
