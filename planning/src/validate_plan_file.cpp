@@ -5,6 +5,7 @@
 #include <octomap/OcTree.h>
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -199,12 +200,14 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
                       bounds->lo.z(), bounds->hi.x(), bounds->hi.y(), bounds->hi.z()));
     // At least one voxel centre on every axis (the map's own rule for a box).
     const double res = world.tree->getResolution();
+    const Eigen::Vector3d lo = bounds->lo, hi = bounds->hi;
+    const std::array<char, 3> axes{'x', 'y', 'z'};
     for (int a = 0; a < 3; ++a)
-      if (std::ceil(bounds->lo[a] / res - 0.5) > std::floor(bounds->hi[a] / res - 0.5))
+      if (std::ceil(lo[a] / res - 0.5) > std::floor(hi[a] / res - 0.5))
         throw InputError(
             bounds_origin.first, bounds_origin.second,
             fmt::format("a box holding a voxel centre on every axis ({:g} m voxels)", res),
-            fmt::format("{} from {:g} to {:g} m", "xyz"[a], bounds -> lo[a], bounds -> hi[a]));
+            fmt::format("{} from {:g} to {:g} m", axes[static_cast<std::size_t>(a)], lo[a], hi[a]));
   }
   // The floor under a miniUGV: from the map, never from the box's lower z (which may
   // lie anywhere in or under the floor slab).
