@@ -127,9 +127,10 @@ void setup(CLI::App& app) {
   sub->add_option("map", args->input, "map_server YAML, world YAML, or OctoMap .bt/.ot")
       ->required();
   add_out_option(sub, args->output, "output PNG");
-  sub->add_option("--plan", args->plan,
-                  "a plan to draw over the map: ferret plan's JSON or a CSV of t,x,y,z,yaw "
-                  "(default: none)");
+  sub->add_option(
+      "--plan", args->plan,
+      "a plan to draw over the map: ferret plan's JSON or a CSV with a header t,x,y,z,yaw "
+      "(default: none)");
   sub->add_option("--z", args->slice.z_m, "slice height for 3D maps, m")->capture_default_str();
   sub->add_option("--band", args->slice.half_band_m, "slice half band for 3D maps, m")
       ->capture_default_str();

@@ -66,7 +66,8 @@ const CommandRegistration kValidate{
           "Check a plan (plan JSON, JSON of states, or CSV t,x,y,z,yaw) against a world");
       add_world_option(cmd, args->world);
       cmd->add_option("--plan", args->plan,
-                      "plan: ferret plan JSON, a JSON {\"states\": [...]}, or CSV t,x,y,z,yaw")
+                      "plan: ferret plan JSON, a JSON {\"states\": [...]}, or a CSV with a "
+                      "header naming t,x,y,z,yaw (docs/planning.md)")
           ->required();
       add_robot_option(
           cmd, args->robot,

@@ -1,7 +1,8 @@
-#include <cmath>
 #include "ferret/planning/motion_check.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "ferret/planning/collision_checker.hpp"
 
@@ -17,7 +18,12 @@ Pose3 Waypoint::pose() const {
 int segment_steps(const Waypoint& a, const Waypoint& b, const CheckResolution& res) {
   const double dp = (b.position() - a.position()).norm();
   const double dyaw = std::abs(wrap_angle_rad(b.yaw_rad - a.yaw_rad));
-  return std::max(1, static_cast<int>(std::ceil(std::max(dp / res.step_m, dyaw / res.step_rad))));
+  const double n = std::ceil(std::max(dp / res.step_m, dyaw / res.step_rad));
+  // Saturates (a cast of a larger double is undefined): callers bound the work they
+  // accept (plan_check_count()).
+  constexpr int kMax = std::numeric_limits<int>::max() / 2;
+  if (!(n < kMax)) return kMax;
+  return std::max(1, static_cast<int>(n));
 }
 
 Waypoint interpolate(const Waypoint& a, const Waypoint& b, double s) {
@@ -30,8 +36,8 @@ Waypoint interpolate(const Waypoint& a, const Waypoint& b, double s) {
   return w;
 }
 
-std::optional<double> first_collision(CollisionChecker& checker, const Waypoint& a, const Waypoint& b,
-                                      const CheckResolution& res, bool exact) {
+std::optional<double> first_collision(CollisionChecker& checker, const Waypoint& a,
+                                      const Waypoint& b, const CheckResolution& res, bool exact) {
   const int n = segment_steps(a, b, res);
   for (int k = 0; k <= n; ++k) {
     const double s = static_cast<double>(k) / n;
@@ -45,7 +51,8 @@ double drive_heading_rad(const Waypoint& a, const Waypoint& b) {
   const double h = std::atan2(b.y_m - a.y_m, b.x_m - a.x_m);
   const double back = wrap_angle_rad(h + std::numbers::pi);
   const auto turning = [&](double heading) {
-    return std::abs(wrap_angle_rad(heading - a.yaw_rad)) + std::abs(wrap_angle_rad(b.yaw_rad - heading));
+    return std::abs(wrap_angle_rad(heading - a.yaw_rad)) +
+           std::abs(wrap_angle_rad(b.yaw_rad - heading));
   };
   return turning(back) < turning(h) - 1e-12 ? back : h;
 }
@@ -53,7 +60,10 @@ double drive_heading_rad(const Waypoint& a, const Waypoint& b) {
 double free_drive_heading_rad(const Waypoint& a, const Eigen::Vector2d& b) {
   const double h = std::atan2(b.y() - a.y_m, b.x() - a.x_m);
   const double back = wrap_angle_rad(h + std::numbers::pi);
-  return std::abs(wrap_angle_rad(back - a.yaw_rad)) < std::abs(wrap_angle_rad(h - a.yaw_rad)) - 1e-12 ? back : h;
+  return std::abs(wrap_angle_rad(back - a.yaw_rad)) <
+                 std::abs(wrap_angle_rad(h - a.yaw_rad)) - 1e-12
+             ? back
+             : h;
 }
 
 std::vector<Waypoint> turn_drive_turn(const Waypoint& a, const Waypoint& b) {
@@ -87,9 +97,9 @@ void assign_times(std::vector<Waypoint>& path, double max_velocity_mps, double m
   for (std::size_t k = 1; k < path.size(); ++k) {
     const double dp = (path[k].position() - path[k - 1].position()).norm();
     const double dyaw = std::abs(wrap_angle_rad(path[k].yaw_rad - path[k - 1].yaw_rad));
-    path[k].t_s = path[k - 1].t_s +
-                  std::max(rest_to_rest_time_s(dp, max_velocity_mps, max_acceleration_mps2),
-                           dyaw / max_yaw_rate_radps);
+    path[k].t_s =
+        path[k - 1].t_s + std::max(rest_to_rest_time_s(dp, max_velocity_mps, max_acceleration_mps2),
+                                   dyaw / max_yaw_rate_radps);
   }
 }
 

@@ -4,11 +4,91 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "ferret/tether_model/taut_tether.hpp"
 
 namespace ferret {
+namespace {
+
+// The world rectangle the canvas's map area shows, widened by `margin_px` (from its
+// affine world-to-pixel map, so any scale and flip).
+struct WorldBox {
+  Eigen::Vector2d lo, hi;
+};
+WorldBox visible_box(const MapCanvas& canvas, double margin_px) {
+  const Eigen::Vector2d o = canvas.to_pixel({0.0, 0.0});
+  Eigen::Matrix2d A;
+  A.col(0) = canvas.to_pixel({1.0, 0.0}) - o;
+  A.col(1) = canvas.to_pixel({0.0, 1.0}) - o;
+  const PixelRect r = canvas.map_area();
+  const Eigen::Matrix2d inv = A.inverse();
+  const Eigen::Vector2d a = inv * (Eigen::Vector2d(r.x - margin_px, r.y - margin_px) - o);
+  const Eigen::Vector2d b =
+      inv * (Eigen::Vector2d(r.x + r.width + margin_px, r.y + r.height + margin_px) - o);
+  return {a.cwiseMin(b), a.cwiseMax(b)};
+}
+
+// Liang-Barsky: the part of a -> b inside the box, if any.
+std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> clip(const Eigen::Vector2d& a,
+                                                                const Eigen::Vector2d& b,
+                                                                const WorldBox& box) {
+  double t0 = 0.0, t1 = 1.0;
+  const Eigen::Vector2d d = b - a;
+  for (int axis = 0; axis < 2; ++axis) {
+    for (const double sign : {-1.0, 1.0}) {
+      const double p = sign * d[axis];
+      const double q = sign > 0 ? box.hi[axis] - a[axis] : a[axis] - box.lo[axis];
+      if (p == 0.0) {
+        if (q < 0.0) return std::nullopt;
+        continue;
+      }
+      const double t = q / p;
+      if (p < 0.0)
+        t0 = std::max(t0, t);
+      else
+        t1 = std::min(t1, t);
+      if (t0 > t1) return std::nullopt;
+    }
+  }
+  return std::make_pair(Eigen::Vector2d(a + t0 * d), Eigen::Vector2d(a + t1 * d));
+}
+
+// A polyline drawn only where it can be seen: the drawing's work is bounded by the
+// picture, not by how far off the map a plan's segment runs (a line's cost grows with
+// its length in pixels).
+void draw_visible_path(MapCanvas& canvas, const std::vector<Eigen::Vector2d>& points, Rgb color,
+                       int thickness_px) {
+  if (points.size() < 2) {
+    if (!points.empty() && canvas.contains(points[0]))
+      canvas.draw_path(points, color, thickness_px);
+    return;
+  }
+  const WorldBox box = visible_box(canvas, 4.0 * thickness_px + 8.0);
+  std::vector<Eigen::Vector2d> run;  // consecutive visible segments, drawn as one path
+  const auto flush = [&] {
+    if (run.size() >= 2) canvas.draw_path(run, color, thickness_px);
+    run.clear();
+  };
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    const auto part = clip(points[k - 1], points[k], box);
+    if (!part) {
+      flush();
+      continue;
+    }
+    if (run.empty() || part->first != run.back()) {
+      flush();
+      run.push_back(part->first);
+    }
+    run.push_back(part->second);
+    if (part->second != points[k]) flush();  // it left the picture
+  }
+  flush();
+}
+
+}  // namespace
 
 std::string PlanOverlaySummary::describe() const {
   std::string s = fmt::format("{} state{}, {:.1f} m", states, states == 1 ? "" : "s", length_m);
@@ -49,7 +129,7 @@ PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan,
       tether.move_to(p);
       note();
     }
-    canvas.draw_path(tether.polyline(), style.tether, 2);
+    draw_visible_path(canvas, tether.polyline(), style.tether, 2);
     for (const Eigen::Vector2d& w : wraps) canvas.draw_marker(w, style.wrap, LegendMark::kRing, 6);
     canvas.draw_marker(plan.tether->p_WE, style.entry, LegendMark::kDiamond, 8);
     out.wraps = wraps.size();
@@ -64,7 +144,7 @@ PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan,
                         LegendMark::kRing);
   }
 
-  canvas.draw_path(path, style.path, 3);
+  draw_visible_path(canvas, path, style.path, 3);
   // Heading ticks at states at least tick_spacing_px apart along the path (and at both ends).
   const double px_per_m = canvas.to_pixel({1.0, 0.0}).x() - canvas.to_pixel({0.0, 0.0}).x();
   const double tick_m = 2.0 * style.tick_spacing_px / px_per_m;
@@ -73,6 +153,7 @@ PlanOverlaySummary draw_plan(MapCanvas& canvas, const PlanFile& plan,
     if (k > 0) since_m += (path[k] - path[k - 1]).norm();
     if (k != 0 && k + 1 != path.size() && since_m * px_per_m < style.tick_spacing_px) continue;
     since_m = 0.0;
+    if (!canvas.contains(path[k], tick_m)) continue;  // a tick off the map is not seen
     const double yaw = plan.states[k].yaw_rad;
     canvas.draw_path(
         {path[k], path[k] + 0.6 * tick_m * Eigen::Vector2d(std::cos(yaw), std::sin(yaw))},

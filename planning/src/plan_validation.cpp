@@ -123,6 +123,23 @@ void check_yaw_is_radians(const PlanFile& plan, const std::string& source) {
   }
 }
 
+std::uint64_t plan_check_count(const std::vector<Waypoint>& states, const CheckResolution& res) {
+  std::uint64_t n = states.empty() ? 0 : 1;
+  for (std::size_t k = 1; k < states.size() && n <= kMaxPlanChecks; ++k)
+    n += static_cast<std::uint64_t>(segment_steps(states[k - 1], states[k], res)) + 1;
+  return n;
+}
+
+void check_plan_work(const PlanFile& plan, const CheckResolution& res, const std::string& source) {
+  const std::uint64_t n = plan_check_count(plan.states, res);
+  if (n > kMaxPlanChecks)
+    throw InputError(
+        source, "states",
+        fmt::format("a plan of at most {} collision checks (one every {:g} m and {:g} rad)",
+                    kMaxPlanChecks, res.step_m, res.step_rad),
+        fmt::format("more than {} (plan too long to check)", kMaxPlanChecks));
+}
+
 ValidationReport validate_plan(const PlanFile& plan, CollisionChecker& exact,
                                const std::shared_ptr<const TetherCorners>& corners,
                                const ValidationOptions& options) {
@@ -137,6 +154,7 @@ ValidationReport validate_plan(const PlanFile& plan, CollisionChecker& exact,
   ValidationMargins& m = report.margins;
   const auto& states = plan.states;
   if (states.empty()) throw InputError("plan", "states", "at least one state");
+  check_plan_work(plan, options.resolution, "plan");
   const MotionLimits& lim = options.limits;
 
   auto at = [&](ViolationKind kind, std::size_t from, std::size_t to, double s, const Waypoint& w) {

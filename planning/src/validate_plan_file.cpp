@@ -5,6 +5,7 @@
 #include <octomap/OcTree.h>
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -120,15 +121,23 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
     urdf = load_robot_description(model, mission);
   }
   if (!plan.robot_known) {
+    // The plan is what lacks the robot; --robot is how to give it.
     if (!urdf)
-      throw InputError("--robot", "",
-                       "a URDF for a plan that does not say which robot it is (" + source + ")");
+      throw InputError(source, "robot",
+                       "a plan that names its robot, or --robot URDF|NAME (a CSV or a JSON of "
+                       "states does not say which robot it is)",
+                       "no robot");
     plan.robot = urdf->kind == RobotKind::kUgv ? PlanRobot::kUgv : PlanRobot::kUav;
   } else if (urdf && (urdf->kind == RobotKind::kUgv) != (plan.robot == PlanRobot::kUgv)) {
-    throw InputError("--robot", "",
+    if (request.robot_urdf)
+      throw InputError("--robot", "",
+                       fmt::format("a URDF of the plan's robot ({})", to_string(plan.robot)),
+                       urdf->source);
+    throw InputError(source, "robot_model",
                      fmt::format("a URDF of the plan's robot ({})", to_string(plan.robot)),
                      urdf->source);
   }
+  check_plan_work(plan, default_resolution(plan.robot), source);
   const bool ugv = plan.robot == PlanRobot::kUgv;
   // A ground robot's box (the unknown-is-occupied band, the tether's obstacle band):
   // its URDF's, as the planner used it; the miniUGV's defaults for built-in shapes.
@@ -139,6 +148,10 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
   // and for the miniUGV the tether's obstacle region.
   std::optional<Aabb3> bounds = request.bounds ? request.bounds : plan.bounds;
   std::string bounds_source = request.bounds ? "--bounds" : "plan";
+  // Where a bad box came from, for messages: the option, the plan's field or the world's.
+  std::pair<std::string, std::string> bounds_origin =
+      request.bounds ? std::pair<std::string, std::string>{"--bounds", ""}
+                     : std::pair<std::string, std::string>{source, "bounds"};
   std::optional<Eigen::Vector2d> entry = request.p_WE;
   std::optional<double> floor_z = request.floor_z_m;
   std::string floor_source = "--floor-z";
@@ -151,6 +164,7 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
       if (!bounds) {
         bounds = ugv_policy_bounds(space, ugv_box);
         bounds_source = "hidden space " + h.name;
+        bounds_origin = {world_path.string(), "hidden space '" + h.name + "'"};
       }
       if (!entry && !plan.tether) entry = space.p_WE;
       if (!floor_z) {
@@ -162,19 +176,48 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
   UnknownPolicy unknown =
       plan.unknown_policy.value_or(ugv ? UnknownPolicy::kOccupied : UnknownPolicy::kFree);
   if (request.unknown) unknown = *request.unknown;
+  // No box: the plan has none and no hidden space holds its start; --bounds would give one.
+  const std::string no_box = world.spec ? ", no hidden space of the world holds its start" : "";
   if (unknown == UnknownPolicy::kOccupied && !bounds)
-    throw InputError("--bounds", "", "x0,y0,z0,x1,y1,z1: where unknown space counts as occupied");
+    throw InputError(source, "bounds",
+                     "a box where unknown space counts as occupied (the plan's bounds, a hidden "
+                     "space holding its start, or --bounds x0,y0,z0,x1,y1,z1)",
+                     "the plan has no bounds" + no_box);
   if (ugv && !bounds)
-    throw InputError("--bounds", "", "the hidden space's bounds for the tether's obstacles");
+    throw InputError(source, "bounds",
+                     "the hidden space's box for the tether's obstacles (the plan's bounds, a "
+                     "hidden space holding its start, or --bounds x0,y0,z0,x1,y1,z1)",
+                     "the plan has no bounds" + no_box);
+  // The box becomes voxel keys: it must lie inside the map's key range (named where it came from).
+  if (bounds && (ugv || unknown == UnknownPolicy::kOccupied)) {
+    const double span_m = 32766.0 * world.tree->getResolution() - 1.0;
+    if (!((bounds->lo.array().abs() <= span_m).all() && (bounds->hi.array().abs() <= span_m).all()))
+      throw InputError(
+          bounds_origin.first, bounds_origin.second,
+          fmt::format("a box within +-{:g} m (the map's key range at {:g} m voxels)", span_m,
+                      world.tree->getResolution()),
+          fmt::format("[{:g}, {:g}, {:g}] - [{:g}, {:g}, {:g}]", bounds->lo.x(), bounds->lo.y(),
+                      bounds->lo.z(), bounds->hi.x(), bounds->hi.y(), bounds->hi.z()));
+    // At least one voxel centre on every axis (the map's own rule for a box).
+    const double res = world.tree->getResolution();
+    const Eigen::Vector3d lo = bounds->lo, hi = bounds->hi;
+    const std::array<char, 3> axes{'x', 'y', 'z'};
+    for (int a = 0; a < 3; ++a)
+      if (std::ceil(lo[a] / res - 0.5) > std::floor(hi[a] / res - 0.5))
+        throw InputError(
+            bounds_origin.first, bounds_origin.second,
+            fmt::format("a box holding a voxel centre on every axis ({:g} m voxels)", res),
+            fmt::format("{} from {:g} to {:g} m", axes[static_cast<std::size_t>(a)], lo[a], hi[a]));
+  }
   // The floor under a miniUGV: from the map, never from the box's lower z (which may
   // lie anywhere in or under the floor slab).
   if (ugv && !floor_z) {
     floor_z = floor_z_from_map(*world.tree, *bounds);
     floor_source = "map";
     if (!floor_z)
-      throw InputError(
-          "--floor-z", "",
-          "the floor height (no occupied voxels under the bounds in " + world_path.string() + ")");
+      throw InputError(world_path.string(),
+                       request.bounds ? "floor under --bounds" : "floor under the plan's bounds",
+                       "occupied voxels under the box to find the floor (or --floor-z Z)", "none");
   }
 
   // The geofence: the box, else the world's bounds (world YAML) or the map's extent.
@@ -238,8 +281,10 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
   if (ugv && !plan.tether && !opt.tether_max_m)
     opt.tether_max_m = mission.tether.total_length_m - mission.tether.entry_offset_m;
   if (ugv && !plan.tether && !entry)
-    throw InputError("--entry", "",
-                     "the tether's entry point x,y (the plan has no tether section)");
+    throw InputError(source, "tether",
+                     "a tether section, a hidden space of the world holding the plan's start, "
+                     "or --entry x,y",
+                     "no tether entry");
   opt.observed = world.tree.get();
   if (world.spec) opt.name_obstacle = world_namer(*world.spec);
   std::shared_ptr<const TetherCorners> corners;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -125,15 +126,47 @@ std::vector<Eigen::Vector2d> default_waypoints() {
   return {{0.3, 0.0}, {4.2, 0.0}, {4.2, 3.0}, {1.5, 3.0}, {4.2, 3.0}, {4.2, 0.0}, {0.3, 0.0}};
 }
 
+// The limits on what a trajectory may ask the simulator to do (docs/tether.md): the
+// sim steps at its physics rate over the whole time span, so the span is bounded, not
+// the gaps between samples.
+constexpr double kMaxDuration_s = 3600.0;
+constexpr std::size_t kMaxSamples = 1'000'000;
+constexpr double kMaxCoordinate_m = 1e5;
+
+// Messages are one printable line: control and non-ASCII bytes of the file are
+// escaped, a long echo cut short.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (out.size() >= 80) return out + "...";
+    const auto u = static_cast<unsigned char>(c);
+    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
+  }
+  return out;
+}
+
+// The one place trajectory numbers are judged (the shared number type replaces it):
+// a decimal number, no hex, no nan/inf, nothing after it; 1e400 is out of range.
 double parse_number(const std::string& text, const std::string& source, const std::string& field) {
   std::string trimmed = text;
   trimmed.erase(0, trimmed.find_first_not_of(" \t\r"));
   trimmed.erase(trimmed.find_last_not_of(" \t\r") + 1);
-  char* end = nullptr;
-  const double v = trimmed.empty() ? NAN : std::strtod(trimmed.c_str(), &end);
-  if (trimmed.empty() || end != trimmed.c_str() + trimmed.size() || !std::isfinite(v))
-    throw InputError(source, field, "a finite number", trimmed);
+  const char* b = trimmed.data() + (!trimmed.empty() && trimmed[0] == '+' ? 1 : 0);
+  const char* e = trimmed.data() + trimmed.size();
+  if (b != e && b != trimmed.data() && (*b == '+' || *b == '-')) b = e;  // "+-1": no number
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(b, e, v, std::chars_format::general);
+  if (trimmed.empty() || ec != std::errc() || ptr != e || !std::isfinite(v))
+    throw InputError(source, field, "a finite number", "'" + printable(trimmed) + "'");
   return v;
+}
+
+void check_duration(double duration_s, const std::string& source, const std::string& field) {
+  if (!(duration_s <= kMaxDuration_s))
+    throw InputError(
+        source, field,
+        fmt::format("a trajectory of at most {:g} s of simulated time", kMaxDuration_s),
+        fmt::format("{:g} s", duration_s));
 }
 
 std::vector<std::string> split_csv(const std::string& line) {
@@ -167,6 +200,10 @@ std::vector<TrajectorySample> samples_from_rows(const std::vector<std::vector<do
     if (!out.empty() && !(s.t_s > out.back().t_s))
       throw InputError(source, where(i) + ", field 't'",
                        "a time greater than the previous sample's", fmt::format("{}", s.t_s));
+    if (!(s.p_WG.cwiseAbs().maxCoeff() <= kMaxCoordinate_m))
+      throw InputError(source, where(i) + ", field 'x'/'y'", "a position within +-100000 m",
+                       fmt::format("({:g}, {:g})", s.p_WG.x(), s.p_WG.y()));
+    if (!out.empty()) check_duration(s.t_s - out.front().t_s, source, where(i) + ", field 't'");
     out.push_back(s);
   }
   if (out.size() < 2)
@@ -181,6 +218,7 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
   if (!in) throw InputError(source, "", "a readable trajectory CSV file", "cannot open");
   std::string line;
   std::vector<std::string> header;
+  std::vector<std::size_t> column;  // cell index -> index in kLongHeader
   std::vector<std::vector<double>> rows;
   std::vector<int> line_numbers;
   int number = 0;
@@ -191,13 +229,28 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
     if (first == std::string::npos || line[first] == '#') continue;
     auto fields = split_csv(line);
     if (header.empty()) {
-      for (auto& f : fields) {
+      // The header: each column named once, in any order; vx,vy,ax,ay all or none.
+      const std::string expected = "a header naming t,x,y,yaw (and optionally vx,vy,ax,ay)";
+      column.assign(fields.size(), 0);
+      std::vector<bool> seen(kLongHeader.size(), false);
+      for (std::size_t c = 0; c < fields.size(); ++c) {
+        std::string f = fields[c];
         f.erase(0, f.find_first_not_of(" \t"));
         f.erase(f.find_last_not_of(" \t") + 1);
+        const auto it = std::find(kLongHeader.begin(), kLongHeader.end(), f);
+        const std::string at = fmt::format("line {} column {}", number, c + 1);
+        if (it == kLongHeader.end())
+          throw InputError(source, at, expected, "'" + printable(f) + "'");
+        const auto k = static_cast<std::size_t>(it - kLongHeader.begin());
+        if (seen[k]) throw InputError(source, at, expected + ", each once", "'" + f + "' again");
+        seen[k] = true;
+        column[c] = k;
       }
-      if (fields != kShortHeader && fields != kLongHeader)
-        throw InputError(source, fmt::format("line {}", number),
-                         "the header t,x,y,yaw or t,x,y,yaw,vx,vy,ax,ay", line);
+      const bool derivatives = seen[4] || seen[5] || seen[6] || seen[7];
+      for (std::size_t k = 0; k < (derivatives ? kLongHeader.size() : kShortHeader.size()); ++k)
+        if (!seen[k])
+          throw InputError(source, fmt::format("line {}", number), expected,
+                           fmt::format("no column '{}'", kLongHeader[k]));
       header = fields;
       continue;
     }
@@ -205,10 +258,14 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
       throw InputError(source, fmt::format("line {}", number),
                        fmt::format("{} comma-separated numbers", header.size()),
                        fmt::format("{} fields", fields.size()));
-    std::vector<double> row;
+    if (rows.size() >= kMaxSamples)
+      throw InputError(source, fmt::format("line {}", number),
+                       fmt::format("at most {} trajectory samples", kMaxSamples), "more samples");
+    // Cells land in t,x,y,yaw[,vx,vy,ax,ay] order, whatever the header's.
+    std::vector<double> row(fields.size());
     for (std::size_t i = 0; i < fields.size(); ++i)
-      row.push_back(
-          parse_number(fields[i], source, fmt::format("line {}, field '{}'", number, header[i])));
+      row[column[i]] = parse_number(
+          fields[i], source, fmt::format("line {}, field '{}'", number, kLongHeader[column[i]]));
     rows.push_back(row);
     line_numbers.push_back(number);
   }
@@ -220,6 +277,8 @@ std::vector<TrajectorySample> read_csv_samples(const std::filesystem::path& path
 
 Eigen::Vector2d read_xy(const yaml::MapReader& r, std::string_view key) {
   const auto v = r.get_list<double>(key, 2);
+  if (!(std::abs(v[0]) <= kMaxCoordinate_m && std::abs(v[1]) <= kMaxCoordinate_m))
+    r.fail(key, "a point [x, y] within +-100000 m", fmt::format("[{}, {}]", v[0], v[1]));
   return {v[0], v[1]};
 }
 
@@ -277,10 +336,22 @@ TetherScenario read_yaml_scenario(const std::filesystem::path& path) {
       waypoints.emplace_back(script.convert<double>(list[i][0], field + "[0]"),
                              script.convert<double>(list[i][1], field + "[1]"));
     }
+    const double cruise = script.get_in_range("cruise_mps", 1e-3, 10.0);
+    const double accel = script.get_in_range("accel_mps2", 1e-3, 100.0);
+    const double dwell = script.get_in_range_or("dwell_s", 0.0, 1e4, 0.0);
+    // The script's duration before its samples are made (the same profile as
+    // scripted_trajectory: accelerate, cruise, brake, dwell).
+    double duration_s = 0.0;
+    for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
+      const double length = (waypoints[i + 1] - waypoints[i]).norm();
+      if (!(length >= 1e-9)) continue;
+      duration_s += (length >= cruise * cruise / accel ? length / cruise + cruise / accel
+                                                       : 2.0 * std::sqrt(length / accel)) +
+                    dwell;
+    }
+    check_duration(duration_s, source, script.field_path("waypoints_xy_m"));
     try {
-      scn.samples = scripted_trajectory(waypoints, script.get_in_range("cruise_mps", 1e-3, 10.0),
-                                        script.get_in_range("accel_mps2", 1e-3, 100.0),
-                                        script.get_in_range_or("dwell_s", 0.0, 1e4, 0.0));
+      scn.samples = scripted_trajectory(waypoints, cruise, accel, dwell);
     } catch (const std::invalid_argument&) {
       script.fail("waypoints_xy_m", "waypoints that are not all the same point");
     }
@@ -290,6 +361,9 @@ TetherScenario read_yaml_scenario(const std::filesystem::path& path) {
       root.fail("samples", "a list of [t, x, y, yaw] or [t, x, y, yaw, vx, vy, ax, ay]");
     std::vector<std::vector<double>> rows;
     std::size_t width = 0;
+    if (list.size() > kMaxSamples)
+      root.fail("samples", fmt::format("at most {} trajectory samples", kMaxSamples),
+                std::to_string(list.size()));
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string field = fmt::format("samples[{}]", i);
       if (!list[i].IsSequence() || (list[i].size() != 4 && list[i].size() != 8) ||
@@ -397,18 +471,17 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   auto& ctl = c.sim.control;
   if (const auto r = root.optional_child("control")) {
     r->allow_only({"slack_reference_m", "max_slack_m", "pose_filter_gain", "guard_n",
-                   "max_tension_n", "max_speed_mps", "max_acceleration_mps2",
-                   "ugv_velocity_lag_s", "tension_fusion", "observer_pose_noise_m",
-                   "observer_tension_noise_n", "observer_speed_noise_mps",
-                   "servo_time_constant_s"});
+                   "max_tension_n", "max_speed_mps", "max_acceleration_mps2", "ugv_velocity_lag_s",
+                   "tension_fusion", "observer_pose_noise_m", "observer_tension_noise_n",
+                   "observer_speed_noise_mps", "servo_time_constant_s"});
     ctl.slack_reference_m =
         r->get_in_range_or("slack_reference_m", -0.1, 1.0, ctl.slack_reference_m);
     ctl.max_slack_m = r->get_in_range_or("max_slack_m", 0.0, 10.0, ctl.max_slack_m);
     ctl.pose_filter_gain = r->get_in_range_or("pose_filter_gain", 1e-3, 1.0, ctl.pose_filter_gain);
     ctl.ugv_velocity_lag_s =
         r->get_in_range_or("ugv_velocity_lag_s", 0.0, 5.0, ctl.ugv_velocity_lag_s);
-    ctl.limits.velocity_time_constant_s = r->get_in_range_or(
-        "servo_time_constant_s", 1e-4, 1.0, ctl.limits.velocity_time_constant_s);
+    ctl.limits.velocity_time_constant_s =
+        r->get_in_range_or("servo_time_constant_s", 1e-4, 1.0, ctl.limits.velocity_time_constant_s);
     auto& obs = ctl.slack_observer;
     obs.tension_fusion = r->get_or<bool>("tension_fusion", obs.tension_fusion);
     obs.pose_noise_m = r->get_in_range_or("observer_pose_noise_m", 0.0, 1.0, obs.pose_noise_m);
@@ -429,8 +502,7 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   }
   if (const auto r = root.optional_child("mpc")) {
     r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "use_preview",
-                   "weight_slack",
-                   "weight_command_rate", "weight_feedforward", "weight_terminal",
+                   "weight_slack", "weight_command_rate", "weight_feedforward", "weight_terminal",
                    "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic"});
     auto& m = c.mpc;
     m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
@@ -463,8 +535,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   }
   if (const auto r = root.optional_child("sim")) {
     r->allow_only({"link_latency_s", "pose_noise_m", "tension_noise_n", "ugv_preview_s",
-                   "ugv_preview_step_s", "ugv_velocity_lag_s",
-                   "ugv_slip_noise_mps", "ugv_slip_time_s", "ugv_tracking_time_s"});
+                   "ugv_preview_step_s", "ugv_velocity_lag_s", "ugv_slip_noise_mps",
+                   "ugv_slip_time_s", "ugv_tracking_time_s"});
     c.sim.link_latency_s = r->get_in_range_or("link_latency_s", 0.0, 1.0, c.sim.link_latency_s);
     c.sim.pose_noise_m = r->get_in_range_or("pose_noise_m", 0.0, 1.0, c.sim.pose_noise_m);
     c.sim.tension_noise_n =

@@ -130,12 +130,31 @@ TEST(RenderCli, PlanDrawnWhereItsPosesProject) {
 TEST(RenderCli, PlanPartlyOutsideTheMapIsDrawnAndSaid) {
   TempDir dir;
   write_free_map(dir);
-  write(dir / "p.csv", "0,2,3,0,0\n1,4,3,0,0\n2,9,3,0,0\n3,9,9,0,0\n");
+  write(dir / "p.csv", "t,x,y,z,yaw\n0,2,3,0,0\n1,4,3,0,0\n2,9,3,0,0\n3,9,9,0,0\n");
   const auto r = run_cli("render " + (dir / "f.yaml") + " --plan " + (dir / "p.csv") + " -o " +
                          (dir / "o.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("2 of 4 states outside the map"));
   EXPECT_TRUE(std::filesystem::is_regular_file(dir / "o.png"));
+}
+
+// A plan far out: a waypoint at 4e9 m is bad input (the plan format's +-1e5 m bound),
+// named by file and cell, without a PNG; one at the bound is drawn (clipped) at once.
+TEST(RenderCli, FarPlanIsBadInputOrClippedNeverABlowUp) {
+  TempDir dir;
+  write_free_map(dir);
+  write(dir / "far.csv", "t,x,y,z,yaw\n0,2,3,0,0\n1,4e9,3,0,0\n");
+  const auto r = run_cli("render " + (dir / "f.yaml") + " --plan " + (dir / "far.csv") + " -o " +
+                         (dir / "o.png"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("far.csv: line 3 column 2 (x): expected a coordinate within"));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "o.png"));
+  write(dir / "edge.csv", "t,x,y,z,yaw\n0,2,3,0,0\n1,100000,-100000,0,0\n");
+  const auto e = run_cli("render " + (dir / "f.yaml") + " --plan " + (dir / "edge.csv") + " -o " +
+                         (dir / "o.png"));
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_THAT(e.out, HasSubstr("1 of 2 states outside the map"));
 }
 
 // A window cuts the picture, not the obstacles the tether wraps on: the same plan gives
@@ -167,7 +186,7 @@ TEST(RenderCli, TetherOfAPlanDoesNotDependOnTheWindow) {
 TEST(RenderCli, BadPlanExitsTwoNamingTheFileWithoutPng) {
   TempDir dir;
   write_free_map(dir);
-  write(dir / "nan.csv", "0,1.5,3,0,0\n1,nan,3,0,0\n");
+  write(dir / "nan.csv", "t,x,y,z,yaw\n0,1.5,3,0,0\n1,nan,3,0,0\n");
   write(dir / "broken.json", "{\"robot\": \"ugv\", \"states\": [");
   const std::size_t before = dir.count();
   for (const std::string bad : {"nan.csv", "broken.json", "absent.csv"}) {

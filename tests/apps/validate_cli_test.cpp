@@ -177,7 +177,8 @@ TEST(ValidateCli, BadPlanFilesExitTwo) {
        R"({"format": "ferret-plan", "version": 1, "robot": "ugv", "states": [{}]})"},
       {"field.json",
        ugv_plan("{\"t_s\": 0, \"x_m\": \"one\", \"y_m\": 1, \"z_m\": 0, \"yaw_rad\": 0}")},
-      {"short.csv", "0,1,1,0\n"},
+      {"short.csv", "t,x,y,z,yaw\n0,1,1,0\n"},
+      {"noheader.csv", "0,1,1,0,0\n"},
   };
   for (const auto& [name, text] : bad) {
     const auto r = validate(write(dir, name, text), "--robot urdf/models/miniugv.urdf --entry 0,4");
@@ -185,6 +186,83 @@ TEST(ValidateCli, BadPlanFilesExitTwo) {
     EXPECT_NE(r.err.find(name), std::string::npos) << r.err;  // the message names the file
   }
   EXPECT_EQ(validate(dir / "missing.json").exit_code, 2);
+}
+
+// What the mutation campaign found, generated here: each exits 2 with one line naming
+// the plan file and the field, and prints no report.
+void expect_bad_plan(const Outcome& r, const std::string& file_and_field) {
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind("ferret: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(file_and_field), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST(ValidateCli, CsvHeaderReadByNameNotPosition) {
+  // Time last: read by position this was "a collision at t = -2 s"; by name it is the
+  // valid drive of HandMadeValidPlan's CSV twin.
+  TempDir dir;
+  const auto p = write(dir, "perm.csv", "x,y,z,yaw,t\n1,1,0,0,0\n2,1,0,0,1\n");
+  const auto r = validate(p, "--robot miniugv --entry -0.1,4");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  expect_bad_plan(validate(write(dir, "ab.csv", "a,b\n1,2\n"), "--robot miniugv --entry -0.1,4"),
+                  "ab.csv: line 1 column 1: expected a header");
+}
+
+TEST(ValidateCli, MalformedPlanJsonIsBadInput) {
+  TempDir dir;
+  const std::string ok = state(0, 1, 1, 0) + "," + state(2, 3, 1, 0);
+  expect_bad_plan(
+      validate(write(dir, "big.json",
+                     ugv_plan(state(0, 1, 1, 0) +
+                              R"(,{"t_s": 2, "x_m": 1e400, "y_m": 1, "z_m": 0, "yaw_rad": 0})"))),
+      "big.json: states[1].x_m: expected a finite number (got 1e400)");
+  expect_bad_plan(validate(write(dir, "dup.json", ugv_plan(ok, 15, R"( "robot": "uav",)"))),
+                  "dup.json: robot: expected each key once");
+  expect_bad_plan(validate(write(dir, "key.json", ugv_plan(ok, 15, R"( "bound": {},)"))),
+                  "key.json: bound: expected one of the keys");
+  expect_bad_plan(
+      validate(write(dir, "deep.json", std::string(100000, '[') + std::string(100000, ']'))),
+      "deep.json: line 1: expected JSON nested at most 64 levels deep");
+}
+
+TEST(ValidateCli, FarWaypointIsBadInputWithinSeconds) {
+  // 4e9 m grew to GBs, then bad_alloc (exit 3); the coordinate bound refuses it at once.
+  TempDir dir;
+  expect_bad_plan(validate(write(dir, "far.csv", "t,x,y,z,yaw\n0,1,1,0,0\n1,4e9,1,0,0\n"),
+                           "--robot miniugv --entry -0.1,4"),
+                  "far.csv: line 3 column 2 (x): expected a coordinate within +-100000 m");
+  // Within the bound but too long to check: six legs of 1e5 m at the UAV's 0.05 m step.
+  std::string legs = "t,x,y,z,yaw\n";
+  for (int k = 0; k <= 6; ++k)
+    legs += std::to_string(k * 1000) + "," + (k % 2 ? "100000" : "0") + ",1,1,0\n";
+  expect_bad_plan(validate(write(dir, "long.csv", legs), "--robot m100"),
+                  "long.csv: states: expected a plan of at most 10000000 collision checks");
+}
+
+TEST(ValidateCli, MessagesNameThePlanNotAnOptionNeverGiven) {
+  TempDir dir;
+  // No robot in the plan: the plan is named; --robot is how to give one.
+  const auto states = write(dir, "states.json", "{\"states\": [" + state(0, 1, 1, 0) + "]}");
+  expect_bad_plan(validate(states), "states.json: robot: expected a plan that names its robot");
+  // A miniUGV CSV far from every hidden space: the plan has no box.
+  const auto away = write(dir, "away.csv", "t,x,y,z,yaw\n0,50,50,0,0\n1,51,50,0,0\n");
+  expect_bad_plan(validate(away, "--robot miniugv"), "away.csv: bounds: expected");
+  // A box, a floor, but no entry: the plan's missing tether section is named.
+  expect_bad_plan(validate(away, "--robot miniugv --bounds 49,49,0,53,52,0.2 --floor-z 0"),
+                  "away.csv: tether: expected a tether section");
+  // The plan's own box beyond the map's key range (unknown occupied turns it into keys).
+  const std::string huge = R"({"format": "ferret-plan", "version": 1, "robot": "uav",
+      "unknown_policy": "occupied", "bounds": {"min": [-90000, -1, 0], "max": [90000, 9, 3]},
+      "states": [)" + state(0, 1, -0.5, 0) +
+                           "]}";
+  // A box of no voxel: the plan's field is named, not the map.
+  const std::string flat =
+      ugv_plan(state(0, 1, 1, 0), 15, R"( "bounds": {"min": [1, 1, 0.01], "max": [2, 2, 0.01]},)");
+  expect_bad_plan(validate(write(dir, "flat.json", flat)),
+                  "flat.json: bounds: expected a box holding a voxel centre on every axis");
+  expect_bad_plan(validate(write(dir, "huge.json", huge)),
+                  "huge.json: bounds: expected a box within");
 }
 
 template <typename Result>
@@ -216,7 +294,8 @@ TEST(ValidateCli, JsonMatchesTheSchema) {
       {"ok.json", ugv_plan(state(0, 1, 1, 0) + "," + state(2, 3, 1, 0)), "", 0},
       {"wall.json", ugv_plan(state(0, 2, 4, 0) + "," + state(8, 10, 4, 0)), "", 1},
       {"ok.csv", "t,x,y,z,yaw\n0,1,1,0,0\n1,2,1,0,0\n", csv_robot, 0},
-      {"fast.csv", "# another tool\n0,1,1,0,0\n0.25,2,1,0,0\n0.5,2,1,0,1.5707963\n", csv_robot, 1},
+      {"fast.csv", "# another tool\nt,x,y,z,yaw\n0,1,1,0,0\n0.25,2,1,0,0\n0.5,2,1,0,1.5707963\n",
+       csv_robot, 1},
       {"states.json", "{\"states\": [" + state(0, 1, 1, 0) + "," + state(2, 3, 1, 0) + "]}",
        csv_robot, 0},
       {"states_wall.json", "{\"states\": [" + state(0, 2, 4, 0) + "," + state(8, 10, 4, 0) + "]}",
@@ -314,7 +393,8 @@ TEST(ValidateCli, CsvFarOutsideTheWorldBreaksItsBounds) {
   EXPECT_EQ(doc["inputs"]["geofence_source"], "world bounds");
   EXPECT_EQ(doc["inputs"]["geofence"]["max"][0], 13.0);
   // Inside the world, the same flight is valid.
-  EXPECT_EQ(validate(write(dir, "near.csv", "0,1,-0.5,0.9,0\n10,12,-0.5,0.9,0\n"), "--robot m100")
+  EXPECT_EQ(validate(write(dir, "near.csv", "t,x,y,z,yaw\n0,1,-0.5,0.9,0\n10,12,-0.5,0.9,0\n"),
+                     "--robot m100")
                 .exit_code,
             0);
 }
@@ -401,7 +481,7 @@ boxes:
     EXPECT_EQ(run_cli(args + " --tether-budget 6").exit_code, 0);
   }
   // Without bounds a UAV's geofence is the map's extent (here z <= 1 m).
-  const auto uav = write(dir, "high.csv", "0,1,1,0.5,0\n10,5,1,2,0\n");
+  const auto uav = write(dir, "high.csv", "t,x,y,z,yaw\n0,1,1,0.5,0\n10,5,1,2,0\n");
   const auto r = run_cli("validate --world " + bt + " --plan " + uav + " --robot m100 --json");
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   const auto doc = json_of(r);

@@ -4,8 +4,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "ferret/core/error.hpp"
+#include "support/json_schema.hpp"
 
 namespace ferret {
 namespace {
@@ -50,19 +52,21 @@ TEST(PlanFile, JsonRoundTripsExactly) {
   EXPECT_EQ(q.seed, 42u);
 }
 
-TEST(PlanFile, CsvWithAndWithoutHeader) {
+TEST(PlanFile, CsvHeaderShortOrUnitNames) {
   const PlanFile a = parse_plan("t,x,y,z,yaw\n0,1,2,3,0.5\n1.5, 2, 2, 3, 0.5\n", "a.csv");
   EXPECT_FALSE(a.robot_known);
   ASSERT_EQ(a.states.size(), 2u);
   EXPECT_EQ(a.states[1].t_s, 1.5);
   EXPECT_EQ(a.states[1].x_m, 2.0);
-  const PlanFile b = parse_plan("# comment\n0,1,2,3,0.5\r\n", "b.csv");
-  EXPECT_EQ(b.states.size(), 1u);
-  const PlanFile c = parse_plan("# comment\n\ntime,x,y,z,heading\n0,1,2,3,0.5\n", "c.csv");
-  EXPECT_EQ(c.states.size(), 1u);
+  const PlanFile b =
+      parse_plan("# comment\n\n t_s , x_m,y_m,z_m,yaw_rad\r\n0,1,2,3,0.5\r\n", "b.csv");
+  ASSERT_EQ(b.states.size(), 1u);
+  EXPECT_EQ(b.states[0].z_m, 3.0);
+  EXPECT_EQ(b.states[0].yaw_rad, 0.5);
 }
 
-void expect_error(const std::string& text, const std::string& field, const std::string& expected_part) {
+void expect_error(const std::string& text, const std::string& field,
+                  const std::string& expected_part) {
   try {
     (void)parse_plan(text, "plan.json");
     FAIL() << "accepted: " << text;
@@ -76,7 +80,7 @@ void expect_error(const std::string& text, const std::string& field, const std::
 TEST(PlanFile, BadFilesNameTheFieldAndTheExpectation) {
   std::string good = plan_to_json(sample());
   expect_error("", "", "a plan");
-  expect_error("{\"format\": \"ferret-plan\", ", "", "valid JSON");
+  expect_error("{\"format\": \"ferret-plan\", ", "line 1 column 27", "valid JSON");  // at the end
   expect_error("{\"format\": \"other\"}", "format", "ferret-plan");
   expect_error("{\"format\": \"ferret-plan\", \"version\": 2}", "version", "1");
   auto replace = [&](const std::string& from, const std::string& to) {
@@ -89,12 +93,46 @@ TEST(PlanFile, BadFilesNameTheFieldAndTheExpectation) {
   expect_error(replace("\"x_m\": 10.0", "\"x_m\": \"ten\""), "states[0].x_m", "a finite number");
   expect_error(replace("\"side\": -1", "\"side\": 0"), "tether.initial_wraps[0].side", "1 or -1");
   expect_error(replace("\"entry\": [", "\"entry\": [1, "), "tether.entry", "a list of 2 numbers");
-  expect_error(replace("\"unknown_policy\": \"occupied\"", "\"unknown_policy\": \"maybe\""), "unknown_policy", "\"free\" or");
-  expect_error("t,x,y,z,yaw\n0,1,2,3\n", "line 2", "t,x,y,z,yaw");
-  expect_error("0,1,2,3,0\nt,x,y,z,yaw\n", "line 2", "t,x,y,z,yaw");  // a header only comes first
-  expect_error("0,1,2,3,abc\n", "line 1", "t,x,y,z,yaw");
-  expect_error("0,1,2,3,nan\n", "line 1", "t,x,y,z,yaw");
+  expect_error(replace("\"unknown_policy\": \"occupied\"", "\"unknown_policy\": \"maybe\""),
+               "unknown_policy", "\"free\" or");
+  expect_error("t,x,y,z,yaw\n0,1,2,3\n", "line 2", "5 comma-separated numbers");
+  expect_error("0,1,2,3,0\nt,x,y,z,yaw\n", "line 1 column 1", "a header");  // header first
+  expect_error("t,x,y,z,yaw\n0,1,2,3,abc\n", "line 2 column 5 (yaw)", "a finite number");
   EXPECT_THROW((void)load_plan("/nonexistent/plan.json"), InputError);
+}
+
+test::JsonSchema plan_schema() {
+  std::ifstream in(std::string(FERRET_SOURCE_DIR) + "/docs/plan.schema.json");
+  return test::JsonSchema(nlohmann::json::parse(in));
+}
+
+// docs/plan.schema.json and the reader agree: what ferret writes and every shipped JSON
+// plan conform and parse; documents the schema refuses, the reader refuses too.
+TEST(PlanFile, ShippedAndWrittenPlansMatchTheSchema) {
+  const test::JsonSchema schema = plan_schema();
+  const auto written = nlohmann::json::parse(plan_to_json(sample()));
+  const auto errors = schema.errors(written);
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  int shipped = 0;
+  for (const auto& f :
+       std::filesystem::directory_iterator(std::string(FERRET_SOURCE_DIR) + "/examples/plans")) {
+    if (f.path().extension() != ".json") continue;
+    ++shipped;
+    std::ifstream in(f.path());
+    const auto doc = nlohmann::json::parse(in);
+    const auto e = schema.errors(doc);
+    EXPECT_TRUE(e.empty()) << f.path() << ": " << e.front();
+    EXPECT_NO_THROW((void)load_plan(f.path())) << f.path();
+  }
+  EXPECT_GE(shipped, 4);
+  for (
+      const std::string bad :
+      {R"({"states": [{"t_s": 0, "x_m": 0, "y_m": 0, "z_m": 0, "yaw_rad": 0, "v": 1}]})",
+       R"({"format": "ferret-plan", "version": 1, "robot": "uav", "states": [], "x": 1})",
+       R"({"format": "ferret-plan", "version": 1, "robot": "uav", "states": [{"t_s": 0, "x_m": 1e6, "y_m": 0, "z_m": 0, "yaw_rad": 0}]})"}) {
+    EXPECT_FALSE(schema.errors(nlohmann::json::parse(bad)).empty()) << bad;
+    EXPECT_THROW((void)parse_plan(bad, "bad.json"), InputError) << bad;
+  }
 }
 
 TEST(PlanFile, SaveIsAtomicAndReadable) {
@@ -103,7 +141,9 @@ TEST(PlanFile, SaveIsAtomicAndReadable) {
   const auto path = dir / "p.json";
   save_plan(sample(), path);
   EXPECT_EQ(load_plan(path).states.size(), 3u);
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}), 1);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
+                          std::filesystem::directory_iterator{}),
+            1);
   std::filesystem::remove_all(dir);
 }
 

@@ -96,3 +96,36 @@ TEST(PlanOverlay, APlanPartlyOutsideTheMapIsClippedAndCounted) {
 
 }  // namespace
 }  // namespace ferret
+
+namespace ferret {
+namespace {
+
+// A segment from 1e5 m west to 1e5 m east of a 6 m map is drawn where it crosses the map
+// (clipped to the picture: its cost no longer grows with its length), and a segment that
+// never crosses it draws nothing on it.
+TEST(PlanOverlay, FarSegmentsAreClippedToWhatIsSeen) {
+  const OccupancyMap2D map =
+      OccupancyMap2D::filled(GridGeometry{0.0, 0.0, 0.1, 60, 40}, CellState::kFree);
+  RenderOptions o;
+  o.pixels_per_cell = 5;  // 50 px a metre
+  o.scale_bar = false;
+  MapCanvas canvas(map, o);
+  const PlanOverlayStyle style;
+  PlanFile p;
+  p.states = {test::ugv_at(0, -1e5, 1.0, 0.0), test::ugv_at(1, 1e5, 1.0, 0.0),
+              test::ugv_at(2, 1e5, 1e5, 0.0), test::ugv_at(3, -1e5, 1e5, 0.0)};
+  const PlanOverlaySummary s = draw_plan(canvas, p, map, style);
+  EXPECT_EQ(s.outside, 4u);
+  EXPECT_NEAR(s.length_m, 2e5 + (1e5 - 1.0) + 2e5, 1e-6);
+  const RgbImage img = canvas.image();
+  const PixelRect m = canvas.map_area();
+  const auto pixel = [&](double x, double y) {
+    return img.at(m.x + static_cast<int>(std::lround(50 * x)),
+                  m.y + static_cast<int>(std::lround(50 * (4.0 - y))));
+  };
+  for (const double x : {0.2, 3.0, 5.8}) EXPECT_TRUE(same(pixel(x, 1.0), style.path)) << x;
+  EXPECT_FALSE(same(pixel(3.0, 3.0), style.path));  // the far legs stay off the map
+}
+
+}  // namespace
+}  // namespace ferret

@@ -10,6 +10,7 @@
 // hidden space, floor, map, tether obstacles) from file names and a request.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -133,6 +134,15 @@ struct ValidationOptions {
   /// YAML objects); empty: unnamed.
   std::function<std::string(const Eigen::Vector3d& p_W)> name_obstacle;
 };
+
+/// The most poses validate_plan() checks for collision in one plan (a limit on the
+/// work a plan file can ask for).
+inline constexpr std::uint64_t kMaxPlanChecks = 10'000'000;
+/// The poses the collision check of `states` visits at `res` (saturating).
+[[nodiscard]] std::uint64_t plan_check_count(const std::vector<Waypoint>& states,
+                                             const CheckResolution& res);
+/// InputError naming `source`'s states when the plan asks more than kMaxPlanChecks.
+void check_plan_work(const PlanFile& plan, const CheckResolution& res, const std::string& source);
 
 /// Checks the whole plan: every violation, and the margins. `corners` are the
 /// tether's obstacle corners (required for miniUGV plans). InputError (source: the
