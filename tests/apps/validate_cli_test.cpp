@@ -237,7 +237,7 @@ TEST(ValidateCli, FarWaypointIsBadInputWithinSeconds) {
   for (int k = 0; k <= 6; ++k)
     legs += std::to_string(k * 1000) + "," + (k % 2 ? "100000" : "0") + ",1,1,0\n";
   expect_bad_plan(validate(write(dir, "long.csv", legs), "--robot m100"),
-                  "long.csv: states: expected a plan of at most 10000000 collision checks");
+                  "long.csv: states: expected a plan of at most 1000000 collision checks");
 }
 
 TEST(ValidateCli, MessagesNameThePlanNotAnOptionNeverGiven) {

@@ -260,22 +260,22 @@ TEST(PlanFileBadInput, CollisionChecksCountedBeforeChecking) {
   states[2].x_m = 1.0;
   states[2].yaw_rad = 0.5;
   EXPECT_EQ(plan_check_count(states, coarse), 1u + 5u + 5u);
-  // 1e5 m legs at 1/64 m: 6.4e6 steps a leg; one leg fits in 1e7 checks, two do not.
+  // 1e4 m legs at 1/64 m: 6.4e5 steps a leg; one leg fits in 1e6 checks, two do not.
   const CheckResolution fine{1.0 / 64, 0.125};
   PlanFile far;
   far.states.resize(3);
-  far.states[1].x_m = 1e5;
+  far.states[1].x_m = 1e4;
   try {
     check_plan_work(far, fine, "far.csv");
     FAIL() << "accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.source(), "far.csv");
     EXPECT_EQ(e.field(), "states");
-    EXPECT_THAT(e.expected(), HasSubstr("at most 10000000 collision checks"));
+    EXPECT_THAT(e.expected(), HasSubstr("at most 1000000 collision checks"));
     EXPECT_THAT(std::string(e.what()), HasSubstr("plan too long to check"));
   }
   far.states.pop_back();
-  EXPECT_EQ(plan_check_count(far.states, fine), 1u + 6'400'001u);
+  EXPECT_EQ(plan_check_count(far.states, fine), 1u + 640'001u);
   EXPECT_NO_THROW(check_plan_work(far, fine, "far.csv"));
 }
 

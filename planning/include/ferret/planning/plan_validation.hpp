@@ -137,7 +137,7 @@ struct ValidationOptions {
 
 /// The most poses validate_plan() checks for collision in one plan (a limit on the
 /// work a plan file can ask for).
-inline constexpr std::uint64_t kMaxPlanChecks = 10'000'000;
+inline constexpr std::uint64_t kMaxPlanChecks = 1'000'000;
 /// The poses the collision check of `states` visits at `res` (saturating).
 [[nodiscard]] std::uint64_t plan_check_count(const std::vector<Waypoint>& states,
                                              const CheckResolution& res);
