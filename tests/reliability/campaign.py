@@ -295,6 +295,11 @@ def templates(repo):
                        ("--time-limit", "float", "0.1"), ("--seed", "uint", "1"),
                        ("--tether-budget", "float", "5")], weight=0.7))
 
+    # the miniUGV problems of the small world: base run only (weight 0), it must end
+    T.append(Template("bench-plan", ["bench-plan", "--world", "{small.yaml}", "--robots",
+                                     "ugv", "--planners", "rrtconnect", "--runs", "1",
+                                     "--time-limit", "0.1", "-o", "{OUT}"],
+                      [small], "bench", "dir", [], weight=0.0))
     winch_opts = [("--baud", "int", "57600"), ("--id", "int", "1"),
                   ("--timeout-ms", "int", "30"), ("--retries", "int", "2"),
                   ("--spool-radius", "float", "0.09")]
@@ -1005,7 +1010,9 @@ def mutate_option_value(rng, kind, base):
     name, text, must = rng.choice(NUMBER_VALUES + [("huge-count", "100000", False),
                                                    ("too-small", "1e-9", False)])
     if kind in ("uint", "int"):
-        if name in ("20-digit", "hex", "huger", "tiny", "-0") or name == "too-small":
+        # CLI11 reads 0x1A as 26 and -0 as 0: valid integers; a fraction, a value
+        # beyond 64 bits or 1e300 is not one
+        if name in ("20-digit", "huger", "tiny", "too-small"):
             must = True
         if kind == "uint" and name == "negative":
             must = True
@@ -1191,8 +1198,11 @@ def snapshot(root):
                 st = os.lstat(p)
             except OSError:
                 continue
-            snap[os.path.relpath(p, root)] = (stat.S_IFMT(st.st_mode), st.st_size,
-                                              st.st_mtime_ns)
+            # a directory counts by its existence: its mtime moves when a temporary
+            # file comes and goes, which leaves nothing behind
+            kind = stat.S_IFMT(st.st_mode)
+            snap[os.path.relpath(p, root)] = (kind, 0, 0) if kind == stat.S_IFDIR else (
+                kind, st.st_size, st.st_mtime_ns)
     return snap
 
 
