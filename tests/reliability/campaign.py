@@ -1451,6 +1451,54 @@ def write_summary(path, records, meta, base_problems):
         f.write("\n".join(lines) + "\n")
 
 
+def general_field(field):
+    """A mutated field without its indices and positions: states[3].x_m and
+    states[7].x_m are one defect."""
+    f = re.sub(r"\[\d+\]", "[]", field)
+    f = re.sub(r"\s*\(line \d+\)", "", f)
+    f = re.sub(r"\b(line|byte) \d+", r"\1 N", f)
+    return f
+
+
+def distinct_defects(records):
+    """Defects deduplicated by command + class + mutated file or option + field:
+    [(key, first record, count)] in order of first appearance."""
+    seen = {}
+    order = []
+    for r in records:
+        if not r["defects"]:
+            continue
+        m = r["mutation"]
+        key = (r["command"], r["class"], m["target"], general_field(m["field"]))
+        if key not in seen:
+            seen[key] = [r, 0]
+            order.append(key)
+        seen[key][1] += 1
+    return [(k, seen[k][0], seen[k][1]) for k in order]
+
+
+def write_findings(path, records, meta):
+    """The distinct defects, one line each with the command that shows it."""
+    lines = ["| # | command | class | mutated | field | runs | what happened |",
+             "|---|---|---|---|---|---|---|"]
+    cmds = []
+    for n, (key, r, count) in enumerate(distinct_defects(records), 1):
+        cmd, cls, target, field = key
+        what = "exit %s" % r["exit"]
+        if r["detail"]:
+            what += ", " + r["detail"]
+        if r["stderr_first_line"]:
+            what += ": " + r["stderr_first_line"][:160]
+        clean = lambda x: x.replace("|", "\\|").replace("`", "'").replace("\n", " ")
+        lines.append("| %d | %s | %s | %s | `%s` | %d | %s (%s) |" % (
+            n, cmd, cls, clean(target), clean(field), count, clean(what),
+            clean(r["mutation"]["what"][:80])))
+        cmds.append("%d. `%s`" % (n, r["shell"][:700]))
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n\nCommands (run directory kept with the inputs):\n\n" +
+                "\n".join(cmds) + "\n")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--ferret", required=True, help="the built ferret binary")
@@ -1464,7 +1512,20 @@ def main(argv=None):
     ap.add_argument("--keep-all", action="store_true", help="keep every run's directory")
     ap.add_argument("--command", action="append", default=[],
                     help="only templates of this command (repeatable), e.g. 'plan uav'")
+    ap.add_argument("--findings-from", metavar="JSONL",
+                    help="no runs: write the distinct defects of a campaign's runs.jsonl "
+                         "(its first --runs runs) to OUT/findings.md and the summary")
     a = ap.parse_args(argv)
+    if a.findings_from:
+        with open(a.findings_from) as f:
+            records = [json.loads(l) for l in f][:a.runs]
+        os.makedirs(a.out, exist_ok=True)
+        meta = {"ferret": a.ferret, "seed": a.seed, "jobs": a.jobs, "timeout": a.timeout,
+                "wall_s": sum(r["wall_s"] for r in records),
+                "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
+        write_summary(os.path.join(a.out, "summary.md"), records, meta, [])
+        write_findings(os.path.join(a.out, "findings.md"), records, meta)
+        return 0
     ferret = os.path.abspath(a.ferret)
     repo = os.path.abspath(a.repo)
     root = os.path.abspath(a.out)
@@ -1503,6 +1564,7 @@ def main(argv=None):
     with open(os.path.join(root, "report.json"), "w") as f:
         json.dump({"meta": meta, "base_problems": base_problems, "runs": records}, f, indent=1)
     write_summary(os.path.join(root, "summary.md"), records, meta, base_problems)
+    write_findings(os.path.join(root, "findings.md"), records, meta)
     defects = [r for r in records if r["defects"]]
     print("campaign: %d runs, %d with defects, %d unmutated commands not clean; %s" % (
         len(records), len(defects), len(base_problems), os.path.join(root, "summary.md")))
