@@ -1215,8 +1215,19 @@ def limit_child():
 
 def run_argv(argv, cwd, timeout):
     t0 = time.monotonic()
-    p = subprocess.Popen(argv, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                         stderr=subprocess.PIPE, preexec_fn=limit_child)
+    # a binary being relinked (a build beside a long campaign) cannot be executed for a
+    # moment: wait for it instead of ending the campaign
+    for attempt in range(30):
+        try:
+            p = subprocess.Popen(argv, cwd=cwd, stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                 preexec_fn=limit_child)
+            break
+        except (PermissionError, FileNotFoundError, OSError):
+            if attempt == 29:
+                raise
+            time.sleep(2)
+    t0 = time.monotonic()
     hung = False
     try:
         out, err = p.communicate(timeout=timeout)
