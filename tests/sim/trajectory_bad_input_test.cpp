@@ -103,7 +103,7 @@ TEST(TrajectoryBadInput, PositionsBoundedAndFinite) {
                "samples[1][1]", "a finite number");
   expect_error(
       write(dir, "entry.yaml", "entry_xy_m: [.nan, 0]\nsamples: [[0, 0, 0, 0], [1, 1, 0, 0]]\n"),
-      "entry_xy_m", "within +-100000 m");
+      "entry_xy_m[0]", "a finite number", "'.nan'");  // the element, by the YAML number parser
   expect_error(write(dir, "wrap.yaml",
                      "wrap_points: [{xy_m: [1, 1e9]}]\nsamples: [[0, 0, 0, 0], [1, 1, 0, 0]]\n"),
                "wrap_points[0].xy_m", "within +-100000 m");
