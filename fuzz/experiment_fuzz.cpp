@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   (void)fixtures_written;
   const auto path = dir.write("experiment.yaml", data, size);
   try {
-    (void)ferret::sim::load_experiment_config(path);
+    (void)ferret::load_experiment_config(path);
   } catch (const ferret::InputError&) {
   }
   return 0;
