@@ -96,6 +96,11 @@ std::vector<MapReader> MapReader::child_list(std::string_view key) const {
 void MapReader::allow_only(std::initializer_list<std::string_view> allowed) const {
   std::vector<std::string> seen;
   for (const auto& entry : node_) {
+    // YAML allows a list or a mapping as a key (`? [a, b]`); as<std::string> would
+    // throw yaml-cpp's own exception (found by fuzz/mission_fuzz.cpp).
+    if (!entry.first.IsScalar())
+      throw InputError(source_, path_.empty() ? "(document)" : path_, "keys that are names",
+                       "a key that is " + internal::describe(entry.first));
     const auto key = entry.first.as<std::string>();
     // yaml-cpp keeps both entries of a repeated key and looks up the first, so the
     // second would be silently ignored.

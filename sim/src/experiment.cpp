@@ -105,6 +105,10 @@ ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double cl
   const yaml::MapReader zr(zones, r.source(), r.field_path("zones"));
   std::map<int, ZoneSpec> by_id;
   for (const auto& entry : zones) {
+    // A list or mapping as a key (`? [1]`) is not a zone id (yaml-cpp would throw its own).
+    if (!entry.first.IsScalar())
+      throw InputError(r.source(), r.field_path("zones"), "zone ids (integers >= 1) as keys",
+                       "a key that is " + yaml::internal::describe(entry.first));
     const auto key = entry.first.as<std::string>();
     int id = 0;
     try {

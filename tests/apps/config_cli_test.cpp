@@ -295,5 +295,30 @@ TEST(ConfigCli, BadMeshesAndRolesExitTwoNamingTheLine) {
                    "sensor[ir_left]/role[depth_camera]: expected a depth camera");
 }
 
+TEST(ConfigCli, MissionKeyThatIsAListIsBadInput) {
+  // YAML allows a list or a mapping as a key (`? [a]`); yaml-cpp's conversion error
+  // escaped as exit 3 before (found by fuzz/mission_fuzz.cpp).
+  TempDir dir;
+  struct Case {
+    std::string name, text, field;
+  };
+  const Case cases[] = {
+      {"top.yaml", "? [curiosity]\n: {a: 1}\n", "(document)"},
+      {"section.yaml", "curiosity:\n  ? [a]\n  : 1\n", "curiosity"},
+      {"robot.yaml", "roles:\n  ? {miniugv: 1}\n  : {ir: ir0}\n", "roles"},
+      {"role.yaml", "roles:\n  miniugv:\n    ? [ir]\n    : ir0\n", "roles.miniugv"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string mission = dir / c.name;
+    write_text(mission, c.text);
+    const std::string out = dir / ("dump_" + c.name);
+    const auto r = run_cli("config --dump --mission '" + mission + "' -o '" + out + "'");
+    expect_bad_input(r, mission, c.field + ": expected ");
+    EXPECT_FALSE(fs::exists(out));
+  }
+  EXPECT_EQ(dir.count(), 4u);  // the inputs alone
+}
+
 }  // namespace
 }  // namespace ferret::test

@@ -75,6 +75,28 @@ TEST(YamlConfig, RepeatedKeyIsRejected) {
   }
 }
 
+TEST(YamlConfig, KeyThatIsAListOrMappingIsAnInputError) {
+  // `? [a]` makes a list the key; yaml-cpp's own conversion error escaped before
+  // (fuzz/regressions/mission/list_as_top_level_key.yaml).
+  const auto top = reader("lambda1: 0.1\n? [lambda2]\n: 0.9\n");
+  try {
+    top.allow_only({"lambda1", "lambda2"});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "mission.yaml");
+    EXPECT_EQ(e.field(), "(document)");
+    EXPECT_NE(std::string(e.what()).find("a list of 1"), std::string::npos) << e.what();
+  }
+  const auto nested = reader("curiosity: {? {a: 1} : 2}\n").child("curiosity");
+  try {
+    nested.allow_only({"a", "b", "K"});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "curiosity");
+    EXPECT_NE(std::string(e.what()).find("a mapping"), std::string::npos) << e.what();
+  }
+}
+
 TEST(YamlConfig, SyntaxErrorReportsLine) {
   try {
     (void)load_string("a: [1, 2\nb: 3\n", "bad.yaml");

@@ -14,7 +14,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Records the keys of a section the file gave.
 void note(const yaml::MapReader& r, const std::string& section, std::set<std::string>& given) {
-  for (const auto& entry : r.node()) given.insert(section + "." + entry.first.as<std::string>());
+  for (const auto& entry : r.node()) {
+    // Runs before the section's allow_only: a list or mapping as a key is caught here.
+    if (!entry.first.IsScalar())
+      throw InputError(r.source(), section, "keys that are names",
+                       "a key that is " + yaml::internal::describe(entry.first));
+    given.insert(section + "." + entry.first.as<std::string>());
+  }
 }
 
 const std::vector<std::string>& known_roles() {
@@ -26,6 +32,10 @@ const std::vector<std::string>& known_roles() {
 
 void read_roles(const yaml::MapReader& r, MissionConfig& c) {
   for (const auto& robot : r.node()) {
+    // A list or mapping as a key (`? [a]`) is not a name (found by fuzz/mission_fuzz.cpp).
+    if (!robot.first.IsScalar())
+      throw InputError(r.source(), "roles", "robot names as keys",
+                       "a key that is " + yaml::internal::describe(robot.first));
     const auto robot_name = robot.first.as<std::string>();
     if (!robot.second.IsMap() || robot.second.size() == 0)
       r.fail(robot_name, "a mapping of roles to sensor or link names for the robot '" + robot_name +
@@ -33,6 +43,9 @@ void read_roles(const yaml::MapReader& r, MissionConfig& c) {
     const yaml::MapReader rr(robot.second, r.source(), r.field_path(robot_name));
     auto& out = c.roles[robot_name];
     for (const auto& entry : robot.second) {
+      if (!entry.first.IsScalar())
+        throw InputError(r.source(), r.field_path(robot_name), "role names as keys",
+                         "a key that is " + yaml::internal::describe(entry.first));
       const auto role = entry.first.as<std::string>();
       if (std::find(known_roles().begin(), known_roles().end(), role) == known_roles().end()) {
         std::string list;

@@ -1,0 +1,23 @@
+// Experiment YAML -> ExperimentConfig, with a valid map (room.yaml + room.pgm) and an
+// empty mission (mission.yaml) beside it, so that inputs naming them get past the
+// file lookup into the start, zone and sweep checks.
+#include <cstdint>
+
+#include "ferret/core/error.hpp"
+#include "ferret/sim/experiment.hpp"
+#include "fixtures.hpp"
+#include "fuzz_support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const auto& dir = ferret::fuzz::ScratchDir::instance();
+  static const bool fixtures_written =
+      (dir.write("room.pgm", ferret::fuzz::room_pgm()),
+       dir.write("room.yaml", ferret::fuzz::room_yaml()), dir.write("mission.yaml", "{}\n"), true);
+  (void)fixtures_written;
+  const auto path = dir.write("experiment.yaml", data, size);
+  try {
+    (void)ferret::load_experiment_config(path);
+  } catch (const ferret::InputError&) {
+  }
+  return 0;
+}

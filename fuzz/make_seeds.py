@@ -1,0 +1,291 @@
+#!/usr/bin/env python3
+"""Regenerates the seed corpora fuzz/corpus/<target>/ from the shipped examples plus a
+few hand-made edge cases (docs/reliability.md, "Fuzzing"). Long files are cut to keep
+each seed small (libFuzzer mutates small inputs faster). The OctoMap seeds need a
+built `ferret` (--ferret PATH); without it the .bt/.ot corpora are left as they are.
+
+    fuzz/make_seeds.py --ferret build/release/apps/ferret
+"""
+import argparse
+import pathlib
+import shutil
+import struct
+import subprocess
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+CORPUS = ROOT / "fuzz" / "corpus"
+MAX_LINES = 40  # CSV seeds: the header and the first rows are what the parser branches on
+
+
+def put(target, name, data):
+    d = CORPUS / target
+    d.mkdir(parents=True, exist_ok=True)
+    (d / name).write_bytes(data if isinstance(data, bytes) else data.encode())
+
+
+def copy(target, path, max_lines=None):
+    text = path.read_bytes()
+    if max_lines is not None:
+        text = b"".join(text.splitlines(keepends=True)[:max_lines])
+    put(target, path.name, text)
+
+
+def reset(target):
+    shutil.rmtree(CORPUS / target, ignore_errors=True)
+
+
+def crc16(data):
+    """Dynamixel Protocol 2.0 CRC (CRC-16/BUYPASS), written independently of the C++."""
+    crc = 0
+    for byte in data:
+        crc ^= byte << 8
+        for _ in range(8):
+            crc = ((crc << 1) ^ 0x8005) if crc & 0x8000 else crc << 1
+            crc &= 0xFFFF
+    return crc
+
+
+def dxl_packet(dxl_id, body, stuff=True):
+    if stuff:
+        out, i = bytearray(), 0
+        while i < len(body):
+            out.append(body[i])
+            if body[i - 2:i + 1] == b"\xff\xff\xfd" and i >= 2:
+                out.append(0xFD)
+            i += 1
+        body = bytes(out)
+    head = b"\xff\xff\xfd\x00" + bytes([dxl_id]) + struct.pack("<H", len(body) + 2) + body
+    return head + struct.pack("<H", crc16(head))
+
+
+def urdf_seeds():
+    t = "urdf"
+    reset(t)
+    for p in sorted((ROOT / "urdf" / "models").glob("*.urdf")):
+        copy(t, p)
+    copy(t, ROOT / "tests" / "data" / "robots" / "rover.urdf")
+    put(t, "one_link.urdf", '<robot name="r"><link name="base"/></robot>\n')
+    put(t, "joint_to_missing_link.urdf",
+        '<robot name="r"><link name="a"/><joint name="j" type="fixed">'
+        '<parent link="a"/><child link="b"/></joint></robot>\n')
+    put(t, "box_sphere_cylinder.urdf",
+        '<robot name="r"><link name="base"><collision><origin xyz="0 0 0.1" rpy="0 0 0.5"/>'
+        '<geometry><box size="0.2 0.1 0.05"/></geometry></collision><collision><geometry>'
+        '<sphere radius="0.05"/></geometry></collision><collision><geometry>'
+        '<cylinder radius="0.03" length="0.2"/></geometry></collision></link></robot>\n')
+    put(t, "missing_mesh.urdf",
+        '<robot name="r"><link name="base"><collision><geometry>'
+        '<mesh filename="package://p/none.stl" scale="1 1 1"/></geometry></collision></link></robot>\n')
+    put(t, "gazebo_ray_camera.urdf",
+        '<robot name="r"><link name="base"/><link name="ir"/><joint name="j" type="fixed">'
+        '<parent link="base"/><child link="ir"/><origin xyz="0.1 0 0.05"/></joint>'
+        '<gazebo reference="ir"><sensor type="ray" name="ir0"><ray><scan><horizontal>'
+        '<samples>5</samples><min_angle>-0.26</min_angle><max_angle>0.26</max_angle>'
+        '</horizontal></scan><range><min>0.02</min><max>4.0</max></range></ray>'
+        '<ferret role="ir"/></sensor><sensor type="camera" name="cam"><camera>'
+        '<horizontal_fov>1.57</horizontal_fov><image><width>64</width><height>48</height>'
+        '</image><clip><near>0.05</near><far>4</far></clip></camera></sensor></gazebo>'
+        '<joint name="w" type="continuous"><parent link="base"/><child link="ir"/>'
+        '<limit velocity="10" effort="1"/></joint></robot>\n')
+    put(t, "nan_origin.urdf",
+        '<robot name="r"><link name="base"><collision><origin xyz="nan 0 inf"/>'
+        '<geometry><box size="1 1 1"/></geometry></collision></link></robot>\n')
+    put(t, "not_xml.urdf", "robot name=r\n")
+
+
+def mission_seeds():
+    t = "mission"
+    reset(t)
+    copy(t, ROOT / "config" / "mission.yaml")
+    put(t, "empty_map.yaml", "{}\n")
+    put(t, "roles.yaml", "roles:\n  miniugv: {ir: [ir_left, ir_right], object_camera: cam}\n")
+    put(t, "nan.yaml", "curiosity: {a: .nan, b: .inf, K: -.inf}\n")
+    put(t, "unknown_key.yaml", "tether: {total_length_m: 15, entry_offset_m: 1, spool: 2}\n")
+    put(t, "wrong_types.yaml", "ugv_limits: [1, 2]\nuav_limits: {max_velocity_mps: fast}\n")
+    put(t, "anchors.yaml", "a: &x {lambda1: 0.1}\nobject_search: *x\n")
+
+
+def world_seeds():
+    t = "world"
+    reset(t)
+    for p in sorted((ROOT / "examples" / "worlds").glob("*.yaml")):
+        copy(t, p)
+    copy(t, ROOT / "examples" / "scenarios" / "tether_detour.yaml")
+    put(t, "one_box.yaml",
+        "name: one\nresolution_m: 0.5\nbounds_m: {min: [-2, -2, 0], max: [2, 2, 1]}\n"
+        "boxes:\n  - {name: b, center_m: [0, 0], size_m: [1, 1, 1], yaw_deg: 45}\n")
+    put(t, "negative_size.yaml",
+        "name: n\nresolution_m: 0.5\nbounds_m: {min: [0, 0, 0], max: [1, 1, 1]}\n"
+        "cylinders:\n  - {name: c, center_m: [0.5, 0.5], radius_m: -1, height_m: 1}\n")
+    put(t, "nan_bounds.yaml", "name: n\nresolution_m: .nan\nbounds_m: {min: [0, 0, 0], max: [.inf, 1, 1]}\n")
+    put(t, "tiny_resolution.yaml", "name: n\nresolution_m: 1e-9\nbounds_m: {min: [0, 0, 0], max: [100, 100, 100]}\n")
+
+
+def experiment_seeds():
+    t = "experiment"
+    reset(t)
+    for p in sorted((ROOT / "examples" / "experiments").glob("*.yaml")):
+        # The harness's map is room.yaml beside the input: point the shipped maps at it.
+        text = p.read_text()
+        for m in ("../maps/sparse.yaml", "../maps/dense.yaml"):
+            text = text.replace(m, "room.yaml")
+        put(t, p.name, text)
+    put(t, "minimal.yaml",
+        "maps:\n  - {name: room, map: room.yaml, start: [1.0, 1.0, 0.0], zones: {1: [1.5, 1.5, 3.0, 2.5]}}\n")
+    put(t, "mission_and_robot.yaml",
+        "seed: 7\nobjects_per_zone: 2\nmethods: [cdos, rapid]\nmission: mission.yaml\n"
+        "robot: {urdf: miniugv, max_velocity: 1.0}\n"
+        "maps:\n  - {name: room, map: room.yaml, start: [1.0, 1.0, 0.0], zones: {1: [1.5, 1.5, 3.0, 2.5]}}\n"
+        "sweeps: {camera_fov_deg: [60, 90], methods: [cdos]}\n")
+    put(t, "start_in_wall.yaml",
+        "maps:\n  - {name: room, map: room.yaml, start: [0.1, 0.1, 0.0], zones: {1: [1, 1, 2, 2]}}\n")
+    put(t, "duplicate_maps.yaml",
+        "maps:\n  - {name: a, map: room.yaml, start: [1, 1, 0], zones: {1: [1, 1, 2, 2]}}\n"
+        "  - {name: a, map: room.yaml, start: [1, 1, 0], zones: {1: [1, 1, 2, 2]}}\n")
+
+
+def map_seeds():
+    reset("map_yaml")
+    for p in sorted((ROOT / "examples" / "maps").glob("*.yaml")):
+        put("map_yaml", p.name, p.read_text().replace("sparse.pgm", "room.pgm").replace("dense.pgm", "room.pgm"))
+    base = "image: room.pgm\nresolution: 0.25\norigin: [0.0, 0.0, 0.0]\n"
+    put("map_yaml", "minimal.yaml", base)
+    put("map_yaml", "negate_trinary.yaml", base + "negate: 1\nmode: trinary\noccupied_thresh: 0.9\nfree_thresh: 0.1\n")
+    put("map_yaml", "swapped_thresholds.yaml", base + "occupied_thresh: 0.1\nfree_thresh: 0.9\n")
+    put("map_yaml", "missing_image.yaml", "image: none.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n")
+    put("map_yaml", "png_image.yaml", "image: room.png\nresolution: 0.05\norigin: [0, 0, 0]\n")
+    put("map_yaml", "yaw_and_nan.yaml", "image: room.pgm\nresolution: .nan\norigin: [0, 0, 1.57]\n")
+    reset("map_pgm")
+    # The shipped maps are 38 kB each; their first rows carry the header variants.
+    put("map_pgm", "sparse_head.pgm", (ROOT / "examples" / "maps" / "sparse.pgm").read_bytes()[:2048])
+    w, h = 16, 12
+    room = bytes(0 if r in (0, h - 1) or c in (0, w - 1) else 254 for r in range(h) for c in range(w))
+    put("map_pgm", "room.pgm", b"P5\n16 12\n255\n" + room)
+    put("map_pgm", "comment.pgm", b"P5\n# made by hand\n16 12\n# maxval next\n255\n" + room)
+    put("map_pgm", "ascii.pgm", "P2\n4 3\n15\n0 15 15 0\n15 7 7 15\n0 0 0 0\n")
+    put("map_pgm", "sixteen_bit.pgm", b"P5\n2 2\n65535\n" + struct.pack(">4H", 0, 65535, 32768, 1))
+    put("map_pgm", "truncated.pgm", b"P5\n16 12\n255\n" + room[:50])
+    put("map_pgm", "huge_header.pgm", b"P5\n100000 100000\n255\n\x00")
+    put("map_pgm", "not_pgm.pgm", b"\x89PNG\r\n\x1a\n")
+
+
+def octree_seeds(ferret):
+    worlds = {
+        "one_box": "name: one\nresolution_m: 0.5\nbounds_m: {min: [-2, -2, 0], max: [2, 2, 1]}\n"
+                   "boxes:\n  - {name: b, center_m: [0, 0], size_m: [1, 1, 1]}\n",
+        "empty": "name: e\nresolution_m: 0.25\nbounds_m: {min: [0, 0, 0], max: [1, 1, 1]}\n",
+    }
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        for ext in ("bt", "ot"):
+            t = "octree_" + ext
+            reset(t)
+            for name, text in worlds.items():
+                (tmp / (name + ".yaml")).write_text(text)
+                out = tmp / f"{name}.{ext}"
+                subprocess.run([ferret, "world", "build", str(tmp / (name + ".yaml")), "-o", str(out)],
+                               check=True, stdout=subprocess.DEVNULL)
+                data = out.read_bytes()
+                put(t, out.name, data)
+                put(t, f"{name}_truncated.{ext}", data[: len(data) * 2 // 3])
+            header = ("# Octomap OcTree binary file\nid OcTree\nsize 1\nres 0.1\ndata\n" if ext == "bt"
+                      else "# Octomap OcTree file\nid OcTree\nsize 1\nres 0.1\ndata\n")
+            put(t, "header_only." + ext, header)
+            put(t, "bad_id." + ext, header.replace("OcTree\n", "ColorOcTree\n", 1))
+            put(t, "negative_res." + ext, header.replace("res 0.1", "res -1"))
+
+
+def plan_seeds():
+    reset("plan_json")
+    reset("plan_csv")
+    for p in sorted((ROOT / "examples" / "plans").glob("*")):
+        if p.suffix == ".json":
+            copy("plan_json", p, max_lines=400)
+        elif p.suffix == ".csv":
+            copy("plan_csv", p, max_lines=MAX_LINES)
+    put("plan_json", "states_only.json", '{"states": [{"t_s": 0, "x_m": 0, "y_m": 0, "z_m": 0, "yaw_rad": 0}]}\n')
+    put("plan_json", "nan_state.json", '{"states": [{"t_s": NaN, "x_m": 1e400, "y_m": 0, "z_m": 0, "yaw_rad": 0}]}\n')
+    put("plan_json", "wrong_types.json", '{"states": {"t_s": "0"}, "robot": 3, "tether": []}\n')
+    put("plan_json", "top_level_list.json", "[1, 2, 3]\n")
+    put("plan_json", "deep_nesting.json", "[" * 64 + "]" * 64 + "\n")
+    put("plan_csv", "header_only.csv", "t,x,y,z,yaw\n")
+    put("plan_csv", "two_rows.csv", "t,x,y,z,yaw\n0,0,0,0,0\n1,1,0,0,0.1\n")
+    put("plan_csv", "short_row.csv", "t,x,y,z,yaw\n0,0,0\n")
+    put("plan_csv", "nan_inf.csv", "t,x,y,z,yaw\n0,nan,0,0,0\n1,inf,0,0,0\n")
+    put("plan_csv", "time_backwards.csv", "# comment\nt,x,y,z,yaw\n1,0,0,0,0\n0,1,0,0,0\n")
+
+
+def tether_seeds():
+    reset("trajectory_csv")
+    reset("trajectory_yaml")
+    reset("tether_config")
+    for p in sorted((ROOT / "examples" / "trajectories").glob("*.csv")):
+        copy("trajectory_csv", p, max_lines=MAX_LINES)
+    put("trajectory_csv", "eight_columns.csv",
+        "t,x,y,yaw,vx,vy,ax,ay\n0,0.5,0,0,0,0,0,0\n0.5,0.6,0,0,0.2,0,0,0\n1,0.7,0,0,0.2,0,0,0\n")
+    put("trajectory_csv", "one_sample.csv", "t,x,y,yaw\n0,0,0,0\n")
+    put("trajectory_csv", "repeated_time.csv", "t,x,y,yaw\n0,0,0,0\n0,1,0,0\n")
+    put("trajectory_csv", "bad_header.csv", "time,x,y\n0,0,0\n")
+    put("trajectory_csv", "nan.csv", "t,x,y,yaw\n0,nan,0,0\n1,1,inf,0\n")
+    for p in sorted((ROOT / "examples" / "trajectories").glob("*.yaml")):
+        copy("trajectory_yaml", p)
+    put("trajectory_yaml", "inline_samples.yaml",
+        "name: inline\nentry_xy_m: [0, 0]\nwrap_points: [{xy_m: [1, 1], side: right}]\n"
+        "samples:\n  - [0, 0.5, 0, 0]\n  - [1, 1.0, 0, 0]\n  - [2, 1.5, 0.5, 0.7, 0, 0, 0, 0]\n")
+    put("trajectory_yaml", "samples_csv.yaml", "samples_csv: samples.csv\nsnags: [{wrap_point: 0, start_s: 0, duration_s: 1}]\n")
+    put("trajectory_yaml", "two_sources.yaml", "samples_csv: samples.csv\nscript: {waypoints_xy_m: [[0, 0], [1, 0]], cruise_mps: 1, accel_mps2: 1}\n")
+    put("trajectory_yaml", "same_waypoints.yaml", "script: {waypoints_xy_m: [[1, 1], [1, 1]], cruise_mps: 0.5, accel_mps2: 1}\n")
+    for p in sorted((ROOT / "examples" / "tether").glob("*.yaml")):
+        copy("tether_config", p)
+    put("tether_config", "all_sections.yaml",
+        "control: {slack_reference_m: 0.1, max_slack_m: 0.3, max_tension_n: 20}\n"
+        "mpc: {horizon: 20, prediction_dt_s: 0.05, use_preview: true}\n"
+        "baseline: {kp_per_s: 2, ki_per_s2: 0.5, kd: 0.1}\n"
+        "sim: {link_latency_s: 0.1, pose_noise_m: 0.02, ugv_slip_noise_mps: 0.05}\n")
+    put("tether_config", "out_of_range.yaml", "mpc: {horizon: 100000}\ncontrol: {max_slack_m: -1}\n")
+    put("tether_config", "unknown_section.yaml", "winch: {radius_m: 0.1}\n")
+
+
+def dynamixel_seeds():
+    t = "dynamixel"
+    reset(t)
+    ping = dxl_packet(1, b"\x01")
+    status = dxl_packet(1, b"\x55\x00\x06\x04\x26")  # ping reply: model 1030, firmware 38
+    read = dxl_packet(1, b"\x02\x84\x00\x04\x00")  # read 4 bytes at 132 (present position)
+    write = dxl_packet(1, b"\x03\x74\x00\x00\x02\x00\x00")
+    stuffed = dxl_packet(1, b"\x03\x00\x00\xff\xff\xfd\x01")
+    put(t, "ping.bin", ping)
+    put(t, "status.bin", status)
+    put(t, "read.bin", read)
+    put(t, "write.bin", write)
+    put(t, "stuffed.bin", stuffed)
+    put(t, "noise_then_two.bin", b"\x00\x13\xff\xff" + status + read)
+    bad = bytearray(read)
+    bad[-1] ^= 0xFF
+    put(t, "bad_crc.bin", bytes(bad))
+    put(t, "short_length.bin", b"\xff\xff\xfd\x00\x01\x01\x00\x01")
+    put(t, "status_no_error.bin", dxl_packet(1, b"\x55"))
+    put(t, "truncated.bin", status[:-3])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--ferret", help="a built ferret, for the .bt/.ot seeds")
+    args = ap.parse_args()
+    urdf_seeds()
+    mission_seeds()
+    world_seeds()
+    experiment_seeds()
+    map_seeds()
+    plan_seeds()
+    tether_seeds()
+    dynamixel_seeds()
+    if args.ferret:
+        octree_seeds(args.ferret)
+    total = sum(f.stat().st_size for f in CORPUS.rglob("*") if f.is_file())
+    print(f"seed corpora: {sum(1 for f in CORPUS.rglob('*') if f.is_file())} files, {total} bytes")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,14 @@
+// Plan JSON (ferret plan's output, ferret validate's input) -> PlanFile.
+#include <cstdint>
+
+#include "ferret/core/error.hpp"
+#include "ferret/planning/plan_file.hpp"
+#include "fuzz_support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  try {
+    (void)ferret::parse_plan(ferret::fuzz::as_string(data, size), "plan.json");
+  } catch (const ferret::InputError&) {
+  }
+  return 0;
+}
