@@ -1,5 +1,7 @@
 #include "ferret/core/yaml_config.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -18,6 +20,15 @@ std::string describe(const YAML::Node& node) {
 }  // namespace internal
 
 YAML::Node load_string(const std::string& text, const std::string& source) {
+  // YAML is Unicode text; yaml-cpp passes other bytes through into keys and strings,
+  // where they would reach messages and JSON outputs.
+  if (const auto bad = first_invalid_utf8(text); bad != std::string::npos) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(bad), '\n');
+    const auto line_start = text.rfind('\n', bad == 0 ? 0 : bad - 1);
+    const auto column = bad - (line_start == std::string::npos || bad == 0 ? 0 : line_start + 1) + 1;
+    throw InputError(source, fmt::format("line {} column {}", line, column), "UTF-8 text",
+                     fmt::format("the byte 0x{:02x}", static_cast<unsigned char>(text[bad])));
+  }
   try {
     return YAML::Load(text);
   } catch (const YAML::ParserException& e) {

@@ -1,5 +1,7 @@
 #include "ferret/planning/collision_map.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,6 +18,11 @@ constexpr std::int64_t kKeySpan = 1 << kTreeDepth;  // keys per axis
 const float kOccupiedLogOdds = octomap::logodds(0.97);
 const float kFreeLogOdds = octomap::logodds(0.12);
 
+std::string box_text(const Aabb3& b) {
+  return fmt::format("{:g},{:g},{:g},{:g},{:g},{:g}", b.lo.x(), b.lo.y(), b.lo.z(), b.hi.x(),
+                     b.hi.y(), b.hi.z());
+}
+
 struct KeyBox {  // inclusive voxel key ranges per axis
   std::array<std::int64_t, 3> lo{}, hi{};
 };
@@ -27,10 +34,26 @@ KeyBox key_box(const Aabb3& b, double res) {
     k.lo[a] = static_cast<std::int64_t>(std::ceil(b.lo[a] / res - 0.5)) + kKeySpan / 2;
     k.hi[a] = static_cast<std::int64_t>(std::floor(b.hi[a] / res - 0.5)) + kKeySpan / 2;
     if (k.lo[a] < 0 || k.hi[a] >= kKeySpan || k.lo[a] > k.hi[a])
-      throw InputError("map", "bounds", "bounds inside OctoMap's key range (+-2^15 x resolution) and non-empty");
+      throw InputError("map", "bounds",
+                       fmt::format("bounds inside OctoMap's key range (+-{:g} m at {:g} m "
+                                   "resolution) holding a voxel centre",
+                                   kKeySpan / 2 * res, res),
+                       fmt::format("[{:g}, {:g}] on axis {}", b.lo[a], b.hi[a], "xyz"[a]));
   }
   return k;
 }
+}  // namespace
+
+void check_box_in_key_range(const Aabb3& box, double resolution_m, const std::string& source,
+                            const std::string& field) {
+  try {
+    (void)key_box(box, resolution_m);
+  } catch (const InputError& e) {
+    throw InputError(source, field, e.expected(), box_text(box));
+  }
+}
+
+namespace {
 
 // Fills the unknown (non-existent) part of a node's subtree that lies inside `box`
 // with occupied nodes, as coarse as the box allows. `base` is the node's lowest key

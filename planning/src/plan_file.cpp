@@ -186,7 +186,8 @@ struct Reader {
     if (!obj.is_object())
       throw input_error(source, path.empty() ? "" : path.substr(0, path.size() - 1), "an object",
                         obj.dump());
-    for (const auto& [key, value] : obj.items()) {
+    for (const auto& item : obj.items()) {
+      const std::string& key = item.key();  // not a structured binding: clang 14 lambdas
       if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return key == k; }) !=
           keys.end())
         continue;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <octomap/OcTree.h>
 
 #include <algorithm>
 #include <cmath>
@@ -56,6 +57,7 @@ PlanResult plan_uav_approach(const PlanningWorld& world, const UavApproachReques
 
   UavPlannerOptions opt;
   opt.geofence = r.bounds.value_or(default_uav_bounds(world));
+  check_box_in_key_range(opt.geofence, world.tree->getResolution(), kSource, "bounds");
   opt.planner = r.planner;
   opt.time_limit_s = r.time_limit_s;
   opt.seed = r.seed;

@@ -52,11 +52,11 @@ HiddenSpaceFrame request_space(const PlanningWorld& world, const UgvPathRequest&
     space.p_WE = *r.p_WE;
     have_entry = true;
   }
+  // No box given and none found: the start is where the search for one failed.
   if (!have_space)
-    throw InputError(
-        kSource, "bounds",
-        "the hidden space's box (or a world YAML with a hidden space that holds the start)",
-        world.source.string());
+    throw InputError(kSource, "start",
+                     "a start inside one of the world's hidden spaces (or a box as bounds)",
+                     world.source.string());
   if (!have_entry)
     throw InputError(kSource, "p_WE", "the tether's entry point (a box alone does not give one)");
   return space;
@@ -85,7 +85,16 @@ UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& re
   const LoadedPlanRobot model =
       load_plan_robot(PlanRobot::kUgv, r.robot, r.mission, 0.0, kSource, "robot");
 
-  const auto map = ugv_collision_map(*world.tree, space, model.ugv);
+  const auto map = [&] {
+    try {
+      return ugv_collision_map(*world.tree, space, model.ugv);
+    } catch (const InputError& e) {
+      if (e.source() != "map") throw;
+      throw InputError(kSource, "bounds", e.expected(),
+                       fmt::format("{:g},{:g} to {:g},{:g}", space.lo_m.x(), space.lo_m.y(),
+                                   space.hi_m.x(), space.hi_m.y()));
+    }
+  }();
   UgvPlannerOptions opt;
   opt.shape = model.shape;
   opt.time_limit_s = r.time_limit_s;

@@ -74,8 +74,14 @@ TEST(Printable, EscapesControlAndInvalidBytesKeepsUtf8) {
   EXPECT_EQ(printable(std::string("a\0b", 3)), "a\\x00b");
   EXPECT_EQ(printable("line1\nline2"), "line1\\x0aline2");
   EXPECT_EQ(printable("\x89PNG\r"), "\\x89PNG\\x0d");
-  EXPECT_EQ(printable("Zürich"), "Zürich");
-  EXPECT_EQ(printable("\xc3"), "\\xc3");  // a cut UTF-8 sequence
+  EXPECT_EQ(printable("Zürich"), "Z\\xc3\\xbcrich");  // file content: ASCII only
+  EXPECT_EQ(printable_path("Zürich"), "Zürich");       // a path the user typed keeps it
+  EXPECT_EQ(printable_path("\xc3"), "\\xc3");          // a cut UTF-8 sequence
+  EXPECT_EQ(printable_path("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // a surrogate is not UTF-8
+  EXPECT_EQ(printable_path("\xc0\xaf"), "\\xc0\\xaf");      // nor an overlong '/'
+  EXPECT_EQ(first_invalid_utf8("ok ü"), std::string_view::npos);
+  EXPECT_EQ(first_invalid_utf8("ab\xed\xa0\x80"), 2u);
+  EXPECT_EQ(first_invalid_utf8("\xf4\x90\x80\x80"), 0u);  // above U+10FFFF
   EXPECT_EQ(printable(std::string(500, 'x'), 10), std::string(10, 'x') + "...");
 }
 

@@ -117,3 +117,19 @@ TEST(YamlConfig, DocumentThatIsNotAMappingIsAnError) {
 
 }  // namespace
 }  // namespace ferret::yaml
+
+namespace ferret {
+namespace {
+TEST(YamlConfig, TextThatIsNotUtf8IsRefusedWithItsLineAndColumn) {
+  try {
+    (void)yaml::load_string("a: 1\nb: x\xed\xa0\x80y\n", "w.yaml");
+    FAIL() << "accepted a surrogate";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "line 2 column 5");
+    EXPECT_STREQ(e.what(), "w.yaml: line 2 column 5: expected UTF-8 text (got the byte 0xed)");
+  }
+  EXPECT_THROW((void)yaml::load_string("\x80: 1\n", "w.yaml"), InputError);
+  EXPECT_EQ(yaml::load_string("name: Zürich\n", "w.yaml")["name"].as<std::string>(), "Zürich");
+}
+}  // namespace
+}  // namespace ferret

@@ -9,10 +9,15 @@
 
 namespace ferret {
 
-/// `text` as one printable line: control bytes and bytes that are not UTF-8 as \xNN,
+/// `text` as one printable ASCII line: control bytes and every byte above 0x7f as \xNN,
 /// tabs as spaces, cut after about `max_chars` characters ("..."). Every message ferret
-/// prints about input goes through it.
+/// prints about input goes through it (content of a file may be any bytes).
 [[nodiscard]] std::string printable(std::string_view text, std::size_t max_chars = 400);
+/// As printable(), but well-formed UTF-8 is kept: for paths the user typed.
+[[nodiscard]] std::string printable_path(std::string_view text);
+/// Offset of the first byte that does not start a well-formed UTF-8 sequence (RFC 3629),
+/// npos when the whole text is UTF-8.
+[[nodiscard]] std::size_t first_invalid_utf8(std::string_view text);
 
 /// Malformed or inconsistent user input. Exit code 2 at the CLI.
 class InputError : public std::runtime_error {
