@@ -152,6 +152,9 @@ TEST(UavApproach, BadRequestsAreInputErrorsNamingTheField) {
   UavApproachRequest flat = ok;
   flat.bounds = Aabb3{{-10, -10, 2}, {10, 10, 2}};
   EXPECT_EQ(field_of(flat), "bounds");
+  UavApproachRequest far = ok;  // a geofence 4e9 m wide: beyond any map, and it hung
+  far.bounds = Aabb3{{-30, -30, 1}, {30, 4e9, 5}};
+  EXPECT_EQ(field_of(far), "bounds");
   UavApproachRequest ground_robot = ok;
   ground_robot.robot.urdf = kRover;
   EXPECT_EQ(field_of(ground_robot), "robot");  // a URDF of the other kind of robot

@@ -148,7 +148,7 @@ TEST(UgvPath, WithoutAHiddenSpaceOrAnEntryTheRequestIsAnInputError) {
   };
   UgvPathRequest outside = detour_request();
   outside.start = {-0.5, -0.5, 0.0};  // outside the cellar, no box given
-  EXPECT_EQ(field_of(outside), "bounds");
+  EXPECT_EQ(field_of(outside), "start");  // where the search for a hidden space failed
   UgvPathRequest no_entry = outside;
   no_entry.bounds = Aabb3{{-1, -1, 0}, {0, 0, 0.4}};  // a box alone gives no entry
   EXPECT_EQ(field_of(no_entry), "p_WE");
