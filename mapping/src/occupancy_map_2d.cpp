@@ -218,6 +218,13 @@ GreyImage read_pgm(const fs::path& path) {
       in.fail("pixels",
               fmt::format("{} x {} = {} samples ({} bytes)", width, height, samples, needed),
               fmt::format("only {} bytes: truncated", available));
+    // One image: bytes past the raster mean the header's size is wrong (a width of 1
+    // for a 240-wide map would otherwise load as a thin strip).
+    if (available > needed)
+      in.fail("pixels",
+              fmt::format("{} x {} = {} samples ({} bytes) and nothing after them", width, height,
+                          samples, needed),
+              fmt::format("{} bytes more", available - needed));
     const auto* raster = reinterpret_cast<const unsigned char*>(data.data() + in.pos());
     for (std::uint64_t k = 0; k < samples; ++k) {
       // 16-bit samples are big-endian (Netpbm).
@@ -237,6 +244,11 @@ GreyImage read_pgm(const fs::path& path) {
                 fmt::format("only {}: truncated", k));
       out.pixels[k] = scale_to_byte(in.number(fmt::format("pixels[{}]", k), 0, maxval), maxval);
     }
+    in.skip_space_and_comments();
+    if (!in.at_end())
+      in.fail("pixels", fmt::format("{} x {} = {} samples and nothing after them", width, height,
+                                    samples),
+              "more samples");
   }
   return out;
 }

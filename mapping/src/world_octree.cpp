@@ -268,9 +268,11 @@ OctreeHeader parse_header(const std::string& bytes, const std::string& source, b
     } else if (key == "res") {
       char* endp = nullptr;
       h.resolution_m = std::strtod(value.c_str(), &endp);
-      if (*endp != '\0' || !std::isfinite(h.resolution_m) || h.resolution_m <= 0 ||
+      // Below 0.1 mm OctoMap's key range (+-2^15 voxels) would not reach a metre.
+      if (*endp != '\0' || !std::isfinite(h.resolution_m) || h.resolution_m < 1e-4 ||
           h.resolution_m > 1000)
-        throw InputError(source, "header.res", "a resolution in (0, 1000] m", "'" + value + "'");
+        throw InputError(source, "header.res", "a resolution in [0.0001, 1000] m",
+                         "'" + printable(value) + "'");
       have_res = true;
     } else {
       throw InputError(source, "header", "id, size, res or data lines", "'" + key + "'");

@@ -1,6 +1,7 @@
 #include "ferret/planning/ugv_path.hpp"
 
 #include <fmt/format.h>
+#include <octomap/OcTree.h>
 
 #include <cmath>
 
@@ -43,8 +44,12 @@ HiddenSpaceFrame request_space(const PlanningWorld& world, const UgvPathRequest&
     have_space = true;
   }
   if (r.floor_z_m) {
-    if (!std::isfinite(*r.floor_z_m))
-      throw InputError(kSource, "floor_z_m", "a finite height in metres");
+    // Within the map's key range (+-2^15 voxels), like every box the map is cut to.
+    const double reach_m = 32767.0 * world.tree->getResolution();
+    if (!(std::isfinite(*r.floor_z_m) && std::abs(*r.floor_z_m) < reach_m))
+      throw InputError(kSource, "floor_z_m",
+                       fmt::format("a finite height within +-{:g} m (the map's key range)", reach_m),
+                       fmt::format("{:g}", *r.floor_z_m));
     space.floor_z_m = *r.floor_z_m;
   }
   if (r.p_WE) {

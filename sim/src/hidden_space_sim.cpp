@@ -20,6 +20,12 @@ HiddenSpaceSim::HiddenSpaceSim(const OccupancyMap2D& truth, const Eigen::Vector2
   if (truth.cells.size() != truth.geometry.size())
     throw std::invalid_argument("HiddenSpaceSim: malformed truth map");
   const double res = truth.geometry.resolution_m;
+  // No beam reaches past the map: beyond its diagonal a longer range adds no cells, and
+  // the beam count must not grow with a range a user typed (100 km: 10^6 beams).
+  const double reach_m = std::hypot(truth.geometry.width_m(), truth.geometry.height_m());
+  const auto beams_for = [&](double fov_rad, double range_m, double resolution_m) {
+    return ::ferret::beams_for(fov_rad, std::min(range_m, reach_m), resolution_m);
+  };
   ir_beams_ = !options.ir_bearings_rad.empty() ? static_cast<int>(options.ir_bearings_rad.size())
               : options.ir_beams > 0           ? options.ir_beams
                                      : beams_for(options.ir_fov_rad, options.ir_range_m, res);

@@ -130,6 +130,27 @@ TEST(OccupancyMap2D, TruncatedPgmPixelData) {
   }
 }
 
+TEST(OccupancyMap2D, PixelsBeyondTheHeaderSizeAreAnError) {
+  // A header that says 1 x 4 over 16 bytes of raster would load as a 1-cell-wide strip.
+  TempDir dir;
+  write_bytes(dir / "m.pgm", std::string("P5\n1 4\n255\n") + std::string(16, '\xfe'));
+  write_bytes(dir / "m.yaml", yaml_for("m.pgm"));
+  try {
+    (void)load_map_server(dir / "m.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.source(), HasSubstr("m.pgm"));
+    EXPECT_EQ(e.field(), "pixels");
+    EXPECT_THAT(e.what(), HasSubstr("12 bytes more"));
+  }
+  write_bytes(dir / "a.pgm", "P2\n2 1\n15\n0 15 7\n");  // an ASCII sample too many
+  write_bytes(dir / "a.yaml", yaml_for("a.pgm"));
+  EXPECT_THROW((void)load_map_server(dir / "a.yaml"), InputError);
+  write_bytes(dir / "b.pgm", "P2\n2 1\n15\n0 15\n# a comment after the raster\n");
+  write_bytes(dir / "b.yaml", yaml_for("b.pgm"));
+  EXPECT_EQ(load_map_server(dir / "b.yaml").geometry.width, 2);
+}
+
 TEST(OccupancyMap2D, TruncatedAndBrokenPgmHeaders) {
   TempDir dir;
   const std::string p = dir / "m.pgm";

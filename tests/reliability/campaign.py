@@ -1008,11 +1008,16 @@ def mutate_option_value(rng, kind, base):
                         ("nan/1", True), ("0/", True), ("a", True)])
         return v[0], "shard -> %s" % v[0], v[1]
     name, text, must = rng.choice(NUMBER_VALUES + [("huge-count", "100000", False),
-                                                   ("too-small", "1e-9", False)])
+                                                   ("too-small", "1e-9", False),
+                                                   ("beyond-64-bit", "99999999999999999999",
+                                                    False)])
     if kind in ("uint", "int"):
-        # CLI11 reads 0x1A as 26 and -0 as 0: valid integers; a fraction, a value
-        # beyond 64 bits or 1e300 is not one
-        if name in ("20-digit", "huger", "tiny", "too-small"):
+        # -0 is 0 and 0x1A may be read as 26 (refusing them is fine too); a fraction,
+        # 1e300 or a value beyond the type is not an integer. 12345678901234567890 fits
+        # an unsigned 64-bit seed but not a signed integer.
+        if name in ("huger", "tiny", "too-small", "beyond-64-bit"):
+            must = True
+        if kind == "int" and name == "20-digit":
             must = True
         if kind == "uint" and name == "negative":
             must = True
