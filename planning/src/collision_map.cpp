@@ -46,11 +46,14 @@ KeyBox key_box(const Aabb3& b, double res) {
 
 void check_box_in_key_range(const Aabb3& box, double resolution_m, const std::string& source,
                             const std::string& field) {
-  try {
-    (void)key_box(box, resolution_m);
-  } catch (const InputError& e) {
-    throw InputError(source, field, e.expected(), box_text(box));
-  }
+  // The key range only: a flat box (a UAV held at one altitude) is a valid geofence.
+  const double reach_m = (kKeySpan / 2 - 1) * resolution_m;
+  if (!(box.lo.allFinite() && box.hi.allFinite() && (box.lo.array().abs() < reach_m).all() &&
+        (box.hi.array().abs() < reach_m).all()))
+    throw InputError(source, field,
+                     fmt::format("a box inside OctoMap's key range (+-{:g} m at {:g} m resolution)",
+                                 reach_m, resolution_m),
+                     box_text(box));
 }
 
 namespace {

@@ -40,9 +40,9 @@ struct Aabb3 {
 };
 
 /// Throws InputError(source, field, ...) unless `box` lies inside OctoMap's key range at
-/// `resolution_m` (+-2^15 voxels from the origin) and holds at least one voxel centre:
-/// a box beyond it is no place a map can describe, and planning in it would only
-/// check collisions along absurd lengths.
+/// `resolution_m` (+-2^15 voxels from the origin; a flat box is fine): a box beyond it is
+/// no place a map can describe, and planning in it would only check collisions along
+/// absurd lengths.
 void check_box_in_key_range(const Aabb3& box, double resolution_m, const std::string& source,
                             const std::string& field);
 
