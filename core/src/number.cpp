@@ -10,9 +10,9 @@ namespace ferret {
 namespace {
 
 std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t");
+  const auto first = s.find_first_not_of(" \t\r");
   if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t");
+  const auto last = s.find_last_not_of(" \t\r");
   return s.substr(first, last - first + 1);
 }
 
@@ -92,6 +92,12 @@ double parse_number(std::string_view text, const NumberRange& range, const std::
   std::string got = got_text(p == Parse::kNotANumber ? text : trim(text));
   if (p == Parse::kNotFinite) got += ", not finite";
   throw InputError(source, field, range.describe(), got);
+}
+
+std::optional<double> parse_finite(std::string_view text) {
+  double v = 0.0;
+  if (parse_double(text, v) != Parse::kOk) return std::nullopt;
+  return v;
 }
 
 double check_number(double value, const NumberRange& range, const std::string& source,

@@ -13,6 +13,7 @@
 
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/core/number.hpp"
 
 namespace ferret {
 namespace {
@@ -51,20 +52,8 @@ InputError input_error(const std::string& source, const std::string& field,
   return InputError(source, printable(field, 200), expected, printable(got));
 }
 
-// Strict CSV cells: a decimal number, no hex, no nan/inf, no trailing text; out of
-// range (1e400) is not finite.
-std::optional<double> strict_number(std::string cell) {
-  cell.erase(0, cell.find_first_not_of(" \t"));
-  cell.erase(cell.find_last_not_of(" \t") + 1);
-  if (cell.empty()) return std::nullopt;
-  const char* b = cell.data() + (cell[0] == '+' ? 1 : 0);
-  const char* e = cell.data() + cell.size();
-  if (b != e && (*b == '+' || *b == '-') && b != cell.data()) return std::nullopt;  // "+-1"
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(b, e, v, std::chars_format::general);
-  if (ec != std::errc() || ptr != e || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
+// Strict CSV cells: core's one number parser (no hex, nan/inf, trailing text, 1e400).
+std::optional<double> strict_number(const std::string& cell) { return parse_finite(cell); }
 
 // Nesting deeper than kMaxJsonDepth is refused before nlohmann (which recurses) sees it.
 void check_depth(const std::string& text, const std::string& source) {

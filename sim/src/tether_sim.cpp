@@ -15,6 +15,7 @@
 
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/core/number.hpp"
 #include "ferret/core/random.hpp"
 #include "ferret/core/yaml_config.hpp"
 
@@ -145,20 +146,10 @@ std::string printable(const std::string& text) {
   return out;
 }
 
-// The one place trajectory numbers are judged (the shared number type replaces it):
-// a decimal number, no hex, no nan/inf, nothing after it; 1e400 is out of range.
+// Trajectory numbers through core's one number parser (no hex, nan/inf, trailing text).
 double parse_number(const std::string& text, const std::string& source, const std::string& field) {
-  std::string trimmed = text;
-  trimmed.erase(0, trimmed.find_first_not_of(" \t\r"));
-  trimmed.erase(trimmed.find_last_not_of(" \t\r") + 1);
-  const char* b = trimmed.data() + (!trimmed.empty() && trimmed[0] == '+' ? 1 : 0);
-  const char* e = trimmed.data() + trimmed.size();
-  if (b != e && b != trimmed.data() && (*b == '+' || *b == '-')) b = e;  // "+-1": no number
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(b, e, v, std::chars_format::general);
-  if (trimmed.empty() || ec != std::errc() || ptr != e || !std::isfinite(v))
-    throw InputError(source, field, "a finite number", "'" + printable(trimmed) + "'");
-  return v;
+  if (const auto v = parse_finite(text)) return *v;
+  throw InputError(source, field, "a finite number", "'" + printable(text) + "'");
 }
 
 void check_duration(double duration_s, const std::string& source, const std::string& field) {

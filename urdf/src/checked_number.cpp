@@ -1,5 +1,7 @@
 #include "checked_number.hpp"
 
+#include "ferret/core/number.hpp"
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -18,20 +20,7 @@ std::string bound(double v) { return fmt::format("{}", v); }
 
 }  // namespace
 
-std::optional<double> parse_decimal(std::string_view token) {
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  if (token.empty()) return std::nullopt;
-  // from_chars also reads "inf", "nan" and "infinity"; a URDF number starts with a
-  // digit, a point or a minus sign, and is finite.
-  const char first = token.front() == '-' && token.size() > 1 ? token[1] : token.front();
-  if (!(first == '.' || (first >= '0' && first <= '9'))) return std::nullopt;
-  double v = 0.0;
-  const auto [end, ec] =
-      std::from_chars(token.data(), token.data() + token.size(), v, std::chars_format::general);
-  if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(v))
-    return std::nullopt;
-  return v;
-}
+std::optional<double> parse_decimal(std::string_view token) { return parse_finite(token); }
 
 bool NumberRange::contains(double v) const {
   if (!std::isfinite(v)) return false;

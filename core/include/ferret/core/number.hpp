@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -47,6 +48,10 @@ struct NumberRange {
 /// are allowed; a leading '+' is allowed. Throws InputError(source, field, ...).
 [[nodiscard]] double parse_number(std::string_view text, const NumberRange& range,
                                   const std::string& source, const std::string& field = {});
+
+/// The parse alone, without a range or an exception: the finite number `text` is under
+/// parse_number's rules, or nullopt. For parsers that word their own errors.
+[[nodiscard]] std::optional<double> parse_finite(std::string_view text);
 
 /// Checks a number already converted by another parser (JSON, URDF): finite, in range.
 double check_number(double value, const NumberRange& range, const std::string& source,
