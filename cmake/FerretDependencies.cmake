@@ -12,7 +12,10 @@ pkg_check_modules(URDFDOM REQUIRED IMPORTED_TARGET urdfdom)
 # libxml2 (Debian libxml2-dev): the strict, iterative XML check a URDF passes before
 # TinyXML's recursive parser sees it (urdf/src/xml_check.cpp).
 pkg_check_modules(LIBXML2 REQUIRED IMPORTED_TARGET libxml-2.0)
-find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs calib3d aruco)
+# AprilTag 3 (Debian libapriltag-dev): the UAV's marker detector (uav/), the simulator's tag bitmaps.
+find_package(apriltag REQUIRED)     # target: apriltag::apriltag
+find_package(JPEG REQUIRED)           # camera frames: libjpeg's messages go into ferret's errors
 find_package(PNG REQUIRED)            # map images: libpng reports errors to ferret, not stderr
 if(FERRET_BUILD_TESTS)
   find_package(GTest REQUIRED)

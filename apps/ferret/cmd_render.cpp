@@ -115,7 +115,7 @@ void run(const RenderArgs& a) {
   const RgbImage img = canvas.image();
   std::cout << fmt::format("rendered {} x {} cells at {} px/cell ({} x {} px) -> {}\n",
                            map.geometry.width, map.geometry.height, canvas.pixels_per_cell(),
-                           img.width, img.height, a.output)
+                           img.width_px, img.height_px, a.output)
             << plan_line;
 }
 

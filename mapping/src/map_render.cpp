@@ -87,16 +87,16 @@ void draw_mark(cv::Mat& img, cv::Point c, Rgb color, LegendMark shape, int r, in
 }
 
 cv::Mat to_bgr_mat(const RgbImage& image) {
-  cv::Mat out(image.height, image.width, CV_8UC3);
-  for (int r = 0; r < image.height; ++r)
-    for (int c = 0; c < image.width; ++c) {
-      const Rgb p = image.at(c, r);
+  cv::Mat out(image.height_px, image.width_px, CV_8UC3);
+  for (int r = 0; r < image.height_px; ++r)
+    for (int c = 0; c < image.width_px; ++c) {
+      const Rgb p = pixel(image, c, r);
       out.at<cv::Vec3b>(r, c) = {p.b, p.g, p.r};
     }
   return out;
 }
 RgbImage from_bgr_mat(const cv::Mat& img) {
-  RgbImage out{img.cols, img.rows, std::vector<std::uint8_t>(img.total() * 3)};
+  RgbImage out(img.cols, img.rows);
   for (int r = 0; r < img.rows; ++r)
     for (int c = 0; c < img.cols; ++c) {
       const cv::Vec3b p = img.at<cv::Vec3b>(r, c);
@@ -568,8 +568,8 @@ void draw_world_annotations(MapCanvas& canvas, const WorldSpec& world) {
 
 void write_png(const RgbImage& image, const fs::path& path) {
   check_png_path(path);
-  if (image.width <= 0 || image.height <= 0 ||
-      image.data.size() != static_cast<std::size_t>(image.width) * image.height * 3)
+  if (image.width_px <= 0 || image.height_px <= 0 ||
+      image.data.size() != static_cast<std::size_t>(image.width_px) * image.height_px * 3)
     throw InputError(path.string(), "", "a non-empty image to write");
   const cv::Mat mat = to_bgr_mat(image);
   write_file_atomically(path, [&](const fs::path& tmp) {
@@ -581,13 +581,6 @@ void write_png(const RgbImage& image, const fs::path& path) {
     }
     if (!ok) throw InputError(path.string(), "", "a writable PNG file");
   });
-}
-
-RgbImage read_rgb_image(const fs::path& path) {
-  const cv::Mat img = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (img.empty())
-    throw InputError(path.string(), "", "an image OpenCV can read", "unreadable or corrupt");
-  return from_bgr_mat(img);
 }
 
 }  // namespace ferret

@@ -235,32 +235,21 @@ WallSide parse_wall(const MapReader& r, std::string_view key) {
   r.fail(key, "one of +x, -x, +y, -y", "'" + s + "'");
 }
 
-// Number of markers in an OpenCV 4.6 predefined dictionary, 0 for an unknown name.
-int dictionary_size(const std::string& name) {
-  for (const char* bits : {"4X4", "5X5", "6X6", "7X7"})
-    for (const int n : {50, 100, 250, 1000})
-      if (name == fmt::format("DICT_{}_{}", bits, n)) return n;
-  if (name == "DICT_ARUCO_ORIGINAL") return 1024;
-  if (name == "DICT_APRILTAG_16h5") return 30;
-  if (name == "DICT_APRILTAG_25h9") return 35;
-  if (name == "DICT_APRILTAG_36h10") return 2320;
-  if (name == "DICT_APRILTAG_36h11") return 587;
-  return 0;
-}
-
 void place_marker(HiddenSpace& h, const MapReader& m) {
-  m.allow_only({"id", "size_m", "dictionary", "placement", "position_m", "rpy_deg"});
-  ArucoMarker& marker = h.marker;
-  marker.dictionary = m.get_or<std::string>("dictionary", marker.dictionary);
-  const int ids = dictionary_size(marker.dictionary);
-  if (ids == 0)
-    m.fail("dictionary",
-           "an OpenCV ArUco dictionary (DICT_4X4_50 ... DICT_7X7_1000, DICT_ARUCO_ORIGINAL, "
-           "DICT_APRILTAG_16h5/25h9/36h10/36h11)",
-           "'" + marker.dictionary + "'");
+  m.allow_only({"id", "size_m", "family", "dictionary", "placement", "position_m", "rpy_deg"});
+  FiducialMarker& marker = h.marker;
+  if (m.has("family")) {
+    marker.dictionary.family =
+        parse_marker_family(m.get<std::string>("family"), m.source(), m.field_path("family"));
+    // Each family's default dictionary: the paper's tag36h11 for AprilTag.
+    if (marker.dictionary.family == MarkerFamily::kAprilTag) marker.dictionary.name = "tag36h11";
+  }
+  marker.dictionary.name = m.get_or<std::string>("dictionary", marker.dictionary.name);
+  check_marker_dictionary(marker.dictionary, m.source(), m.field_path("dictionary"));
+  const int ids = marker_id_count(marker.dictionary);
   marker.id = m.get<int>("id");
   if (marker.id < 0 || marker.id >= ids)
-    m.fail("id", fmt::format("an id in [0, {}] of {}", ids - 1, marker.dictionary),
+    m.fail("id", fmt::format("an id in [0, {}] of {}", ids - 1, marker.dictionary.name),
            std::to_string(marker.id));
   marker.size_m = positive_or(m, "size_m", marker.size_m);
   const Eigen::Vector3d up_W = Eigen::Vector3d::UnitZ();

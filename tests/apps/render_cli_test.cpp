@@ -29,10 +29,10 @@ TEST(RenderCli, MapServerMapToPng) {
                          " --scale 50 --no-scale-bar --no-frame");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const RgbImage img = read_rgb_image(dir / "out.png");
-  ASSERT_EQ(img.width, 100);
-  ASSERT_EQ(img.height, 50);
-  EXPECT_EQ(img.at(25, 25).r, 0);
-  EXPECT_EQ(img.at(75, 25).r, 255);
+  ASSERT_EQ(img.width_px, 100);
+  ASSERT_EQ(img.height_px, 50);
+  EXPECT_EQ(pixel(img, 25, 25).r, 0);
+  EXPECT_EQ(pixel(img, 75, 25).r, 255);
 }
 
 TEST(RenderCli, WorldYamlAndOctreeSlices) {
@@ -46,10 +46,10 @@ TEST(RenderCli, WorldYamlAndOctreeSlices) {
                          " --z 0.1 --scale 1 --no-scale-bar --no-frame -o " + (dir / "b.png"));
   ASSERT_EQ(b.exit_code, 0) << b.err;
   const RgbImage img = read_rgb_image(dir / "b.png");
-  ASSERT_EQ(img.width, 240);
+  ASSERT_EQ(img.width_px, 240);
   // World (-0.55, -1.0) is column (x + 3) / 0.025 = 98, row (3 - y) / 0.025 = 160.
-  EXPECT_EQ(img.at(98, 160).r, 0);
-  EXPECT_EQ(img.at(140, 160).r, 255);  // (0.5, -1.0): the cellar interior
+  EXPECT_EQ(pixel(img, 98, 160).r, 0);
+  EXPECT_EQ(pixel(img, 140, 160).r, 255);  // (0.5, -1.0): the cellar interior
 }
 
 TEST(RenderCli, BadInputsExitTwoWithoutOutput) {
@@ -92,11 +92,11 @@ TEST(RenderCli, PlanDrawnWhereItsPosesProject) {
                          " --scale 10 --no-frame --no-scale-bar -o " + (dir / "bare.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const RgbImage img = read_rgb_image(dir / "bare.png");
-  ASSERT_EQ(img.width, 400);
-  ASSERT_EQ(img.height, 200);
+  ASSERT_EQ(img.width_px, 400);
+  ASSERT_EQ(img.height_px, 200);
   // World (x, y) is column (x - 1) / 0.1 * 10, row (2 + 2 - y) / 0.1 * 10, by hand.
   const auto is = [&](int c, int row, Rgb want) {
-    const Rgb p = img.at(c, row);
+    const Rgb p = pixel(img, c, row);
     return p.r == want.r && p.g == want.g && p.b == want.b;
   };
   // The overlay's colours (PlanOverlayStyle, docs/maps_and_worlds.md).
@@ -112,15 +112,15 @@ TEST(RenderCli, PlanDrawnWhereItsPosesProject) {
   ASSERT_EQ(f.exit_code, 0) << f.err;
   EXPECT_THAT(f.out, HasSubstr("plan: 3 states, 3.0 m"));
   const RgbImage framed = read_rgb_image(dir / "framed.png");
-  ASSERT_GT(framed.width, 400 + 150);
+  ASSERT_GT(framed.width_px, 400 + 150);
   int title_ink = 0, legend_path = 0;
   for (int row = 0; row < 20; ++row)
-    for (int c = 0; c < framed.width; ++c) title_ink += framed.at(c, row).r < 100;
+    for (int c = 0; c < framed.width_px; ++c) title_ink += pixel(framed, c, row).r < 100;
   // Right of the path: it ends 367 px (goal plus its heading tick) into the map, whose
   // left margin is below 80 px.
-  for (int row = 0; row < framed.height; ++row)
-    for (int c = 367 + 80; c < framed.width; ++c) {
-      const Rgb p = framed.at(c, row);
+  for (int row = 0; row < framed.height_px; ++row)
+    for (int c = 367 + 80; c < framed.width_px; ++c) {
+      const Rgb p = pixel(framed, c, row);
       legend_path += p.r == style.path.r && p.g == style.path.g && p.b == style.path.b;
     }
   EXPECT_GT(title_ink, 30);

@@ -30,13 +30,13 @@ TEST(MapCanvas, CellColoursAndRowOrder) {
   o.frame = false;
   const MapCanvas canvas(tiny_map(), o);
   const RgbImage img = canvas.image();
-  ASSERT_EQ(img.width, 30);
-  ASSERT_EQ(img.height, 20);
+  ASSERT_EQ(img.width_px, 30);
+  ASSERT_EQ(img.height_px, 20);
   // Map row j = 0 is the bottom of the picture (rows 10..19).
-  EXPECT_TRUE(same(img.at(5, 15), o.occupied));
-  EXPECT_TRUE(same(img.at(15, 15), o.free));
-  EXPECT_TRUE(same(img.at(25, 15), o.unknown));
-  EXPECT_TRUE(same(img.at(5, 5), o.free));
+  EXPECT_TRUE(same(pixel(img, 5, 15), o.occupied));
+  EXPECT_TRUE(same(pixel(img, 15, 15), o.free));
+  EXPECT_TRUE(same(pixel(img, 25, 15), o.unknown));
+  EXPECT_TRUE(same(pixel(img, 5, 5), o.free));
   // World (10, 22) is the top-left corner; (13, 20) the bottom-right.
   EXPECT_TRUE(canvas.to_pixel({10.0, 22.0}).isApprox(Eigen::Vector2d(0, 0)));
   EXPECT_TRUE(canvas.to_pixel({13.0, 20.0}).isApprox(Eigen::Vector2d(30, 20)));
@@ -62,9 +62,9 @@ TEST(MapCanvas, OverlaysLandOnTheirCells) {
   canvas.draw_cells(tiny_map().geometry, {Cell{1, 0}}, Rgb{255, 0, 0}, 0.5);
   canvas.draw_field(fine, std::vector<double>(24, -1.0), Rgb{}, Rgb{});  // all skipped
   const RgbImage img = canvas.image();
-  EXPECT_TRUE(same(img.at(12, 2), Rgb{0, 0, 255}));
-  EXPECT_TRUE(same(img.at(17, 2), Rgb{255, 255, 255}));
-  const Rgb blended = img.at(15, 15);
+  EXPECT_TRUE(same(pixel(img, 12, 2), Rgb{0, 0, 255}));
+  EXPECT_TRUE(same(pixel(img, 17, 2), Rgb{255, 255, 255}));
+  const Rgb blended = pixel(img, 15, 15);
   EXPECT_EQ(blended.r, 255);
   EXPECT_NEAR(blended.g, 128, 1);
   EXPECT_NEAR(blended.b, 128, 1);
@@ -81,12 +81,12 @@ TEST(MapCanvas, PngRoundTripAndScaleBar) {
   canvas.save_png(dir / "m.png");
   const RgbImage back = read_rgb_image(dir / "m.png");
   const RgbImage img = canvas.image();
-  ASSERT_EQ(back.width, 300);
-  ASSERT_EQ(back.height, 200);
+  ASSERT_EQ(back.width_px, 300);
+  ASSERT_EQ(back.height_px, 200);
   EXPECT_EQ(back.data, img.data);
   // The scale bar is black on white in the lower-left corner, over the occupied cell.
   bool white_seen = false;
-  for (int c = 0; c < 60; ++c) white_seen = white_seen || same(back.at(c, 180), Rgb{255, 255, 255});
+  for (int c = 0; c < 60; ++c) white_seen = white_seen || same(pixel(back, c, 180), Rgb{255, 255, 255});
   EXPECT_TRUE(white_seen);
   EXPECT_THROW(canvas.save_png(dir / "m.jpg"), InputError);
   EXPECT_EQ(dir.count(), 1u);
@@ -102,14 +102,14 @@ TEST(MapCanvas, WorldAnnotationsMarkObjectsAndDropZone) {
   MapCanvas canvas(slice_octree(*build_world_octree(world), at_floor), o);
   draw_world_annotations(canvas, world);
   const RgbImage img = canvas.image();
-  auto pixel = [&](double x, double y) {
+  auto at_m = [&](double x, double y) {
     const Eigen::Vector2d p = canvas.to_pixel({x, y});
-    return img.at(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
+    return ferret::pixel(img, static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
   };
-  EXPECT_TRUE(same(pixel(1.0, -0.7), Rgb{220, 20, 20}));     // the canister
-  EXPECT_TRUE(same(pixel(-2.0, -2.5), Rgb{255, 140, 0}));    // bottom of the drop zone's circle
-  EXPECT_TRUE(same(pixel(-0.601, -1.0), Rgb{30, 80, 230}));  // the cellar's marker
-  EXPECT_TRUE(same(pixel(-0.3, -1.0), Rgb{0, 160, 0}));      // the entry heading, into the cellar
+  EXPECT_TRUE(same(at_m(1.0, -0.7), Rgb{220, 20, 20}));     // the canister
+  EXPECT_TRUE(same(at_m(-2.0, -2.5), Rgb{255, 140, 0}));    // bottom of the drop zone's circle
+  EXPECT_TRUE(same(at_m(-0.601, -1.0), Rgb{30, 80, 230}));  // the cellar's marker
+  EXPECT_TRUE(same(at_m(-0.3, -1.0), Rgb{0, 160, 0}));      // the entry heading, into the cellar
 
   // The legend lists what the picture shows: the whole world has the drop zone (orange),
   // a window on the cellar does not.
@@ -118,7 +118,7 @@ TEST(MapCanvas, WorldAnnotationsMarkObjectsAndDropZone) {
     const PixelRect l = c.legend_area();
     int n = 0;
     for (int r = l.y; r < l.y + l.height; ++r)
-      for (int col = l.x; col < l.x + l.width; ++col) n += same(im.at(col, r), Rgb{255, 140, 0});
+      for (int col = l.x; col < l.x + l.width; ++col) n += same(ferret::pixel(im, col, r), Rgb{255, 140, 0});
     return n;
   };
   EXPECT_GT(orange_in_legend(canvas), 5);
@@ -151,29 +151,29 @@ TEST(MapCanvas, FrameHasTitleMetreAxesAndLegend) {
   ASSERT_EQ(m.height, 200);
   ASSERT_GT(m.x, 0);
   ASSERT_GT(m.y, 0);
-  EXPECT_GT(img.width, m.x + m.width);  // the legend's panel
-  EXPECT_GT(img.height, m.y + m.height);
+  EXPECT_GT(img.width_px, m.x + m.width);  // the legend's panel
+  EXPECT_GT(img.height_px, m.y + m.height);
   // World (-2, 6) is the map's top-left corner; (8, 1) its bottom-right.
   EXPECT_TRUE(canvas.to_pixel({-2.0, 6.0}).isApprox(Eigen::Vector2d(m.x, m.y)));
   EXPECT_TRUE(canvas.to_pixel({8.0, 1.0}).isApprox(Eigen::Vector2d(m.x + 400, m.y + 200)));
-  EXPECT_TRUE(white(img.at(m.x + 5, m.y + 5)));  // the map itself is unchanged
+  EXPECT_TRUE(white(pixel(img, m.x + 5, m.y + 5)));  // the map itself is unchanged
   // The title: ink above the map.
   int title_ink = 0;
   for (int r = 0; r < m.y; ++r)
-    for (int c = 0; c < img.width; ++c) title_ink += dark(img.at(c, r));
+    for (int c = 0; c < img.width_px; ++c) title_ink += dark(pixel(img, c, r));
   EXPECT_GT(title_ink, 50);
   // x ticks: 10 m / 8 = 1.25 m rounds up to a 2 m step, so the tick at x = 0 m is
   // 2 m / 0.25 m * 10 px = 80 px right of the map's left edge and x = 1 m has none.
-  EXPECT_TRUE(dark(img.at(m.x + 80, m.y + m.height + 3)));
-  EXPECT_FALSE(dark(img.at(m.x + 120, m.y + m.height + 3)));
+  EXPECT_TRUE(dark(pixel(img, m.x + 80, m.y + m.height + 3)));
+  EXPECT_FALSE(dark(pixel(img, m.x + 120, m.y + m.height + 3)));
   // y ticks: y = 2 m is 4 m / 0.25 m * 10 px = 160 px below the map's top edge.
-  EXPECT_TRUE(dark(img.at(m.x - 3, m.y + 160)));
+  EXPECT_TRUE(dark(pixel(img, m.x - 3, m.y + 160)));
   // Tick labels: ink in the margins left of and below the map.
   int left_ink = 0, bottom_ink = 0;
   for (int r = m.y; r < m.y + m.height; ++r)
-    for (int c = 0; c < m.x - 8; ++c) left_ink += dark(img.at(c, r));
-  for (int r = m.y + m.height + 8; r < img.height; ++r)
-    for (int c = m.x; c < m.x + m.width; ++c) bottom_ink += dark(img.at(c, r));
+    for (int c = 0; c < m.x - 8; ++c) left_ink += dark(pixel(img, c, r));
+  for (int r = m.y + m.height + 8; r < img.height_px; ++r)
+    for (int c = m.x; c < m.x + m.width; ++c) bottom_ink += dark(pixel(img, c, r));
   EXPECT_GT(left_ink, 30);
   EXPECT_GT(bottom_ink, 30);
   // The legend's swatch: its exact colour inside the legend box, nowhere on the map.
@@ -182,13 +182,13 @@ TEST(MapCanvas, FrameHasTitleMetreAxesAndLegend) {
   EXPECT_GE(l.x, m.x + m.width);
   int in_box = 0;
   for (int r = l.y; r < l.y + l.height; ++r)
-    for (int c = l.x; c < l.x + l.width; ++c) in_box += same(img.at(c, r), swatch);
+    for (int c = l.x; c < l.x + l.width; ++c) in_box += same(pixel(img, c, r), swatch);
   EXPECT_GT(in_box, 50);
   EXPECT_EQ(canvas.colour_bar_area().width, 0);  // none set
 
   o.frame = false;  // the map alone, pixel for pixel
   const MapCanvas bare(field_map(), o);
-  EXPECT_EQ(bare.image().width, 400);
+  EXPECT_EQ(bare.image().width_px, 400);
   EXPECT_EQ(bare.map_area().x, 0);
 }
 
@@ -208,14 +208,14 @@ TEST(MapCanvas, ColourBarRunsFromLowToHighWithThresholdsMarked) {
   const auto row_of = [&](double v) {
     return b.y + static_cast<int>(std::lround((1 - v) * (b.height - 1)));
   };
-  EXPECT_TRUE(same(img.at(c, row_of(0.0)), low));
-  EXPECT_TRUE(same(img.at(c, row_of(1.0)), high));
+  EXPECT_TRUE(same(pixel(img, c, row_of(0.0)), low));
+  EXPECT_TRUE(same(pixel(img, c, row_of(1.0)), high));
   // Bottom to top: red and green never fall, blue never rises (the marks' rows excepted).
   Rgb prev = low;
   int samples = 0;
   for (int r = b.y + b.height - 1; r >= b.y; --r) {
     if (std::abs(r - row_of(0.10)) <= 2 || std::abs(r - row_of(0.95)) <= 2) continue;
-    const Rgb p = img.at(c, r);
+    const Rgb p = pixel(img, c, r);
     EXPECT_GE(p.r, prev.r) << r;
     EXPECT_GE(p.g, prev.g) << r;
     EXPECT_LE(p.b, prev.b) << r;
@@ -224,11 +224,11 @@ TEST(MapCanvas, ColourBarRunsFromLowToHighWithThresholdsMarked) {
   }
   EXPECT_GT(samples, 100);
   // The thresholds are dark lines across the bar.
-  EXPECT_TRUE(dark(img.at(c, row_of(0.10))));
-  EXPECT_TRUE(dark(img.at(c, row_of(0.95))));
+  EXPECT_TRUE(dark(pixel(img, c, row_of(0.10))));
+  EXPECT_TRUE(dark(pixel(img, c, row_of(0.95))));
   // The field's p = 0.5 is the bar's colour half way up.
-  const Rgb mid = img.at(canvas.map_area().x + 200, canvas.map_area().y + 100);
-  const Rgb bar_mid = img.at(c, b.y + (b.height - 1) / 2);
+  const Rgb mid = pixel(img, canvas.map_area().x + 200, canvas.map_area().y + 100);
+  const Rgb bar_mid = pixel(img, c, b.y + (b.height - 1) / 2);
   EXPECT_NEAR(mid.r, bar_mid.r, 2);
   EXPECT_NEAR(mid.g, bar_mid.g, 2);
   EXPECT_NEAR(mid.b, bar_mid.b, 2);
@@ -237,7 +237,8 @@ TEST(MapCanvas, ColourBarRunsFromLowToHighWithThresholdsMarked) {
 
 TEST(MapServerImage, PngThroughOpenCv) {
   TempDir dir;
-  RgbImage img{2, 1, {0, 0, 0, 252, 255, 255}};  // black; grey average 254 -> free
+  RgbImage img(2, 1);
+  img.data = {0, 0, 0, 252, 255, 255};  // black; grey average 254 -> free
   write_png(img, dir / "m.png");
   std::ofstream(dir / "m.yaml") << "image: m.png\nresolution: 0.1\norigin: [0, 0, 0]\n";
   const OccupancyMap2D map = load_map_server(dir / "m.yaml");

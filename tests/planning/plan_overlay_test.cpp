@@ -53,24 +53,24 @@ TEST(PlanOverlay, PathTetherAndMarkersLandWhereThePosesProject) {
   const RgbImage img = canvas.image();
   const PixelRect m = canvas.map_area();
   // World (x, y) is at column m.x + 50 x, row m.y + 50 (4 - y), by hand.
-  const auto pixel = [&](double x, double y) {
-    return img.at(m.x + static_cast<int>(std::lround(50 * x)),
+  const auto at_m = [&](double x, double y) {
+    return ferret::pixel(img, m.x + static_cast<int>(std::lround(50 * x)),
                   m.y + static_cast<int>(std::lround(50 * (4.0 - y))));
   };
-  EXPECT_TRUE(same(pixel(2.5, 3.5), style.path));   // mid first leg
-  EXPECT_TRUE(same(pixel(4.0, 2.25), style.path));  // mid second leg
-  EXPECT_TRUE(same(pixel(1.0, 3.5), style.start));
-  EXPECT_TRUE(same(pixel(4.0, 1.0), style.goal));
-  EXPECT_TRUE(same(pixel(0.5, 2.0), style.entry));
-  EXPECT_TRUE(same(pixel(2.5, 2.5), style.tether));  // over the box, from corner to corner
+  EXPECT_TRUE(same(at_m(2.5, 3.5), style.path));   // mid first leg
+  EXPECT_TRUE(same(at_m(4.0, 2.25), style.path));  // mid second leg
+  EXPECT_TRUE(same(at_m(1.0, 3.5), style.start));
+  EXPECT_TRUE(same(at_m(4.0, 1.0), style.goal));
+  EXPECT_TRUE(same(at_m(0.5, 2.0), style.entry));
+  EXPECT_TRUE(same(at_m(2.5, 2.5), style.tether));  // over the box, from corner to corner
   // A wrap point's ring: 6 px round the corner (3, 2.5), i.e. 0.12 m to its left.
-  EXPECT_TRUE(same(pixel(3.0 - 0.12, 2.5), style.wrap));
+  EXPECT_TRUE(same(at_m(3.0 - 0.12, 2.5), style.wrap));
   // Every overlay has its legend entry.
   const PixelRect l = canvas.legend_area();
   for (const Rgb c : {style.path, style.start, style.goal, style.entry, style.tether, style.wrap}) {
     int n = 0;
     for (int r = l.y; r < l.y + l.height; ++r)
-      for (int col = l.x; col < l.x + l.width; ++col) n += same(img.at(col, r), c);
+      for (int col = l.x; col < l.x + l.width; ++col) n += same(pixel(img, col, r), c);
     EXPECT_GT(n, 10) << int(c.r) << "," << int(c.g) << "," << int(c.b);
   }
 }
@@ -91,7 +91,7 @@ TEST(PlanOverlay, APlanPartlyOutsideTheMapIsClippedAndCounted) {
   // The part inside is drawn up to the map's right edge (x = 6 m).
   const RgbImage img = canvas.image();
   const PixelRect m = canvas.map_area();
-  EXPECT_TRUE(same(img.at(m.x + 295, m.y + 25), PlanOverlayStyle{}.path));
+  EXPECT_TRUE(same(pixel(img, m.x + 295, m.y + 25), PlanOverlayStyle{}.path));
 }
 
 }  // namespace
@@ -119,12 +119,12 @@ TEST(PlanOverlay, FarSegmentsAreClippedToWhatIsSeen) {
   EXPECT_NEAR(s.length_m, 2e5 + (1e5 - 1.0) + 2e5, 1e-6);
   const RgbImage img = canvas.image();
   const PixelRect m = canvas.map_area();
-  const auto pixel = [&](double x, double y) {
-    return img.at(m.x + static_cast<int>(std::lround(50 * x)),
+  const auto at_m = [&](double x, double y) {
+    return ferret::pixel(img, m.x + static_cast<int>(std::lround(50 * x)),
                   m.y + static_cast<int>(std::lround(50 * (4.0 - y))));
   };
-  for (const double x : {0.2, 3.0, 5.8}) EXPECT_TRUE(same(pixel(x, 1.0), style.path)) << x;
-  EXPECT_FALSE(same(pixel(3.0, 3.0), style.path));  // the far legs stay off the map
+  for (const double x : {0.2, 3.0, 5.8}) EXPECT_TRUE(same(at_m(x, 1.0), style.path)) << x;
+  EXPECT_FALSE(same(at_m(3.0, 3.0), style.path));  // the far legs stay off the map
 }
 
 }  // namespace

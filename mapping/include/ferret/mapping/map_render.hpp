@@ -25,6 +25,7 @@
 #include "ferret/core/grid.hpp"
 #include "ferret/core/pose.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/perception/image.hpp"
 
 namespace ferret {
 
@@ -34,16 +35,10 @@ struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
 };
 
-/// An 8-bit RGB image, rows top to bottom, 3 bytes a pixel.
-struct RgbImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> data;  ///< index = (row * width + column) * 3 + channel (r, g, b)
-  [[nodiscard]] Rgb at(int column, int row) const {
-    const std::size_t k = (static_cast<std::size_t>(row) * width + column) * 3;
-    return {data[k], data[k + 1], data[k + 2]};
-  }
-};
+/// The colour of one pixel of an RGB image (perception/image.hpp).
+[[nodiscard]] inline Rgb pixel(const RgbImage& image, int column, int row) {
+  return {image.at(column, row, 0), image.at(column, row, 1), image.at(column, row, 2)};
+}
 
 /// A rectangle of pixels of the picture (column, row of its top-left corner).
 struct PixelRect {
@@ -141,7 +136,5 @@ void draw_world_annotations(MapCanvas& canvas, const WorldSpec& world);
 
 /// Writes an RGB image as PNG atomically (path must end in .png).
 void write_png(const RgbImage& image, const std::filesystem::path& path);
-/// Reads a PNG (or any image OpenCV reads) as RGB. Throws InputError if unreadable.
-[[nodiscard]] RgbImage read_rgb_image(const std::filesystem::path& path);
 
 }  // namespace ferret

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "ferret/core/pose.hpp"
+#include "ferret/perception/marker_family.hpp"
 
 namespace ferret {
 
@@ -52,12 +53,13 @@ struct GroundSpec {
 /// (+x is the wall facing the space's local x direction).
 enum class WallSide : std::uint8_t { kPlusX, kMinusX, kPlusY, kMinusY };
 
-/// An ArUco marker: a square of `size_m` whose frame M has z out of the printed
-/// face, x to the right and y up in the image of the marker (OpenCV's convention).
-struct ArucoMarker {
+/// A fiducial marker (ArUco or AprilTag): a black square of side `size_m` whose frame
+/// M has z out of the printed face, x to the right and y up in the image of the marker
+/// (OpenCV's convention).
+struct FiducialMarker {
   int id = 0;
   double size_m = 0.15;
-  std::string dictionary = "DICT_4X4_50";
+  MarkerDictionary dictionary;  ///< default: ArUco DICT_4X4_50
   Pose3 X_WM = Pose3::Identity();
 };
 
@@ -75,7 +77,7 @@ struct HiddenSpace {
   double opening_width_m = 0.15;
   double opening_height_m = 0.07;
   double opening_offset_m = 0.0;  ///< along the wall from its centre (towards +y or +x of H)
-  ArucoMarker marker;
+  FiducialMarker marker;
   Eigen::Vector3d p_WE =
       Eigen::Vector3d::Zero();  ///< entry: bottom centre of the opening, outer face
   double entry_yaw_rad = 0.0;   ///< heading that drives from E into the interior
