@@ -89,6 +89,16 @@ def urdf_seeds():
         '</image><clip><near>0.05</near><far>4</far></clip></camera></sensor></gazebo>'
         '<joint name="w" type="continuous"><parent link="base"/><child link="ir"/>'
         '<limit velocity="10" effort="1"/></joint></robot>\n')
+    put(t, "calibrated_camera.urdf",
+        '<robot name="r"><link name="base"/><link name="cam_link"/><joint name="j" type="fixed">'
+        '<parent link="base"/><child link="cam_link"/></joint>'
+        '<gazebo reference="cam_link"><sensor type="camera" name="cam"><ferret role="marker_camera"/>'
+        '<camera><horizontal_fov>1.2</horizontal_fov><image><width>640</width><height>480</height>'
+        '</image><clip><near>0.1</near><far>10</far></clip>'
+        '<distortion><k1>-0.25</k1><k2>0.08</k2><k3>-0.01</k3><p1>0.001</p1><p2>-0.0005</p2>'
+        '<center>0.5 0.5</center></distortion>'
+        '<lens><intrinsics><fx>512.5</fx><fy>511.25</fy><cx>319.5</cx><cy>239.5</cy><s>0</s>'
+        '</intrinsics></lens></camera></sensor></gazebo></robot>\n')
     put(t, "nan_origin.urdf",
         '<robot name="r"><link name="base"><collision><origin xyz="nan 0 inf"/>'
         '<geometry><box size="1 1 1"/></geometry></collision></link></robot>\n')
