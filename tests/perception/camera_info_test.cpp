@@ -258,6 +258,16 @@ TEST(CameraInfo, LoadReadsTheFileAndNamesIt) {
     EXPECT_EQ(e.source(), file.string());
     EXPECT_EQ(e.field(), "camera_matrix.data[4]");
   }
+  // A calibration is a few hundred bytes; a file of megabytes is refused unread.
+  std::ofstream(file) << kRosFile << std::string(1u << 20, '#') << "\n";
+  try {
+    (void)load_camera_info(file);
+    ADD_FAILURE() << "a 1 MiB file accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), file.string());
+    EXPECT_NE(std::string(e.what()).find("1 MiB"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)load_camera_info(dir), InputError);  // a directory
   try {
     (void)load_camera_info(dir / "missing.yaml");
     ADD_FAILURE() << "missing file accepted";
