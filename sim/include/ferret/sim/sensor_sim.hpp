@@ -31,6 +31,10 @@
 
 namespace ferret {
 
+namespace internal {
+struct Scene;
+}
+
 struct CameraFrameOptions {
   double blur_sigma_px = 0.8;  ///< Gaussian blur of the lens and demosaicing (0: none)
   double noise_sigma = 2.0;    ///< Gaussian sensor noise, grey levels (0: none)
@@ -138,8 +142,7 @@ class SensorSimulator {
                                std::uint64_t seed) const;
 
  private:
-  struct Scene;
-  std::unique_ptr<Scene> scene_;
+  std::unique_ptr<internal::Scene> scene_;
 };
 
 }  // namespace ferret
