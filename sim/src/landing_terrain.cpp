@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "ferret/core/random.hpp"
+#include "ferret/sim/sensor_sim.hpp"
 
 namespace ferret {
 namespace {
@@ -251,6 +252,32 @@ bool TerrainGroundTruth::safe_zone_in_view(double radius_m, double view_radius_m
       if (is_safe(c, radius_m, criteria)) return true;
     }
   return false;
+}
+
+LandingScene landing_scene(std::uint64_t seed, int index, const CameraSensor& sensor,
+                           const CameraModel& camera, const LandingSceneOptions& options) {
+  LandingTerrain terrain = landing_terrain(seed, index);
+  TerrainGroundTruth truth(terrain.world);
+  const SensorSimulator sim(terrain.world);
+  Rng rng(derive_seed(seed, {0x1a4e, static_cast<std::uint64_t>(index)}));
+  std::vector<LandingFrame> frames;
+  for (std::size_t k = 0; k < options.heights_m.size(); ++k) {
+    LandingFrame f;
+    f.height_m = options.heights_m[k];
+    const Eigen::Vector2d c = terrain.view_center_m;
+    const double roll = rng.uniform(-options.max_tilt_rad, options.max_tilt_rad);
+    const double pitch = rng.uniform(-options.max_tilt_rad, options.max_tilt_rad);
+    const double yaw = rng.uniform(-kPi, kPi);
+    f.X_WB = pose_from_xyz_rpy({c.x(), c.y(), truth.surface_height(c.x(), c.y()) + f.height_m},
+                               roll, pitch, yaw);
+    f.X_WC = optical_pose(f.X_WB, sensor);
+    f.depth = sim.render_depth(camera, f.X_WC, DepthFrameOptions{},
+                               derive_seed(seed, {0x1a4f, static_cast<std::uint64_t>(index), k}));
+    f.safe_zone_in_view = truth.safe_zone_in_view(options.footprint_radius_m, options.view_radius_m,
+                                                  options.criteria, camera, f.X_WC);
+    frames.push_back(std::move(f));
+  }
+  return {std::move(terrain), std::move(truth), std::move(frames)};
 }
 
 }  // namespace ferret

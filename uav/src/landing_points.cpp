@@ -45,7 +45,8 @@ std::shared_ptr<const std::vector<Eigen::Vector2f>> rays_of(const CameraModel& c
 
 std::vector<Eigen::Vector3d> depth_to_world_points(const DepthImageMm& depth,
                                                    const CameraModel& camera, const Pose3& X_WC,
-                                                   double min_depth_m, double max_depth_m) {
+                                                   double min_depth_m, double max_depth_m,
+                                                   std::vector<Eigen::Vector3d>* border) {
   if (depth.width_px != camera.width_px || depth.height_px != camera.height_px)
     throw InputError("depth frame", "size",
                      fmt::format("the camera's {} x {} px", camera.width_px, camera.height_px),
@@ -62,7 +63,10 @@ std::vector<Eigen::Vector3d> depth_to_world_points(const DepthImageMm& depth,
     const double z = 1e-3 * mm;
     if (z < min_depth_m || z > max_depth_m) continue;
     const Eigen::Vector3d p_C(rays[i].x() * z, rays[i].y() * z, z);
-    points.push_back(R * p_C + t);
+    const int u = static_cast<int>(i % static_cast<std::size_t>(depth.width_px));
+    const int v = static_cast<int>(i / static_cast<std::size_t>(depth.width_px));
+    const bool edge = u == 0 || v == 0 || u == depth.width_px - 1 || v == depth.height_px - 1;
+    (edge && border != nullptr ? *border : points).push_back(R * p_C + t);
   }
   return points;
 }

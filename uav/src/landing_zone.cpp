@@ -122,8 +122,9 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
                                           const Pose3& X_WC) const {
   const Options& o = options_;
   LandingResult result;
+  std::vector<Eigen::Vector3d> border;
   const std::vector<Eigen::Vector3d> points =
-      internal::depth_to_world_points(depth, camera, X_WC, o.min_depth_m, o.max_depth_m);
+      internal::depth_to_world_points(depth, camera, X_WC, o.min_depth_m, o.max_depth_m, &border);
   if (points.empty()) {
     result.reason = "no safe zone in view: no depth returns in the frame";
     return result;
@@ -156,6 +157,13 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
     sx[k] += p.x() - lo.x();
     sy[k] += p.y() - lo.y();
     sz[k] += p.z() - z_ref;
+  }
+  // A cell the image's edge runs through is seen only in part: what stands in its
+  // unseen part is unknown, so the cell counts as unobserved.
+  for (const auto& p : border) {
+    const int i = static_cast<int>(std::floor((p.x() - lo.x()) / cell));
+    const int j = static_cast<int>(std::floor((p.y() - lo.y()) / cell));
+    if (i >= 0 && j >= 0 && i < nx && j < ny) cnt[idx(i, j)] = 0.0;
   }
   // Cell means; the plane is fitted to them (not to the points) so that a cell counts
   // once however close it is to the camera, and the depth noise averages out first.
@@ -244,8 +252,10 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       z.center_m = {lo.x() + cxl, lo.y() + cyl, z_ref + (obs[idx(i, j)] > 0 ? mz[idx(i, j)] : 0.0)};
       const int i0 = i - h_window, i1 = i + h_window, j0 = j - h_window, j1 = j + h_window;
       const double n = S[kN].sum(i0, j0, i1, j1);
+      // The disc's own cells must all be observed (checked below); the square around
+      // it, which the plane is fitted over, may miss its corners at the image's edge.
       const double full = static_cast<double>((2 * h_window + 1) * (2 * h_window + 1));
-      if (n < full) {
+      if (n < 0.7 * full) {
         reject(z, LandingReject::kUnobserved, i, j);
         continue;
       }

@@ -18,6 +18,8 @@
 #include "ferret/core/pose.hpp"
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/perception/camera_model.hpp"
+#include "ferret/perception/image.hpp"
+#include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {
 
@@ -74,5 +76,39 @@ class TerrainGroundTruth {
   int nx_ = 0, ny_ = 0;
   std::vector<float> h_;
 };
+
+/// One evaluation frame: the UAV hovering over a terrain, its depth frame rendered by
+/// SensorSimulator, and whether the ground truth sees a safe zone in it.
+struct LandingFrame {
+  double height_m = 0.0;  ///< base_link above the surface under it
+  Pose3 X_WB = Pose3::Identity();
+  Pose3 X_WC = Pose3::Identity();  ///< the depth camera's optical frame
+  DepthImageMm depth;
+  bool safe_zone_in_view = false;
+};
+
+struct LandingScene {
+  LandingTerrain terrain;
+  TerrainGroundTruth truth;
+  std::vector<LandingFrame> frames;
+};
+
+/// What landing_scene needs to know about the UAV and the evaluation.
+struct LandingSceneOptions {
+  std::vector<double> heights_m{2.0, 3.0, 4.0};  ///< one frame at each
+  double footprint_radius_m = 0.49;              ///< ground truth's disc
+  /// How much around a zone's centre must be in view for the detector to judge it
+  /// (its disc plus margin plus clearance).
+  double view_radius_m = 0.89;
+  LandingCriteria criteria;
+  double max_tilt_rad = deg_to_rad(3.0);  ///< hover roll and pitch, uniform in +-
+};
+
+/// Terrain `index` of family `seed`, with a frame at each height from the robot's
+/// depth camera (`sensor` mounts it, `camera` is its model: the URDF's, or the same
+/// field of view at another resolution). Seeded: the same arguments, the same bytes.
+[[nodiscard]] LandingScene landing_scene(std::uint64_t seed, int index, const CameraSensor& sensor,
+                                         const CameraModel& camera,
+                                         const LandingSceneOptions& options);
 
 }  // namespace ferret

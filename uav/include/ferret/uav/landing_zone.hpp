@@ -71,7 +71,7 @@ class LandingZoneDetector {
     double footprint_radius_m = 0.49;
     double margin_m = 0.10;  ///< added to the footprint radius
     double max_slope_deg = 14.0;
-    double max_roughness_m = 0.03;
+    double max_roughness_m = 0.04;
     double max_step_m = 0.08;
     /// Free space required around the disc, from its edge, to anything taller than
     /// the plane by more than `taller_than_m` (props, walls, poles).
