@@ -138,7 +138,9 @@ const CommandRegistration kDetectLanding{
                     "print {\"zones\": [{\"center_m\", \"slope_deg\", \"roughness_m\", "
                     "\"clearance_m\", \"score\"}]} (best first; empty, with \"reason\", when "
                     "nothing in view is safe)");
-      add_out_option(sub, args->out, "the overlay PNG (zones on the false-coloured depth frame)");
+      // Optional here: the shared helper words -o as required, so its help is replaced.
+      add_out_option(sub, args->out, "")
+          ->description("the overlay PNG to write: zones on the false-coloured depth frame");
       sub->callback([args, sub] { run(*args, sub); });
     }};
 
