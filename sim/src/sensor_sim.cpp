@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ferret/core/error.hpp"
 #include "ferret/core/random.hpp"
 #include "ferret/perception/object_appearance.hpp"
 #include "sensor_sim_scene.hpp"
@@ -124,6 +125,26 @@ ImuReading rpy_of(const Eigen::Matrix3d& R) {
 
 Pose3 optical_pose(const Pose3& X_WB, const CameraSensor& camera) {
   return X_WB * camera.X_BS * X_SC();
+}
+
+const CameraSensor& camera_for(const RobotDescription& robot, bool depth, const std::string& role,
+                               const std::string& option) {
+  const std::vector<std::string> roles{std::string(kRoleMarkerCamera),
+                                       std::string(kRoleObjectCamera),
+                                       std::string(kRoleDepthCamera)};
+  std::string r = role;
+  if (r.empty()) r = depth ? roles[2] : robot.kind == RobotKind::kUav ? roles[0] : roles[1];
+  if (std::find(roles.begin(), roles.end(), r) == roles.end())
+    throw InputError(option, "", "one of marker_camera, object_camera, depth_camera",
+                     "'" + r + "'");
+  const auto it = robot.roles.find(r);
+  if (it == robot.roles.end() || it->second.empty())
+    robot.missing_role(r, depth ? "depth frames" : "camera frames");
+  const CameraSensor& camera = robot.camera(it->second.front());
+  if (depth && !camera.depth)
+    throw InputError(option, "", "the role of a depth camera for depth frames",
+                     "'" + r + "' (" + camera.name + ", a colour camera)");
+  return camera;
 }
 
 SensorSimulator::SensorSimulator(const WorldSpec& world)
