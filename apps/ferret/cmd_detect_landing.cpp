@@ -132,7 +132,9 @@ const CommandRegistration kDetectLanding{
       sub->add_option(
           "--opening", args->opening,
           "the hidden space's opening p_WE, x,y,z (metres): zones must have the "
-          "winch within l_0 (the mission's tether.entry_offset_m) of the point above it");
+          "winch within l_0 (the mission's tether.entry_offset_m) of the point above it "
+          "(default: none; zones are then ranked by distance from the point under the "
+          "camera)");
       add_mission_option(sub, args->mission, false);
       sub->add_flag("--json", args->json,
                     "print {\"zones\": [{\"center_m\", \"slope_deg\", \"roughness_m\", "
@@ -140,7 +142,8 @@ const CommandRegistration kDetectLanding{
                     "nothing in view is safe)");
       // Optional here: the shared helper words -o as required, so its help is replaced.
       add_out_option(sub, args->out, "")
-          ->description("the overlay PNG to write: zones on the false-coloured depth frame");
+          ->description(
+              "the overlay PNG to write: zones on the false-coloured depth frame (default: none)");
       sub->callback([args, sub] { run(*args, sub); });
     }};
 

@@ -187,10 +187,11 @@ TEST(LandingZone, AHoleWithoutReturnsUnderTheCameraIsNotLandedIn) {
   // Unknown is not free: a patch without returns (a black or absorbing surface, or a
   // pit) must not be inside any zone.
   const auto cam = test_camera();
-  const Pose3 X_WC = downward({0.0, 0.0, 3.0});
+  // High enough that the view holds a footprint and its clearance ring beside the hole.
+  const Pose3 X_WC = downward({0.0, 0.0, 4.5});
   auto depth = render(cam, X_WC, [](double, double) { return 0.0; });
   for (int v = 100; v < 140; ++v)
-    for (int u = 140; u < 180; ++u) depth.at(u, v) = 0;  // about 0.45 m square at the centre
+    for (int u = 140; u < 180; ++u) depth.at(u, v) = 0;  // about 0.7 m square at the centre
   const auto det = detector();
   const auto r = det.detect(depth, cam, X_WC);
   ASSERT_FALSE(r.zones.empty()) << r.reason;
