@@ -74,8 +74,8 @@ bool projected_rect(const Hull& h, const Pose3& X_CW, std::array<double, 4>& rec
   return any;
 }
 
-double hit_box(const BoxPrim& b, const Eigen::Vector3d& o_B, double dx, double dy, double dz,
-               int& face) {
+[[gnu::always_inline]] inline double hit_box(const BoxPrim& b, const Eigen::Vector3d& o_B,
+                                             double dx, double dy, double dz, int& face) {
   const double d[3] = {b.cos_yaw * dx + b.sin_yaw * dy, -b.sin_yaw * dx + b.cos_yaw * dy, dz};
   double t_near = -kInf, t_far = kInf;
   for (int i = 0; i < 3; ++i) {
@@ -97,8 +97,8 @@ double hit_box(const BoxPrim& b, const Eigen::Vector3d& o_B, double dx, double d
   return t_near;
 }
 
-double hit_cylinder(const CylinderPrim& c, const Eigen::Vector3d& o, double dx, double dy,
-                    double dz, int& face) {
+[[gnu::always_inline]] inline double hit_cylinder(const CylinderPrim& c, const Eigen::Vector3d& o,
+                                                  double dx, double dy, double dz, int& face) {
   const double ox = o.x() - c.center.x(), oy = o.y() - c.center.y();
   double best = kInf;
   const double a = dx * dx + dy * dy;
@@ -234,6 +234,16 @@ std::shared_ptr<const RayTable> Scene::rays(const CameraModel& camera) const {
       const float y = table->y[static_cast<std::size_t>(v) * w + u];
       r = {std::min(r[0], x), std::max(r[1], x), std::min(r[2], y), std::max(r[3], y)};
     }
+  table->column_x.assign(table->tiles_x, {INFINITY, -INFINITY});
+  table->row_y.assign(table->tiles_y, {INFINITY, -INFINITY});
+  for (int ty = 0; ty < table->tiles_y; ++ty)
+    for (int tx = 0; tx < table->tiles_x; ++tx) {
+      const auto& r = table->tile_rect[static_cast<std::size_t>(ty) * table->tiles_x + tx];
+      auto& cx = table->column_x[tx];
+      auto& ry = table->row_y[ty];
+      cx = {std::min(cx[0], r[0]), std::max(cx[1], r[1])};
+      ry = {std::min(ry[0], r[2]), std::max(ry[1], r[3])};
+    }
   const std::lock_guard lock(cache_mutex);
   if (ray_cache.size() >= 8) ray_cache.erase(ray_cache.begin());
   ray_cache.emplace_back(camera, table);
@@ -289,13 +299,24 @@ void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_marker
   std::vector<std::vector<const FramePrim*>> solid_bins(tiles), mark_bins(tiles);
   const auto bin = [&](const std::vector<FramePrim>& list,
                        std::vector<std::vector<const FramePrim*>>& bins) {
-    for (const FramePrim& p : list)
-      for (std::size_t k = 0; k < tiles; ++k) {
-        const auto& tr = rays.tile_rect[k];
-        if (tr[1] < p.rect[0] || tr[0] > p.rect[1] || tr[3] < p.rect[2] || tr[2] > p.rect[3])
-          continue;
-        bins[k].push_back(&p);
+    std::vector<int> columns;
+    for (const FramePrim& p : list) {
+      columns.clear();
+      for (int tx = 0; tx < rays.tiles_x; ++tx)
+        if (rays.column_x[tx][1] >= p.rect[0] && rays.column_x[tx][0] <= p.rect[1])
+          columns.push_back(tx);
+      if (columns.empty()) continue;
+      for (int ty = 0; ty < rays.tiles_y; ++ty) {
+        if (rays.row_y[ty][1] < p.rect[2] || rays.row_y[ty][0] > p.rect[3]) continue;
+        for (const int tx : columns) {
+          const std::size_t k = static_cast<std::size_t>(ty) * rays.tiles_x + tx;
+          const auto& tr = rays.tile_rect[k];
+          if (tr[1] < p.rect[0] || tr[0] > p.rect[1] || tr[3] < p.rect[2] || tr[2] > p.rect[3])
+            continue;
+          bins[k].push_back(&p);
+        }
       }
+    }
   };
   bin(solids, solid_bins);
   bin(marks, mark_bins);
