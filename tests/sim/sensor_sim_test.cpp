@@ -152,6 +152,21 @@ TEST(SensorSim, CamerasArePickedByRole) {
   EXPECT_LT((X_WC.linear().col(2) - Eigen::Vector3d(0, 0, -1)).norm(), 1e-9);
 }
 
+TEST(SensorSim, AFloorSlabInTheGroundPlaneDoesNotStripeWithIt) {
+  // The hidden space's floor slab top lies in the ground plane (z = 0): seen from
+  // inside, the floor is the slab's face, every pixel of it the colour of the same
+  // material facing up elsewhere (the roof, seen from above), never the ground's.
+  const SensorSimulator sim(world(hidden_space("{id: 3, size_m: 0.2, placement: wall}")));
+  const RgbImage roof = sim.render_camera(kCam, looking_down(0, 0, 2.0), clean_camera(), 1);
+  const RgbImage ground = sim.render_camera(kCam, looking_down(8, 8, 2.0), clean_camera(), 1);
+  ASSERT_NE(roof.at(320, 240, 0), ground.at(320, 240, 0));
+  const Pose3 X_WC = look_at({-1.0, 0.2, 0.1}, {1.0, 0.0, 0.0});
+  const RgbImage img = sim.render_camera(kCam, X_WC, clean_camera(), 1);
+  for (int v = 300; v < 480; ++v)
+    for (int u = 0; u < 640; u += 3)
+      ASSERT_EQ(img.at(u, v, 0), roof.at(320, 240, 0)) << u << "," << v;
+}
+
 TEST(SensorSim, ABoxGivesItsHeightAsADepthStep) {
   // A 1 x 1 x 0.8 m box on the ground at the origin, seen from 3 m straight above.
   const SensorSimulator sim(
