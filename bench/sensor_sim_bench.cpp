@@ -53,6 +53,17 @@ void BM_CameraFrameNoBlurNoNoise(benchmark::State& state) {
 }
 BENCHMARK(BM_CameraFrameNoBlurNoNoise)->Unit(benchmark::kMillisecond);
 
+void BM_CameraFrameBlurOnly(benchmark::State& state) {
+  const Setup& s = setup();
+  const CameraSensor& cam = s.uav.marker_camera();
+  const CameraModel model = camera_model(cam, s.uav.source);
+  const Pose3 X_WC = optical_pose(s.X_WB, cam);
+  CameraFrameOptions o;
+  o.noise_sigma = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(s.sim.render_camera(model, X_WC, o, 1).data.data());
+}
+BENCHMARK(BM_CameraFrameBlurOnly)->Unit(benchmark::kMillisecond);
+
 void BM_DepthFrame640x480(benchmark::State& state) {
   const Setup& s = setup();
   // The D415's depth stream at 640 x 480, where the M100's depth camera sits.

@@ -103,52 +103,54 @@ float marker_pixel(const internal::MarkerPrim& m, const internal::RayTable& rays
   return sum / 9.0f;
 }
 
-/// Separable Gaussian blur of an interleaved RGB buffer in fixed point (weights in
-/// 1/4096, borders replicated): integer arithmetic, so the same bytes on every machine,
-/// and one thread.
+/// Separable Gaussian blur of an interleaved RGB buffer in fixed point: weights in
+/// 1/256 (sum exactly 256, so a pass's sum fits 16 bits), each pass rounded back to
+/// 8 bits, borders replicated. Integer arithmetic gives the same bytes on every
+/// machine; 16-bit lanes keep it fast on one core.
 void gaussian_blur(std::vector<std::uint8_t>& rgb, int w, int h, double sigma_px) {
   const int r = std::max(1, static_cast<int>(std::ceil(3.0 * sigma_px)));
   std::vector<double> wd(2 * r + 1);
   double sum = 0;
   for (int k = -r; k <= r; ++k) sum += wd[k + r] = std::exp(-0.5 * k * k / (sigma_px * sigma_px));
-  std::vector<std::int32_t> wk(2 * r + 1);
+  std::vector<std::uint16_t> wk(2 * r + 1);
   int total = 0;
   for (int k = 0; k <= 2 * r; ++k)
-    total += wk[k] = static_cast<std::int32_t>(std::lround(4096 * wd[k] / sum));
-  wk[r] += 4096 - total;  // the weights sum to exactly 4096
-  // Horizontal into 16 bits (x16 of the 8-bit value), then vertical back to 8 bits; the
-  // inner loops run along a row so that they vectorise.
+    total += wk[k] = static_cast<std::uint16_t>(std::lround(256 * wd[k] / sum));
+  wk[r] = static_cast<std::uint16_t>(wk[r] + 256 - total);  // the weights sum to 256
   const std::size_t stride = static_cast<std::size_t>(w) * 3;
-  std::vector<std::uint16_t> tmp(rgb.size());
+  std::vector<std::uint16_t> acc(stride);
+  const auto finish = [&](std::uint8_t* dst) {
+    for (std::size_t i = 0; i < stride; ++i)
+      dst[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
+  };
+  // Horizontal, row by row, from a copy padded with the border pixels.
   std::vector<std::uint8_t> padded(stride + 6 * static_cast<std::size_t>(r));
-  std::vector<std::int32_t> row_acc(stride);
   for (int y = 0; y < h; ++y) {
-    const std::uint8_t* src = rgb.data() + static_cast<std::size_t>(y) * stride;
+    std::uint8_t* row = rgb.data() + static_cast<std::size_t>(y) * stride;
     for (int x = -r; x < w + r; ++x)
       for (int c = 0; c < 3; ++c)
-        padded[3 * static_cast<std::size_t>(x + r) + c] = src[3 * std::clamp(x, 0, w - 1) + c];
-    std::fill(row_acc.begin(), row_acc.end(), 0);
+        padded[3 * static_cast<std::size_t>(x + r) + c] = row[3 * std::clamp(x, 0, w - 1) + c];
+    std::fill(acc.begin(), acc.end(), 0);
     for (int k = 0; k <= 2 * r; ++k) {
       const std::uint8_t* p = padded.data() + 3 * static_cast<std::size_t>(k);
-      const std::int32_t wt = wk[k];
-      for (std::size_t i = 0; i < stride; ++i) row_acc[i] += wt * p[i];
+      const std::uint16_t wt = wk[k];
+      for (std::size_t i = 0; i < stride; ++i)
+        acc[i] = static_cast<std::uint16_t>(acc[i] + wt * p[i]);
     }
-    std::uint16_t* dst = tmp.data() + static_cast<std::size_t>(y) * stride;
-    for (std::size_t i = 0; i < stride; ++i)
-      dst[i] = static_cast<std::uint16_t>((row_acc[i] + 128) >> 8);
+    finish(row);
   }
-  std::vector<std::int32_t> acc(stride);
+  // Vertical, from a copy of the horizontally blurred frame.
+  const std::vector<std::uint8_t> src = rgb;
   for (int y = 0; y < h; ++y) {
     std::fill(acc.begin(), acc.end(), 0);
     for (int k = -r; k <= r; ++k) {
-      const std::uint16_t* src =
-          tmp.data() + static_cast<std::size_t>(std::clamp(y + k, 0, h - 1)) * stride;
-      const std::int32_t wt = wk[k + r];
-      for (std::size_t i = 0; i < stride; ++i) acc[i] += wt * src[i];
+      const std::uint8_t* p =
+          src.data() + static_cast<std::size_t>(std::clamp(y + k, 0, h - 1)) * stride;
+      const std::uint16_t wt = wk[k + r];
+      for (std::size_t i = 0; i < stride; ++i)
+        acc[i] = static_cast<std::uint16_t>(acc[i] + wt * p[i]);
     }
-    std::uint8_t* dst = rgb.data() + static_cast<std::size_t>(y) * stride;
-    for (std::size_t i = 0; i < stride; ++i)
-      dst[i] = static_cast<std::uint8_t>(std::min<std::int32_t>(255, (acc[i] + (1 << 15)) >> 16));
+    finish(rgb.data() + static_cast<std::size_t>(y) * stride);
   }
 }
 
@@ -266,14 +268,19 @@ RgbImage SensorSimulator::render_camera(const CameraModel& camera, const Pose3& 
     return out;
   }
   Rng rng(derive_seed(seed, {kCameraStream}));
+  // The noise in 1/16 grey levels, per frame: integer additions in the pixel loop.
   const auto& table = normal_table();
-  const float sigma = static_cast<float>(options.noise_sigma);
+  std::vector<std::int32_t> noise_q4(table.size());
+  for (std::size_t k = 0; k < table.size(); ++k)
+    noise_q4[k] = static_cast<std::int32_t>(std::lround(16.0 * options.noise_sigma * table[k]));
   std::uint8_t* dst = out.data.data();
   const std::uint8_t* src = frame.data();
   for (std::size_t k = 0; k < frame.size(); k += 3) {
     const std::uint64_t bits = rng.next_u64();  // one draw a pixel: 16 bits a channel
-    for (int ch = 0; ch < 3; ++ch)
-      dst[k + ch] = to_u8(src[k + ch] + sigma * table[(bits >> (16 * ch)) & 0xffff]);
+    for (int ch = 0; ch < 3; ++ch) {
+      const std::int32_t q = 16 * src[k + ch] + noise_q4[(bits >> (16 * ch)) & 0xffff] + 8;
+      dst[k + ch] = static_cast<std::uint8_t>(std::clamp(q >> 4, 0, 255));  // round half up
+    }
   }
   return out;
 }
