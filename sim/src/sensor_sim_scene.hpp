@@ -82,8 +82,14 @@ struct RayTable {
 struct CastBuffers {
   std::vector<float> t;
   std::vector<std::int32_t> code;
-  std::vector<float> dir;  ///< world direction per pixel (x, y, z), for shading
 };
+
+/// Pixel i's ray in the world (z = 1 in C): one expression, so that the cast and the
+/// shading see the same bits.
+[[nodiscard]] inline Eigen::Vector3d ray_direction(const Eigen::Matrix3d& R_WC,
+                                                   const RayTable& rays, std::size_t i) {
+  return R_WC * Eigen::Vector3d(rays.x[i], rays.y[i], 1.0);
+}
 
 struct Scene {
   GroundSpec ground;
