@@ -251,7 +251,11 @@ int evaluate(int frames, std::uint64_t seed) {
                    return n;
                  }(),
                  " | "),
-             std::string(columns.size() * 4, '-') + "|");
+             [&] {
+               std::string sep;
+               for (std::size_t k = 0; k < columns.size(); ++k) sep += "---|";
+               return sep;
+             }());
   auto row = [&](const std::string& label, auto cell) {
     std::string line = fmt::format("| {} |", label);
     for (auto& c : columns) line += fmt::format(" {} |", cell(c));
