@@ -42,20 +42,6 @@ struct MarkerArgs {
   bool json = false;
 };
 
-// The marker camera of --robot's URDF. (--camera, a camera_info file, comes with the
-// shared resolve_camera of cli_options.)
-CameraModel camera_of(const MarkerArgs& a) {
-  if (!a.camera.empty() && !a.robot.empty())
-    throw InputError("--camera", "", "either --camera or --robot, not both", a.camera);
-  if (a.camera.empty() && a.robot.empty())
-    throw InputError("--camera", "", "a camera: --camera CAM.yaml or --robot URDF");
-  if (!a.camera.empty())
-    throw InputError("--camera", "", "--robot URDF (camera_info files are not read yet)", a.camera);
-  const fs::path urdf = resolve_robot(a.robot, "m100.urdf");
-  const RobotDescription robot = load_robot(urdf.string());
-  return camera_model(robot.marker_camera(), urdf.string());
-}
-
 nlohmann::json to_json(const std::vector<MarkerDetection>& detections) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& d : detections) {
@@ -90,7 +76,7 @@ void run_marker(const MarkerArgs& a) {
       throw InputError("--out", "", "an overlay path ending in .png", a.out);
     files.emplace(target, OutputKind::kFile);
   }
-  const CameraModel camera = camera_of(a);
+  const CameraModel camera = resolve_camera(a.camera, a.robot, kRoleMarkerCamera);
   const GrayImage image = read_gray_image(a.image);
   if (image.width_px != camera.width_px || image.height_px != camera.height_px)
     throw InputError(
@@ -124,7 +110,7 @@ const CommandRegistration kDetectMarker{
       auto* sub = detect_group(app).add_subcommand(
           "marker", "Fiducial markers in a camera image, with their poses in the optical frame");
       sub->add_option("IMAGE", args->image, "camera image (PNG, JPEG, PPM/PGM, BMP)")->required();
-      sub->add_option("--camera", args->camera, "ROS camera_info YAML of the camera");
+      add_camera_option(sub, args->camera, kRoleMarkerCamera);
       add_robot_option(sub, args->robot, "none: --camera or --robot; the URDF's marker_camera");
       sub->add_option("--family", args->family, "marker family: apriltag or aruco")->required();
       sub->add_option("--dictionary", args->dictionary,
@@ -135,7 +121,7 @@ const CommandRegistration kDetectMarker{
           ->required();
       sub->add_flag("--json", args->json,
                     "JSON on stdout: {\"detections\": [...]} (docs/perception.md)");
-      add_out_option(sub, args->out, "overlay PNG (outlines, ids, axes)");
+      add_out_option(sub, args->out, "overlay PNG: outlines, ids, axes (default: none)");
       sub->callback([sub, args] {
         refuse_empty_out(sub, args->out);
         run_marker(*args);

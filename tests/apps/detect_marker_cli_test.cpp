@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "ferret/perception/camera_info.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/image.hpp"
 #include "ferret/urdf/robot_description.hpp"
@@ -67,6 +68,34 @@ TEST(DetectMarkerCli, JsonGivesIdCornersAndPoseOfTheMarker) {
       EXPECT_NEAR(d["R_CM"][i][c].get<double>(), s.X_CM.linear()(i, c), 0.03);
   }
   EXPECT_LT(d.at("reprojection_error_px").get<double>(), 1.0);
+}
+
+// A camera_info file instead of the URDF: the same camera, the same detection; a
+// distorted calibration moves the pose (the file is read, not ignored).
+TEST(DetectMarkerCli, CameraInfoFileGivesTheSameCamera) {
+  TempDir dir;
+  const CameraModel camera = m100_marker_camera();
+  const MarkerScene s = apriltag_scene();
+  write_bytes(dir / "frame.png", encode_png(render_marker_frame(camera, s)));
+  std::ofstream(dir / "cam.yaml") << camera_info_yaml(camera);
+  const std::string common = " --family apriltag --marker-size-m 0.2 --json";
+  const auto by_urdf = run_cli("detect marker " + (dir / "frame.png") + " --robot m100" + common);
+  const auto by_file =
+      run_cli("detect marker " + (dir / "frame.png") + " --camera " + (dir / "cam.yaml") + common);
+  ASSERT_EQ(by_urdf.exit_code, 0) << by_urdf.err;
+  ASSERT_EQ(by_file.exit_code, 0) << by_file.err;
+  EXPECT_EQ(nlohmann::json::parse(by_urdf.out), nlohmann::json::parse(by_file.out));
+  CameraModel other = camera;
+  other.fx_px *= 1.1;
+  other.fy_px *= 1.1;
+  std::ofstream(dir / "long.yaml") << camera_info_yaml(other);
+  const auto by_long =
+      run_cli("detect marker " + (dir / "frame.png") + " --camera " + (dir / "long.yaml") + common);
+  ASSERT_EQ(by_long.exit_code, 0) << by_long.err;
+  const auto j = nlohmann::json::parse(by_long.out);
+  ASSERT_EQ(j["detections"].size(), 1u);
+  // A 10 % longer focal length puts the same image 10 % farther away.
+  EXPECT_NEAR(j["detections"][0]["t_CM_m"][2].get<double>(), 1.1 * s.X_CM.translation().z(), 0.02);
 }
 
 TEST(DetectMarkerCli, NoMarkerGivesAnEmptyListAndOverlayIsWritten) {
@@ -136,6 +165,12 @@ TEST(DetectMarkerCli, BadInputsExitTwoWithoutOutput) {
            Case{frame + " --robot m100 --family apriltag --marker-size-m 1e9", "--marker-size-m"},
            Case{frame + " --family apriltag --marker-size-m 0.2", "--camera"},
            Case{frame + " --robot nosuchrobot --family apriltag --marker-size-m 0.2", "--robot"},
+           Case{frame + " --robot m100 --camera " + (dir / "frame.png") +
+                    " --family apriltag --marker-size-m 0.2",
+                "--camera"},
+           Case{
+               frame + " --camera " + (dir / "text.png") + " --family apriltag --marker-size-m 0.2",
+               "text.png"},
        }) {
     const auto r = run_cli("detect marker " + c.args + " -o " + out);
     EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;

@@ -39,6 +39,15 @@ double rotation_error_rad(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(a.transpose() * b).angle();
 }
 
+// How well a square's tilt is known from its corners: tilting it by theta makes its
+// near and far edges differ in length by about L s sin(theta) / z (L = f s / z, its
+// side in pixels), so a corner error delta hides tilts up to asin(delta z^2 / (f s^2)).
+// With delta = 0.5 px (half this test's corner bound) plus 1 deg: 1.9 deg at 1 m, 8 deg
+// at 3 m for a 0.2 m marker in the M100's camera (fronto-parallel views are the worst).
+double tilt_tolerance_rad(const CameraModel& camera, double size_m, double z_m) {
+  return std::asin(std::min(1.0, 0.5 * z_m * z_m / (camera.fx_px * size_m * size_m))) + kDeg;
+}
+
 class BothDetectors : public ::testing::TestWithParam<MarkerDictionary> {};
 
 // Several distances and off-axis angles, rolled in the image so that a corner order
@@ -67,7 +76,7 @@ TEST_P(BothDetectors, FindsTheMarkerWithItsIdCornersAndPose) {
         const double t_err = (found[0].X_CM.translation() - s.X_CM.translation()).norm();
         EXPECT_LT(t_err, 0.005 * d * d + 0.002);
         EXPECT_LT(rotation_error_rad(found[0].X_CM.linear(), s.X_CM.linear()),
-                  (d <= 1.0 ? 2.0 : 4.0) * kDeg);
+                  tilt_tolerance_rad(camera, s.size_m, d));
       }
 }
 
@@ -232,7 +241,13 @@ TEST(MarkerDetector, FrameOfAnotherSizeThanTheCameraIsAnInputError) {
 // exposure change. (The bench's --evaluate runs the large version on rendered frames.)
 TEST_P(BothDetectors, DetectsEveryMarkerOfAtLeast20PxAndAtMost60DegOffAxis) {
   const CameraModel camera = CameraModel::from_fov("small", 640, 360, 1.3613568165555772);
-  const auto det = detector(GetParam());
+  // AprilTag at its full-resolution quad search: the default quad_decimate = 2 (3 ms a
+  // frame instead of 7) misses some markers of 20-30 px (docs/perception.md, Markers).
+  MarkerDetectorOptions o;
+  o.dictionary = GetParam();
+  o.marker_size_m = 0.2;
+  o.quad_decimate = 1.0;
+  const auto det = make_marker_detector(o);
   Rng rng(derive_seed(11, {static_cast<std::uint64_t>(GetParam().family)}));
   int tried = 0, found = 0;
   while (tried < 60) {

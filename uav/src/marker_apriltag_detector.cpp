@@ -11,6 +11,7 @@
 #include <tagStandard41h12.h>
 #include <tagStandard52h13.h>
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <stdexcept>
@@ -59,6 +60,11 @@ class AprilTagDetector final : public MarkerDetector {
     detector_->refine_edges = true;  // corners from the full-resolution edges
     detector_->decode_sharpening = options.decode_sharpening;
     detector_->debug = false;
+    // Clusters shorter than the smallest marker's boundary cannot be one: skip them
+    // early (most of a textured frame's clusters are small).
+    detector_->qtp.min_cluster_pixels =
+        std::max(5, static_cast<int>(options.min_marker_side_px / options.quad_decimate));
+    detector_->qtp.min_white_black_diff = options.apriltag_min_white_black_diff;
   }
   ~AprilTagDetector() override {
     apriltag_detector_destroy(detector_);

@@ -2,6 +2,7 @@
 // detection API (4.7 renamed it to ArucoDetector; only this file changes then).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/aruco.hpp>
 #include <opencv2/core.hpp>
@@ -55,9 +56,9 @@ class ArucoDetector final : public MarkerDetector {
                        options.dictionary.name);
     dictionary_ = cv::aruco::getPredefinedDictionary(entry->id);
     params_ = cv::aruco::DetectorParameters::create();
-    // Sub-pixel corners, refined here per marker (below) rather than by detectMarkers:
-    // OpenCV 4.6 uses one window for every marker, and a 5 px half-window reaches the
-    // data cells of a small marker and pulls its corners off by more than a pixel.
+    // Sub-pixel corners from an edge fit (refine_corners below) rather than
+    // detectMarkers' own: SUBPIX is biased at blurred marker corners, APRILTAG is
+    // accurate but costs hundreds of ms a frame.
     params_->cornerRefinementMethod = cv::aruco::CORNER_REFINE_NONE;
     params_->errorCorrectionRate = options.aruco_error_correction_rate;
   }
@@ -71,7 +72,11 @@ class ArucoDetector final : public MarkerDetector {
                         const_cast<std::uint8_t*>(image.data.data()));
     std::vector<std::vector<cv::Point2f>> corners;
     std::vector<int> ids;
-    cv::aruco::detectMarkers(frame, dictionary_, corners, ids, params_);
+    // Contours shorter than the smallest marker's perimeter are not looked at.
+    auto params = cv::makePtr<cv::aruco::DetectorParameters>(*params_);
+    params->minMarkerPerimeterRate =
+        4 * options_.min_marker_side_px / std::max(image.width_px, image.height_px);
+    cv::aruco::detectMarkers(frame, dictionary_, corners, ids, params);
     std::vector<MarkerDetection> out;
     for (std::size_t i = 0; i < ids.size(); ++i) {
       if (ids[i] < 0 || ids[i] >= dictionary_->bytesList.rows) continue;
@@ -91,17 +96,89 @@ class ArucoDetector final : public MarkerDetector {
     return out;
   }
 
-  // cornerSubPix with a half-window inside the marker's black border cell (at most
-  // OpenCV's 5 px), so only the corner's two edges are in it.
+  // Corners as the intersections of lines fitted to the four edges, each edge found to
+  // sub-pixel precision as the gradient maximum across it. cornerSubPix (OpenCV's
+  // CORNER_REFINE_SUBPIX) is made for saddle points: at a blurred L-shaped marker
+  // corner it converges inside the black square, and the marker looks about 1 %
+  // smaller (2.6 cm of range at 3 m on the simulator's frames). The edge fit is
+  // AprilTag's refine_edges idea, and unbiased for any symmetric blur.
   void refine_corners(const cv::Mat& frame, std::vector<cv::Point2f>& corners) const {
+    // Search across each edge at most 40 % of a cell: the black border is one cell wide,
+    // and a white data cell behind it makes an inner edge as strong as the outer one.
     double shortest = 1e9;
     for (int k = 0; k < 4; ++k)
-      shortest = std::min(shortest, cv::norm(corners[k] - corners[(k + 1) % 4]));
-    const double cell_px = shortest / (dictionary_->markerSize + 2);
-    const int half = std::clamp(static_cast<int>(cell_px * 0.6), 1, 5);
-    cv::cornerSubPix(
-        frame, corners, cv::Size(half, half), cv::Size(-1, -1),
-        cv::TermCriteria(cv::TermCriteria::MAX_ITER | cv::TermCriteria::EPS, 30, 0.01));
+      shortest =
+          std::min(shortest, static_cast<double>(cv::norm(corners[k] - corners[(k + 1) % 4])));
+    const double reach_px = std::clamp(0.4 * shortest / (dictionary_->markerSize + 2), 0.75, 2.5);
+    const int steps = static_cast<int>(reach_px / 0.25);
+    auto grey = [&](double x, double y) {
+      const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+      if (x0 < 0 || y0 < 0 || x0 + 1 >= frame.cols || y0 + 1 >= frame.rows) return -1.0;
+      const double fx = x - x0, fy = y - y0;
+      const auto at = [&](int xx, int yy) {
+        return static_cast<double>(frame.at<std::uint8_t>(yy, xx));
+      };
+      return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+             fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+    };
+    std::array<cv::Vec3d, 4> lines;  // a x + b y = c, (a, b) unit
+    for (int e = 0; e < 4; ++e) {
+      const cv::Point2d p0 = corners[e], p1 = corners[(e + 1) % 4];
+      const cv::Point2d along = p1 - p0;
+      const double length = cv::norm(along);
+      if (length < 4.0) return;
+      const cv::Point2d t = along / length, n{-t.y, t.x};
+      std::vector<cv::Point2d> points;
+      const int samples = std::clamp(static_cast<int>(length / 2), 4, 40);
+      for (int i = 0; i < samples; ++i) {
+        // The middle of the edge only: near the corners the other edge bends the profile.
+        const cv::Point2d c = p0 + along * (0.15 + 0.7 * (i + 0.5) / samples);
+        // Profile across the edge at 0.25 px steps, +-2.5 px; its steepest point.
+        constexpr int kHalf = 10;
+        std::array<double, 2 * kHalf + 1> g{};
+        g.fill(-1.0);
+        bool ok = true;
+        for (int k = -steps; k <= steps && ok; ++k) {
+          const double v = grey(c.x + n.x * k * 0.25, c.y + n.y * k * 0.25);
+          ok = v >= 0;
+          g[static_cast<std::size_t>(k + kHalf)] = v;
+        }
+        if (!ok) continue;
+        int best = -1;
+        double best_d = 0.0;
+        for (int k = kHalf - steps + 1; k < kHalf + steps; ++k) {
+          const double d =
+              std::abs(g[static_cast<std::size_t>(k + 1)] - g[static_cast<std::size_t>(k - 1)]);
+          if (d > best_d) best_d = d, best = k;
+        }
+        if (best <= kHalf - steps + 1 || best >= kHalf + steps - 1 || best_d < 4.0) continue;
+        auto grad = [&](int k) {
+          return std::abs(g[static_cast<std::size_t>(k + 1)] - g[static_cast<std::size_t>(k - 1)]);
+        };
+        const double gm = grad(best - 1), g0 = grad(best), gp = grad(best + 1);
+        const double den = gm - 2 * g0 + gp;
+        const double sub = den < 0 ? 0.5 * (gm - gp) / den : 0.0;
+        points.push_back(c + n * ((best - kHalf + sub) * 0.25));
+      }
+      if (points.size() < 3) return;  // keep the detector's corners
+      cv::Vec4d fit;
+      cv::fitLine(points, fit, cv::DIST_L2, 0, 0.01, 0.01);
+      const double a = -fit[1], b = fit[0];
+      lines[static_cast<std::size_t>(e)] = {a, b, a * fit[2] + b * fit[3]};
+    }
+    std::vector<cv::Point2f> refined(4);
+    for (int k = 0; k < 4; ++k) {
+      // Corner k joins edge k-1 (from corner k-1) and edge k (to corner k+1).
+      const cv::Vec3d& l1 = lines[static_cast<std::size_t>((k + 3) % 4)];
+      const cv::Vec3d& l2 = lines[static_cast<std::size_t>(k)];
+      const double det = l1[0] * l2[1] - l1[1] * l2[0];
+      if (std::abs(det) < 1e-9) return;
+      const cv::Point2f p(static_cast<float>((l1[2] * l2[1] - l1[1] * l2[2]) / det),
+                          static_cast<float>((l1[0] * l2[2] - l1[2] * l2[0]) / det));
+      if (cv::norm(p - corners[k]) > 3.0) return;  // a fit gone astray: keep the detector's
+      refined[static_cast<std::size_t>(k)] = p;
+    }
+    corners = refined;
   }
 
  private:

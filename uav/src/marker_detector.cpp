@@ -24,9 +24,14 @@ void MarkerDetectorOptions::check(const std::string& source) const {
   check_number(marker_size_m, NumberRange::positive(100.0, "m"), source, "marker_size_m");
   if (max_hamming < 0 || max_hamming > 3)
     throw InputError(source, "max_hamming", "an integer in [0, 3]", std::to_string(max_hamming));
+  check_number(min_marker_side_px, NumberRange::closed(4.0, 4096.0, "px"), source,
+               "min_marker_side_px");
   check_number(min_decision_margin, NumberRange::non_negative(255.0), source,
                "min_decision_margin");
   check_number(quad_decimate, NumberRange::closed(1.0, 8.0), source, "quad_decimate");
+  if (apriltag_min_white_black_diff < 0 || apriltag_min_white_black_diff > 255)
+    throw InputError(source, "apriltag_min_white_black_diff", "an integer in [0, 255]",
+                     std::to_string(apriltag_min_white_black_diff));
   check_number(quad_sigma, NumberRange::non_negative(10.0, "px"), source, "quad_sigma");
   check_number(decode_sharpening, NumberRange::non_negative(10.0), source, "decode_sharpening");
   check_number(aruco_error_correction_rate, NumberRange::non_negative(1.0), source,

@@ -43,11 +43,22 @@ struct MarkerDetectorOptions {
   /// Bits the AprilTag decoder may correct. Every corrected bit brings a random pattern
   /// closer to a valid code, so 0 keeps false positives at the library's minimum.
   int max_hamming = 0;
+  /// The smallest marker side (black square, pixels) the detectors look for: shorter
+  /// candidates are dropped before decoding, which is most of a textured frame's. The
+  /// issue's target is 20 px; 16 leaves a margin for foreshortening and blur.
+  double min_marker_side_px = 16.0;
   /// AprilTag: the decoder's minimum decision margin (detections below are noise).
   double min_decision_margin = 30.0;
-  /// AprilTag quad_decimate: 1 finds the smallest markers; 2 halves the search time
-  /// on large frames but misses markers below about 40 px.
-  double quad_decimate = 1.0;
+  /// AprilTag quad_decimate: the quad search runs on a frame this much smaller (the
+  /// corners are then refined on the full frame). 1 costs about 60 ms a 1280x720
+  /// textured frame on one core here, 2 about 3 ms, and finds the same markers of
+  /// 20 px and more on the simulator's frames (docs/results/issue11_markers.md).
+  double quad_decimate = 2.0;
+  /// AprilTag qtp.min_white_black_diff: the least grey-level difference between a
+  /// candidate's dark and light side. The library's 5 lets every texture edge of an
+  /// outdoor frame through (about 15 ms more a frame); 20 is still far below a printed
+  /// marker's contrast at exposure 0.6.
+  int apriltag_min_white_black_diff = 20;
   /// AprilTag quad_sigma: Gaussian blur (pixels) before the quad search; 0 = none.
   double quad_sigma = 0.0;
   /// AprilTag decode_sharpening (the library's default 0.25).
