@@ -22,9 +22,7 @@ using test::textured_background;
 
 // 640 x 480, 90 deg: fx = fy = 320 px, cx = 319.5, cy = 239.5 (pixel centres at
 // integers, so a rectangle of columns 312..327 is centred on cx).
-CameraModel camera() {
-  return CameraModel::from_fov("test", 640, 480, std::numbers::pi / 2);
-}
+CameraModel camera() { return CameraModel::from_fov("test", 640, 480, std::numbers::pi / 2); }
 
 RgbImage scene(std::uint64_t seed) { return textured_background(640, 480, seed); }
 
@@ -51,21 +49,22 @@ TEST(ObjectDetector, DistanceFromABlobOfKnownSize) {
 
 TEST(ObjectDetector, BearingOfABlobAtAKnownColumn) {
   // Columns 400..415: centroid u = 407.5, x = (407.5 - 319.5) / 320 = 0.275 right of
-  // the axis, bearing = atan2(-0.275, 1) = -0.268297 rad (right is negative). Off axis
+  // the axis, bearing = atan2(-0.275, 1) = -0.268366 rad (right is negative). Off axis
   // the range is z * |ray|: 1.6 * sqrt(1 + 0.275^2) = 1.659397 m.
   RgbImage img = scene(3);
   fill_rect(img, 400, 235, 16, 10, kOrange);
   add_noise(img, 3.0, 4);
   const auto dets = ColourObjectDetector().detect(img, camera());
   ASSERT_EQ(dets.size(), 1u);
-  EXPECT_NEAR(dets[0].bearing_rad, -0.268297, 1e-6);
+  EXPECT_NEAR(dets[0].bearing_rad, -0.268366, 1e-6);
   EXPECT_NEAR(dets[0].distance_m, 1.659397, 1e-6);
-  // And on the left: columns 100..115, u = 107.5, x = -0.6625, bearing +0.585140 rad.
+  // And on the left: columns 100..115, u = 107.5, x = -0.6625, bearing atan(0.6625) = +0.585112
+  // rad.
   RgbImage left = scene(5);
   fill_rect(left, 100, 235, 16, 10, kOrange);
   const auto l = ColourObjectDetector().detect(left, camera());
   ASSERT_EQ(l.size(), 1u);
-  EXPECT_NEAR(l[0].bearing_rad, 0.585140, 1e-6);
+  EXPECT_NEAR(l[0].bearing_rad, 0.585112, 1e-6);
 }
 
 TEST(ObjectDetector, BearingAndDistanceGoThroughTheLensDistortion) {
@@ -99,9 +98,9 @@ TEST(ObjectDetector, BearingAndDistanceGoThroughTheLensDistortion) {
 TEST(ObjectDetector, NoDetectionInAFrameWithoutTheColour) {
   for (std::uint64_t seed = 10; seed < 20; ++seed) {
     RgbImage img = scene(seed);
-    fill_rect(img, 200, 200, 40, 25, {30, 200, 40});   // green
-    fill_rect(img, 400, 100, 40, 25, {20, 60, 220});   // blue
-    fill_rect(img, 100, 300, 40, 25, {200, 200, 200}); // white
+    fill_rect(img, 200, 200, 40, 25, {30, 200, 40});    // green
+    fill_rect(img, 400, 100, 40, 25, {20, 60, 220});    // blue
+    fill_rect(img, 100, 300, 40, 25, {200, 200, 200});  // white
     add_noise(img, 6.0, seed + 100);
     EXPECT_TRUE(ColourObjectDetector().detect(img, camera()).empty()) << "seed " << seed;
   }
@@ -111,9 +110,9 @@ TEST(ObjectDetector, RedAndYellowDistractorsAreNotDetected) {
   // Orange's hue is 26 deg; red (~3 deg) and yellow (~55 deg) are more than the 12 deg
   // tolerance away. Same sizes as the object, same noise: only the orange one is found.
   RgbImage img = scene(21);
-  fill_rect(img, 100, 235, 16, 10, {230, 20, 10});   // red
-  fill_rect(img, 500, 235, 16, 10, {240, 220, 0});   // yellow
-  fill_rect(img, 300, 100, 32, 20, {255, 40, 40});   // bright red, twice the size
+  fill_rect(img, 100, 235, 16, 10, {230, 20, 10});  // red
+  fill_rect(img, 500, 235, 16, 10, {240, 220, 0});  // yellow
+  fill_rect(img, 300, 100, 32, 20, {255, 40, 40});  // bright red, twice the size
   fill_rect(img, 312, 300, 16, 10, kOrange);
   add_noise(img, 4.0, 22);
   const auto dets = ColourObjectDetector().detect(img, camera());

@@ -123,10 +123,10 @@ ColourObjectDetector::ColourObjectDetector(Options options) : options_(options) 
 std::vector<ObjectDetection> ColourObjectDetector::detect(const RgbImage& image,
                                                           const CameraModel& camera) const {
   if (image.width_px != camera.width_px || image.height_px != camera.height_px)
-    throw InputError(camera.source.empty() ? camera.name : camera.source, "image size",
-                     fmt::format("an image of the camera's {} x {} px", camera.width_px,
-                                 camera.height_px),
-                     fmt::format("{} x {}", image.width_px, image.height_px));
+    throw InputError(
+        camera.source.empty() ? camera.name : camera.source, "image size",
+        fmt::format("an image of the camera's {} x {} px", camera.width_px, camera.height_px),
+        fmt::format("{} x {}", image.width_px, image.height_px));
   const Options& o = options_;
   std::vector<ObjectDetection> out;
   if (image.empty()) return out;
@@ -146,7 +146,8 @@ std::vector<ObjectDetection> ColourObjectDetector::detect(const RgbImage& image,
     if (area < o.min_area_px) continue;
     PixelBox box{stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
                  stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT)};
-    const double fill = static_cast<double>(area) / (static_cast<double>(box.width_px) * box.height_px);
+    const double fill =
+        static_cast<double>(area) / (static_cast<double>(box.width_px) * box.height_px);
     if (fill < o.min_fill_ratio) continue;
     // Purity: how close the blob's hues sit to the object's, on average.
     double gap_sum = 0.0;
@@ -170,8 +171,10 @@ std::vector<ObjectDetection> ColourObjectDetector::detect(const RgbImage& image,
     d.truncated = cut_x || cut_y;
     const double x0 = box.x_px, x1 = box.x_px + box.width_px - 1;
     const double y0 = box.y_px, y1 = box.y_px + box.height_px - 1;
-    const double z_h = depth_from_extent(camera, true, y0, y1, d.centroid_px.x(), o.object_height_m);
-    const double z_w = depth_from_extent(camera, false, x0, x1, d.centroid_px.y(), o.object_width_m);
+    const double z_h =
+        depth_from_extent(camera, true, y0, y1, d.centroid_px.x(), o.object_height_m);
+    const double z_w =
+        depth_from_extent(camera, false, x0, x1, d.centroid_px.y(), o.object_width_m);
     // The height first: a level camera sees the same vertical extent from every side,
     // while a box's silhouette width grows by up to sqrt(2) with its yaw. An extent cut
     // by the border is only a lower bound (its depth an upper bound): the other axis

@@ -29,9 +29,8 @@ RgbImage draw_object_overlay(const RgbImage& image,
     const cv::Point c(static_cast<int>(std::lround(d.centroid_px.x())),
                       static_cast<int>(std::lround(d.centroid_px.y())));
     cv::drawMarker(m, c, box_rgb, cv::MARKER_CROSS, 5, 1);
-    const std::string text =
-        fmt::format("#{} d={:.2f}m conf={:.2f} b={:+.1f}deg", k, d.distance_m, d.confidence,
-                    rad_to_deg(d.bearing_rad));
+    const std::string text = fmt::format("#{} d={:.2f}m conf={:.2f} b={:+.1f}deg", k, d.distance_m,
+                                         d.confidence, rad_to_deg(d.bearing_rad));
     int baseline = 0;
     const cv::Size ts = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, thick, &baseline);
     // Above the box where there is room, else below it; kept inside the frame.
