@@ -10,7 +10,6 @@
 
 #include "ferret/core/random.hpp"
 #include "ferret/perception/image.hpp"
-#include "ferret/ugv/object_detector.hpp"
 
 namespace ferret::test {
 
