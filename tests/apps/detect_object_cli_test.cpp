@@ -26,7 +26,9 @@ void write(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
-// The object 16 x 10 px centred on the optical axis: z = 0.05 * 320 / 10 = 1.6 m.
+// The object 16 x 10 px centred on the optical axis: its near face at z = 0.05 * 320 /
+// 10 = 1.6 m, its centre (the canister's 8 cm footprint) 2 * 0.08 / pi further.
+constexpr double kRange = 1.6 + 2 * 0.08 / 3.141592653589793;
 std::string object_frame(const TempDir& dir, const std::string& name = "frame.png") {
   RgbImage img = textured_background(640, 480, 5);
   fill_rect(img, 312, 235, 16, 10, kOrange);
@@ -42,9 +44,9 @@ TEST(DetectObjectCli, JsonGivesBearingDistanceAndConfidence) {
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j.at("detections").size(), 1u);
   const auto& d = j["detections"][0];
-  EXPECT_NEAR(d.at("distance_m").get<double>(), 1.6, 1e-9);
+  EXPECT_NEAR(d.at("distance_m").get<double>(), kRange, 1e-9);
   EXPECT_NEAR(d.at("bearing_rad").get<double>(), 0.0, 1e-12);
-  EXPECT_NEAR(d.at("confidence").get<double>(), 1.0 / 1.6, 1e-9);  // eta / d, eta = 1 m
+  EXPECT_NEAR(d.at("confidence").get<double>(), 1.0 / kRange, 1e-9);  // eta / d, eta = 1 m
   EXPECT_NEAR(d.at("centroid_px")[0].get<double>(), 319.5, 1e-9);
   EXPECT_NEAR(d.at("centroid_px")[1].get<double>(), 239.5, 1e-9);
   EXPECT_EQ(d.at("size_px").get<double>(), 10.0);
@@ -57,13 +59,13 @@ TEST(DetectObjectCli, MissionEtaAndSummaryLine) {
   const auto j =
       run_cli("detect object " + frame + " --robot miniugv --json --mission " + (dir / "m.yaml"));
   ASSERT_EQ(j.exit_code, 0) << j.err;
-  // 0.8 / 1.6 = 0.5, below the floor 0.52.
+  // 0.8 / 1.65 = 0.48, below the floor 0.52.
   EXPECT_NEAR(nlohmann::json::parse(j.out)["detections"][0]["confidence"].get<double>(), 0.52,
               1e-9);
   const auto s = run_cli("detect object " + frame + " --robot miniugv");
   ASSERT_EQ(s.exit_code, 0) << s.err;
   EXPECT_THAT(s.out, HasSubstr("1 object "));
-  EXPECT_THAT(s.out, HasSubstr("distance 1.600 m"));
+  EXPECT_THAT(s.out, HasSubstr("distance 1.651 m"));
 }
 
 TEST(DetectObjectCli, AFrameWithoutTheObjectGivesAnEmptyList) {

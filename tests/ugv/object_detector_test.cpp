@@ -24,6 +24,13 @@ using test::textured_background;
 // integers, so a rectangle of columns 312..327 is centred on cx).
 CameraModel camera() { return CameraModel::from_fov("test", 640, 480, std::numbers::pi / 2); }
 
+// The rectangles drawn here are flat patches: no depth behind the face they show.
+ColourObjectDetector patch_detector() {
+  ColourObjectDetector::Options o;
+  o.object_depth_m = 0.0;
+  return ColourObjectDetector(o);
+}
+
 RgbImage scene(std::uint64_t seed) { return textured_background(640, 480, seed); }
 
 TEST(ObjectDetector, DistanceFromABlobOfKnownSize) {
@@ -32,7 +39,7 @@ TEST(ObjectDetector, DistanceFromABlobOfKnownSize) {
   RgbImage img = scene(1);
   fill_rect(img, 312, 235, 16, 10, kOrange);
   add_noise(img, 3.0, 2);
-  const auto dets = ColourObjectDetector().detect(img, camera());
+  const auto dets = patch_detector().detect(img, camera());
   ASSERT_EQ(dets.size(), 1u);
   EXPECT_NEAR(dets[0].distance_m, 1.6, 1e-9);
   EXPECT_NEAR(dets[0].bearing_rad, 0.0, 1e-12);
@@ -47,6 +54,17 @@ TEST(ObjectDetector, DistanceFromABlobOfKnownSize) {
   EXPECT_DOUBLE_EQ(dets[0].visibility, 1.0);
 }
 
+TEST(ObjectDetector, ABoxCentreLiesBehindItsNearFace) {
+  // The default object is the 8 x 8 x 5 cm canister: its centre lies 2 * 0.08 / pi =
+  // 0.050930 m behind the face whose extent the blob shows (yaw average).
+  RgbImage img = scene(1);
+  fill_rect(img, 312, 235, 16, 10, kOrange);
+  const auto dets = ColourObjectDetector().detect(img, camera());
+  ASSERT_EQ(dets.size(), 1u);
+  EXPECT_NEAR(dets[0].distance_m, 1.6 + 0.050930, 1e-6);
+  EXPECT_NEAR(dets[0].confidence, 1.0 / (1.6 + 0.050930), 1e-6);
+}
+
 TEST(ObjectDetector, BearingOfABlobAtAKnownColumn) {
   // Columns 400..415: centroid u = 407.5, x = (407.5 - 319.5) / 320 = 0.275 right of
   // the axis, bearing = atan2(-0.275, 1) = -0.268366 rad (right is negative). Off axis
@@ -54,7 +72,7 @@ TEST(ObjectDetector, BearingOfABlobAtAKnownColumn) {
   RgbImage img = scene(3);
   fill_rect(img, 400, 235, 16, 10, kOrange);
   add_noise(img, 3.0, 4);
-  const auto dets = ColourObjectDetector().detect(img, camera());
+  const auto dets = patch_detector().detect(img, camera());
   ASSERT_EQ(dets.size(), 1u);
   EXPECT_NEAR(dets[0].bearing_rad, -0.268366, 1e-6);
   EXPECT_NEAR(dets[0].distance_m, 1.659397, 1e-6);
@@ -62,7 +80,7 @@ TEST(ObjectDetector, BearingOfABlobAtAKnownColumn) {
   // rad.
   RgbImage left = scene(5);
   fill_rect(left, 100, 235, 16, 10, kOrange);
-  const auto l = ColourObjectDetector().detect(left, camera());
+  const auto l = patch_detector().detect(left, camera());
   ASSERT_EQ(l.size(), 1u);
   EXPECT_NEAR(l[0].bearing_rad, 0.585112, 1e-6);
 }
@@ -86,6 +104,7 @@ TEST(ObjectDetector, BearingAndDistanceGoThroughTheLensDistortion) {
   RgbImage img = scene(7);
   fill_rect(img, u0, v0, u1 - u0, v1 - v0, kOrange);
   ColourObjectDetector::Options o;
+  o.object_depth_m = 0.0;
   o.object_width_m = 0.05;
   o.object_height_m = 0.05;
   const auto dets = ColourObjectDetector(o).detect(img, cam);
@@ -102,7 +121,7 @@ TEST(ObjectDetector, NoDetectionInAFrameWithoutTheColour) {
     fill_rect(img, 400, 100, 40, 25, {20, 60, 220});    // blue
     fill_rect(img, 100, 300, 40, 25, {200, 200, 200});  // white
     add_noise(img, 6.0, seed + 100);
-    EXPECT_TRUE(ColourObjectDetector().detect(img, camera()).empty()) << "seed " << seed;
+    EXPECT_TRUE(patch_detector().detect(img, camera()).empty()) << "seed " << seed;
   }
 }
 
@@ -115,7 +134,7 @@ TEST(ObjectDetector, RedAndYellowDistractorsAreNotDetected) {
   fill_rect(img, 300, 100, 32, 20, {255, 40, 40});  // bright red, twice the size
   fill_rect(img, 312, 300, 16, 10, kOrange);
   add_noise(img, 4.0, 22);
-  const auto dets = ColourObjectDetector().detect(img, camera());
+  const auto dets = patch_detector().detect(img, camera());
   ASSERT_EQ(dets.size(), 1u);
   EXPECT_EQ(dets[0].box.x_px, 312);
   EXPECT_EQ(dets[0].box.y_px, 300);
@@ -128,7 +147,7 @@ TEST(ObjectDetector, AnObjectCutByTheImageBorderIsPartlyVisible) {
   RgbImage img = scene(31);
   fill_rect(img, 0, 224, 20, 32, kOrange);
   add_noise(img, 3.0, 32);
-  const ColourObjectDetector det;
+  const ColourObjectDetector det = patch_detector();
   const auto dets = det.detect(img, camera());
   ASSERT_EQ(dets.size(), 1u);
   const ObjectDetection& d = dets[0];
@@ -166,7 +185,7 @@ TEST(ObjectDetector, ConfidenceFallsWithDistanceAsEtaOverD) {
     RgbImage img = scene(40 + static_cast<std::uint64_t>(k));
     const int h = heights[k], w = static_cast<int>(std::lround(h * 1.6));
     fill_rect(img, 320 - w / 2, 240 - h / 2, w, h, kOrange);
-    const auto dets = ColourObjectDetector().detect(img, camera());
+    const auto dets = patch_detector().detect(img, camera());
     ASSERT_EQ(dets.size(), 1u) << h;
     const double z = 0.05 * 320.0 / h;
     const double d = z * camera().ray(dets[0].centroid_px).norm();
@@ -179,6 +198,7 @@ TEST(ObjectDetector, MissionConstantsSetTheConfidence) {
   // eta = 2 m, floor 0.6, cap 0.9: at 1.6 m, 2 / 1.6 = 1.25 -> the cap 0.9; at 3.2 m,
   // 5 px tall: 5/8 * 2/3.2 = 0.39 -> the floor 0.6.
   ColourObjectDetector::Options o;
+  o.object_depth_m = 0.0;
   o.search.eta_m = 2.0;
   o.search.conf_floor = 0.6;
   o.search.conf_cap = 0.9;
@@ -202,7 +222,7 @@ TEST(ObjectDetector, SpeckleNoiseAndThinLinesAreNotObjects) {
               static_cast<int>(rng.uniform_int(0, 479)), 1, 1, kOrange);
   fill_rect(img, 50, 400, 300, 1, kOrange);
   fill_rect(img, 600, 50, 2, 200, kOrange);
-  EXPECT_TRUE(ColourObjectDetector().detect(img, camera()).empty());
+  EXPECT_TRUE(patch_detector().detect(img, camera()).empty());
 }
 
 TEST(ObjectDetector, SameFrameSameDetections) {
@@ -215,8 +235,8 @@ TEST(ObjectDetector, SameFrameSameDetections) {
   fill_rect(again, 400, 300, 16, 10, kOrange);
   add_noise(again, 5.0, 71);
   ASSERT_EQ(img.data, again.data);
-  const auto a = ColourObjectDetector().detect(img, camera());
-  const auto b = ColourObjectDetector().detect(again, camera());
+  const auto a = patch_detector().detect(img, camera());
+  const auto b = patch_detector().detect(again, camera());
   ASSERT_EQ(a.size(), 2u);
   ASSERT_EQ(b.size(), 2u);
   for (std::size_t k = 0; k < 2; ++k) {
@@ -232,7 +252,7 @@ TEST(ObjectDetector, SameFrameSameDetections) {
 TEST(ObjectDetector, AnImageOfTheWrongSizeIsBadInput) {
   const RgbImage img(320, 240);
   try {
-    (void)ColourObjectDetector().detect(img, camera());
+    (void)patch_detector().detect(img, camera());
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "image size");
@@ -251,6 +271,7 @@ TEST(ObjectDetector, OptionsOutOfRangeAreRefusedByField) {
     return std::string("(accepted)");
   };
   ColourObjectDetector::Options o;
+  o.object_depth_m = 0.0;
   EXPECT_EQ(field_of(o), "(accepted)");
   o.colour_rgb = {128, 128, 128};
   EXPECT_EQ(field_of(o), "object_detector.colour_rgb");
@@ -286,7 +307,7 @@ TEST(ObjectDetector, MapDetectionKeepsBearingDistanceConfidence) {
 TEST(ObjectDetector, OverlayDrawsOnlyAroundTheDetection) {
   RgbImage img = scene(80);
   fill_rect(img, 312, 235, 16, 10, kOrange);
-  const auto dets = ColourObjectDetector().detect(img, camera());
+  const auto dets = patch_detector().detect(img, camera());
   ASSERT_EQ(dets.size(), 1u);
   const RgbImage over = draw_object_overlay(img, dets);
   ASSERT_EQ(over.width_px, 640);

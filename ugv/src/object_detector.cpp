@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -91,6 +92,7 @@ void ColourObjectDetector::Options::check(const std::string& source) const {
   check_in(source, "min_value", min_value, NumberRange::closed(0.0, 1.0));
   check_in(source, "object_width_m", object_width_m, NumberRange::positive(100.0, "m"));
   check_in(source, "object_height_m", object_height_m, NumberRange::positive(100.0, "m"));
+  check_in(source, "object_depth_m", object_depth_m, NumberRange::non_negative(100.0, "m"));
   if (open_kernel_px < 1 || open_kernel_px > 31 || open_kernel_px % 2 == 0)
     throw InputError(source, "object_detector.open_kernel_px", "an odd integer in [1, 31] px",
                      std::to_string(open_kernel_px));
@@ -100,6 +102,7 @@ void ColourObjectDetector::Options::check(const std::string& source) const {
   check_in(source, "min_fill_ratio", min_fill_ratio, NumberRange::closed(0.0, 1.0));
   check_in(source, "min_purity", min_purity, NumberRange::closed(0.0, 1.0));
   check_in(source, "full_visibility_px", full_visibility_px, NumberRange::positive(1e4, "px"));
+  check_in(source, "max_distance_m", max_distance_m, NumberRange::non_negative(1e6, "m"));
   check_in(source, "search.eta_m", search.eta_m, NumberRange::positive(1e6, "m"));
   check_in(source, "search.conf_floor", search.conf_floor, NumberRange::closed(0.5, 1.0));
   check_in(source, "search.conf_cap", search.conf_cap, NumberRange::closed(0.5, 1.0));
@@ -201,8 +204,12 @@ std::vector<ObjectDetection> ColourObjectDetector::detect(const RgbImage& image,
       if (aspect < nominal / 2.0 || aspect > nominal * std::sqrt(2.0) * 2.0) continue;
     }
     const Eigen::Vector3d ray = camera.ray(d.centroid_px);
-    d.distance_m = z * ray.norm();
+    // The extent is the near face's; the centre lies half the footprint's projected
+    // depth further along the optical axis: (l / 2) (|cos yaw| + |sin yaw|) for a
+    // square of side l, 2 l / pi on average over the yaw.
+    d.distance_m = (z + 2.0 * o.object_depth_m / std::numbers::pi) * ray.norm();
     d.bearing_rad = std::atan2(-ray.x(), ray.z());
+    if (o.max_distance_m > 0 && d.distance_m > o.max_distance_m) continue;
 
     // Visibility: a blob of a few pixels is weak evidence; a blob cut by the border
     // shows only part of the object, by the ratio of its cut extent to the extent the

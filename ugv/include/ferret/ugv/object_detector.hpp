@@ -26,6 +26,7 @@
 #include "ferret/mapping/object_map.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/image.hpp"
+#include "ferret/perception/object_appearance.hpp"
 #include "ferret/urdf/mission_config.hpp"
 
 namespace ferret::ugv {
@@ -48,8 +49,9 @@ struct ObjectDetection {
   /// plane (x-z of the optical frame), + to the left: atan2(-x, z) of the undistorted
   /// ray through the centroid.
   double bearing_rad = 0.0;
-  /// Range from the camera to the object: the depth z = size_m / (normalised extent)
-  /// times the length of the centroid's ray at z = 1.
+  /// Range from the camera to the object's centre: the near face's depth z = size_m /
+  /// (normalised extent) times the length of the centroid's ray at z = 1, plus the
+  /// mean distance from the near face to the centre (Options::object_depth_m).
   double distance_m = 0.0;
   /// clip(visibility * eta / d, conf_floor, conf_cap): what the object map fuses.
   double confidence = 0.0;
@@ -80,13 +82,10 @@ class ObjectDetector {
                                                             const CameraModel& camera) const = 0;
 };
 
-/// The object's colour (perception/object_appearance.hpp's kObjectColourRgb).
-inline constexpr std::array<std::uint8_t, 3> kDefaultObjectColourRgb{255, 110, 0};
-
 class ColourObjectDetector final : public ObjectDetector {
  public:
   struct Options {
-    std::array<std::uint8_t, 3> colour_rgb = kDefaultObjectColourRgb;
+    std::array<std::uint8_t, 3> colour_rgb = kObjectColourRgb;
     /// A pixel is the object's when its hue is within this of the colour's hue ...
     double hue_tolerance_deg = 12.0;
     /// ... and it is saturated and bright enough (fractions of full scale). Shading
@@ -97,6 +96,10 @@ class ColourObjectDetector final : public ObjectDetector {
     /// vertical extent: for a level camera, the same from every side.
     double object_width_m = 0.08;
     double object_height_m = 0.05;
+    /// The side of its (square) footprint: the blob's extent gives the range to the
+    /// object's near face, and the centre lies half the footprint's projected depth
+    /// further, 2 depth / pi on average over the object's yaw. 0 for a flat patch.
+    double object_depth_m = 0.08;
     /// Side of the square opening kernel (odd; 1: no opening).
     int open_kernel_px = 3;
     int min_area_px = 6;
@@ -105,6 +108,9 @@ class ColourObjectDetector final : public ObjectDetector {
     /// A blob whose apparent size is at least this has full visibility; smaller ones
     /// scale it down linearly (a few pixels are weak evidence of a colour patch).
     double full_visibility_px = 8.0;
+    /// Detections whose distance is beyond this are dropped: the camera's detection
+    /// range D_cam (a URDF camera's far clip). 0: no limit.
+    double max_distance_m = 0.0;
     /// eta_m, conf_floor, conf_cap (the mission YAML's object_search).
     ObjectSearchParams search;
 
