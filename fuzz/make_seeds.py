@@ -12,6 +12,7 @@ import shutil
 import struct
 import subprocess
 import tempfile
+import zlib
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 CORPUS = ROOT / "fuzz" / "corpus"
@@ -88,6 +89,16 @@ def urdf_seeds():
         '</image><clip><near>0.05</near><far>4</far></clip></camera></sensor></gazebo>'
         '<joint name="w" type="continuous"><parent link="base"/><child link="ir"/>'
         '<limit velocity="10" effort="1"/></joint></robot>\n')
+    put(t, "calibrated_camera.urdf",
+        '<robot name="r"><link name="base"/><link name="cam_link"/><joint name="j" type="fixed">'
+        '<parent link="base"/><child link="cam_link"/></joint>'
+        '<gazebo reference="cam_link"><sensor type="camera" name="cam"><ferret role="marker_camera"/>'
+        '<camera><horizontal_fov>1.2</horizontal_fov><image><width>640</width><height>480</height>'
+        '</image><clip><near>0.1</near><far>10</far></clip>'
+        '<distortion><k1>-0.25</k1><k2>0.08</k2><k3>-0.01</k3><p1>0.001</p1><p2>-0.0005</p2>'
+        '<center>0.5 0.5</center></distortion>'
+        '<lens><intrinsics><fx>512.5</fx><fy>511.25</fy><cx>319.5</cx><cy>239.5</cy><s>0</s>'
+        '</intrinsics></lens></camera></sensor></gazebo></robot>\n')
     put(t, "nan_origin.urdf",
         '<robot name="r"><link name="base"><collision><origin xyz="nan 0 inf"/>'
         '<geometry><box size="1 1 1"/></geometry></collision></link></robot>\n')
@@ -269,6 +280,161 @@ def dynamixel_seeds():
     put(t, "truncated.bin", status[:-3])
 
 
+# ---------------------------------------------------------------- cameras and images
+
+ROS_CAMERA_INFO = """image_width: 640
+image_height: 480
+camera_name: narrow_stereo
+camera_matrix:
+  rows: 3
+  cols: 3
+  data: [ 628.47758,    0.     ,  316.86264,
+            0.     ,  628.16998,  236.4428 ,
+            0.     ,    0.     ,    1.     ]
+distortion_model: plumb_bob
+distortion_coefficients:
+  rows: 1
+  cols: 5
+  data: [0.145963, -0.285101, -0.000337, 0.001617, 0.000000]
+rectification_matrix:
+  rows: 3
+  cols: 3
+  data: [ 1.,  0.,  0.,
+          0.,  1.,  0.,
+          0.,  0.,  1.]
+projection_matrix:
+  rows: 3
+  cols: 4
+  data: [ 636.81683,    0.     ,  317.25128,    0.     ,
+            0.     ,  637.0177 ,  235.31689,    0.     ,
+            0.     ,    0.     ,    1.     ,    0.     ]
+"""
+
+
+def camera_info_seeds():
+    t = "camera_info"
+    reset(t)
+    put(t, "ros_ost.yaml", ROS_CAMERA_INFO)
+    # ferret config --camera-info's layout (flow lists, shortest round-trip numbers).
+    put(t, "ferret_written.yaml",
+        "image_width: 1280\nimage_height: 720\ncamera_name: \"marker_camera\"\n"
+        "camera_matrix:\n  rows: 3\n  cols: 3\n"
+        "  data: [790.3341801824328, 0, 639.5, 0, 790.3341801824328, 359.5, 0, 0, 1]\n"
+        "distortion_model: plumb_bob\ndistortion_coefficients:\n  rows: 1\n  cols: 5\n"
+        "  data: [0, 0, 0, 0, 0]\nrectification_matrix:\n  rows: 3\n  cols: 3\n"
+        "  data: [1, 0, 0, 0, 1, 0, 0, 0, 1]\nprojection_matrix:\n  rows: 3\n  cols: 4\n"
+        "  data: [790.3341801824328, 0, 639.5, 0, 0, 790.3341801824328, 359.5, 0, 0, 0, 1, 0]\n")
+    stereo = ROS_CAMERA_INFO.replace(
+        "data: [ 1.,  0.,  0.,\n          0.,  1.,  0.,\n          0.,  0.,  1.]",
+        "data: [0.99875026039496628, 0, 0.049979169270678331, 0, 1, 0, "
+        "-0.049979169270678331, 0, 0.99875026039496628]").replace(
+        "317.25128,    0.     ,", "317.25128, -44.577178,")
+    put(t, "stereo_right.yaml", stereo)
+    put(t, "no_model_no_name.yaml",
+        ROS_CAMERA_INFO.replace("distortion_model: plumb_bob\n", "").replace("camera_name: narrow_stereo\n", ""))
+    put(t, "none_empty_d.yaml",
+        ROS_CAMERA_INFO.replace("distortion_model: plumb_bob", "distortion_model: none").replace(
+            "cols: 5\n  data: [0.145963, -0.285101, -0.000337, 0.001617, 0.000000]", "cols: 0\n  data: []"))
+    put(t, "rational_polynomial.yaml",
+        ROS_CAMERA_INFO.replace("plumb_bob", "rational_polynomial").replace(
+            "cols: 5\n  data: [0.145963, -0.285101, -0.000337, 0.001617, 0.000000]",
+            "cols: 8\n  data: [0.1, -0.2, 0, 0, 0.01, 0.1, -0.2, 0.01]"))
+    put(t, "nan_and_skew.yaml", ROS_CAMERA_INFO.replace("628.47758", ".nan").replace(
+        "0.     ,  316.86264", "0.5    ,  316.86264"))
+    put(t, "k20_nonzero.yaml", ROS_CAMERA_INFO.replace(
+        "0.     ,    0.     ,    1.     ]", "0.5    ,    0.     ,    1.     ]", 1))
+    put(t, "reflection.yaml", ROS_CAMERA_INFO.replace("data: [ 1.,", "data: [ -1.,"))
+    put(t, "short_data.yaml", ROS_CAMERA_INFO.replace("  316.86264,\n", "\n"))
+    put(t, "huge_size.yaml", ROS_CAMERA_INFO.replace("image_width: 640", "image_width: 99999999999"))
+    put(t, "anchors.yaml", "image_width: &w 640\nimage_height: *w\ncamera_matrix: &m {rows: 3, cols: 3, "
+        "data: [500, 0, 320, 0, 500, 240, 0, 0, 1]}\nrectification_matrix: *m\n")
+    put(t, "not_yaml.yaml", "image_width: [640\n")
+
+
+def png_chunk(kind, body):
+    return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
+
+
+def png(width, height, colour, depth, rows, plte=None, trns=None, ihdr_only=False):
+    """A PNG written from first principles (no image library here): `rows` are the raw
+    scanlines without filter bytes."""
+    out = b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, depth, colour, 0, 0, 0))
+    if ihdr_only:
+        return out
+    if plte is not None:
+        out += png_chunk(b"PLTE", plte)
+    if trns is not None:
+        out += png_chunk(b"tRNS", trns)
+    out += png_chunk(b"IDAT", zlib.compress(b"".join(b"\x00" + r for r in rows)))
+    return out + png_chunk(b"IEND", b"")
+
+
+def jpeg(width, height, components):
+    """A baseline JPEG with one-symbol Huffman tables (every block a flat grey): a valid
+    file of a few hundred bytes, written by hand for the same reason as png()."""
+    seg = lambda marker, body: b"\xff" + bytes([marker]) + struct.pack(">H", len(body) + 2) + body
+    out = b"\xff\xd8"
+    out += seg(0xDB, b"\x00" + bytes([1] * 64))
+    sof = struct.pack(">BHHB", 8, height, width, components)
+    for c in range(components):
+        sof += bytes([c + 1, 0x11, 0])
+    out += seg(0xC0, sof)
+    one_code = bytes([1] + [0] * 15)
+    out += seg(0xC4, b"\x00" + one_code + b"\x00")  # DC: category 0, code "0"
+    out += seg(0xC4, b"\x10" + one_code + b"\x00")  # AC: end of block, code "0"
+    sos = bytes([components])
+    for c in range(components):
+        sos += bytes([c + 1, 0x00])
+    out += seg(0xDA, sos + b"\x00\x3f\x00")
+    blocks = ((width + 7) // 8) * ((height + 7) // 8) * components
+    bits = 2 * blocks  # "0" + "0" per block
+    data = bytearray(b"\x00" * (bits // 8))
+    if bits % 8:
+        data.append((1 << (8 - bits % 8)) - 1)  # pad the last byte with ones
+    return out + bytes(data) + b"\xff\xd9"
+
+
+def image_seeds():
+    w, h = 8, 6
+    gray8 = [bytes((x * 32 + y) & 0xFF for x in range(w)) for y in range(h)]
+    rgb8 = [bytes(v for x in range(w) for v in (x * 30, y * 40, 200)) for y in range(h)]
+    gray16 = [b"".join(struct.pack(">H", 300 + 1000 * x + y) for x in range(w)) for y in range(h)]
+    rgba16 = [b"".join(struct.pack(">HHHH", x * 8000, y * 9000, 100, 65535) for x in range(w)) for y in range(h)]
+    gray_alpha = [bytes(v for x in range(w) for v in (x * 30, 255 - x)) for y in range(h)]
+    # 4-bit palette: two pixels a byte.
+    pal4 = [bytes(((x % 16) << 4) | ((x + y) % 16) for x in range(w // 2)) for y in range(h)]
+    palette = bytes(v for i in range(16) for v in (i * 16, 255 - i * 16, 128))
+    gray1 = [bytes([0b10101010]) for _ in range(h)]
+    depth16 = png(w, h, 0, 16, gray16)
+    images = {
+        "gray8.png": png(w, h, 0, 8, gray8),
+        "rgb8.png": png(w, h, 2, 8, rgb8),
+        "gray16.png": depth16,
+        "rgba16.png": png(w, h, 6, 16, rgba16),
+        "gray_alpha.png": png(w, h, 4, 8, gray_alpha),
+        "palette4_trns.png": png(w, h, 3, 4, pal4, plte=palette, trns=bytes([0, 128])),
+        "gray1.png": png(w, h, 0, 1, gray1),
+        "truncated.png": png(w, h, 2, 8, rgb8)[:60],
+        "wide_header.png": png(20000, 1, 0, 16, [], ihdr_only=True),
+        "zero_size.png": png(0, 4, 0, 8, [], ihdr_only=True),
+        "gray.jpg": jpeg(16, 8, 1),
+        "rgb.jpg": jpeg(8, 8, 3),
+        "truncated.jpg": jpeg(16, 16, 3)[:40],
+        "wide.jpg": jpeg(20000, 8, 1),
+        "text.png": b"this is not an image\n",
+    }
+    reset("image")
+    reset("depth_png")
+    for name, data in images.items():
+        put("image", name, data)
+    for name in ("gray16.png", "gray8.png", "rgb8.png", "palette4_trns.png", "rgba16.png",
+                 "truncated.png", "wide_header.png", "gray.jpg", "text.png"):
+        put("depth_png", name, images[name])
+    put("depth_png", "depth16_far.png",
+        png(4, 2, 0, 16, [struct.pack(">4H", 0, 65535, 1, 10000)] * 2))
+    put("depth_png", "depth16_truncated.png", depth16[: len(depth16) - 20])
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ferret", help="a built ferret, for the .bt/.ot seeds")
@@ -281,6 +447,8 @@ def main():
     plan_seeds()
     tether_seeds()
     dynamixel_seeds()
+    camera_info_seeds()
+    image_seeds()
     if args.ferret:
         octree_seeds(args.ferret)
     total = sum(f.stat().st_size for f in CORPUS.rglob("*") if f.is_file())

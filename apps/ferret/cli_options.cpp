@@ -7,6 +7,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
+#include "ferret/perception/camera_info.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -114,6 +115,36 @@ std::filesystem::path resolve_robot(const std::string& robot, std::string_view d
                          fmt::format("{}", fmt::join(shipped_model_names(), ", ")),
                      robot);
   return robot;
+}
+
+CLI::Option* add_camera_option(CLI::App* cmd, std::string& camera_yaml, std::string_view role) {
+  return cmd->add_option("--camera", camera_yaml,
+                         fmt::format("camera_info YAML of the camera (ROS calibration file); or "
+                                     "give --robot to take the URDF's {}",
+                                     role));
+}
+
+CameraModel resolve_camera(const std::string& camera_yaml, const std::string& robot,
+                           std::string_view role, const MissionConfig& mission) {
+  if (camera_yaml.empty() == robot.empty())
+    throw InputError("--camera", "",
+                     fmt::format("exactly one of --camera CAM.yaml (a camera_info file) or "
+                                 "--robot URDF (its {})",
+                                 role),
+                     camera_yaml.empty() ? "neither" : "both --camera and --robot");
+  if (!camera_yaml.empty()) return load_camera_info(camera_yaml);
+  const std::filesystem::path urdf = resolve_robot(robot, "");
+  const RobotDescription description = load_robot_description(urdf, mission);
+  const CameraSensor* sensor = nullptr;
+  if (role == kRoleMarkerCamera)
+    sensor = &description.marker_camera();
+  else if (role == kRoleDepthCamera)
+    sensor = &description.depth_camera();
+  else if (role == kRoleObjectCamera)
+    sensor = &description.object_camera();
+  else
+    throw std::logic_error("resolve_camera: not a camera role: " + std::string(role));
+  return camera_model(*sensor, description.source);
 }
 
 MissionConfig load_mission_or_defaults(const std::string& path) {

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ferret/perception/camera_model.hpp"
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/urdf/mission_config.hpp"
 
@@ -79,6 +80,18 @@ CLI::Option* add_hidden_alias(CLI::App* cmd, const std::string& name, T& value) 
 /// which must exist. InputError listing the shipped names otherwise.
 [[nodiscard]] std::filesystem::path resolve_robot(const std::string& robot,
                                                   std::string_view default_model);
+
+/// `--camera CAM.yaml`: a ROS camera_info calibration file; the alternative to taking
+/// the camera from --robot's URDF by its role.
+CLI::Option* add_camera_option(CLI::App* cmd, std::string& camera_yaml, std::string_view role);
+/// The camera a command works with: the camera_info file `camera_yaml`, or the camera
+/// with `role` (kRoleMarkerCamera, kRoleDepthCamera, kRoleObjectCamera) of the URDF
+/// `robot` (a path or a shipped model's name). Exactly one of the two must be given:
+/// InputError naming --camera and --robot otherwise, and for a robot without a camera
+/// of that role. `mission` may assign the roles (its `roles:` section) when the URDF
+/// has no <ferret role> markers.
+[[nodiscard]] CameraModel resolve_camera(const std::string& camera_yaml, const std::string& robot,
+                                         std::string_view role, const MissionConfig& mission = {});
 
 /// The mission YAML, or the built-in defaults when `path` is empty.
 [[nodiscard]] MissionConfig load_mission_or_defaults(const std::string& path);

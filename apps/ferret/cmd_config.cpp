@@ -1,5 +1,7 @@
 // `ferret config --dump`: the effective configuration, i.e. what the robot's URDF and
-// the mission YAML give once defaults are filled in, printed as YAML.
+// the mission YAML give once defaults are filled in (its cameras' models included),
+// printed as YAML. `ferret config --camera-info SENSOR -o FILE`: a URDF camera as a ROS
+// camera_info file, to start a calibration from.
 
 #include <filesystem>
 #include <iostream>
@@ -8,9 +10,11 @@
 
 #include "cli_options.hpp"
 #include "command.hpp"
-#include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
+#include "ferret/perception/camera_info.hpp"
+#include "ferret/perception/camera_model.hpp"
+#include "ferret/perception/camera_summary.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -30,16 +34,22 @@ std::string indent(const std::string& text) {
 
 struct Options {
   bool dump = false;
+  std::string camera_info;  ///< the sensor whose camera_info to write
   std::string robot;
   std::string mission;
   std::string out;
 };
 
 void run(const Options& o) {
-  if (!o.dump)
-    throw InputError("--dump", "", "the --dump flag (the only action so far)");
-  const bool to_stdout = o.out.empty() || o.out == "-";
-  if (!to_stdout) (void)check_output_target(o.out, OutputKind::kFile, "--out");
+  if (o.dump == !o.camera_info.empty())
+    throw InputError("--dump", "", "exactly one of --dump or --camera-info SENSOR",
+                     o.dump ? "both" : "neither");
+  const bool to_stdout = o.camera_info.empty() && (o.out.empty() || o.out == "-");
+  fs::path out_file;
+  if (!o.camera_info.empty())
+    out_file = checked_out_file(o.out, "the camera_info YAML to write");
+  else if (!to_stdout)
+    out_file = check_output_target(o.out, OutputKind::kFile, "--out");
   std::string mission_source = "(built-in defaults)";
   MissionConfig mission;
   if (!o.mission.empty()) {
@@ -52,16 +62,39 @@ void run(const Options& o) {
   const RobotDescription robot =
       load_robot_description(resolve_robot(o.robot, "miniugv.urdf"), mission);
 
+  if (!o.camera_info.empty()) {
+    const CameraSensor* sensor = robot.find_camera(o.camera_info);
+    if (sensor == nullptr) {
+      std::string names;
+      for (const auto& c : robot.cameras) names += (names.empty() ? "" : ", ") + c.name;
+      throw InputError("--camera-info", "",
+                       "a camera of " + robot.source + " (" +
+                           (names.empty() ? std::string("it has none") : "one of " + names) + ")",
+                       o.camera_info);
+    }
+    OutputSet outputs(out_file, OutputKind::kFile);
+    outputs.write_text({}, "# camera_info of " + printable(robot.source) + " sensor " +
+                               printable(sensor->name) +
+                               " (ferret config --camera-info): the URDF's camera, to be\n"
+                               "# replaced by a calibration (ROS camera_calibration)\n" +
+                               camera_info_yaml(camera_model(*sensor, robot.source)));
+    outputs.commit();
+    return;
+  }
+
   std::string text = "# ferret effective configuration (ferret config --dump)\n";
   text += "# provenance: where each value came from (urdf:FILE:LINE, mission:FILE, default)\n";
-  text += "robot:\n" + indent(robot_description_to_yaml(robot));
+  text += "robot:\n" + indent(robot_description_to_yaml(robot) + camera_models_yaml(robot));
   text += "mission:\n" +
           indent("source: \"" + mission_source + "\"\n" + mission_config_to_yaml(mission) +
                  "provenance:\n" + indent(mission_provenance_to_yaml(mission)));
-  if (to_stdout)
+  if (to_stdout) {
     std::cout << text;
-  else
-    write_text_atomically(o.out, text);
+  } else {
+    OutputSet outputs(out_file, OutputKind::kFile);
+    outputs.write_text({}, text);
+    outputs.commit();
+  }
 }
 
 const CommandRegistration kConfig{
@@ -70,12 +103,16 @@ const CommandRegistration kConfig{
       auto* sub =
           app.add_subcommand("config", "Show the effective robot and mission configuration");
       sub->add_flag("--dump", options->dump, "Print the effective configuration as YAML");
+      sub->add_option("--camera-info", options->camera_info,
+                      "Write the camera_info YAML of this URDF camera (a sensor name) to -o");
       add_robot_option(sub, options->robot, "miniugv");
       auto* mission = add_mission_option(sub, options->mission);
       mission->description(
           "mission YAML: motion limits, tether L and l_0, object search, roles (default: "
           "config/mission.yaml if present, else the built-in values)");
-      sub->add_option("-o,--out", options->out, "Write the YAML to this file (default: stdout)");
+      sub->add_option("-o,--out", options->out,
+                      "Write the YAML to this file (default for --dump: stdout; required for "
+                      "--camera-info)");
       add_hidden_alias(sub, "--output", options->out);
       sub->callback([options, sub] {
         refuse_empty_out(sub, options->out);

@@ -152,6 +152,23 @@ CameraModel camera_model(const CameraSensor& sensor, const std::string& urdf_sou
   CameraModel m = CameraModel::from_fov(sensor.name, sensor.image_width_px, sensor.image_height_px,
                                         sensor.horizontal_fov_rad);
   m.source = fmt::format("{} (sensor {})", urdf_source, sensor.name);
+  // A Gazebo <lens><intrinsics> block is a calibration: it replaces the pinhole the fov
+  // implies (SDF's rule), and P follows K as for any monocular camera.
+  if (sensor.intrinsics) {
+    m.fx_px = sensor.intrinsics->fx_px;
+    m.fy_px = sensor.intrinsics->fy_px;
+    m.cx_px = sensor.intrinsics->cx_px;
+    m.cy_px = sensor.intrinsics->cy_px;
+    m.skew = sensor.intrinsics->skew;
+    m.projection.leftCols<3>() = m.K();
+  }
+  // Gazebo's <distortion> is Brown-Conrady about the principal point (the loader refuses
+  // another centre), i.e. plumb_bob, whose order is k1, k2, p1, p2, k3.
+  if (sensor.distortion) {
+    const CameraDistortion& d = *sensor.distortion;
+    m.distortion = DistortionModel::kPlumbBob;
+    m.distortion_coefficients = {d.k1, d.k2, d.p1, d.p2, d.k3};
+  }
   m.check();
   return m;
 }

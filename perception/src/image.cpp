@@ -84,6 +84,15 @@ enum class PngWant { kGray8, kRgb8, kGray16 };
 template <typename T, int C>
 Image<T, C> decode_png(const std::vector<std::uint8_t>& bytes, const std::string& source,
                        PngWant want) {
+  // The size straight from IHDR (always the first chunk, at byte 16): libpng would
+  // refuse a size beyond its user limits with only "Invalid IHDR data".
+  if (bytes.size() >= 24 && std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
+    const auto be32 = [&](std::size_t at) {
+      return (std::uint64_t{bytes[at]} << 24) | (std::uint64_t{bytes[at + 1]} << 16) |
+             (std::uint64_t{bytes[at + 2]} << 8) | std::uint64_t{bytes[at + 3]};
+    };
+    check_size(be32(16), be32(20), source);
+  }
   PngReader reader{&bytes, 8, {}};
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &reader, png_error_to_reader,
                                            png_ignore_warning);

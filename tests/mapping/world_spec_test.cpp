@@ -70,6 +70,18 @@ TEST(WorldSpec, HiddenSpaceEntryMarkerAndObject) {
   EXPECT_DOUBLE_EQ(w.drop_zone->radius_m, 0.5);
 }
 
+TEST(WorldSpec, MarkerFamilyAndDictionary) {
+  const WorldSpec aruco = parse_world(kWorld, "w.yaml");
+  EXPECT_EQ(aruco.hidden_spaces[0].marker.dictionary.family, MarkerFamily::kAruco);
+  EXPECT_EQ(aruco.hidden_spaces[0].marker.dictionary.name, "DICT_4X4_50");
+  std::string yaml = kWorld;
+  yaml.replace(yaml.find("{id: 7, size_m: 0.2}"), 20, "{id: 300, size_m: 0.2, family: apriltag}");
+  const WorldSpec tag = parse_world(yaml, "w.yaml");
+  EXPECT_EQ(tag.hidden_spaces[0].marker.dictionary.family, MarkerFamily::kAprilTag);
+  EXPECT_EQ(tag.hidden_spaces[0].marker.dictionary.name, "tag36h11");  // the family's default
+  EXPECT_EQ(tag.hidden_spaces[0].marker.id, 300);
+}
+
 TEST(WorldSpec, GroundTruthGeometry) {
   const WorldSpec w = parse_world(kWorld, "w.yaml");
   const HiddenSpace& h = w.hidden_spaces[0];
@@ -180,6 +192,17 @@ TEST(WorldSpec, BadInputNamesFileAndField) {
   marker.replace(marker.find("{id: 50, size_m: 0.2}"), 21,
                  "{id: 7, size_m: 0.2, dictionary: DICT_9X9_5}");
   expect_field(marker, "hidden_spaces[0].marker.dictionary");
+  // An AprilTag family's dictionary is not an OpenCV name, and the other way round.
+  std::string tag = kWorld;
+  tag.replace(tag.find("{id: 7, size_m: 0.2}"), 20,
+              "{id: 7, size_m: 0.2, family: apriltag, dictionary: DICT_4X4_50}");
+  expect_field(tag, "hidden_spaces[0].marker.dictionary", "tag36h11");
+  tag = kWorld;
+  tag.replace(tag.find("{id: 7, size_m: 0.2}"), 20, "{id: 7, size_m: 0.2, family: qr}");
+  expect_field(tag, "hidden_spaces[0].marker.family", "aruco or apriltag");
+  tag = kWorld;
+  tag.replace(tag.find("{id: 7, size_m: 0.2}"), 20, "{id: 587, size_m: 0.2, family: apriltag}");
+  expect_field(tag, "hidden_spaces[0].marker.id", "[0, 586] of tag36h11");
   expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, -1, 1]}\n"), "boxes[0].size_m[1]",
                "> 0");
   expect_field(with("boxes:\n  - {center_m: [0, 0], size_m: [1, 1, 1], colour: red}\n"),

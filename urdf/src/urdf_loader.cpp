@@ -652,6 +652,8 @@ struct SensorSpec {
   std::map<std::string, SensorValue> values;  ///< keys: see value_names()
   bool from_urdf = false, from_gazebo = false;
   std::vector<RoleMark> roles;  ///< its <ferret role> markers
+  /// Gazebo <camera><distortion> / <lens><intrinsics>: where, when given.
+  std::string distortion_at, distortion_field, intrinsics_at, intrinsics_field;
 };
 
 std::vector<RoleMark> sensor_role_marks(const XmlSource& src, const TiXmlElement* e,
@@ -678,6 +680,10 @@ const std::map<std::string, ValueName>& value_names() {
        {"max_angle", "<horizontal max_angle=..> or Gazebo <scan><horizontal><max_angle>"}},
       {"range_min", {"range_min", "<ray><range min=..> or Gazebo <ray><range><min>"}},
       {"range_max", {"range_max", "<ray><range max=..> or Gazebo <ray><range><max>"}},
+      {"intrinsics_fx", {"lens/intrinsics/fx", "Gazebo <camera><lens><intrinsics><fx>"}},
+      {"intrinsics_fy", {"lens/intrinsics/fy", "Gazebo <camera><lens><intrinsics><fy>"}},
+      {"intrinsics_cx", {"lens/intrinsics/cx", "Gazebo <camera><lens><intrinsics><cx>"}},
+      {"intrinsics_cy", {"lens/intrinsics/cy", "Gazebo <camera><lens><intrinsics><cy>"}},
   };
   return names;
 }
@@ -760,6 +766,34 @@ SensorSpec::Kind gazebo_kind(const std::string& type) {
   return SensorSpec::Kind::kOther;
 }
 
+/// Gazebo's optional calibration of a camera: <distortion> (k1 k2 k3 p1 p2, each
+/// optional and 0 when absent, and <center>, two normalised coordinates) and
+/// <lens><intrinsics> (fx fy cx cy, all four, and an optional skew <s>).
+void read_lens_blocks(const XmlSource& src, SensorSpec& s, const TiXmlElement* camera,
+                      const std::string& f) {
+  if (const TiXmlElement* d = camera->FirstChildElement("distortion")) {
+    s.distortion_at = src.at(d);
+    s.distortion_field = f + "/distortion";
+    for (const char* key : {"k1", "k2", "k3", "p1", "p2"})
+      text_value(src, s, std::string("distortion_") + key, d, key, s.distortion_field);
+    if (const TiXmlElement* c = d->FirstChildElement("center")) {
+      const std::string field = s.distortion_field + "/center";
+      const internal::NumberRange normalised{0.0, 1.0, false, false, "of the image size"};
+      const auto xy = internal::checked_numbers(
+          src.at(c), field, c->GetText() != nullptr ? c->GetText() : "", 2, normalised, true);
+      s.values["distortion_center_x"] = SensorValue{(*xy)[0], src.at(c), field};
+      s.values["distortion_center_y"] = SensorValue{(*xy)[1], src.at(c), field};
+    }
+  }
+  const TiXmlElement* lens = camera->FirstChildElement("lens");
+  if (const TiXmlElement* in = lens != nullptr ? lens->FirstChildElement("intrinsics") : nullptr) {
+    s.intrinsics_at = src.at(in);
+    s.intrinsics_field = f + "/lens/intrinsics";
+    for (const char* key : {"fx", "fy", "cx", "cy", "s"})
+      text_value(src, s, std::string("intrinsics_") + key, in, key, s.intrinsics_field);
+  }
+}
+
 /// Gazebo style: <gazebo reference="L"><sensor type="camera|depth|ray" name="..">.
 SensorSpec read_gazebo_sensor(const XmlSource& src, const TiXmlElement* e,
                               const std::string& link) {
@@ -799,6 +833,7 @@ SensorSpec read_gazebo_sensor(const XmlSource& src, const TiXmlElement* e,
     const TiXmlElement* clip = camera->FirstChildElement("clip");
     text_value(src, s, "near", clip, "near", f + "/clip");
     text_value(src, s, "far", clip, "far", f + "/clip");
+    read_lens_blocks(src, s, camera, f);
   } else if (s.kind == SensorSpec::Kind::kRay) {
     const char* tag = e->FirstChildElement("ray") != nullptr ? "ray" : "lidar";
     const TiXmlElement* ray = e->FirstChildElement(tag);
@@ -849,6 +884,14 @@ void merge_into(SensorSpec& into, const SensorSpec& from) {
     into.values[key] = v;
   }
   into.roles.insert(into.roles.end(), from.roles.begin(), from.roles.end());
+  if (!from.distortion_at.empty()) {
+    into.distortion_at = from.distortion_at;
+    into.distortion_field = from.distortion_field;
+  }
+  if (!from.intrinsics_at.empty()) {
+    into.intrinsics_at = from.intrinsics_at;
+    into.intrinsics_field = from.intrinsics_field;
+  }
 }
 
 /// A required value checked against a predicate; errors point at the value's own
@@ -872,8 +915,76 @@ double optional_rate(const SensorSpec& s) {
   return it->second.value;
 }
 
+/// An optional value checked against a predicate, `fallback` when absent.
+double optional_value(const SensorSpec& s, const std::string& key, bool (*ok)(double),
+                      const std::string& expected, double fallback) {
+  const auto it = s.values.find(key);
+  if (it == s.values.end()) return fallback;
+  if (!ok(it->second.value))
+    throw InputError(it->second.at, it->second.field, expected, "'" + num(it->second.value) + "'");
+  return it->second.value;
+}
+
 bool is_count(double v) { return v >= 1.0 && v <= 1e6 && std::floor(v) == v; }
 bool is_pixels(double v) { return v >= 1.0 && v <= 1e5 && std::floor(v) == v; }
+
+/// The distortion and intrinsics blocks into `c` (its size already read).
+void read_calibration(const SensorSpec& s, CameraSensor& c) {
+  if (!s.intrinsics_at.empty()) {
+    const auto focal_ok = [](double v) { return v > 0.0 && v <= 1e7; };
+    const std::string focal = "a focal length in (0, 1e7] px";
+    CameraIntrinsics in;
+    in.fx_px = need(s, "intrinsics_fx", focal_ok, focal);
+    in.fy_px = need(s, "intrinsics_fy", focal_ok, focal);
+    // The principal point in camera_info's pixels (0 at the first pixel's centre).
+    const auto inside = [&](const char* key, int size_px) {
+      const auto it = s.values.find(key);
+      const double v = need(
+          s, key, [](double x) { return std::isfinite(x); }, "a principal point in px");
+      if (!(v >= -0.5 && v <= size_px - 0.5))
+        throw InputError(
+            it->second.at, it->second.field,
+            "a principal point inside the image, -0.5 to " + num(size_px - 0.5) + " px",
+            "'" + num(v) + "'");
+      return v;
+    };
+    in.cx_px = inside("intrinsics_cx", c.image_width_px);
+    in.cy_px = inside("intrinsics_cy", c.image_height_px);
+    in.skew = optional_value(
+        s, "intrinsics_s", [](double v) { return std::abs(v) <= 1e7; }, "a skew in [-1e7, 1e7] px",
+        0.0);
+    c.intrinsics = in;
+  }
+  if (!s.distortion_at.empty()) {
+    const auto coefficient_ok = [](double v) { return std::abs(v) <= 1e3; };
+    const std::string coefficient = "a distortion coefficient in [-1000, 1000]";
+    CameraDistortion d;
+    d.k1 = optional_value(s, "distortion_k1", coefficient_ok, coefficient, 0.0);
+    d.k2 = optional_value(s, "distortion_k2", coefficient_ok, coefficient, 0.0);
+    d.k3 = optional_value(s, "distortion_k3", coefficient_ok, coefficient, 0.0);
+    d.p1 = optional_value(s, "distortion_p1", coefficient_ok, coefficient, 0.0);
+    d.p2 = optional_value(s, "distortion_p2", coefficient_ok, coefficient, 0.0);
+    const auto centre = s.values.find("distortion_center_x");
+    if (centre != s.values.end()) {
+      d.center_x = centre->second.value;
+      d.center_y = s.values.at("distortion_center_y").value;
+      // plumb_bob distorts about the principal point; Gazebo may distort about another
+      // point, which no camera_info can describe: refuse it rather than model it wrong.
+      const double cx = c.intrinsics ? c.intrinsics->cx_px : 0.5 * (c.image_width_px - 1);
+      const double cy = c.intrinsics ? c.intrinsics->cy_px : 0.5 * (c.image_height_px - 1);
+      const double ux = d.center_x * c.image_width_px - 0.5;
+      const double uy = d.center_y * c.image_height_px - 0.5;
+      if (std::abs(ux - cx) > 1.0 || std::abs(uy - cy) > 1.0)
+        throw InputError(centre->second.at, centre->second.field,
+                         "the principal point (" + num(cx) + ", " + num(cy) +
+                             " px; plumb_bob distorts about it), i.e. a center of " +
+                             num((cx + 0.5) / c.image_width_px) + " " +
+                             num((cy + 0.5) / c.image_height_px),
+                         "'" + num(d.center_x) + " " + num(d.center_y) + "'");
+    }
+    c.distortion = d;
+  }
+}
 
 CameraSensor make_camera(const SensorSpec& s, const Pose3& X_BS) {
   CameraSensor c;
@@ -901,6 +1012,7 @@ CameraSensor make_camera(const SensorSpec& s, const Pose3& X_BS) {
   c.vertical_fov_rad =
       2.0 * std::atan(std::tan(c.horizontal_fov_rad / 2.0) * c.image_height_px / c.image_width_px);
   c.update_rate_hz = optional_rate(s);
+  read_calibration(s, c);
   return c;
 }
 
@@ -1001,6 +1113,8 @@ void sensor_provenance(const std::vector<SensorSpec>& specs, RobotDescription& o
       put(k + "image_width_px", "width");
       put(k + "image_height_px", "height");
       put(k + "range_max_m", "far");
+      if (!s.distortion_at.empty()) out.provenance[k + "distortion"] = "urdf:" + s.distortion_at;
+      if (!s.intrinsics_at.empty()) out.provenance[k + "intrinsics"] = "urdf:" + s.intrinsics_at;
     } else if (s.kind == SensorSpec::Kind::kRay) {
       const std::string k = "range_sensors." + s.name + ".";
       put(k + "fov", "max_angle");

@@ -17,7 +17,11 @@ namespace ferret {
 [[nodiscard]] CameraModel load_camera_info(const std::filesystem::path& path);
 [[nodiscard]] CameraModel parse_camera_info(const std::string& yaml_text,
                                             const std::string& source);
-/// The camera_info YAML of a model; parse_camera_info(camera_info_yaml(m)) == m.
+/// The camera_info YAML of a model; parse_camera_info(camera_info_yaml(m)) == m, every
+/// number to the last bit. The distortion model is always written as plumb_bob (ROS
+/// knows no "none"): a kNone model comes back as plumb_bob with five zeros, which
+/// projects the same (has_distortion() is false for both). Throws InputError when the
+/// model fails check().
 [[nodiscard]] std::string camera_info_yaml(const CameraModel& model);
 
 }  // namespace ferret

@@ -45,8 +45,25 @@ struct CollisionShape {
 
 [[nodiscard]] const char* to_string(CollisionShape::Type type);
 
+/// Gazebo's <camera><distortion> block: the Brown-Conrady coefficients (ROS's
+/// plumb_bob, in camera_info's order k1, k2, p1, p2, k3 once read) and the distortion
+/// centre in normalised image coordinates (0.5, 0.5 = the image centre).
+struct CameraDistortion {
+  double k1 = 0.0, k2 = 0.0, k3 = 0.0, p1 = 0.0, p2 = 0.0;
+  double center_x = 0.5, center_y = 0.5;
+};
+
+/// Gazebo's <camera><lens><intrinsics> block (SDF 1.7): a calibrated pinhole that
+/// replaces the one the horizontal fov implies. Pixels as in camera_info.
+struct CameraIntrinsics {
+  double fx_px = 0.0, fy_px = 0.0, cx_px = 0.0, cy_px = 0.0;
+  double skew = 0.0;  ///< <s>, 0 when absent
+};
+
 /// A camera (colour or depth). The horizontal fov is the URDF value; the vertical fov
-/// follows from the image aspect ratio (square pixels).
+/// follows from the image aspect ratio (square pixels). The optional distortion and
+/// intrinsics blocks make its camera model (perception/camera_model.hpp) a calibrated
+/// one.
 struct CameraSensor {
   std::string name;
   std::string link;  ///< the link it is attached to
@@ -59,6 +76,8 @@ struct CameraSensor {
   double range_min_m = 0.0;     ///< clip near
   double range_max_m = 0.0;     ///< clip far: for the object camera, D_cam of the paper
   double update_rate_hz = 0.0;  ///< 0 when the URDF does not say
+  std::optional<CameraDistortion> distortion;  ///< Gazebo <camera><distortion>
+  std::optional<CameraIntrinsics> intrinsics;  ///< Gazebo <camera><lens><intrinsics>
 };
 
 /// A planar range sensor (IR or laser): `samples` beams spread evenly over

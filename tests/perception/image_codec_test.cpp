@@ -1,0 +1,83 @@
+// Round trips of ferret's PNG/JPEG codecs, checked against OpenCV's own decoder.
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "ferret/core/error.hpp"
+#include "ferret/perception/image.hpp"
+
+namespace ferret {
+namespace {
+
+TEST(ImageCodec, DepthPngRoundTripsEveryBit) {
+  DepthImageMm depth(7, 3);
+  for (std::size_t i = 0; i < depth.data.size(); ++i)
+    depth.data[i] = static_cast<std::uint16_t>(i * 9301u + 258u);  // both bytes vary
+  depth.at(0, 0) = 0;                                              // no return
+  depth.at(6, 2) = 65535;                                          // the far end of the range
+  const auto png = encode_png(depth);
+  const DepthImageMm back = decode_depth_png(png, "d.png");
+  EXPECT_EQ(back.width_px, 7);
+  EXPECT_EQ(back.height_px, 3);
+  EXPECT_EQ(back.data, depth.data);
+  // OpenCV reads the same millimetres (the byte order in the file is PNG's big-endian).
+  const cv::Mat cv16 = cv::imdecode(png, cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(cv16.type(), CV_16UC1);
+  EXPECT_EQ(cv16.at<std::uint16_t>(1, 2), depth.at(2, 1));
+}
+
+TEST(ImageCodec, RgbPngKeepsChannelOrder) {
+  RgbImage rgb(2, 2);
+  rgb.at(0, 0, 0) = 255;  // red top-left
+  rgb.at(1, 0, 1) = 255;  // green top-right
+  rgb.at(0, 1, 2) = 255;  // blue bottom-left
+  const auto png = encode_png(rgb);
+  EXPECT_EQ(decode_rgb_image(png, "c.png").data, rgb.data);
+  const cv::Mat bgr = cv::imdecode(png, cv::IMREAD_COLOR);
+  EXPECT_EQ(bgr.at<cv::Vec3b>(0, 0), cv::Vec3b(0, 0, 255));  // OpenCV's BGR: red
+  // Grey from colour: ITU-R BT.709 weights (libpng's default), red is dark, green bright.
+  const GrayImage grey = decode_gray_image(png, "c.png");
+  EXPECT_NEAR(grey.at(0, 0), 0.2126 * 255, 2);
+  EXPECT_NEAR(grey.at(1, 0), 0.7152 * 255, 2);
+}
+
+TEST(ImageCodec, GreyPngAndJpegDecode) {
+  cv::Mat grey(16, 24, CV_8UC1);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 24; ++x) grey.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(x * 10);
+  std::vector<std::uint8_t> png, jpg;
+  cv::imencode(".png", grey, png);
+  cv::imencode(".jpg", grey, jpg, {cv::IMWRITE_JPEG_QUALITY, 98});
+  const GrayImage a = decode_gray_image(png, "g.png");
+  EXPECT_EQ(a.at(23, 15), 230);
+  const RgbImage as_rgb = decode_rgb_image(png, "g.png");
+  EXPECT_EQ(as_rgb.at(5, 3, 0), 50);
+  EXPECT_EQ(as_rgb.at(5, 3, 2), 50);
+  const GrayImage b = decode_gray_image(jpg, "g.jpg");
+  ASSERT_EQ(b.width_px, 24);
+  ASSERT_EQ(b.height_px, 16);
+  for (int x = 0; x < 24; x += 5) EXPECT_NEAR(b.at(x, 8), x * 10, 6) << x;
+}
+
+TEST(ImageCodec, DepthMustBeSixteenBitGrey) {
+  cv::Mat eight(4, 4, CV_8UC1, cv::Scalar(7));
+  std::vector<std::uint8_t> png;
+  cv::imencode(".png", eight, png);
+  try {
+    (void)decode_depth_png(png, "d.png");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "d.png");
+    EXPECT_EQ(e.field(), "PNG format");
+    EXPECT_NE(std::string(e.what()).find("8-bit grey"), std::string::npos) << e.what();
+  }
+  // A truncated PNG is one InputError, not a crash or a message on stderr.
+  cv::Mat sixteen(40, 40, CV_16UC1, cv::Scalar(1234));
+  cv::imencode(".png", sixteen, png);
+  png.resize(png.size() / 2);
+  EXPECT_THROW((void)decode_depth_png(png, "d.png"), InputError);
+}
+
+}  // namespace
+}  // namespace ferret
