@@ -1,5 +1,7 @@
 #include "ferret/sim/experiment.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -9,8 +11,6 @@
 #include <system_error>
 #include <thread>
 #include <tuple>
-
-#include <spdlog/spdlog.h>
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
@@ -374,8 +374,9 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
   // More workers than runs would idle; a thread the system refuses is not an error:
   // the runs already started share the rest (a joinable std::thread left behind by an
   // exception would call std::terminate).
-  const int jobs = static_cast<int>(std::clamp<std::size_t>(
-      static_cast<std::size_t>(std::max(1, options.jobs)), 1, std::max<std::size_t>(1, runs.size())));
+  const int jobs =
+      static_cast<int>(std::clamp<std::size_t>(static_cast<std::size_t>(std::max(1, options.jobs)),
+                                               1, std::max<std::size_t>(1, runs.size())));
   std::vector<std::thread> threads;
   threads.reserve(static_cast<std::size_t>(jobs));
   for (int j = 1; j < jobs; ++j) {

@@ -4,11 +4,12 @@
 #include "ferret/sim/sensor_sim.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
+#include <vector>
 
+#include "ferret/core/error.hpp"
 #include "ferret/core/random.hpp"
 #include "ferret/perception/object_appearance.hpp"
 #include "sensor_sim_scene.hpp"
@@ -67,8 +68,9 @@ const Eigen::Vector3d& sun_W() {
 }
 double lambert(const Eigen::Vector3d& n) { return 0.45 + 0.55 * std::max(0.0, n.dot(sun_W())); }
 
+// Rounds half up and clamps (NaN-free inputs: radiance is finite).
 std::uint8_t to_u8(double v) {
-  return static_cast<std::uint8_t>(std::clamp(std::floor(v + 0.5), 0.0, 255.0));
+  return v <= 0.0 ? 0 : v >= 255.0 ? 255 : static_cast<std::uint8_t>(static_cast<int>(v + 0.5));
 }
 
 /// The reflectance of a marker pixel: 3 x 3 samples over the pixel (rays interpolated
@@ -101,6 +103,57 @@ float marker_pixel(const internal::MarkerPrim& m, const internal::RayTable& rays
   return sum / 9.0f;
 }
 
+/// Separable Gaussian blur of an interleaved RGB buffer in fixed point: weights in
+/// 1/256 (sum exactly 256, so a pass's sum fits 16 bits), each pass rounded back to
+/// 8 bits, borders replicated. Integer arithmetic gives the same bytes on every
+/// machine; 16-bit lanes keep it fast on one core.
+void gaussian_blur(std::vector<std::uint8_t>& rgb, int w, int h, double sigma_px) {
+  const int r = std::max(1, static_cast<int>(std::ceil(3.0 * sigma_px)));
+  std::vector<double> wd(2 * r + 1);
+  double sum = 0;
+  for (int k = -r; k <= r; ++k) sum += wd[k + r] = std::exp(-0.5 * k * k / (sigma_px * sigma_px));
+  std::vector<std::uint16_t> wk(2 * r + 1);
+  int total = 0;
+  for (int k = 0; k <= 2 * r; ++k)
+    total += wk[k] = static_cast<std::uint16_t>(std::lround(256 * wd[k] / sum));
+  wk[r] = static_cast<std::uint16_t>(wk[r] + 256 - total);  // the weights sum to 256
+  const std::size_t stride = static_cast<std::size_t>(w) * 3;
+  std::vector<std::uint16_t> acc(stride);
+  const auto finish = [&](std::uint8_t* dst) {
+    for (std::size_t i = 0; i < stride; ++i)
+      dst[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
+  };
+  // Horizontal, row by row, from a copy padded with the border pixels.
+  std::vector<std::uint8_t> padded(stride + 6 * static_cast<std::size_t>(r));
+  for (int y = 0; y < h; ++y) {
+    std::uint8_t* row = rgb.data() + static_cast<std::size_t>(y) * stride;
+    for (int x = -r; x < w + r; ++x)
+      for (int c = 0; c < 3; ++c)
+        padded[3 * static_cast<std::size_t>(x + r) + c] = row[3 * std::clamp(x, 0, w - 1) + c];
+    std::fill(acc.begin(), acc.end(), 0);
+    for (int k = 0; k <= 2 * r; ++k) {
+      const std::uint8_t* p = padded.data() + 3 * static_cast<std::size_t>(k);
+      const std::uint16_t wt = wk[k];
+      for (std::size_t i = 0; i < stride; ++i)
+        acc[i] = static_cast<std::uint16_t>(acc[i] + wt * p[i]);
+    }
+    finish(row);
+  }
+  // Vertical, from a copy of the horizontally blurred frame.
+  const std::vector<std::uint8_t> src = rgb;
+  for (int y = 0; y < h; ++y) {
+    std::fill(acc.begin(), acc.end(), 0);
+    for (int k = -r; k <= r; ++k) {
+      const std::uint8_t* p =
+          src.data() + static_cast<std::size_t>(std::clamp(y + k, 0, h - 1)) * stride;
+      const std::uint16_t wt = wk[k + r];
+      for (std::size_t i = 0; i < stride; ++i)
+        acc[i] = static_cast<std::uint16_t>(acc[i] + wt * p[i]);
+    }
+    finish(rgb.data() + static_cast<std::size_t>(y) * stride);
+  }
+}
+
 }  // namespace
 
 Pose3 pose_from_xyz_rpy(const Eigen::Vector3d& p_m, double roll_rad, double pitch_rad,
@@ -126,6 +179,26 @@ Pose3 optical_pose(const Pose3& X_WB, const CameraSensor& camera) {
   return X_WB * camera.X_BS * X_SC();
 }
 
+const CameraSensor& camera_for(const RobotDescription& robot, bool depth, const std::string& role,
+                               const std::string& option) {
+  const std::vector<std::string> roles{std::string(kRoleMarkerCamera),
+                                       std::string(kRoleObjectCamera),
+                                       std::string(kRoleDepthCamera)};
+  std::string r = role;
+  if (r.empty()) r = depth ? roles[2] : robot.kind == RobotKind::kUav ? roles[0] : roles[1];
+  if (std::find(roles.begin(), roles.end(), r) == roles.end())
+    throw InputError(option, "", "one of marker_camera, object_camera, depth_camera",
+                     "'" + r + "'");
+  const auto it = robot.roles.find(r);
+  if (it == robot.roles.end() || it->second.empty())
+    robot.missing_role(r, depth ? "depth frames" : "camera frames");
+  const CameraSensor& camera = robot.camera(it->second.front());
+  if (depth && !camera.depth)
+    throw InputError(option, "", "the role of a depth camera for depth frames",
+                     "'" + r + "' (" + camera.name + ", a colour camera)");
+  return camera;
+}
+
 SensorSimulator::SensorSimulator(const WorldSpec& world)
     : scene_(std::make_unique<internal::Scene>(world)) {}
 SensorSimulator::~SensorSimulator() = default;
@@ -136,65 +209,77 @@ RgbImage SensorSimulator::render_camera(const CameraModel& camera, const Pose3& 
                                         std::uint64_t seed) const {
   camera.check();
   const auto rays = scene_->rays(camera);
-  CastBuffers cast;
+  thread_local CastBuffers cast;  // reused: a frame's buffers are megabytes
   scene_->cast_frame(*rays, X_WC, true, cast);
   const int w = camera.width_px, h = camera.height_px;
   const Eigen::Matrix3d R = X_WC.linear();
   const Eigen::Vector3d o = X_WC.translation();
-  cv::Mat frame(h, w, CV_8UC3);
+  std::vector<std::uint8_t> frame(static_cast<std::size_t>(w) * h * 3);
   const double scale = 255.0 * options.exposure_gain;
+  // Neighbouring pixels mostly see the same flat face: its colour is computed once.
+  std::int32_t last_code = -2;
+  std::array<std::uint8_t, 3> last{};
   for (int v = 0; v < h; ++v) {
-    auto* row = frame.ptr<std::uint8_t>(v);
+    std::uint8_t* row = frame.data() + static_cast<std::size_t>(v) * w * 3;
     for (int u = 0; u < w; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * w + u;
-      Rgb c = kSky;
-      double shade = 1.0;
       const std::int32_t code = cast.code[i];
-      if (code >= 0) {
-        const Eigen::Vector3d d(cast.dir[3 * i], cast.dir[3 * i + 1], cast.dir[3 * i + 2]);
-        const Eigen::Vector3d p = o + static_cast<double>(cast.t[i]) * d;
-        shade = lambert(scene_->normal(code, p, d));
-        switch (internal::code_kind(code)) {
-          case PrimKind::kGround:
-            c = albedo(Material::kGround, options.draw_objects);
-            break;
-          case PrimKind::kBox:
-            c = albedo(scene_->boxes[internal::code_index(code)].material, options.draw_objects);
-            break;
-          case PrimKind::kCylinder:
-            c = albedo(Material::kCylinder, options.draw_objects);
-            break;
-          case PrimKind::kMarker: {
-            const float r =
-                marker_pixel(scene_->markers[internal::code_index(code)], *rays, R, o, u, v);
-            c = {r, r, r};
-            break;
+      const PrimKind kind = internal::code_kind(code);
+      const bool flat =
+          !(code >= 0 && (kind == PrimKind::kMarker ||
+                          (kind == PrimKind::kCylinder && internal::code_face(code) == 0)));
+      if (!flat || code != last_code) {
+        Rgb c = kSky;
+        double shade = 1.0;
+        if (code >= 0) {
+          const Eigen::Vector3d d = internal::ray_direction(R, *rays, i);
+          const Eigen::Vector3d p = o + static_cast<double>(cast.t[i]) * d;
+          shade = lambert(scene_->normal(code, p, d));
+          switch (kind) {
+            case PrimKind::kGround:
+              c = albedo(Material::kGround, options.draw_objects);
+              break;
+            case PrimKind::kBox:
+              c = albedo(scene_->boxes[internal::code_index(code)].material, options.draw_objects);
+              break;
+            case PrimKind::kCylinder:
+              c = albedo(Material::kCylinder, options.draw_objects);
+              break;
+            case PrimKind::kMarker: {
+              const float r =
+                  marker_pixel(scene_->markers[internal::code_index(code)], *rays, R, o, u, v);
+              c = {r, r, r};
+              break;
+            }
           }
         }
+        last = {to_u8(c.r * shade * scale), to_u8(c.g * shade * scale), to_u8(c.b * shade * scale)};
+        last_code = flat ? code : -2;
       }
-      row[3 * u] = to_u8(c.r * shade * scale);
-      row[3 * u + 1] = to_u8(c.g * shade * scale);
-      row[3 * u + 2] = to_u8(c.b * shade * scale);
+      row[3 * u] = last[0];
+      row[3 * u + 1] = last[1];
+      row[3 * u + 2] = last[2];
     }
   }
-  // OpenCV's 8-bit Gaussian blur is bit-exact (fixed point): same bytes everywhere.
-  if (options.blur_sigma_px > 0) {
-    const int k = 2 * static_cast<int>(std::ceil(3.0 * options.blur_sigma_px)) + 1;
-    cv::GaussianBlur(frame, frame, cv::Size(k, k), options.blur_sigma_px, options.blur_sigma_px,
-                     cv::BORDER_REPLICATE);
-  }
+  if (options.blur_sigma_px > 0) gaussian_blur(frame, w, h, options.blur_sigma_px);
   RgbImage out(w, h);
+  if (!(options.noise_sigma > 0)) {
+    out.data = std::move(frame);
+    return out;
+  }
   Rng rng(derive_seed(seed, {kCameraStream}));
+  // The noise in 1/16 grey levels, per frame: integer additions in the pixel loop.
   const auto& table = normal_table();
-  const float sigma = static_cast<float>(options.noise_sigma);
-  for (int v = 0; v < h; ++v) {
-    const auto* row = frame.ptr<std::uint8_t>(v);
-    for (int u = 0; u < w; ++u) {
-      const std::uint64_t bits = rng.next_u64();  // one draw a pixel: 16 bits a channel
-      for (int ch = 0; ch < 3; ++ch) {
-        const float noise = sigma > 0 ? sigma * table[(bits >> (16 * ch)) & 0xffff] : 0.0f;
-        out.at(u, v, ch) = to_u8(row[3 * u + ch] + noise);
-      }
+  std::vector<std::int32_t> noise_q4(table.size());
+  for (std::size_t k = 0; k < table.size(); ++k)
+    noise_q4[k] = static_cast<std::int32_t>(std::lround(16.0 * options.noise_sigma * table[k]));
+  std::uint8_t* dst = out.data.data();
+  const std::uint8_t* src = frame.data();
+  for (std::size_t k = 0; k < frame.size(); k += 3) {
+    const std::uint64_t bits = rng.next_u64();  // one draw a pixel: 16 bits a channel
+    for (int ch = 0; ch < 3; ++ch) {
+      const std::int32_t q = 16 * src[k + ch] + noise_q4[(bits >> (16 * ch)) & 0xffff] + 8;
+      dst[k + ch] = static_cast<std::uint8_t>(std::clamp(q >> 4, 0, 255));  // round half up
     }
   }
   return out;
@@ -205,9 +290,10 @@ DepthImageMm SensorSimulator::render_depth(const CameraModel& camera, const Pose
                                            std::uint64_t seed) const {
   camera.check();
   const auto rays = scene_->rays(camera);
-  CastBuffers cast;
+  thread_local CastBuffers cast;
   scene_->cast_frame(*rays, X_WC, false, cast);  // markers are paper: the wall's depth
   const int w = camera.width_px, h = camera.height_px;
+  const Eigen::Matrix3d R = X_WC.linear();
   const Eigen::Vector3d o = X_WC.translation();
   const double cos_max = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0);
   const auto dropout =
@@ -221,7 +307,7 @@ DepthImageMm SensorSimulator::render_depth(const CameraModel& camera, const Pose
     if (code < 0) continue;
     const double z = cast.t[i];  // rays have z = 1 in C: the ray parameter is the depth
     if (z < options.min_range_m || z > options.max_range_m) continue;
-    const Eigen::Vector3d d(cast.dir[3 * i], cast.dir[3 * i + 1], cast.dir[3 * i + 2]);
+    const Eigen::Vector3d d = internal::ray_direction(R, *rays, i);
     const Eigen::Vector3d n = scene_->normal(code, o + z * d, d);
     if (-n.dot(d) < cos_max * d.norm()) continue;  // grazing: the stereo match fails
     if ((bits & 0xffff) < dropout) continue;

@@ -40,20 +40,23 @@ Hull hull_of(const MarkerPrim& m) {
 }
 
 /// The hull's projection in normalised image coordinates (x0, x1, y0, y1), clipped to
-/// z >= kNearClip_m in C; false when nothing of it lies in front of the camera.
-bool projected_rect(const Hull& h, const Pose3& X_CW, std::array<double, 4>& rect) {
+/// z >= kNearClip_m in C, and its nearest z (a lower bound of any hit's depth: rays
+/// have z = 1); false when nothing of it lies in front of the camera.
+bool projected_rect(const Hull& h, const Pose3& X_CW, std::array<double, 4>& rect, double& z_min) {
   std::array<Eigen::Vector3d, 8> v;
   for (int i = 0; i < 8; ++i) {
     const Eigen::Vector3d s{(i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0};
     v[i] = X_CW * (h.center + h.axes * s.cwiseProduct(h.half));
   }
   rect = {kInf, -kInf, kInf, -kInf};
+  z_min = kInf;
   bool any = false;
   const auto add = [&](const Eigen::Vector3d& p) {
     rect[0] = std::min(rect[0], p.x() / p.z());
     rect[1] = std::max(rect[1], p.x() / p.z());
     rect[2] = std::min(rect[2], p.y() / p.z());
     rect[3] = std::max(rect[3], p.y() / p.z());
+    z_min = std::min(z_min, p.z());
     any = true;
   };
   for (const auto& p : v)
@@ -71,8 +74,8 @@ bool projected_rect(const Hull& h, const Pose3& X_CW, std::array<double, 4>& rec
   return any;
 }
 
-double hit_box(const BoxPrim& b, const Eigen::Vector3d& o_B, double dx, double dy, double dz,
-               int& face) {
+[[gnu::always_inline]] inline double hit_box(const BoxPrim& b, const Eigen::Vector3d& o_B,
+                                             double dx, double dy, double dz, int& face) {
   const double d[3] = {b.cos_yaw * dx + b.sin_yaw * dy, -b.sin_yaw * dx + b.cos_yaw * dy, dz};
   double t_near = -kInf, t_far = kInf;
   for (int i = 0; i < 3; ++i) {
@@ -94,8 +97,8 @@ double hit_box(const BoxPrim& b, const Eigen::Vector3d& o_B, double dx, double d
   return t_near;
 }
 
-double hit_cylinder(const CylinderPrim& c, const Eigen::Vector3d& o, double dx, double dy,
-                    double dz, int& face) {
+[[gnu::always_inline]] inline double hit_cylinder(const CylinderPrim& c, const Eigen::Vector3d& o,
+                                                  double dx, double dy, double dz, int& face) {
   const double ox = o.x() - c.center.x(), oy = o.y() - c.center.y();
   double best = kInf;
   const double a = dx * dx + dy * dy;
@@ -231,6 +234,16 @@ std::shared_ptr<const RayTable> Scene::rays(const CameraModel& camera) const {
       const float y = table->y[static_cast<std::size_t>(v) * w + u];
       r = {std::min(r[0], x), std::max(r[1], x), std::min(r[2], y), std::max(r[3], y)};
     }
+  table->column_x.assign(table->tiles_x, {INFINITY, -INFINITY});
+  table->row_y.assign(table->tiles_y, {INFINITY, -INFINITY});
+  for (int ty = 0; ty < table->tiles_y; ++ty)
+    for (int tx = 0; tx < table->tiles_x; ++tx) {
+      const auto& r = table->tile_rect[static_cast<std::size_t>(ty) * table->tiles_x + tx];
+      auto& cx = table->column_x[tx];
+      auto& ry = table->row_y[ty];
+      cx = {std::min(cx[0], r[0]), std::max(cx[1], r[1])};
+      ry = {std::min(ry[0], r[2]), std::max(ry[1], r[3])};
+    }
   const std::lock_guard lock(cache_mutex);
   if (ray_cache.size() >= 8) ray_cache.erase(ray_cache.begin());
   ray_cache.emplace_back(camera, table);
@@ -241,78 +254,113 @@ void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_marker
                        CastBuffers& out) const {
   const int w = rays.width, h = rays.height;
   const std::size_t n = static_cast<std::size_t>(w) * h;
-  out.t.assign(n, INFINITY);
-  out.code.assign(n, -1);
-  out.dir.resize(3 * n);
+  out.t.resize(n);
+  out.code.resize(n);
   const Eigen::Matrix3d R = X_WC.linear();
   const Eigen::Vector3d o = X_WC.translation();
   const Pose3 X_CW = X_WC.inverse();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d d = R * Eigen::Vector3d(rays.x[i], rays.y[i], 1.0);
-    out.dir[3 * i] = static_cast<float>(d.x());
-    out.dir[3 * i + 1] = static_cast<float>(d.y());
-    out.dir[3 * i + 2] = static_cast<float>(d.z());
-    const double t = hit_ground(*this, o, d);
-    if (t < kInf) {
-      out.t[i] = static_cast<float>(t);
-      out.code[i] = hit_code(PrimKind::kGround, 0, 0);
-    }
-  }
-  // Visits the pixels whose rays fall inside the hull's projection.
-  const auto for_pixels = [&](const Hull& hull, auto&& visit) {
+
+  // The primitives in front of the camera, nearest first, each with its projection
+  // and a lower bound of its depth: a pixel that already has a nearer hit stops there.
+  struct FramePrim {
+    PrimKind kind;
+    std::size_t index;
+    double z_min;
     std::array<double, 4> rect;
-    if (!projected_rect(hull, X_CW, rect)) return;
-    for (int ty = 0; ty < rays.tiles_y; ++ty)
-      for (int tx = 0; tx < rays.tiles_x; ++tx) {
-        const auto& tr = rays.tile_rect[static_cast<std::size_t>(ty) * rays.tiles_x + tx];
-        if (tr[1] < rect[0] || tr[0] > rect[1] || tr[3] < rect[2] || tr[2] > rect[3]) continue;
-        const int u1 = std::min(w, (tx + 1) * RayTable::kTile);
-        const int v1 = std::min(h, (ty + 1) * RayTable::kTile);
-        for (int v = ty * RayTable::kTile; v < v1; ++v)
-          for (int u = tx * RayTable::kTile; u < u1; ++u) {
-            const std::size_t i = static_cast<std::size_t>(v) * w + u;
-            const double x = rays.x[i], y = rays.y[i];
-            if (x < rect[0] || x > rect[1] || y < rect[2] || y > rect[3]) continue;
-            visit(i);
-          }
-      }
+    Eigen::Vector3d o_B;  // boxes: the camera centre in the box's frame
   };
-  for (std::size_t b = 0; b < boxes.size(); ++b) {
-    const BoxPrim& box = boxes[b];
-    const Eigen::Vector3d rel = o - box.center;
-    const Eigen::Vector3d o_B{box.cos_yaw * rel.x() + box.sin_yaw * rel.y(),
-                              -box.sin_yaw * rel.x() + box.cos_yaw * rel.y(), rel.z()};
-    for_pixels(hull_of(box), [&](std::size_t i) {
-      int face = 0;
-      const double t =
-          hit_box(box, o_B, out.dir[3 * i], out.dir[3 * i + 1], out.dir[3 * i + 2], face);
-      if (t < out.t[i]) {
-        out.t[i] = static_cast<float>(t);
-        out.code[i] = hit_code(PrimKind::kBox, b, face);
-      }
-    });
-  }
+  std::vector<FramePrim> solids, marks;
+  const auto add = [&](std::vector<FramePrim>& list, PrimKind kind, std::size_t index,
+                       const Hull& hull) {
+    FramePrim p{kind, index, 0.0, {}, Eigen::Vector3d::Zero()};
+    if (projected_rect(hull, X_CW, p.rect, p.z_min)) list.push_back(p);
+  };
+  for (std::size_t b = 0; b < boxes.size(); ++b) add(solids, PrimKind::kBox, b, hull_of(boxes[b]));
   for (std::size_t c = 0; c < cylinders.size(); ++c)
-    for_pixels(hull_of(cylinders[c]), [&](std::size_t i) {
-      int face = 0;
-      const double t = hit_cylinder(cylinders[c], o, out.dir[3 * i], out.dir[3 * i + 1],
-                                    out.dir[3 * i + 2], face);
-      if (t < out.t[i]) {
-        out.t[i] = static_cast<float>(t);
-        out.code[i] = hit_code(PrimKind::kCylinder, c, face);
+    add(solids, PrimKind::kCylinder, c, hull_of(cylinders[c]));
+  if (with_markers)
+    for (std::size_t m = 0; m < markers.size(); ++m)
+      add(marks, PrimKind::kMarker, m, hull_of(markers[m]));
+  const auto nearer = [](const FramePrim& a, const FramePrim& b) {
+    return a.z_min < b.z_min || (a.z_min == b.z_min && a.index < b.index);
+  };
+  std::sort(solids.begin(), solids.end(), nearer);
+  std::sort(marks.begin(), marks.end(), nearer);
+  for (auto& p : solids)
+    if (p.kind == PrimKind::kBox) {
+      const BoxPrim& box = boxes[p.index];
+      const Eigen::Vector3d rel = o - box.center;
+      p.o_B = {box.cos_yaw * rel.x() + box.sin_yaw * rel.y(),
+               -box.sin_yaw * rel.x() + box.cos_yaw * rel.y(), rel.z()};
+    }
+
+  // Bins: the primitives whose projection overlaps each tile, nearest first.
+  const std::size_t tiles = static_cast<std::size_t>(rays.tiles_x) * rays.tiles_y;
+  std::vector<std::vector<const FramePrim*>> solid_bins(tiles), mark_bins(tiles);
+  const auto bin = [&](const std::vector<FramePrim>& list,
+                       std::vector<std::vector<const FramePrim*>>& bins) {
+    std::vector<int> columns;
+    for (const FramePrim& p : list) {
+      columns.clear();
+      for (int tx = 0; tx < rays.tiles_x; ++tx)
+        if (rays.column_x[tx][1] >= p.rect[0] && rays.column_x[tx][0] <= p.rect[1])
+          columns.push_back(tx);
+      if (columns.empty()) continue;
+      for (int ty = 0; ty < rays.tiles_y; ++ty) {
+        if (rays.row_y[ty][1] < p.rect[2] || rays.row_y[ty][0] > p.rect[3]) continue;
+        for (const int tx : columns) {
+          const std::size_t k = static_cast<std::size_t>(ty) * rays.tiles_x + tx;
+          const auto& tr = rays.tile_rect[k];
+          if (tr[1] < p.rect[0] || tr[0] > p.rect[1] || tr[3] < p.rect[2] || tr[2] > p.rect[3])
+            continue;
+          bins[k].push_back(&p);
+        }
       }
-    });
-  if (!with_markers) return;
-  for (std::size_t m = 0; m < markers.size(); ++m)
-    for_pixels(hull_of(markers[m]), [&](std::size_t i) {
-      const Eigen::Vector3d d(out.dir[3 * i], out.dir[3 * i + 1], out.dir[3 * i + 2]);
-      const double t = hit_marker(markers[m], o, d);
-      // Markers are printed on a surface (1 mm off it): they win a tie with it.
-      if (t < kInf && t <= out.t[i] + 1e-3 + 1e-4 * t) {
-        out.t[i] = static_cast<float>(t);
-        out.code[i] = hit_code(PrimKind::kMarker, m, 0);
-      }
-    });
+    }
+  };
+  bin(solids, solid_bins);
+  bin(marks, mark_bins);
+
+  for (int ty = 0; ty < rays.tiles_y; ++ty)
+    for (int tx = 0; tx < rays.tiles_x; ++tx) {
+      const std::size_t k = static_cast<std::size_t>(ty) * rays.tiles_x + tx;
+      const auto& sb = solid_bins[k];
+      const auto& mb = mark_bins[k];
+      const int u1 = std::min(w, (tx + 1) * RayTable::kTile);
+      const int v1 = std::min(h, (ty + 1) * RayTable::kTile);
+      for (int v = ty * RayTable::kTile; v < v1; ++v)
+        for (int u = tx * RayTable::kTile; u < u1; ++u) {
+          const std::size_t i = static_cast<std::size_t>(v) * w + u;
+          const double x = rays.x[i], y = rays.y[i];
+          const Eigen::Vector3d d = ray_direction(R, rays, i);
+          double best = hit_ground(*this, o, d);
+          std::int32_t code = best < kInf ? hit_code(PrimKind::kGround, 0, 0) : -1;
+          for (const FramePrim* p : sb) {
+            if (best <= p->z_min) break;  // this and every later one lie behind the hit
+            if (x < p->rect[0] || x > p->rect[1] || y < p->rect[2] || y > p->rect[3]) continue;
+            int face = 0;
+            const double t = p->kind == PrimKind::kBox
+                                 ? hit_box(boxes[p->index], p->o_B, d.x(), d.y(), d.z(), face)
+                                 : hit_cylinder(cylinders[p->index], o, d.x(), d.y(), d.z(), face);
+            if (t < best) {
+              best = t;
+              code = hit_code(p->kind, p->index, face);
+            }
+          }
+          for (const FramePrim* p : mb) {
+            // Markers are printed on a surface (1 mm off it): they win a tie with it.
+            if (p->z_min > (best + 1e-3) / (1 - 1e-4)) break;
+            if (x < p->rect[0] || x > p->rect[1] || y < p->rect[2] || y > p->rect[3]) continue;
+            const double t = hit_marker(markers[p->index], o, d);
+            if (t < kInf && t <= best + 1e-3 + 1e-4 * t) {
+              best = t;
+              code = hit_code(PrimKind::kMarker, p->index, 0);
+            }
+          }
+          out.t[i] = static_cast<float>(best);
+          out.code[i] = code;
+        }
+    }
 }
 
 double Scene::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, std::int32_t* code) const {

@@ -75,6 +75,9 @@ struct RayTable {
   int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
   std::vector<float> x, y;                      ///< per pixel
   std::vector<std::array<float, 4>> tile_rect;  ///< x0, x1, y0, y1 per tile
+  /// The x range of each column of tiles and the y range of each row: a primitive's
+  /// tiles are looked for only in the columns and rows its projection meets.
+  std::vector<std::array<float, 2>> column_x, row_y;
 };
 
 /// What a frame cast leaves per pixel: the ray parameter (= z in C, rays have z = 1)
@@ -82,8 +85,14 @@ struct RayTable {
 struct CastBuffers {
   std::vector<float> t;
   std::vector<std::int32_t> code;
-  std::vector<float> dir;  ///< world direction per pixel (x, y, z), for shading
 };
+
+/// Pixel i's ray in the world (z = 1 in C): one expression, so that the cast and the
+/// shading see the same bits.
+[[nodiscard]] inline Eigen::Vector3d ray_direction(const Eigen::Matrix3d& R_WC,
+                                                   const RayTable& rays, std::size_t i) {
+  return R_WC * Eigen::Vector3d(rays.x[i], rays.y[i], 1.0);
+}
 
 struct Scene {
   GroundSpec ground;

@@ -97,6 +97,15 @@ struct ImuReading {
 /// The optical frame of a robot's camera in the world: X_WB * X_BS * X_SC().
 [[nodiscard]] Pose3 optical_pose(const Pose3& X_WB, const CameraSensor& camera);
 
+/// The camera a robot takes frames with: for colour frames (`depth` false) the
+/// marker_camera of a UAV or the object_camera of a UGV, for depth frames the
+/// depth_camera; a non-empty `role` (object_camera, marker_camera, depth_camera) picks
+/// instead. Throws InputError(option, ...) for an unknown role or, for depth frames, a
+/// role whose camera is not a depth camera; the robot's missing-role error otherwise.
+[[nodiscard]] const CameraSensor& camera_for(const RobotDescription& robot, bool depth,
+                                             const std::string& role = {},
+                                             const std::string& option = "--camera-role");
+
 class SensorSimulator {
  public:
   /// Keeps a copy of the world's geometry (the world may go away afterwards).
