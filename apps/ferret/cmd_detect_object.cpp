@@ -33,16 +33,6 @@ struct DetectObjectArgs {
   bool json = false;
 };
 
-// Until the shared resolve_camera() lands (caminfo): the URDF's object camera.
-CameraModel object_camera(const std::string& camera_yaml, const std::string& robot,
-                          const MissionConfig& mission) {
-  if (!camera_yaml.empty())
-    throw InputError("--camera", "", "--robot (camera_info files come with resolve_camera)");
-  if (robot.empty()) throw InputError("--robot", "", "--camera CAM.yaml or --robot URDF");
-  const RobotDescription desc = load_robot(robot, mission);
-  return camera_model(desc.object_camera(), desc.source);
-}
-
 std::string detections_json(const std::vector<ugv::ObjectDetection>& dets) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& d : dets)
@@ -67,7 +57,7 @@ void run(const DetectObjectArgs& a) {
       throw InputError("--out", "", "an overlay path ending in .png", a.out);
   }
   const MissionConfig mission = load_mission_or_defaults(a.mission);
-  const CameraModel camera = object_camera(a.camera, a.robot, mission);
+  const CameraModel camera = resolve_camera(a.camera, a.robot, kRoleObjectCamera, mission);
   ugv::ColourObjectDetector::Options options;
   options.object_width_m =
       check_number(a.object_width_m, NumberRange::positive(100.0, "m"), "--object-width-m");
@@ -121,7 +111,7 @@ const CommandRegistration kDetectObject{
           "Find the object (its orange colour patch) in a camera image: bearing, "
           "distance from apparent size, confidence eta / d");
       sub->add_option("IMAGE", args->image, "The camera image (PNG, JPEG, PPM, BMP)")->required();
-      sub->add_option("--camera", args->camera, "A ROS camera_info YAML of the object camera");
+      add_camera_option(sub, args->camera, kRoleObjectCamera);
       add_robot_option(sub, args->robot, "none: --camera gives the camera");
       add_mission_option(sub, args->mission, false);
       sub->add_option("--object-width-m", args->object_width_m,

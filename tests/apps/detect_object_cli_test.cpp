@@ -8,6 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "ferret/perception/camera_info.hpp"
+#include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/image.hpp"
 #include "support/cli_runner.hpp"
 #include "ugv/object_frames.hpp"
@@ -68,6 +70,23 @@ TEST(DetectObjectCli, MissionEtaAndSummaryLine) {
   EXPECT_THAT(s.out, HasSubstr("distance 1.651 m"));
 }
 
+TEST(DetectObjectCli, ACameraInfoFileGivesTheCamera) {
+  // A calibration with fy = 400 px (fx 320): the 10 px height now reads z = 0.05 * 400 /
+  // 10 = 2 m, and the centre 2 * 0.08 / pi further.
+  TempDir dir;
+  CameraModel cam = CameraModel::from_fov("calibrated", 640, 480, 1.5707963267948966);
+  cam.fy_px = 400.0;
+  cam.projection(1, 1) = 400.0;
+  write(dir / "cam.yaml", camera_info_yaml(cam));
+  const auto r =
+      run_cli("detect object " + object_frame(dir) + " --camera " + (dir / "cam.yaml") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("detections").size(), 1u);
+  EXPECT_NEAR(j["detections"][0]["distance_m"].get<double>(), 2.0 + 2 * 0.08 / 3.141592653589793,
+              1e-9);
+}
+
 TEST(DetectObjectCli, AFrameWithoutTheObjectGivesAnEmptyList) {
   TempDir dir;
   RgbImage img = textured_background(640, 480, 8);
@@ -97,6 +116,12 @@ TEST(DetectObjectCli, BadInputsExitTwoWithoutOutput) {
   write(dir / "text.png", "not a PNG at all\n");
   write_bytes(dir / "small.png", encode_png(RgbImage(320, 240)));
   const std::string frame = object_frame(dir);
+  write(dir / "cam.yaml", camera_info_yaml(CameraModel::from_fov("c", 640, 480, 1.5707963)));
+  const std::string bad =
+      "image_width: 640\nimage_height: 480\ncamera_name: c\ncamera_matrix:\n  rows: 3\n  "
+      "cols: 3\n  data: [nan, 0, 319.5, 0, 320, 239.5, 0, 0, 1]\ndistortion_model: "
+      "plumb_bob\ndistortion_coefficients:\n  rows: 1\n  cols: 5\n  data: [0, 0, 0, 0, 0]\n";
+  write(dir / "bad_cam.yaml", bad);
   const std::string overlay = dir / "o.png";
   struct Case {
     std::string args, source, field;
@@ -108,7 +133,12 @@ TEST(DetectObjectCli, BadInputsExitTwoWithoutOutput) {
        "size"},
       {"detect object " + (dir / "missing.png") + " --robot miniugv -o " + overlay,
        dir / "missing.png", ""},
-      {"detect object " + frame + " -o " + overlay, "--robot", ""},
+      {"detect object " + frame + " -o " + overlay, "--camera", ""},
+      {"detect object " + frame + " --robot miniugv --camera " + (dir / "cam.yaml") + " -o " +
+           overlay,
+       "--camera", ""},
+      {"detect object " + frame + " --camera " + (dir / "bad_cam.yaml") + " -o " + overlay,
+       dir / "bad_cam.yaml", "camera_matrix.data[0]"},
       {"detect object " + frame + " --robot miniugv --object-height-m 0 -o " + overlay,
        "--object-height-m", ""},
       {"detect object " + frame + " --robot miniugv --object-width-m nan -o " + overlay,
@@ -128,7 +158,7 @@ TEST(DetectObjectCli, BadInputsExitTwoWithoutOutput) {
     EXPECT_FALSE(std::filesystem::exists(dir / "o.jpg")) << c.args;
   }
   // Nothing but the inputs in the directory: no staging left behind.
-  EXPECT_EQ(dir.count(), 3u);
+  EXPECT_EQ(dir.count(), 5u);
 }
 
 }  // namespace
