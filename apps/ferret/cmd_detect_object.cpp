@@ -63,6 +63,7 @@ void run(const DetectObjectArgs& a) {
       check_number(a.object_width_m, NumberRange::positive(100.0, "m"), "--object-width-m");
   options.object_height_m =
       check_number(a.object_height_m, NumberRange::positive(100.0, "m"), "--object-height-m");
+  options.object_depth_m = options.object_width_m;  // a square footprint, as the canister's
   options.search = mission.object_search;
   options.check(a.mission.empty() ? "object detector" : a.mission);
 
@@ -114,8 +115,9 @@ const CommandRegistration kDetectObject{
       add_camera_option(sub, args->camera, kRoleObjectCamera);
       add_robot_option(sub, args->robot, "none: --camera gives the camera");
       add_mission_option(sub, args->mission, false);
-      sub->add_option("--object-width-m", args->object_width_m,
-                      "The object's width, metres (the shipped canister's)")
+      sub->add_option(
+             "--object-width-m", args->object_width_m,
+             "The object's width (and depth: a square footprint), metres (the shipped canister's)")
           ->capture_default_str();
       sub->add_option("--object-height-m", args->object_height_m,
                       "The object's height, metres: its apparent height gives the distance")

@@ -87,6 +87,17 @@ TEST(DetectObjectCli, ACameraInfoFileGivesTheCamera) {
               1e-9);
 }
 
+TEST(DetectObjectCli, AnotherObjectSize) {
+  // A 16 x 16 x 10 cm object over the same 10 px: z = 0.10 * 320 / 10 = 3.2 m, its
+  // centre 2 * 0.16 / pi further.
+  TempDir dir;
+  const auto r = run_cli("detect object " + object_frame(dir) +
+                         " --robot miniugv --json --object-width-m 0.16 --object-height-m 0.1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(nlohmann::json::parse(r.out)["detections"][0]["distance_m"].get<double>(),
+              3.2 + 2 * 0.16 / 3.141592653589793, 1e-9);
+}
+
 TEST(DetectObjectCli, AFrameWithoutTheObjectGivesAnEmptyList) {
   TempDir dir;
   RgbImage img = textured_background(640, 480, 8);

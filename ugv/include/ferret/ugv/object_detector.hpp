@@ -20,7 +20,6 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "ferret/mapping/object_map.hpp"
