@@ -112,7 +112,9 @@ const CommandRegistration kDetectObject{
           "Find the object (its orange colour patch) in a camera image: bearing, "
           "distance from apparent size, confidence eta / d");
       sub->add_option("IMAGE", args->image, "The camera image (PNG, JPEG, PPM, BMP)")->required();
-      add_camera_option(sub, args->camera, kRoleObjectCamera);
+      auto* camera = add_camera_option(sub, args->camera, kRoleObjectCamera);
+      camera->description(camera->get_description() +
+                          " (default: none; one of --camera and --robot is required)");
       add_robot_option(sub, args->robot, "none: --camera gives the camera");
       add_mission_option(sub, args->mission, false);
       sub->add_option(
@@ -126,7 +128,8 @@ const CommandRegistration kDetectObject{
                     "JSON on stdout: {\"detections\": [{\"bearing_rad\", \"distance_m\", "
                     "\"confidence\", \"centroid_px\": [u, v], \"size_px\", ...}]}");
       add_out_option(sub, args->out, "")
-          ->description("overlay PNG: the image with each detection's box and values (optional)");
+          ->description(
+              "overlay PNG: the image with each detection's box and values (default: none)");
       sub->callback([args, sub] {
         refuse_empty_out(sub, args->out);
         run(*args);
