@@ -119,8 +119,8 @@ std::filesystem::path resolve_robot(const std::string& robot, std::string_view d
 
 CLI::Option* add_camera_option(CLI::App* cmd, std::string& camera_yaml, std::string_view role) {
   return cmd->add_option("--camera", camera_yaml,
-                         fmt::format("camera_info YAML of the camera (ROS calibration file); or "
-                                     "give --robot to take the URDF's {}",
+                         fmt::format("camera_info YAML of the camera (ROS calibration file); "
+                                     "required unless --robot gives the URDF's {}",
                                      role));
 }
 

@@ -103,8 +103,10 @@ const CommandRegistration kConfig{
       auto* sub =
           app.add_subcommand("config", "Show the effective robot and mission configuration");
       sub->add_flag("--dump", options->dump, "Print the effective configuration as YAML");
-      sub->add_option("--camera-info", options->camera_info,
-                      "Write the camera_info YAML of this URDF camera (a sensor name) to -o");
+      sub->add_option(
+          "--camera-info", options->camera_info,
+          "Write the camera_info YAML of this URDF camera (a sensor name) to -o, instead of "
+          "--dump (default: none)");
       add_robot_option(sub, options->robot, "miniugv");
       auto* mission = add_mission_option(sub, options->mission);
       mission->description(

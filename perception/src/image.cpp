@@ -135,9 +135,25 @@ Image<T, C> decode_png(const std::vector<std::uint8_t>& bytes, const std::string
     if (want == PngWant::kRgb8 && gray_in) png_set_gray_to_rgb(png);
     if (want == PngWant::kGray8 && !gray_in) png_set_rgb_to_gray_fixed(png, 1, -1, -1);
   }
+  const int passes = png_set_interlace_handling(png);
   png_read_update_info(png, info);
   if (png_get_rowbytes(png, info) != static_cast<std::size_t>(w) * C * sizeof(T))
     throw InputError(source, "PNG format", "a PNG ferret can convert", "an unexpected row layout");
+  if (passes == 1) {
+    // Row by row into a buffer that grows with the rows decoded: a header that promises
+    // 16384 x 16384 px in a file of a few bytes costs the memory of what it holds, not
+    // 768 MiB zeroed before the first missing row (found by fuzz/depth_png_fuzz.cpp).
+    out.width_px = static_cast<int>(w);
+    out.height_px = static_cast<int>(h);
+    const std::size_t row_values = static_cast<std::size_t>(w) * C;
+    for (png_uint_32 y = 0; y < h; ++y) {
+      out.data.resize((static_cast<std::size_t>(y) + 1) * row_values);
+      png_read_row(png, reinterpret_cast<png_bytep>(out.data.data() + y * row_values), nullptr);
+    }
+    png_read_end(png, nullptr);
+    return out;
+  }
+  // Interlaced: every pass writes into every row, so the whole frame is needed at once.
   out = Image<T, C>(static_cast<int>(w), static_cast<int>(h));
   rows.resize(h);
   for (png_uint_32 y = 0; y < h; ++y)

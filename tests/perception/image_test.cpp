@@ -97,6 +97,32 @@ Bytes png_bytes(const Png& p, bool header_only = false) {
   return out;
 }
 
+/// The same image Adam7-interlaced (8-bit samples only: `bytes_per_pixel` a pixel).
+Bytes png_interlaced(const Png& p, int bytes_per_pixel) {
+  Bytes out{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  Bytes ihdr;
+  put32(ihdr, p.width);
+  put32(ihdr, p.height);
+  ihdr.insert(ihdr.end(), {p.depth, p.colour, 0, 0, 1});
+  chunk(out, "IHDR", ihdr);
+  const int passes[7][4] = {{0, 0, 8, 8}, {4, 0, 8, 8}, {0, 4, 4, 8}, {2, 0, 4, 4},
+                            {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}};
+  Bytes raw;
+  for (const auto& [x0, y0, dx, dy] : passes) {
+    for (int y = y0; y < static_cast<int>(p.height); y += dy) {
+      if (x0 >= static_cast<int>(p.width)) break;  // an empty pass has no rows
+      raw.push_back(0);
+      for (int x = x0; x < static_cast<int>(p.width); x += dx)
+        for (int b = 0; b < bytes_per_pixel; ++b)
+          raw.push_back(p.rows[static_cast<std::size_t>(y)]
+                              [static_cast<std::size_t>(x * bytes_per_pixel + b)]);
+    }
+  }
+  chunk(out, "IDAT", zlib_stored(raw));
+  chunk(out, "IEND", {});
+  return out;
+}
+
 /// A baseline JPEG whose Huffman tables hold one symbol each (DC difference 0, end of
 /// block): every 8 x 8 block is flat mid-grey (128) in every component.
 Bytes flat_jpeg(std::uint16_t width, std::uint16_t height, int components) {
@@ -252,6 +278,23 @@ TEST(ImageFiles, EveryPngColourTypeDecodesToItsPixels) {
   const RgbImage e = decode_rgb_image(png_bytes(ga), "ga.png");
   EXPECT_EQ(e.at(6, 1, 0), 180);
   EXPECT_EQ(e.at(6, 1, 2), 180);
+}
+
+TEST(ImageFiles, InterlacedPngDecodesLikeTheSameImageNotInterlaced) {
+  // 11 x 9: passes of every size, some rows of a pass shorter than others.
+  Png p{11, 9, 2, 8, {}, {}, {}};
+  Rng rng(5);
+  for (int y = 0; y < 9; ++y) {
+    Bytes row;
+    for (int i = 0; i < 33; ++i) row.push_back(static_cast<std::uint8_t>(rng.uniform_int(0, 255)));
+    p.rows.push_back(row);
+  }
+  const RgbImage plain = decode_rgb_image(png_bytes(p), "plain.png");
+  const RgbImage adam7 = decode_rgb_image(png_interlaced(p, 3), "adam7.png");
+  ASSERT_EQ(adam7.width_px, 11);
+  ASSERT_EQ(adam7.height_px, 9);
+  EXPECT_EQ(adam7.data, plain.data);
+  EXPECT_EQ(plain.at(10, 8, 2), p.rows[8][32]);
 }
 
 TEST(ImageFiles, JpegDecodesAsGreyAndRgb) {

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 
+#include "ferret/core/error.hpp"
 #include "ferret/perception/object_appearance.hpp"
 
 namespace ferret {
@@ -95,6 +96,75 @@ TEST(SensorSim, FlatGroundSeenStraightDownReadsItsHeightInEveryPixel) {
   EXPECT_NEAR(zeros / N, d415.dropout_fraction, 0.002);
   EXPECT_NEAR(sum / n, 2000.0, 1.0);  // unbiased: under 0.03 sigma
   EXPECT_NEAR(std::sqrt(sum2 / n), sigma_mm, 0.02 * sigma_mm);
+}
+
+TEST(SensorSim, DepthThroughADistortingLensIsStillZAlongTheAxis) {
+  // Barrel distortion bends each pixel's ray, not the plane: every pixel reads h.
+  CameraModel lens = kCam;
+  lens.distortion = DistortionModel::kPlumbBob;
+  lens.distortion_coefficients = {-0.28, 0.07, 0.0005, -0.0004, 0.0};
+  const SensorSimulator sim(world("ground: {height_m: 0.5}\n"));
+  const DepthImageMm d = sim.render_depth(lens, looking_down(0, 0, 2.0), exact_depth(), 1);
+  for (const auto v : d.data) ASSERT_EQ(v, 1500);
+}
+
+TEST(SensorSim, ACylinderSeenFromAboveAndFromTheSide) {
+  // A post of radius 0.3 m and height 1.2 m at (1, 0) on flat ground.
+  const SensorSimulator sim(
+      world("cylinders:\n  - {name: p, center_m: [1, 0], radius_m: 0.3, height_m: 1.2}\n"));
+  const DepthImageMm top = sim.render_depth(kCam, looking_down(1, 0, 3.0), exact_depth(), 1);
+  EXPECT_EQ(top.at(320, 240), 1800);  // its cap
+  EXPECT_EQ(top.at(10, 10), 3000);    // the ground
+  // From the side, 2 m from its axis at half its height: the surface is 1.7 m away on
+  // the axis; the ray at 0.25 m off the axis meets it at depth 2 - sqrt(0.3^2 - 0.25^2).
+  const Pose3 X_WC = look_at({-1, 0, 0.6}, {1, 0, 0.6});
+  const DepthImageMm side = sim.render_depth(kCam, X_WC, exact_depth(), 1);
+  EXPECT_NEAR(side.at(320, 240), 1700, 1);
+  // A pixel about 0.25 m right of the axis: its ray (r.x, ~0, 1) in C is, in the world,
+  // (t - 1, -r.x t) in plan; it meets (x - 1)^2 + y^2 = 0.3^2 where
+  // (1 + r.x^2) t^2 - 4 t + 3.91 = 0.
+  const int u = static_cast<int>(std::lround(kCam.cx_px + kCam.fx_px * 0.25 / 1.75));
+  const double rx = kCam.ray({static_cast<double>(u), 240.0}).x();
+  const double a = 1 + rx * rx;
+  const double z = (4 - std::sqrt(16 - 4 * a * 3.91)) / (2 * a);
+  EXPECT_GT(z, 1.75);
+  EXPECT_NEAR(side.at(u, 240), 1000 * z, 1);
+  // The normal a ray meets: the cylinder's side faces the camera.
+  Eigen::Vector3d n;
+  const auto t = sim.cast_ray({-1, 0, 0.6}, Eigen::Vector3d::UnitX(), 10.0, &n);
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(*t, 1.7, 1e-12);
+  EXPECT_LT((n - Eigen::Vector3d(-1, 0, 0)).norm(), 1e-12);
+  EXPECT_FALSE(sim.cast_ray({-1, 0, 0.6}, Eigen::Vector3d::UnitX(), 1.6));
+}
+
+TEST(SensorSim, CamerasArePickedByRole) {
+  const RobotDescription uav = load_robot("m100"), ugv = load_robot("miniugv");
+  EXPECT_EQ(camera_for(uav, false).name, uav.marker_camera().name);
+  EXPECT_EQ(camera_for(uav, true).name, uav.depth_camera().name);
+  EXPECT_EQ(camera_for(ugv, false).name, ugv.object_camera().name);
+  EXPECT_EQ(camera_for(uav, false, "depth_camera").name, uav.depth_camera().name);
+  EXPECT_THROW((void)camera_for(uav, true, "marker_camera"), InputError);  // not a depth camera
+  EXPECT_THROW((void)camera_for(uav, false, "front"), InputError);
+  EXPECT_THROW((void)camera_for(ugv, true), InputError);  // the miniUGV has no depth camera
+  // The optical frame looks along the sensor's x: the M100's depth camera looks down.
+  const Pose3 X_WC = optical_pose(Pose3::Identity(), uav.depth_camera());
+  EXPECT_LT((X_WC.linear().col(2) - Eigen::Vector3d(0, 0, -1)).norm(), 1e-9);
+}
+
+TEST(SensorSim, AFloorSlabInTheGroundPlaneDoesNotStripeWithIt) {
+  // The hidden space's floor slab top lies in the ground plane (z = 0): seen from
+  // inside, the floor is the slab's face, every pixel of it the colour of the same
+  // material facing up elsewhere (the roof, seen from above), never the ground's.
+  const SensorSimulator sim(world(hidden_space("{id: 3, size_m: 0.2, placement: wall}")));
+  const RgbImage roof = sim.render_camera(kCam, looking_down(0, 0, 2.0), clean_camera(), 1);
+  const RgbImage ground = sim.render_camera(kCam, looking_down(8, 8, 2.0), clean_camera(), 1);
+  ASSERT_NE(roof.at(320, 240, 0), ground.at(320, 240, 0));
+  const Pose3 X_WC = look_at({-1.0, 0.2, 0.1}, {1.0, 0.0, 0.0});
+  const RgbImage img = sim.render_camera(kCam, X_WC, clean_camera(), 1);
+  for (int v = 300; v < 480; ++v)
+    for (int u = 0; u < 640; u += 3)
+      ASSERT_EQ(img.at(u, v, 0), roof.at(320, 240, 0)) << u << "," << v;
 }
 
 TEST(SensorSim, ABoxGivesItsHeightAsADepthStep) {
@@ -228,13 +298,17 @@ void expect_cells_match(const SensorSimulator& sim, const FiducialMarker& m,
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c)
       EXPECT_EQ(values[r * n + c] > mid, bmp.cells.at(c, r) > 127) << "cell " << c << "," << r;
-  // The quiet zone: half a cell outside the bitmap, on all four sides, is white.
+  // The quiet zone: half a cell outside the bitmap, on all four sides, is as white as
+  // the white cells (the bare wall beyond it is a darker grey), and two cells out the
+  // wall shows again.
+  const int white = (mid + *hi) / 2;
   for (const double t : {-half + cell, 0.0, half - cell}) {
-    EXPECT_GT(sample(-half - cell / 2, t), mid);
-    EXPECT_GT(sample(half + cell / 2, t), mid);
-    EXPECT_GT(sample(t, -half - cell / 2), mid);
-    EXPECT_GT(sample(t, half + cell / 2), mid);
+    EXPECT_GT(sample(-half - cell / 2, t), white);
+    EXPECT_GT(sample(half + cell / 2, t), white);
+    EXPECT_GT(sample(t, -half - cell / 2), white);
+    EXPECT_GT(sample(t, half + cell / 2), white);
   }
+  EXPECT_LT(sample(half + 2 * cell, 0.0), white);
 }
 
 TEST(SensorSim, RenderedMarkerCellsMatchTheBitmapForArucoAndAprilTag) {

@@ -61,6 +61,7 @@ struct VisibleMarker {
   MarkerDictionary dictionary;
   /// The black square's corners in the image (distortion applied), OpenCV's order:
   /// top-left, top-right, bottom-right, bottom-left of the marker image.
+  /// NaN for a corner behind the camera (the marker is then partly visible at most).
   std::array<Eigen::Vector2d, 4> corners_px;
   /// Fraction of the black square seen: in the image, facing the camera, not occluded.
   double visible_fraction = 0.0;

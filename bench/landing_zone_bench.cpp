@@ -1,0 +1,212 @@
+// Landing zones: ms per depth frame of LandingZoneDetector and of the PX4 rule (Google
+// Benchmark), and with --compare the evaluation on generated terrains with ground
+// truth (docs/results/issue11_landing.md):
+//
+//   ferret_bench_landing_zone --compare [--terrains N] [--seed S]
+//
+// Each terrain is seen from the M100's depth camera (role depth_camera; its field of
+// view at 640 x 480) at 2, 3 and 4 m; SensorSimulator renders the D415-like frame.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
+
+#include "ferret/sim/landing_terrain.hpp"
+#include "ferret/uav/landing_zone.hpp"
+#include "ferret/urdf/robot_description.hpp"
+
+namespace ferret {
+namespace {
+
+struct Setup {
+  RobotDescription robot;
+  CameraSensor sensor;
+  CameraModel camera;
+  LandingZoneDetector::Options options;
+};
+
+Setup setup(int width, int height) {
+  Setup s{load_robot_description(std::string(FERRET_SOURCE_DIR) + "/urdf/models/m100.urdf"),
+          {},
+          {},
+          {}};
+  s.sensor = s.robot.depth_camera();
+  s.camera = CameraModel::from_fov(s.sensor.name, width, height, s.sensor.horizontal_fov_rad);
+  s.options = LandingZoneDetector::Options::for_robot(s.robot);
+  return s;
+}
+
+// What the detector must see around a zone to judge it: its disc, the margin, the
+// clearance ring, and the cell the ring's edge falls in (a cell is judged whole).
+LandingSceneOptions scene_options(const LandingZoneDetector::Options& o) {
+  LandingSceneOptions so;
+  so.footprint_radius_m = o.footprint_radius_m;
+  so.view_radius_m =
+      o.footprint_radius_m + o.margin_m + o.min_clearance_m + o.cell_size_m * std::sqrt(2.0);
+  return so;
+}
+
+void BM_Detector(benchmark::State& state, int width, int height, bool px4) {
+  const Setup s = setup(width, height);
+  auto so = scene_options(s.options);
+  so.heights_m = {3.0};
+  // A terrain with rubble and steps in view (index 1 of the family).
+  const LandingScene scene = landing_scene(1, 1, s.sensor, s.camera, so);
+  const LandingFrame& f = scene.frames.front();
+  const LandingZoneDetector det(s.options);
+  const Px4LandingBaseline base(Px4LandingBaseline::Options{});
+  (void)det.detect(f.depth, s.camera, f.X_WC);  // the ray table is built once per camera
+  for (auto _ : state) {
+    if (px4)
+      benchmark::DoNotOptimize(base.detect(f.depth, s.camera, f.X_WC, f.X_WB.translation()));
+    else
+      benchmark::DoNotOptimize(det.detect(f.depth, s.camera, f.X_WC));
+  }
+}
+
+struct Tally {
+  int frames = 0, with_zone = 0, found_where_exists = 0, chose = 0, chose_unsafe = 0, listed = 0,
+      listed_unsafe = 0, found_where_none = 0;
+  double ms = 0.0;
+  void add(const LandingResult& r, const LandingFrame& f, const TerrainGroundTruth& truth,
+           double radius, const LandingCriteria& crit, double elapsed_ms) {
+    ++frames;
+    ms += elapsed_ms;
+    with_zone += f.safe_zone_in_view;
+    if (r.zones.empty()) return;
+    found_where_exists += f.safe_zone_in_view;
+    found_where_none += !f.safe_zone_in_view;
+    ++chose;
+    chose_unsafe += !truth.is_safe(r.zones.front().center_m.head<2>(), radius, crit);
+    for (const auto& z : r.zones) {
+      ++listed;
+      listed_unsafe += !truth.is_safe(z.center_m.head<2>(), radius, crit);
+    }
+  }
+};
+
+int compare(int terrains, std::uint64_t seed, bool verbose,
+            const std::map<std::string, double>& set) {
+  Setup s = setup(640, 480);
+  // Option overrides for studies (--set name=value), reported with the table.
+  for (const auto& [k, v] : set) {
+    if (k == "margin_m")
+      s.options.margin_m = v;
+    else if (k == "max_step_m")
+      s.options.max_step_m = v;
+    else if (k == "max_roughness_m")
+      s.options.max_roughness_m = v;
+    else if (k == "max_slope_deg")
+      s.options.max_slope_deg = v;
+    else if (k == "taller_than_m")
+      s.options.taller_than_m = v;
+    else if (k == "cell_size_m")
+      s.options.cell_size_m = v;
+    else if (k == "min_clearance_m")
+      s.options.min_clearance_m = v;
+    else if (k == "truth_radius_m") {
+    } else {
+      std::fprintf(stderr, "unknown option %s\n", k.c_str());
+      return 2;
+    }
+    std::printf("set %s = %g\n", k.c_str(), v);
+  }
+  LandingSceneOptions so = scene_options(s.options);
+  if (const auto r = set.find("truth_radius_m"); r != set.end()) so.footprint_radius_m = r->second;
+  const LandingZoneDetector det(s.options);
+  const Px4LandingBaseline base(Px4LandingBaseline::Options{});
+  std::map<std::string, Tally> ours, px4;  // by height, and "all"
+  for (int i = 0; i < terrains; ++i) {
+    const LandingScene scene = landing_scene(seed, i, s.sensor, s.camera, so);
+    for (const auto& f : scene.frames) {
+      const std::string key = fmt::format("{:.0f} m", f.height_m);
+      auto t0 = std::chrono::steady_clock::now();
+      const LandingResult a = det.detect(f.depth, s.camera, f.X_WC);
+      auto t1 = std::chrono::steady_clock::now();
+      const LandingResult b = base.detect(f.depth, s.camera, f.X_WC, f.X_WB.translation());
+      auto t2 = std::chrono::steady_clock::now();
+      const double ma = std::chrono::duration<double, std::milli>(t1 - t0).count();
+      const double mb = std::chrono::duration<double, std::milli>(t2 - t1).count();
+      for (const std::string& k : {key, std::string("all")}) {
+        ours[k].add(a, f, scene.truth, so.footprint_radius_m, so.criteria, ma);
+        px4[k].add(b, f, scene.truth, so.footprint_radius_m, so.criteria, mb);
+      }
+      if (!a.zones.empty() && !scene.truth.is_safe(a.zones.front().center_m.head<2>(),
+                                                   so.footprint_radius_m, so.criteria)) {
+        const auto& z = a.zones.front();
+        // Which criterion the truth holds against it (each relaxed alone).
+        LandingCriteria slope = so.criteria, step = so.criteria, clear = so.criteria;
+        slope.max_slope_deg = 90;
+        step.max_step_m = 100;
+        clear.min_clearance_m = 0;
+        const Eigen::Vector2d c = z.center_m.head<2>();
+        std::fprintf(stderr,
+                     "ferret chose an unsafe zone: terrain %d (%s), %s, zone %.2f %.2f (slope "
+                     "%.1f step %.3f clearance %.2f); safe without the slope test %d, the step "
+                     "test %d, the clearance test %d\n",
+                     i, scene.terrain.kind.c_str(), key.c_str(), c.x(), c.y(), z.slope_deg,
+                     z.step_m, z.clearance_m, scene.truth.is_safe(c, so.footprint_radius_m, slope),
+                     scene.truth.is_safe(c, so.footprint_radius_m, step),
+                     scene.truth.is_safe(c, so.footprint_radius_m, clear));
+      }
+      if (verbose && a.zones.empty() && f.safe_zone_in_view)
+        std::fprintf(stderr, "missed: terrain %d (%s), %s: %s\n", i, scene.terrain.kind.c_str(),
+                     key.c_str(), a.reason.c_str());
+    }
+  }
+  std::printf("terrains: %d (seed %llu), frames: %d, camera %s 640x480, footprint %.3f m\n\n",
+              terrains, static_cast<unsigned long long>(seed), ours["all"].frames,
+              s.sensor.name.c_str(), so.footprint_radius_m);
+  std::printf(
+      "| detector | height | frames | safe zone in view (truth) | zone found there | "
+      "found where none | chosen zones unsafe | listed zones unsafe | ms/frame |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& [name, table] : {std::pair{"ferret", &ours}, std::pair{"PX4 rule", &px4}})
+    for (const auto& [k, t] : *table)
+      std::printf("| %s | %s | %d | %d | %d (%.1f %%) | %d | %d of %d | %d of %d | %.2f |\n", name,
+                  k.c_str(), t.frames, t.with_zone, t.found_where_exists,
+                  t.with_zone ? 100.0 * t.found_where_exists / t.with_zone : 0.0,
+                  t.found_where_none, t.chose_unsafe, t.chose, t.listed_unsafe, t.listed,
+                  t.ms / std::max(1, t.frames));
+  return 0;
+}
+
+}  // namespace
+}  // namespace ferret
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--compare") == 0) {
+      int terrains = 200;
+      std::uint64_t seed = 1;
+      bool verbose = false;
+      std::map<std::string, double> set;
+      for (int k = 1; k + 1 < argc; ++k) {
+        if (std::strcmp(argv[k], "--terrains") == 0) terrains = std::atoi(argv[k + 1]);
+        if (std::strcmp(argv[k + 1], "--verbose") == 0 || std::strcmp(argv[k], "--verbose") == 0)
+          verbose = true;
+        if (std::strcmp(argv[k], "--set") == 0) {
+          const std::string kv = argv[k + 1];
+          const auto eq = kv.find('=');
+          set[kv.substr(0, eq)] = std::atof(kv.c_str() + eq + 1);
+        }
+        if (std::strcmp(argv[k], "--seed") == 0) seed = std::strtoull(argv[k + 1], nullptr, 10);
+      }
+      return ferret::compare(terrains, seed, verbose, set);
+    }
+  benchmark::RegisterBenchmark("landing_zone/ferret/640x480", ferret::BM_Detector, 640, 480, false)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("landing_zone/px4_rule/640x480", ferret::BM_Detector, 640, 480, true)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("landing_zone/ferret/1280x720", ferret::BM_Detector, 1280, 720,
+                               false)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,296 @@
+// LandingZoneDetector and Px4LandingBaseline on depth frames computed analytically here:
+// the ray through every pixel (CameraModel::ray) is intersected with a height field
+// whose answer is known by construction.
+#include "ferret/uav/landing_zone.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "ferret/core/error.hpp"
+#include "ferret/core/random.hpp"
+#include "ferret/urdf/robot_description.hpp"
+
+namespace ferret {
+namespace {
+
+using HeightField = std::function<double(double x, double y)>;
+
+// A depth camera looking straight down from `p_W`: optical z = -z_W, x = x_W, y = -y_W.
+Pose3 downward(const Eigen::Vector3d& p_W) {
+  Pose3 X;
+  X.linear() << 1, 0, 0, 0, -1, 0, 0, 0, -1;
+  X.translation() = p_W;
+  return X;
+}
+
+CameraModel test_camera() { return CameraModel::from_fov("depth", 320, 240, deg_to_rad(65.0)); }
+
+// The first crossing of the ray with the height field (marching in 1 cm, then
+// bisecting), as mm along the optical axis, with optional seeded z noise.
+DepthImageMm render(const CameraModel& cam, const Pose3& X_WC, const HeightField& h,
+                    double noise_m = 0.0, std::uint64_t seed = 1, double h_max = 2.0) {
+  DepthImageMm img(cam.width_px, cam.height_px, 0);
+  Rng rng(seed);
+  for (int v = 0; v < cam.height_px; ++v)
+    for (int u = 0; u < cam.width_px; ++u) {
+      const Eigen::Vector3d r_C = cam.ray({u, v});  // z = 1
+      const Eigen::Vector3d d_W = X_WC.linear() * r_C;
+      const Eigen::Vector3d o = X_WC.translation();
+      // Start where the ray reaches h_max (the camera looks down: d_W.z < 0).
+      double t0 = std::max(0.0, (o.z() - h_max) / -d_W.z());
+      const double step = 0.01 / r_C.norm();
+      double t = t0;
+      const auto below = [&](double tt) {
+        const Eigen::Vector3d p = o + tt * d_W;
+        return p.z() <= h(p.x(), p.y());
+      };
+      if (below(t)) continue;
+      while (t < 20.0 && !below(t + step)) t += step;
+      if (t >= 20.0) continue;
+      double a = t, b = t + step;
+      for (int k = 0; k < 30; ++k) {
+        const double m = 0.5 * (a + b);
+        (below(m) ? b : a) = m;
+      }
+      const double z = 0.5 * (a + b) + (noise_m > 0 ? rng.normal(0.0, noise_m) : 0.0);
+      img.at(u, v) = static_cast<std::uint16_t>(std::lround(z * 1000.0));
+    }
+  return img;
+}
+
+LandingZoneDetector detector() { return LandingZoneDetector(LandingZoneDetector::Options{}); }
+
+TEST(LandingZone, FlatGroundGivesAZoneBelowTheCameraWithZeroSlope) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({1.0, 2.0, 3.0});
+  const auto depth = render(
+      cam, X_WC, [](double, double) { return 0.2; }, 0.003, 7);
+  const auto r = detector().detect(depth, cam, X_WC);
+  ASSERT_FALSE(r.no_safe_zone) << r.reason;
+  ASSERT_FALSE(r.zones.empty());
+  const auto& best = r.zones.front();
+  // Without an opening the ranking prefers the point under the camera (one cell off at
+  // most, the grid's cells are 0.1 m).
+  EXPECT_NEAR(best.center_m.x(), 1.0, 0.1);
+  EXPECT_NEAR(best.center_m.y(), 2.0, 0.1);
+  EXPECT_NEAR(best.center_m.z(), 0.2, 0.01);
+  EXPECT_LT(best.slope_deg, 0.5);
+  EXPECT_LT(best.roughness_m, 0.01);
+  EXPECT_TRUE(std::isnan(best.distance_to_opening_m));
+  // Zones are distinct: at least a footprint apart.
+  for (std::size_t a = 0; a < r.zones.size(); ++a)
+    for (std::size_t b = a + 1; b < r.zones.size(); ++b)
+      EXPECT_GE((r.zones[a].center_m - r.zones[b].center_m).head<2>().norm(), 0.49);
+}
+
+TEST(LandingZone, ThirtyDegreeSlopeHasNoZone) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0.0, 0.0, 3.0});
+  const double g = std::tan(deg_to_rad(30.0));
+  const auto depth = render(
+      cam, X_WC, [g](double x, double) { return g * x; }, 0.0, 1, 3.0);
+  const auto r = detector().detect(depth, cam, X_WC);
+  EXPECT_TRUE(r.no_safe_zone);
+  EXPECT_TRUE(r.zones.empty());
+  EXPECT_NE(r.reason.find("slope"), std::string::npos) << r.reason;
+}
+
+TEST(LandingZone, TenDegreeSlopeIsMeasuredToHalfADegree) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0.5, -0.5, 3.0});
+  // Down-slope towards -x+y, at 10 degrees.
+  const double g = std::tan(deg_to_rad(10.0));
+  const Eigen::Vector2d dir = Eigen::Vector2d(1.0, -1.0).normalized();
+  const auto depth = render(
+      cam, X_WC, [&](double x, double y) { return g * (dir.x() * x + dir.y() * y); }, 0.003, 3);
+  const auto r = detector().detect(depth, cam, X_WC);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  for (const auto& z : r.zones) {
+    EXPECT_NEAR(z.slope_deg, 10.0, 0.5);
+    EXPECT_NEAR(z.center_m.z(), g * (dir.x() * z.center_m.x() + dir.y() * z.center_m.y()), 0.01);
+  }
+}
+
+TEST(LandingZone, SeededBumpsBeyondTheRoughnessLimitGiveNoZone) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0.0, 0.0, 3.0});
+  // Tiles of 0.3 m at random heights in [0, 0.2] m: RMS about 6 cm over a disc.
+  Rng rng(42);
+  std::vector<double> tiles(40 * 40);
+  for (auto& t : tiles) t = rng.uniform(0.0, 0.2);
+  const auto h = [&](double x, double y) {
+    const int i = std::clamp(static_cast<int>(std::floor(x / 0.3)) + 20, 0, 39);
+    const int j = std::clamp(static_cast<int>(std::floor(y / 0.3)) + 20, 0, 39);
+    return tiles[static_cast<std::size_t>(j * 40 + i)];
+  };
+  const auto r = detector().detect(render(cam, X_WC, h, 0.003, 9), cam, X_WC);
+  EXPECT_TRUE(r.no_safe_zone) << r.zones.size() << " zones, first step " << r.zones[0].step_m;
+  EXPECT_NE(r.reason.find("roughness"), std::string::npos) << r.reason;
+}
+
+TEST(LandingZone, StepThroughTheMiddleKeepsZonesAFootprintAway) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({1.0, 0.0, 3.0});
+  const double step_x = 1.03;  // not on a cell boundary
+  const auto depth = render(
+      cam, X_WC, [&](double x, double) { return x >= step_x ? 0.3 : 0.0; }, 0.003, 5);
+  const auto det = detector();
+  const auto r = det.detect(depth, cam, X_WC);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  bool low = false, high = false;
+  for (const auto& z : r.zones) {
+    EXPECT_GE(std::abs(z.center_m.x() - step_x), det.options().footprint_radius_m)
+        << "zone at " << z.center_m.transpose();
+    (z.center_m.x() < step_x ? low : high) = true;
+    EXPECT_NEAR(z.center_m.z(), z.center_m.x() < step_x ? 0.0 : 0.3, 0.01);
+  }
+  EXPECT_TRUE(low && high);  // both sides are flat and wide enough
+}
+
+TEST(LandingZone, TallPoleKeepsFootprintPlusClearanceFree) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0.0, 0.0, 3.0});
+  const Eigen::Vector2d pole(0.3, 0.2);
+  const double pole_r = 0.15;
+  const auto depth = render(
+      cam, X_WC,
+      [&](double x, double y) {
+        return (Eigen::Vector2d(x, y) - pole).norm() <= pole_r ? 1.5 : 0.0;
+      },
+      0.003, 11);
+  const auto det = detector();
+  const auto r = det.detect(depth, cam, X_WC);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  const double keep = det.options().footprint_radius_m + det.options().min_clearance_m + pole_r;
+  for (const auto& z : r.zones) {
+    EXPECT_GE((z.center_m.head<2>() - pole).norm(), keep) << z.center_m.transpose();
+    EXPECT_GE(z.clearance_m, det.options().min_clearance_m);
+  }
+  // Something was turned down for clearance (the pole is in view).
+  bool clearance = false;
+  for (const auto& z : r.rejected) clearance |= z.reject == LandingReject::kClearance;
+  EXPECT_TRUE(clearance);
+}
+
+TEST(LandingZone, NoReturnsMeansNoSafeZone) {
+  const auto cam = test_camera();
+  const DepthImageMm depth(cam.width_px, cam.height_px, 0);
+  const auto r = detector().detect(depth, cam, downward({0, 0, 3}));
+  EXPECT_TRUE(r.no_safe_zone);
+  EXPECT_TRUE(r.zones.empty());
+  EXPECT_NE(r.reason.find("no depth returns"), std::string::npos) << r.reason;
+}
+
+TEST(LandingZone, AHoleWithoutReturnsUnderTheCameraIsNotLandedIn) {
+  // Unknown is not free: a patch without returns (a black or absorbing surface, or a
+  // pit) must not be inside any zone.
+  const auto cam = test_camera();
+  // High enough that the view holds a footprint and its clearance ring beside the hole.
+  const Pose3 X_WC = downward({0.0, 0.0, 4.5});
+  auto depth = render(cam, X_WC, [](double, double) { return 0.0; });
+  for (int v = 100; v < 140; ++v)
+    for (int u = 140; u < 180; ++u) depth.at(u, v) = 0;  // about 0.7 m square at the centre
+  const auto det = detector();
+  const auto r = det.detect(depth, cam, X_WC);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  for (const auto& z : r.zones)
+    EXPECT_GE(z.center_m.head<2>().cwiseAbs().maxCoeff(), det.options().footprint_radius_m + 0.2)
+        << z.center_m.transpose();
+}
+
+TEST(LandingZone, OpeningReachIsRespected) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0.0, 0.0, 3.0});
+  const auto depth = render(
+      cam, X_WC, [](double, double) { return 0.0; }, 0.003, 13);
+  auto o = LandingZoneDetector::Options{};
+  o.p_WE = Eigen::Vector3d(1.2, 0.4, 0.0);
+  o.reach_m = 1.0;
+  o.p_ZW_xy_m = {0.0, 0.04};  // the winch beside the body centre, as on the M100
+  const LandingZoneDetector det(o);
+  const auto r = det.detect(depth, cam, X_WC);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  for (const auto& z : r.zones) {
+    const double d = (z.center_m.head<2>() + o.p_ZW_xy_m - o.p_WE->head<2>()).norm();
+    EXPECT_LE(d, 1.0);
+    EXPECT_NEAR(z.distance_to_opening_m, d, 1e-9);
+  }
+  // Ranked towards the opening: the best zone is the one nearest to it.
+  for (const auto& z : r.zones)
+    EXPECT_LE(r.zones.front().distance_to_opening_m, z.distance_to_opening_m + 1e-9);
+  // An opening out of reach of anything in view: none, and the reason says so.
+  o.p_WE = Eigen::Vector3d(8.0, 0.0, 0.0);
+  const auto far = LandingZoneDetector(o).detect(depth, cam, X_WC);
+  EXPECT_TRUE(far.no_safe_zone);
+  EXPECT_NE(far.reason.find("out of reach"), std::string::npos) << far.reason;
+}
+
+TEST(LandingZone, OptionsFromTheM100Urdf) {
+  const auto robot =
+      load_robot_description(std::string(FERRET_SOURCE_DIR) + "/urdf/models/m100.urdf");
+  MissionConfig mission;
+  mission.tether.entry_offset_m = 1.7;
+  const auto o = LandingZoneDetector::Options::for_robot(robot, &mission);
+  // Rotor centres at 0.325 m on the diagonals plus the 0.1651 m propeller disc.
+  EXPECT_NEAR(o.footprint_radius_m, 0.325 + 0.1651, 1e-6);
+  EXPECT_DOUBLE_EQ(o.reach_m, 1.7);
+  // The tether leaves 0.04 m to the side of the body centre (winch spool joint).
+  EXPECT_NEAR(o.p_ZW_xy_m.y(), 0.04, 1e-9);
+}
+
+TEST(LandingZone, BadOptionsAndAFrameOfTheWrongSizeAreInputErrors) {
+  auto o = LandingZoneDetector::Options{};
+  o.cell_size_m = std::nan("");
+  EXPECT_THROW(LandingZoneDetector{o}, InputError);
+  o = {};
+  o.max_depth_m = 0.1;  // below min_depth_m
+  EXPECT_THROW(LandingZoneDetector{o}, InputError);
+  const auto cam = test_camera();
+  const DepthImageMm wrong(100, 100, 1000);
+  try {
+    (void)detector().detect(wrong, cam, downward({0, 0, 3}));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "size");
+  }
+}
+
+// The PX4 rule on a hand-checked case: a 0.3 m step at x = 1.0 m, on a cell boundary of
+// its grid (centred on the vehicle at x = 1, y = 2: boundaries every 0.25 m from -4).
+// A cell next to the step sees 5 of the 11 columns of its 11 x 11 neighbourhood on the
+// other side: 55 cells differ by more than 0.1 m, within the 70 allowed, and all 121
+// are landable (flat, > 100 points): the rule keeps it. The vehicle is above the step,
+// so the rule's choice, the kept cell nearest to it, is a cell centre 0.125 m from a
+// 0.3 m step; ferret's detector keeps a footprint away from it.
+TEST(Px4LandingBaseline, KeepsCellsNextToAStepAsPublished) {
+  const auto cam = test_camera();
+  const Eigen::Vector3d p_WV(1.0, 2.0, 5.0);
+  const Pose3 X_WC = downward(p_WV);
+  const auto depth = render(cam, X_WC, [](double x, double) { return x >= 1.0 ? 0.3 : 0.0; });
+  const Px4LandingBaseline px4(Px4LandingBaseline::Options{});
+  const auto r = px4.detect(depth, cam, X_WC, p_WV);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  const auto& best = r.zones.front();
+  EXPECT_NEAR(std::abs(best.center_m.x() - 1.0), 0.125, 1e-9);
+  EXPECT_NEAR(std::abs(best.center_m.y() - 2.0), 0.125, 1e-9);
+  EXPECT_NEAR(best.center_m.z(), best.center_m.x() > 1.0 ? 0.3 : 0.0, 1e-3);
+  // On the same frame ferret's detector keeps every zone a footprint from the step.
+  const auto ours = detector().detect(depth, cam, X_WC);
+  for (const auto& z : ours.zones) EXPECT_GE(std::abs(z.center_m.x() - 1.0), 0.49);
+}
+
+TEST(Px4LandingBaseline, RejectsANoisyCellAboveTheStandardDeviationLimit) {
+  // sigma 0.25 m > 0.2 m: no cell is landable, so no neighbourhood has > 70 of them.
+  const auto cam = test_camera();
+  const Eigen::Vector3d p_WV(0.0, 0.0, 5.0);
+  const Pose3 X_WC = downward(p_WV);
+  const auto depth = render(
+      cam, X_WC, [](double, double) { return 0.0; }, 0.25, 17);
+  const auto r = Px4LandingBaseline(Px4LandingBaseline::Options{}).detect(depth, cam, X_WC, p_WV);
+  EXPECT_TRUE(r.no_safe_zone);
+}
+
+}  // namespace
+}  // namespace ferret

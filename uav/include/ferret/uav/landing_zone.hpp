@@ -1,0 +1,156 @@
+#pragma once
+// Landing zones from one downward depth frame (docs/perception.md, "Landing zones").
+//
+// Pipeline: depth (mm along the optical axis, 0 = no return) -> points in the world
+// (X_WC) -> a height grid of cells (count, mean, and the sums of a plane fit) ->
+// candidate discs centred on every cell, of the UAV's footprint radius plus a margin
+// -> per disc: least-squares plane z = a x + b y + c through the cell means, slope,
+// roughness (residual RMS), largest step (peak-to-peak deviation of the cell means
+// from the plane), clearance from anything taller around it; a disc with an
+// unobserved cell is not safe (unknown is not free). Safe discs are ranked by their
+// safety margin and their distance to the hidden space's opening.
+//
+// The per-disc sums come from summed-area tables of the grid, so the cost per
+// candidate does not grow with the number of points.
+//
+// Also here: Px4LandingBaseline, the published rule of PX4-Avoidance's
+// safe_landing_planner, producing the same LandingResult so both run on one frame.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ferret/core/pose.hpp"
+#include "ferret/perception/camera_model.hpp"
+#include "ferret/perception/image.hpp"
+
+namespace ferret {
+
+struct RobotDescription;
+struct MissionConfig;
+
+/// Why a candidate disc is not a landing zone.
+enum class LandingReject {
+  kNone,        ///< safe
+  kUnobserved,  ///< a cell of the disc has too few returns (unknown is not free)
+  kSlope,       ///< the fitted plane is too steep
+  kRoughness,   ///< residual RMS of the cell means too large
+  kStep,        ///< a step or bump inside the disc
+  kClearance,   ///< something taller too close around the disc (or not observed)
+  kOutOfReach,  ///< the miniUGV cannot reach the opening on its tether from here
+};
+[[nodiscard]] const char* to_string(LandingReject reason);
+
+struct LandingZone {
+  Eigen::Vector3d center_m = Eigen::Vector3d::Zero();  ///< on the fitted plane, world frame
+  double slope_deg = 0.0;
+  double roughness_m = 0.0;  ///< RMS of the cell means about the plane
+  double step_m = 0.0;       ///< peak-to-peak of the cell means about the plane
+  double clearance_m = 0.0;  ///< from the disc's edge to the nearest taller cell (capped)
+  /// Horizontal distance from the zone's winch point to the point above the opening;
+  /// NaN when no opening was given.
+  double distance_to_opening_m = 0.0;
+  double score = 0.0;  ///< higher is better
+  LandingReject reject = LandingReject::kNone;
+};
+
+struct LandingResult {
+  std::vector<LandingZone> zones;  ///< safe zones, best first, at least a footprint apart
+  bool no_safe_zone = true;
+  std::string reason;  ///< why nothing is safe ("" when zones is not empty)
+  /// A sample of rejected candidates with their reason (for overlays and diagnosis).
+  std::vector<LandingZone> rejected;
+};
+
+class LandingZoneDetector {
+ public:
+  struct Options {
+    /// The UAV's footprint: a disc that covers it at any heading
+    /// (RobotDescription::circumscribed_radius_m; the M100's is 0.49 m).
+    double footprint_radius_m = 0.49;
+    double margin_m = 0.10;  ///< added to the footprint radius
+    double max_slope_deg = 14.0;
+    double max_roughness_m = 0.04;
+    double max_step_m = 0.08;
+    /// Free space required around the disc, from its edge, to anything taller than
+    /// the plane by more than `taller_than_m` (props, walls, poles).
+    double min_clearance_m = 0.30;
+    double taller_than_m = 0.15;
+    double cell_size_m = 0.10;
+    int min_points_per_cell = 5;
+    double min_depth_m = 0.3;  ///< returns nearer or farther are ignored
+    double max_depth_m = 10.0;
+    /// The opening p_WE and the reach l_0 (the mission's tether.entry_offset_m): a zone
+    /// qualifies only when its winch point lies within l_0 (horizontally) of the point
+    /// above the opening.
+    std::optional<Eigen::Vector3d> p_WE;
+    double reach_m = 1.0;
+    /// The winch point in the zone's frame, horizontally (the winch under the body).
+    Eigen::Vector2d p_ZW_xy_m = Eigen::Vector2d::Zero();
+    int max_zones = 20;
+
+    /// The robot's footprint (circumscribed radius, winch position) and, when given,
+    /// the mission's l_0.
+    [[nodiscard]] static Options for_robot(const RobotDescription& robot,
+                                           const MissionConfig* mission = nullptr);
+    /// Throws InputError(source, field, ...) for a value out of its range.
+    void check(const std::string& source) const;
+  };
+
+  explicit LandingZoneDetector(Options options);
+  [[nodiscard]] const Options& options() const { return options_; }
+
+  /// Zones in the frame. X_WC is the pose of the depth camera's optical frame.
+  /// Throws InputError when the frame's size differs from the camera's.
+  [[nodiscard]] LandingResult detect(const DepthImageMm& depth, const CameraModel& camera,
+                                     const Pose3& X_WC) const;
+
+ private:
+  Options options_;
+};
+
+/// PX4-Avoidance's safe_landing_planner, as its source and parameter file publish it:
+/// points binned into square cells of 0.25 m on a grid of 10 m around the vehicle; a
+/// cell is landable with >= 100 points and a height standard deviation <= 0.2 m; a
+/// cell is then kept when its 11 x 11 neighbourhood (smoothing_size 5) holds more than
+/// 70 landable cells and at most 70 cells whose mean height differs from its own by
+/// more than 0.1 m. Empty cells have mean 0, as in the original grid. One frame, so the
+/// temporal low-pass (alpha) is not applied. The chosen zone is the landable cell
+/// nearest to the vehicle (its waypoint generator lands where it is when it can), or
+/// to the opening when one is given.
+class Px4LandingBaseline {
+ public:
+  struct Options {
+    double cell_size_m = 0.25;
+    double grid_size_m = 10.0;
+    int n_points_threshold = 100;
+    double std_dev_threshold_m = 0.2;
+    int smoothing_size = 5;
+    double mean_diff_threshold_m = 0.1;
+    int max_n_mean_diff_cells = 70;
+    int min_n_land_cells = 70;
+    double min_depth_m = 0.3;
+    double max_depth_m = 10.0;
+    std::optional<Eigen::Vector3d> p_WE;
+    int max_zones = 20;
+  };
+
+  explicit Px4LandingBaseline(Options options) : options_(std::move(options)) {}
+  [[nodiscard]] const Options& options() const { return options_; }
+  /// `p_WV`: the vehicle's position (the grid's centre); slope, roughness and clearance
+  /// of the zones are not part of the rule and are left 0.
+  [[nodiscard]] LandingResult detect(const DepthImageMm& depth, const CameraModel& camera,
+                                     const Pose3& X_WC, const Eigen::Vector3d& p_WV) const;
+
+ private:
+  Options options_;
+};
+
+/// The depth frame false-coloured (near red to far blue, no return black) with the
+/// candidates drawn: rejected in red, safe zones in green, the best one ringed in white.
+[[nodiscard]] RgbImage landing_overlay(const DepthImageMm& depth, const CameraModel& camera,
+                                       const Pose3& X_WC, const LandingResult& result,
+                                       double footprint_radius_m);
+
+}  // namespace ferret

@@ -1,0 +1,74 @@
+#include "landing_points.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <mutex>
+
+#include "ferret/core/error.hpp"
+
+namespace ferret::internal {
+namespace {
+
+bool same_intrinsics(const CameraModel& a, const CameraModel& b) {
+  return a.width_px == b.width_px && a.height_px == b.height_px && a.fx_px == b.fx_px &&
+         a.fy_px == b.fy_px && a.cx_px == b.cx_px && a.cy_px == b.cy_px && a.skew == b.skew &&
+         a.distortion == b.distortion && a.distortion_coefficients == b.distortion_coefficients;
+}
+
+// Undistorting every pixel costs more than the rest of the detector, and a robot's
+// camera does not change between frames: the rays of the last camera are kept.
+struct RayCache {
+  std::mutex mutex;
+  CameraModel camera;
+  std::shared_ptr<const std::vector<Eigen::Vector2f>> rays;  // x/z, y/z per pixel
+};
+
+std::shared_ptr<const std::vector<Eigen::Vector2f>> rays_of(const CameraModel& camera) {
+  static RayCache cache;
+  std::lock_guard lock(cache.mutex);
+  if (cache.rays && same_intrinsics(cache.camera, camera)) return cache.rays;
+  auto rays = std::make_shared<std::vector<Eigen::Vector2f>>(
+      static_cast<std::size_t>(camera.width_px) * static_cast<std::size_t>(camera.height_px));
+  for (int v = 0; v < camera.height_px; ++v)
+    for (int u = 0; u < camera.width_px; ++u) {
+      const Eigen::Vector3d r = camera.ray({u, v});
+      (*rays)[static_cast<std::size_t>(v) * static_cast<std::size_t>(camera.width_px) +
+              static_cast<std::size_t>(u)] = r.head<2>().cast<float>();
+    }
+  cache.camera = camera;
+  cache.rays = rays;
+  return rays;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> depth_to_world_points(const DepthImageMm& depth,
+                                                   const CameraModel& camera, const Pose3& X_WC,
+                                                   double min_depth_m, double max_depth_m,
+                                                   std::vector<Eigen::Vector3d>* border) {
+  if (depth.width_px != camera.width_px || depth.height_px != camera.height_px)
+    throw InputError("depth frame", "size",
+                     fmt::format("the camera's {} x {} px", camera.width_px, camera.height_px),
+                     fmt::format("{} x {}", depth.width_px, depth.height_px));
+  const auto ray_table = rays_of(camera);
+  const std::vector<Eigen::Vector2f>& rays = *ray_table;
+  const Eigen::Matrix3d R = X_WC.linear();
+  const Eigen::Vector3d t = X_WC.translation();
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(depth.data.size());
+  for (std::size_t i = 0; i < depth.data.size(); ++i) {
+    const std::uint16_t mm = depth.data[i];
+    if (mm == 0) continue;  // no return: unknown, never free
+    const double z = 1e-3 * mm;
+    if (z < min_depth_m || z > max_depth_m) continue;
+    const Eigen::Vector3d p_C(rays[i].x() * z, rays[i].y() * z, z);
+    const int u = static_cast<int>(i % static_cast<std::size_t>(depth.width_px));
+    const int v = static_cast<int>(i / static_cast<std::size_t>(depth.width_px));
+    const bool edge = u == 0 || v == 0 || u == depth.width_px - 1 || v == depth.height_px - 1;
+    (edge && border != nullptr ? *border : points).push_back(R * p_C + t);
+  }
+  return points;
+}
+
+}  // namespace ferret::internal

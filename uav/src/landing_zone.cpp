@@ -1,0 +1,411 @@
+#include "ferret/uav/landing_zone.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ferret/core/error.hpp"
+#include "ferret/core/number.hpp"
+#include "ferret/urdf/mission_config.hpp"
+#include "ferret/urdf/robot_description.hpp"
+#include "landing_points.hpp"
+
+namespace ferret {
+namespace {
+
+// A frame's points never span more than this many cells a side (10 m of range and a
+// fov below 180 degrees stay far inside it); beyond it the frame is bad input.
+constexpr long kMaxGridCells = 4'000'000;
+
+// Summed-area table: S(i, j) = sum of v over cells [0, i) x [0, j).
+class Summed {
+ public:
+  Summed(int nx, int ny) : nx_(nx), ny_(ny), s_(static_cast<std::size_t>(nx + 1) * (ny + 1), 0.0) {}
+  void build(const std::vector<double>& v) {
+    for (int j = 0; j < ny_; ++j) {
+      double row = 0.0;
+      for (int i = 0; i < nx_; ++i) {
+        row += v[static_cast<std::size_t>(j) * nx_ + i];
+        at(i + 1, j + 1) = at(i + 1, j) + row;
+      }
+    }
+  }
+  // Sum over cells [i0, i1] x [j0, j1] (inclusive).
+  [[nodiscard]] double sum(int i0, int j0, int i1, int j1) const {
+    return at(i1 + 1, j1 + 1) - at(i0, j1 + 1) - at(i1 + 1, j0) + at(i0, j0);
+  }
+
+ private:
+  [[nodiscard]] double& at(int i, int j) { return s_[static_cast<std::size_t>(j) * (nx_ + 1) + i]; }
+  [[nodiscard]] double at(int i, int j) const {
+    return s_[static_cast<std::size_t>(j) * (nx_ + 1) + i];
+  }
+  int nx_, ny_;
+  std::vector<double> s_;
+};
+
+struct Plane {
+  double a = 0.0, b = 0.0, c = 0.0;  // z = a x + b y + c, in grid-local coordinates
+  [[nodiscard]] double at(double x, double y) const { return a * x + b * y + c; }
+};
+
+}  // namespace
+
+const char* to_string(LandingReject reason) {
+  switch (reason) {
+    case LandingReject::kNone:
+      return "safe";
+    case LandingReject::kUnobserved:
+      return "unobserved";
+    case LandingReject::kSlope:
+      return "slope";
+    case LandingReject::kRoughness:
+      return "roughness";
+    case LandingReject::kStep:
+      return "step";
+    case LandingReject::kClearance:
+      return "clearance";
+    case LandingReject::kOutOfReach:
+      return "out of reach";
+  }
+  return "?";
+}
+
+LandingZoneDetector::Options LandingZoneDetector::Options::for_robot(const RobotDescription& robot,
+                                                                     const MissionConfig* mission) {
+  Options o;
+  o.footprint_radius_m = robot.circumscribed_radius_m;
+  // The tether leaves the UAV where it is attached (or at the spool); that point, not
+  // the body's centre, must be within l_0 of the point above the opening.
+  if (!robot.tether_attachments.empty())
+    o.p_ZW_xy_m = robot.tether_attachments.front().X_BF.translation().head<2>();
+  else if (robot.winch_spool)
+    o.p_ZW_xy_m = robot.winch_spool->X_BF.translation().head<2>();
+  if (mission != nullptr) o.reach_m = mission->tether.entry_offset_m;
+  return o;
+}
+
+void LandingZoneDetector::Options::check(const std::string& source) const {
+  check_number(footprint_radius_m, NumberRange::positive(20.0, "m"), source, "footprint_radius_m");
+  check_number(margin_m, NumberRange::non_negative(10.0, "m"), source, "margin_m");
+  check_number(max_slope_deg, NumberRange::closed(0.0, 89.0, "deg"), source, "max_slope_deg");
+  check_number(max_roughness_m, NumberRange::positive(10.0, "m"), source, "max_roughness_m");
+  check_number(max_step_m, NumberRange::positive(10.0, "m"), source, "max_step_m");
+  check_number(min_clearance_m, NumberRange::non_negative(20.0, "m"), source, "min_clearance_m");
+  check_number(taller_than_m, NumberRange::positive(10.0, "m"), source, "taller_than_m");
+  check_number(cell_size_m, NumberRange::closed(0.01, 2.0, "m"), source, "cell_size_m");
+  check_number(min_points_per_cell, NumberRange::closed(1, 1e6), source, "min_points_per_cell");
+  check_number(min_depth_m, NumberRange::non_negative(100.0, "m"), source, "min_depth_m");
+  check_number(max_depth_m, NumberRange::positive(100.0, "m"), source, "max_depth_m");
+  if (max_depth_m <= min_depth_m)
+    throw InputError(source, "max_depth_m", "a depth above min_depth_m",
+                     fmt::format("{} <= {}", max_depth_m, min_depth_m));
+  check_number(reach_m, NumberRange::positive(1000.0, "m"), source, "reach_m");
+  if (p_WE)
+    for (int k = 0; k < 3; ++k)
+      check_number((*p_WE)[k], NumberRange::closed(-1e5, 1e5, "m"), source, "opening");
+  check_number(max_zones, NumberRange::closed(1, 10000), source, "max_zones");
+  // Discs of more than 2 x 2 km of cells are not a landing-zone question.
+  if ((footprint_radius_m + margin_m + min_clearance_m) / cell_size_m > 1000.0)
+    throw InputError(source, "cell_size_m", "at most 1000 cells across a disc and its clearance",
+                     fmt::format("{}", cell_size_m));
+}
+
+LandingZoneDetector::LandingZoneDetector(Options options) : options_(std::move(options)) {
+  options_.check("landing-zone options");
+}
+
+LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const CameraModel& camera,
+                                          const Pose3& X_WC) const {
+  const Options& o = options_;
+  LandingResult result;
+  std::vector<Eigen::Vector3d> border;
+  const std::vector<Eigen::Vector3d> points =
+      internal::depth_to_world_points(depth, camera, X_WC, o.min_depth_m, o.max_depth_m, &border);
+  if (points.empty()) {
+    result.reason = "no safe zone in view: no depth returns in the frame";
+    return result;
+  }
+
+  // The height grid, aligned with the world axes, over the points' extent.
+  Eigen::Vector2d lo = points.front().head<2>(), hi = lo;
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p.head<2>());
+    hi = hi.cwiseMax(p.head<2>());
+  }
+  const double cell = o.cell_size_m;
+  const int nx = static_cast<int>(std::floor((hi.x() - lo.x()) / cell)) + 1;
+  const int ny = static_cast<int>(std::floor((hi.y() - lo.y()) / cell)) + 1;
+  if (static_cast<long>(nx) * ny > kMaxGridCells)
+    throw InputError("depth frame", "extent",
+                     fmt::format("at most {} cells of {} m", kMaxGridCells, cell),
+                     fmt::format("{} x {} cells", nx, ny));
+  const auto idx = [nx](int i, int j) { return static_cast<std::size_t>(j) * nx + i; };
+  const std::size_t n_cells = static_cast<std::size_t>(nx) * ny;
+  // Per cell: count and sums of the points (x, y relative to the grid origin, z minus a
+  // reference height, to keep the sums well conditioned).
+  const double z_ref = points.front().z();
+  std::vector<double> cnt(n_cells, 0.0), sx(n_cells, 0.0), sy(n_cells, 0.0), sz(n_cells, 0.0);
+  for (const auto& p : points) {
+    const int i = std::min(nx - 1, static_cast<int>((p.x() - lo.x()) / cell));
+    const int j = std::min(ny - 1, static_cast<int>((p.y() - lo.y()) / cell));
+    const std::size_t k = idx(i, j);
+    cnt[k] += 1.0;
+    sx[k] += p.x() - lo.x();
+    sy[k] += p.y() - lo.y();
+    sz[k] += p.z() - z_ref;
+  }
+  // A cell the image's edge runs through is seen only in part: what stands in its
+  // unseen part is unknown, so the cell counts as unobserved.
+  for (const auto& p : border) {
+    const int i = static_cast<int>(std::floor((p.x() - lo.x()) / cell));
+    const int j = static_cast<int>(std::floor((p.y() - lo.y()) / cell));
+    if (i >= 0 && j >= 0 && i < nx && j < ny) cnt[idx(i, j)] = 0.0;
+  }
+  // Cell means; the plane is fitted to them (not to the points) so that a cell counts
+  // once however close it is to the camera, and the depth noise averages out first.
+  std::vector<double> obs(n_cells, 0.0), mx(n_cells, 0.0), my(n_cells, 0.0), mz(n_cells, 0.0);
+  std::vector<double> xx(n_cells, 0.0), xy(n_cells, 0.0), yy(n_cells, 0.0), xz(n_cells, 0.0),
+      yz(n_cells, 0.0), zz(n_cells, 0.0);
+  for (std::size_t k = 0; k < n_cells; ++k) {
+    if (cnt[k] < o.min_points_per_cell) continue;
+    obs[k] = 1.0;
+    mx[k] = sx[k] / cnt[k];
+    my[k] = sy[k] / cnt[k];
+    mz[k] = sz[k] / cnt[k];
+    xx[k] = mx[k] * mx[k];
+    xy[k] = mx[k] * my[k];
+    yy[k] = my[k] * my[k];
+    xz[k] = mx[k] * mz[k];
+    yz[k] = my[k] * mz[k];
+    zz[k] = mz[k] * mz[k];
+  }
+  std::vector<Summed> S(10, Summed(nx, ny));
+  {
+    const std::vector<double>* v[10] = {&obs, &mx, &my, &mz, &xx, &xy, &yy, &xz, &yz, &zz};
+    for (int q = 0; q < 10; ++q) S[q].build(*v[q]);
+  }
+  enum { kN, kX, kY, kZ, kXX, kXY, kYY, kXZ, kYZ, kZZ };
+
+  const double radius = o.footprint_radius_m + o.margin_m;
+  const int h =
+      static_cast<int>(std::ceil(radius / cell - 0.5));  // cells whose centre may lie in the disc
+  const double ring_outer = radius + o.min_clearance_m;
+  const double clearance_cap = o.min_clearance_m + 0.5;  // reported up to this
+  const int hc = static_cast<int>(std::ceil((radius + clearance_cap) / cell));
+  const int hr = static_cast<int>(std::ceil(ring_outer / cell));
+  // Disc mask offsets: every cell that overlaps the disc (centre within radius + half a
+  // cell diagonal), so that nothing under the footprint escapes the step test.
+  const double overlap = radius + cell * std::sqrt(0.5);
+  std::vector<Eigen::Vector2i> disc;
+  for (int dj = -h - 1; dj <= h + 1; ++dj)
+    for (int di = -h - 1; di <= h + 1; ++di)
+      if (std::hypot(di * cell, dj * cell) <= overlap) disc.emplace_back(di, dj);
+  int hd = 0;
+  for (const auto& d : disc) hd = std::max({hd, std::abs(d.x()), std::abs(d.y())});
+  const int h_window = std::max(h, hd);
+  const double tan_max_slope = std::tan(deg_to_rad(o.max_slope_deg));
+
+  // Upper envelope for the clearance test: the highest cell mean in the clearance
+  // window of every cell, by two passes of a running maximum (rows, then columns).
+  const double kLow = -std::numeric_limits<double>::infinity();
+  std::vector<double> top(n_cells, kLow);
+  for (std::size_t k = 0; k < n_cells; ++k)
+    if (obs[k] > 0.0) top[k] = mz[k];
+  std::vector<double> row_max(n_cells, kLow), win_max(n_cells, kLow);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      double m = kLow;
+      for (int d = std::max(0, i - hc); d <= std::min(nx - 1, i + hc); ++d)
+        m = std::max(m, top[idx(d, j)]);
+      row_max[idx(i, j)] = m;
+    }
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j) {
+      double m = kLow;
+      for (int d = std::max(0, j - hc); d <= std::min(ny - 1, j + hc); ++d)
+        m = std::max(m, row_max[idx(i, d)]);
+      win_max[idx(i, j)] = m;
+    }
+
+  const Eigen::Vector2d nadir = X_WC.translation().head<2>();
+  std::vector<LandingZone> safe;
+  int counts[7] = {0, 0, 0, 0, 0, 0, 0};
+  int n_candidates = 0;
+  const int stride = std::max(1, static_cast<int>(std::round(0.3 / cell)));
+  const auto reject = [&](LandingZone z, LandingReject why, int i, int j) {
+    ++counts[static_cast<int>(why)];
+    if (i % stride == 0 && j % stride == 0 && result.rejected.size() < 4000) {
+      z.reject = why;
+      result.rejected.push_back(z);
+    }
+  };
+
+  for (int j = h_window; j < ny - h_window; ++j)
+    for (int i = h_window; i < nx - h_window; ++i) {
+      ++n_candidates;
+      const double cxl = (i + 0.5) * cell, cyl = (j + 0.5) * cell;  // grid-local centre
+      LandingZone z;
+      z.center_m = {lo.x() + cxl, lo.y() + cyl, z_ref + (obs[idx(i, j)] > 0 ? mz[idx(i, j)] : 0.0)};
+      const int i0 = i - h_window, i1 = i + h_window, j0 = j - h_window, j1 = j + h_window;
+      const double n = S[kN].sum(i0, j0, i1, j1);
+      // The disc's own cells must all be observed (checked below); the square around
+      // it, which the plane is fitted over, may miss its corners at the image's edge.
+      const double full = static_cast<double>((2 * h_window + 1) * (2 * h_window + 1));
+      if (n < 0.7 * full) {
+        reject(z, LandingReject::kUnobserved, i, j);
+        continue;
+      }
+      // Least squares z = a x + b y + c over the cell means of the window.
+      const double ex = S[kX].sum(i0, j0, i1, j1) / n, ey = S[kY].sum(i0, j0, i1, j1) / n,
+                   ez = S[kZ].sum(i0, j0, i1, j1) / n;
+      const double cxx = S[kXX].sum(i0, j0, i1, j1) / n - ex * ex;
+      const double cxy = S[kXY].sum(i0, j0, i1, j1) / n - ex * ey;
+      const double cyy = S[kYY].sum(i0, j0, i1, j1) / n - ey * ey;
+      const double cxz = S[kXZ].sum(i0, j0, i1, j1) / n - ex * ez;
+      const double cyz = S[kYZ].sum(i0, j0, i1, j1) / n - ey * ez;
+      const double czz = S[kZZ].sum(i0, j0, i1, j1) / n - ez * ez;
+      const double det = cxx * cyy - cxy * cxy;
+      if (!(det > 1e-12 * cell * cell * cell * cell)) {  // cells collapsed onto a line (a wall)
+        reject(z, LandingReject::kUnobserved, i, j);
+        continue;
+      }
+      Plane pl;
+      pl.a = (cyy * cxz - cxy * cyz) / det;
+      pl.b = (cxx * cyz - cxy * cxz) / det;
+      pl.c = ez - pl.a * ex - pl.b * ey;
+      z.center_m.z() = z_ref + pl.at(cxl, cyl);
+      const double grad = std::hypot(pl.a, pl.b);
+      z.slope_deg = rad_to_deg(std::atan(grad));
+      z.roughness_m = std::sqrt(std::max(0.0, czz - pl.a * cxz - pl.b * cyz));
+      if (o.p_WE) {
+        const Eigen::Vector2d winch = z.center_m.head<2>() + o.p_ZW_xy_m;
+        z.distance_to_opening_m = (winch - o.p_WE->head<2>()).norm();
+      } else {
+        z.distance_to_opening_m = std::numeric_limits<double>::quiet_NaN();
+      }
+      if (grad > tan_max_slope) {
+        reject(z, LandingReject::kSlope, i, j);
+        continue;
+      }
+      if (z.roughness_m > o.max_roughness_m) {
+        reject(z, LandingReject::kRoughness, i, j);
+        continue;
+      }
+      // The step: peak-to-peak of the cell means about the plane over the disc. (A
+      // difference of neighbouring cells would miss a step whose edge halves a cell.)
+      double rmin = std::numeric_limits<double>::infinity(), rmax = -rmin;
+      bool unobserved = false;
+      for (const auto& d : disc) {
+        const std::size_t k = idx(i + d.x(), j + d.y());
+        if (obs[k] <= 0.0) {
+          unobserved = true;
+          break;
+        }
+        const double r = mz[k] - pl.at(mx[k], my[k]);
+        rmin = std::min(rmin, r);
+        rmax = std::max(rmax, r);
+      }
+      if (unobserved) {
+        reject(z, LandingReject::kUnobserved, i, j);
+        continue;
+      }
+      z.step_m = rmax - rmin;
+      if (z.step_m > o.max_step_m) {
+        reject(z, LandingReject::kStep, i, j);
+        continue;
+      }
+      // Clearance: the nearest cell beyond the disc that is taller than the plane (or,
+      // within the required clearance, not observed: unknown is not free).
+      z.clearance_m = clearance_cap;
+      const double plane_low =
+          pl.at(cxl, cyl) - (std::abs(pl.a) + std::abs(pl.b)) * (hc + 1) * cell;
+      const bool ring_observed =
+          i - hr >= 0 && j - hr >= 0 && i + hr < nx && j + hr < ny &&
+          S[kN].sum(i - hr, j - hr, i + hr, j + hr) >= (2.0 * hr + 1) * (2.0 * hr + 1);
+      if (!ring_observed || win_max[idx(i, j)] > plane_low + o.taller_than_m) {
+        double nearest = radius + clearance_cap;
+        for (int dj = -hc; dj <= hc; ++dj)
+          for (int di = -hc; di <= hc; ++di) {
+            // Distance from the disc's centre to the nearest point of the cell.
+            const double gx = std::max(0.0, std::abs(di) * cell - 0.5 * cell);
+            const double gy = std::max(0.0, std::abs(dj) * cell - 0.5 * cell);
+            const double dist = std::hypot(gx, gy);
+            if (dist >= nearest) continue;
+            const int ci = i + di, cj = j + dj;
+            const bool inside = ci >= 0 && cj >= 0 && ci < nx && cj < ny;
+            const bool seen = inside && obs[idx(ci, cj)] > 0.0;
+            if (!seen) {
+              if (dist < ring_outer) nearest = dist;
+              continue;
+            }
+            const std::size_t k = idx(ci, cj);
+            if (mz[k] > pl.at(mx[k], my[k]) + o.taller_than_m) nearest = dist;
+          }
+        z.clearance_m = std::max(0.0, nearest - radius);
+      }
+      if (z.clearance_m < o.min_clearance_m) {
+        reject(z, LandingReject::kClearance, i, j);
+        continue;
+      }
+      if (o.p_WE && z.distance_to_opening_m > o.reach_m) {
+        reject(z, LandingReject::kOutOfReach, i, j);
+        continue;
+      }
+      // Safety margin: the tightest of the criteria, each as the fraction of its limit
+      // left (clearance: of the extra clearance looked for beyond the minimum).
+      double margin =
+          std::min({1.0 - z.slope_deg / std::max(o.max_slope_deg, 1e-9),
+                    1.0 - z.roughness_m / o.max_roughness_m, 1.0 - z.step_m / o.max_step_m,
+                    (z.clearance_m - o.min_clearance_m) / (clearance_cap - o.min_clearance_m)});
+      margin = std::clamp(margin, 0.0, 1.0);
+      // Distance: to the opening within the reach when there is one (the miniUGV's
+      // tether is what matters), else to the point below the camera (less flying).
+      const double distance_term = o.p_WE ? 0.5 * z.distance_to_opening_m / o.reach_m
+                                          : 0.05 * (z.center_m.head<2>() - nadir).norm();
+      z.score = margin - distance_term;
+      ++counts[0];
+      safe.push_back(z);
+    }
+
+  std::sort(safe.begin(), safe.end(), [](const LandingZone& a, const LandingZone& b) {
+    if (a.score != b.score) return a.score > b.score;
+    if (a.center_m.x() != b.center_m.x()) return a.center_m.x() < b.center_m.x();
+    return a.center_m.y() < b.center_m.y();
+  });
+  // Distinct zones: a zone suppresses the others within a footprint of it.
+  for (const auto& z : safe) {
+    bool near = false;
+    for (const auto& kept : result.zones)
+      if ((kept.center_m.head<2>() - z.center_m.head<2>()).norm() < o.footprint_radius_m) {
+        near = true;
+        break;
+      }
+    if (near) continue;
+    result.zones.push_back(z);
+    if (static_cast<int>(result.zones.size()) >= o.max_zones) break;
+  }
+  result.no_safe_zone = result.zones.empty();
+  if (result.no_safe_zone) {
+    if (n_candidates == 0) {
+      result.reason = fmt::format(
+          "no safe zone in view: the observed ground ({:.2f} x {:.2f} m) is smaller than a "
+          "{:.2f} m disc",
+          hi.x() - lo.x(), hi.y() - lo.y(), 2 * radius);
+    } else {
+      std::string parts;
+      for (int r = 1; r < 7; ++r)
+        if (counts[r] > 0)
+          parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", counts[r],
+                               to_string(static_cast<LandingReject>(r)));
+      result.reason =
+          fmt::format("no safe zone in view: {} candidates rejected ({})", n_candidates, parts);
+    }
+  }
+  return result;
+}
+
+}  // namespace ferret
