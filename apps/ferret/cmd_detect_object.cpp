@@ -112,9 +112,7 @@ const CommandRegistration kDetectObject{
           "Find the object (its orange colour patch) in a camera image: bearing, "
           "distance from apparent size, confidence eta / d");
       sub->add_option("IMAGE", args->image, "The camera image (PNG, JPEG, PPM, BMP)")->required();
-      auto* camera = add_camera_option(sub, args->camera, kRoleObjectCamera);
-      camera->description(camera->get_description() +
-                          " (default: none; one of --camera and --robot is required)");
+      add_camera_option(sub, args->camera, kRoleObjectCamera);
       add_robot_option(sub, args->robot, "none: --camera gives the camera");
       add_mission_option(sub, args->mission, false);
       sub->add_option(
