@@ -47,8 +47,14 @@ ObjectMap::ObjectMap(GridGeometry geometry, Options options)
 
 double ObjectMap::probability_at(std::size_t idx) const { return inverse_logit(log_odds_[idx]); }
 
+double distance_confidence(double eta_m, double distance_m) { return eta_m / distance_m; }
+
+double clip_confidence(double raw, double conf_floor, double conf_cap) {
+  return std::clamp(raw, conf_floor, conf_cap);
+}
+
 double ObjectMap::detection_confidence(double raw) const {
-  return std::clamp(raw, options_.conf_floor, options_.conf_cap);
+  return clip_confidence(raw, options_.conf_floor, options_.conf_cap);
 }
 
 double ObjectMap::miss_likelihood(double distance_m) const {

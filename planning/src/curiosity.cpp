@@ -48,7 +48,7 @@ double predicted_confidence(double conf_t, double d_t, double d_next, const Curi
   d_next = std::max(d_next, 1e-3);
   double conf = conf_t * d_t / d_next;
   if (o.cap_prediction) {
-    conf = std::min(conf, o.eta_m / d_next);
+    conf = std::min(conf, distance_confidence(o.eta_m, d_next));
     conf = std::clamp(conf, o.conf_floor, o.conf_cap);
   } else {
     conf = std::clamp(conf, 1e-3, o.conf_cap);  // still a probability

@@ -114,8 +114,9 @@ CameraFrame HiddenSpaceSim::camera_frame(const Pose2& X_WC, double time_s) {
   if (width_px < 1.0) return frame;
   const double gamma = width_px / options_.object_size_m;  // pixels per metre
   const double d_measured = f / gamma;                     // d = k_c / gamma
-  frame.detections.push_back({bearing + bearing_noise, d_measured,
-                              std::max(0.0, options_.eta_m / d_measured + conf_noise)});
+  frame.detections.push_back(
+      {bearing + bearing_noise, d_measured,
+       std::max(0.0, distance_confidence(options_.eta_m, d_measured) + conf_noise)});
   return frame;
 }
 

@@ -41,6 +41,14 @@ struct CameraFrame {
   std::vector<ObjectDetection> detections;
 };
 
+/// conf = eta / d (paper sect. IV-A): the detection model's confidence at distance d,
+/// before the object map clips it. The one formula of the codebase: the simulator's
+/// geometric detector, the image detector (ugv/) and the planner's prediction call it.
+/// @pre distance_m > 0
+[[nodiscard]] double distance_confidence(double eta_m, double distance_m);
+/// clip(raw, conf_floor, conf_cap): a detection is always weak positive evidence.
+[[nodiscard]] double clip_confidence(double raw, double conf_floor, double conf_cap);
+
 enum class ObjectLabel : std::uint8_t { kFree, kUnknown, kObject };
 
 class ObjectMap {
