@@ -99,7 +99,10 @@ TEST(FrontierSampler, PrmCallsItRrtConnectDoesNot) {
     pdef->setGoal(std::make_shared<FrontierGoal>(si, c, 11));
     planner.setProblemDefinition(pdef);
     planner.setup();
-    const auto status = planner.solve(1.0);
+    // Until the first exact solution, with a generous wall-clock cap: a fixed 1 s budget
+    // made PRM fail on a loaded machine (the test is about which sampler is called).
+    const auto status = planner.solve(ob::plannerOrTerminationCondition(
+        ob::timedPlannerTerminationCondition(60.0), ob::exactSolnPlannerTerminationCondition(pdef)));
     return std::pair{status == ob::PlannerStatus::EXACT_SOLUTION, pdef};
   };
   ompl::geometric::RRTConnect rrt(si);
