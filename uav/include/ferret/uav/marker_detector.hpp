@@ -40,15 +40,18 @@ struct MarkerDetection {
 struct MarkerDetectorOptions {
   MarkerDictionary dictionary;  ///< ArUco DICT_4X4_50 unless set
   double marker_size_m = 0.15;  ///< side of the black square
-  /// Bits the AprilTag decoder may correct. Every corrected bit brings a random pattern
-  /// closer to a valid code, so 0 keeps false positives at the library's minimum.
-  int max_hamming = 0;
+  /// Bits the AprilTag decoder may correct. tag36h11's codes are at least 11 bits
+  /// apart, so one corrected bit still leaves a random pattern far from a valid code;
+  /// with min_decision_margin 15 it recovers small blurred markers whose one cell
+  /// reads wrong (docs/results/issue11_markers.md).
+  int max_hamming = 1;
   /// The smallest marker side (black square, pixels) the detectors look for: shorter
   /// candidates are dropped before decoding, which is most of a textured frame's. The
   /// issue's target is 20 px; 16 leaves a margin for foreshortening and blur.
   double min_marker_side_px = 16.0;
   /// AprilTag: the decoder's minimum decision margin (detections below are noise).
-  double min_decision_margin = 30.0;
+  /// 30 (with max_hamming 0) dropped markers of 20-24 px under blur of 1.1-1.5 px.
+  double min_decision_margin = 15.0;
   /// AprilTag quad_decimate: the quad search runs on a frame this much smaller (the
   /// corners are then refined on the full frame). 1 costs about 60 ms a 1280x720
   /// textured frame on one core here, 2 about 3 ms, and finds the same markers of
@@ -66,8 +69,10 @@ struct MarkerDetectorOptions {
   /// ArUco errorCorrectionRate: the share of the dictionary's correctable bits the
   /// decoder may correct (OpenCV's default 0.6).
   double aruco_error_correction_rate = 0.6;
-  /// ArUco: the least decode margin kept (MarkerDetection::decision_margin).
-  double aruco_min_margin = 0.15;
+  /// ArUco: the least decode margin kept (MarkerDetection::decision_margin). 0.15
+  /// dropped small blurred markers whose weakest cell reads 0.08-0.15 of the contrast;
+  /// 0.08 keeps them (docs/results/issue11_markers.md).
+  double aruco_min_margin = 0.08;
   /// Detections whose pose fit is worse than this are dropped (a quad that is not a
   /// flat square seen through this camera).
   double max_reprojection_error_px = 3.0;
