@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "ferret/core/error.hpp"
+#include "ferret/perception/marker_library.hpp"
 
 namespace ferret {
 namespace {
@@ -80,9 +81,6 @@ const AprilTagName* find_apriltag(std::string_view name) {
   return nullptr;
 }
 
-using FamilyPtr = std::unique_ptr<apriltag_family_t, void (*)(apriltag_family_t*)>;
-FamilyPtr make_family(const AprilTagName& a) { return {a.create(), a.destroy}; }
-
 std::string joined_names(MarkerFamily family) {
   std::string out;
   for (const auto& n : marker_dictionary_names(family)) out += (out.empty() ? "" : ", ") + n;
@@ -128,14 +126,34 @@ void check_marker_dictionary(const MarkerDictionary& dictionary, const std::stri
                      "'" + dictionary.name + "'");
 }
 
+cv::Ptr<cv::aruco::Dictionary> aruco_dictionary(const MarkerDictionary& dictionary) {
+  const ArucoName* a =
+      dictionary.family == MarkerFamily::kAruco ? find_aruco(dictionary.name) : nullptr;
+  if (a == nullptr)
+    throw InputError("marker dictionary", "name",
+                     "an OpenCV ArUco dictionary (" + joined_names(MarkerFamily::kAruco) + ")",
+                     "'" + dictionary.name + "'");
+  return cv::aruco::getPredefinedDictionary(a->id);
+}
+
+AprilTagFamilyPtr apriltag_family(const MarkerDictionary& dictionary) {
+  const AprilTagName* a =
+      dictionary.family == MarkerFamily::kAprilTag ? find_apriltag(dictionary.name) : nullptr;
+  if (a == nullptr)
+    throw InputError("marker dictionary", "name",
+                     "an AprilTag 3 family (" + joined_names(MarkerFamily::kAprilTag) + ")",
+                     "'" + dictionary.name + "'");
+  AprilTagFamilyPtr family(a->create(), a->destroy);
+  if (family == nullptr) throw std::bad_alloc();
+  return family;
+}
+
 int marker_id_count(const MarkerDictionary& dictionary) {
   check_marker_dictionary(dictionary, "marker dictionary", "name");
   if (dictionary.family == MarkerFamily::kAruco) {
-    const auto dict = cv::aruco::getPredefinedDictionary(find_aruco(dictionary.name)->id);
-    return dict->bytesList.rows;
+    return aruco_dictionary(dictionary)->bytesList.rows;
   }
-  const auto family = make_family(*find_apriltag(dictionary.name));
-  return static_cast<int>(family->ncodes);
+  return static_cast<int>(apriltag_family(dictionary)->ncodes);
 }
 
 MarkerBitmap marker_bitmap(const MarkerDictionary& dictionary, int id) {
@@ -145,7 +163,7 @@ MarkerBitmap marker_bitmap(const MarkerDictionary& dictionary, int id) {
                      fmt::format("an id in [0, {}]", count - 1), std::to_string(id));
   MarkerBitmap out;
   if (dictionary.family == MarkerFamily::kAruco) {
-    const auto dict = cv::aruco::getPredefinedDictionary(find_aruco(dictionary.name)->id);
+    const auto dict = aruco_dictionary(dictionary);
     const int cells = dict->markerSize + 2;  // the data bits inside a one-cell black border
     cv::Mat image;
     cv::aruco::drawMarker(dict, id, cells, image, 1);
@@ -156,7 +174,7 @@ MarkerBitmap marker_bitmap(const MarkerDictionary& dictionary, int id) {
     out.black_square_offset = 0;
     return out;
   }
-  const auto family = make_family(*find_apriltag(dictionary.name));
+  const auto family = apriltag_family(dictionary);
   image_u8_t* image = apriltag_to_image(family.get(), id);
   const int total = static_cast<int>(family->total_width);
   out.cells = GrayImage(total, total);

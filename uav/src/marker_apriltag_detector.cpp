@@ -1,15 +1,6 @@
 // AprilTag 3 (libapriltag) behind MarkerDetector.
 
 #include <apriltag.h>
-#include <tag16h5.h>
-#include <tag25h9.h>
-#include <tag36h10.h>
-#include <tag36h11.h>
-#include <tagCircle21h7.h>
-#include <tagCircle49h12.h>
-#include <tagCustom48h12.h>
-#include <tagStandard41h12.h>
-#include <tagStandard52h13.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,42 +9,22 @@
 #include <string_view>
 
 #include "ferret/core/error.hpp"
+#include "ferret/perception/marker_library.hpp"
 #include "marker_detectors.hpp"
 
 namespace ferret::internal {
 namespace {
 
-struct AprilTagFamilyEntry {
-  const char* name;
-  apriltag_family_t* (*create)();
-  void (*destroy)(apriltag_family_t*);
-};
-// Every family perception's marker_family knows (a test checks that each name makes a
-// detector, so the two tables cannot drift apart).
-constexpr AprilTagFamilyEntry kFamilies[] = {
-    {"tag36h11", tag36h11_create, tag36h11_destroy},
-    {"tag36h10", tag36h10_create, tag36h10_destroy},
-    {"tag25h9", tag25h9_create, tag25h9_destroy},
-    {"tag16h5", tag16h5_create, tag16h5_destroy},
-    {"tagCircle21h7", tagCircle21h7_create, tagCircle21h7_destroy},
-    {"tagCircle49h12", tagCircle49h12_create, tagCircle49h12_destroy},
-    {"tagStandard41h12", tagStandard41h12_create, tagStandard41h12_destroy},
-    {"tagStandard52h13", tagStandard52h13_create, tagStandard52h13_destroy},
-    {"tagCustom48h12", tagCustom48h12_create, tagCustom48h12_destroy},
-};
-
 class AprilTagDetector final : public MarkerDetector {
  public:
   explicit AprilTagDetector(const MarkerDetectorOptions& options) : options_(options) {
-    for (const auto& f : kFamilies)
-      if (options.dictionary.name == f.name) entry_ = &f;
-    if (entry_ == nullptr)
+    if (options.dictionary.family != MarkerFamily::kAprilTag)
       throw InputError("marker detector options", "dictionary", "an AprilTag 3 family",
                        options.dictionary.name);
-    family_ = entry_->create();
+    family_ = apriltag_family(options.dictionary);
     detector_ = apriltag_detector_create();
-    if (family_ == nullptr || detector_ == nullptr) throw std::bad_alloc();
-    apriltag_detector_add_family_bits(detector_, family_, options.max_hamming);
+    if (detector_ == nullptr) throw std::bad_alloc();
+    apriltag_detector_add_family_bits(detector_, family_.get(), options.max_hamming);
     detector_->nthreads = 1;  // one core: the UAV's computer runs more than this
     detector_->quad_decimate = static_cast<float>(options.quad_decimate);
     detector_->quad_sigma = static_cast<float>(options.quad_sigma);
@@ -66,10 +37,7 @@ class AprilTagDetector final : public MarkerDetector {
         std::max(5, static_cast<int>(options.min_marker_side_px / options.quad_decimate));
     detector_->qtp.min_white_black_diff = options.apriltag_min_white_black_diff;
   }
-  ~AprilTagDetector() override {
-    apriltag_detector_destroy(detector_);
-    entry_->destroy(family_);
-  }
+  ~AprilTagDetector() override { apriltag_detector_destroy(detector_); }
   AprilTagDetector(const AprilTagDetector&) = delete;
   AprilTagDetector& operator=(const AprilTagDetector&) = delete;
 
@@ -113,8 +81,7 @@ class AprilTagDetector final : public MarkerDetector {
 
  private:
   MarkerDetectorOptions options_;
-  const AprilTagFamilyEntry* entry_ = nullptr;
-  apriltag_family_t* family_ = nullptr;
+  AprilTagFamilyPtr family_{nullptr, nullptr};
   apriltag_detector_t* detector_ = nullptr;
   mutable std::mutex mutex_;
 };

@@ -10,51 +10,19 @@
 #include <string_view>
 
 #include "ferret/core/error.hpp"
+#include "ferret/perception/marker_library.hpp"
 #include "marker_detectors.hpp"
 
 namespace ferret::internal {
 namespace {
 
-struct ArucoEntry {
-  const char* name;
-  cv::aruco::PREDEFINED_DICTIONARY_NAME id;
-};
-// Every dictionary perception's marker_family knows (a test checks that each name
-// makes a detector).
-constexpr ArucoEntry kDictionaries[] = {
-    {"DICT_4X4_50", cv::aruco::DICT_4X4_50},
-    {"DICT_4X4_100", cv::aruco::DICT_4X4_100},
-    {"DICT_4X4_250", cv::aruco::DICT_4X4_250},
-    {"DICT_4X4_1000", cv::aruco::DICT_4X4_1000},
-    {"DICT_5X5_50", cv::aruco::DICT_5X5_50},
-    {"DICT_5X5_100", cv::aruco::DICT_5X5_100},
-    {"DICT_5X5_250", cv::aruco::DICT_5X5_250},
-    {"DICT_5X5_1000", cv::aruco::DICT_5X5_1000},
-    {"DICT_6X6_50", cv::aruco::DICT_6X6_50},
-    {"DICT_6X6_100", cv::aruco::DICT_6X6_100},
-    {"DICT_6X6_250", cv::aruco::DICT_6X6_250},
-    {"DICT_6X6_1000", cv::aruco::DICT_6X6_1000},
-    {"DICT_7X7_50", cv::aruco::DICT_7X7_50},
-    {"DICT_7X7_100", cv::aruco::DICT_7X7_100},
-    {"DICT_7X7_250", cv::aruco::DICT_7X7_250},
-    {"DICT_7X7_1000", cv::aruco::DICT_7X7_1000},
-    {"DICT_ARUCO_ORIGINAL", cv::aruco::DICT_ARUCO_ORIGINAL},
-    {"DICT_APRILTAG_16h5", cv::aruco::DICT_APRILTAG_16h5},
-    {"DICT_APRILTAG_25h9", cv::aruco::DICT_APRILTAG_25h9},
-    {"DICT_APRILTAG_36h10", cv::aruco::DICT_APRILTAG_36h10},
-    {"DICT_APRILTAG_36h11", cv::aruco::DICT_APRILTAG_36h11},
-};
-
 class ArucoDetector final : public MarkerDetector {
  public:
   explicit ArucoDetector(const MarkerDetectorOptions& options) : options_(options) {
-    const ArucoEntry* entry = nullptr;
-    for (const auto& e : kDictionaries)
-      if (options.dictionary.name == e.name) entry = &e;
-    if (entry == nullptr)
+    if (options.dictionary.family != MarkerFamily::kAruco)
       throw InputError("marker detector options", "dictionary", "an OpenCV ArUco dictionary",
                        options.dictionary.name);
-    dictionary_ = cv::aruco::getPredefinedDictionary(entry->id);
+    dictionary_ = aruco_dictionary(options.dictionary);
     params_ = cv::aruco::DetectorParameters::create();
     // Sub-pixel corners from an edge fit (refine_corners below) rather than
     // detectMarkers' own: SUBPIX is biased at blurred marker corners, APRILTAG is
