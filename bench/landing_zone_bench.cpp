@@ -153,9 +153,23 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
                      scene.truth.is_safe(c, so.footprint_radius_m, step),
                      scene.truth.is_safe(c, so.footprint_radius_m, clear));
       }
-      if (verbose && a.zones.empty() && f.safe_zone_in_view)
+      if (verbose && a.zones.empty() && f.safe_zone_in_view) {
         std::fprintf(stderr, "missed: terrain %d (%s), %s: %s\n", i, scene.terrain.kind.c_str(),
                      key.c_str(), a.reason.c_str());
+        // The rejected candidates of the result's sample (every third cell) that the
+        // truth calls safe and sees whole: which test rejected them, with its values.
+        for (const auto& z : a.rejected) {
+          const Eigen::Vector2d c = z.center_m.head<2>();
+          if (!scene.truth.is_safe(c, so.footprint_radius_m, so.criteria) ||
+              !scene.truth.in_view(c, so.view_radius_m, s.camera, f.X_WC))
+            continue;
+          std::fprintf(stderr,
+                       "  truth-safe candidate %.2f %.2f rejected (%s): slope %.1f rough %.3f "
+                       "step %.3f clearance %.2f\n",
+                       c.x(), c.y(), to_string(z.reject), z.slope_deg, z.roughness_m, z.step_m,
+                       z.clearance_m);
+        }
+      }
     }
   }
   std::printf("terrains: %d (seed %llu), frames: %d, camera %s 640x480, footprint %.3f m\n\n",

@@ -183,11 +183,10 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
     yz[k] = my[k] * mz[k];
     zz[k] = mz[k] * mz[k];
   }
-  std::vector<Summed> S(10, Summed(nx, ny));
-  {
-    const std::vector<double>* v[10] = {&obs, &mx, &my, &mz, &xx, &xy, &yy, &xz, &yz, &zz};
-    for (int q = 0; q < 10; ++q) S[q].build(*v[q]);
-  }
+  // Observed cells per window (summed-area table); the plane's sums are taken over
+  // each disc's cells.
+  Summed observed(nx, ny);
+  observed.build(obs);
   enum { kN, kX, kY, kZ, kXX, kXY, kYY, kXZ, kYZ, kZZ };
 
   const double radius = o.footprint_radius_m + o.margin_m;
@@ -251,7 +250,7 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       LandingZone z;
       z.center_m = {lo.x() + cxl, lo.y() + cyl, z_ref + (obs[idx(i, j)] > 0 ? mz[idx(i, j)] : 0.0)};
       const int i0 = i - h_window, i1 = i + h_window, j0 = j - h_window, j1 = j + h_window;
-      const double n = S[kN].sum(i0, j0, i1, j1);
+      const double n = observed.sum(i0, j0, i1, j1);
       // The disc's own cells must all be observed (checked below); the square around
       // it, which the plane is fitted over, may miss its corners at the image's edge.
       const double full = static_cast<double>((2 * h_window + 1) * (2 * h_window + 1));
@@ -259,15 +258,42 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
         reject(z, LandingReject::kUnobserved, i, j);
         continue;
       }
-      // Least squares z = a x + b y + c over the cell means of the window.
-      const double ex = S[kX].sum(i0, j0, i1, j1) / n, ey = S[kY].sum(i0, j0, i1, j1) / n,
-                   ez = S[kZ].sum(i0, j0, i1, j1) / n;
-      const double cxx = S[kXX].sum(i0, j0, i1, j1) / n - ex * ex;
-      const double cxy = S[kXY].sum(i0, j0, i1, j1) / n - ex * ey;
-      const double cyy = S[kYY].sum(i0, j0, i1, j1) / n - ey * ey;
-      const double cxz = S[kXZ].sum(i0, j0, i1, j1) / n - ex * ez;
-      const double cyz = S[kYZ].sum(i0, j0, i1, j1) / n - ey * ez;
-      const double czz = S[kZZ].sum(i0, j0, i1, j1) / n - ez * ez;
+      // Least squares z = a x + b y + c over the cell means of the disc's own cells,
+      // every one of them observed: the plane the footprint stands on. (Fitted over the
+      // square window around the disc, a plane that also took in a step's top beyond
+      // the disc came out flatter than the slope under the footprint: seed 2 of the
+      // evaluation chose two zones on a 15.2 degree slope that way.)
+      double m[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+      bool disc_seen = true;
+      for (const auto& d : disc) {
+        const std::size_t k = idx(i + d.x(), j + d.y());
+        if (obs[k] <= 0.0) {
+          disc_seen = false;
+          break;
+        }
+        m[kN] += 1.0;
+        m[kX] += mx[k];
+        m[kY] += my[k];
+        m[kZ] += mz[k];
+        m[kXX] += xx[k];
+        m[kXY] += xy[k];
+        m[kYY] += yy[k];
+        m[kXZ] += xz[k];
+        m[kYZ] += yz[k];
+        m[kZZ] += zz[k];
+      }
+      if (!disc_seen) {
+        reject(z, LandingReject::kUnobserved, i, j);
+        continue;
+      }
+      const double nd = m[kN];
+      const double ex = m[kX] / nd, ey = m[kY] / nd, ez = m[kZ] / nd;
+      const double cxx = m[kXX] / nd - ex * ex;
+      const double cxy = m[kXY] / nd - ex * ey;
+      const double cyy = m[kYY] / nd - ey * ey;
+      const double cxz = m[kXZ] / nd - ex * ez;
+      const double cyz = m[kYZ] / nd - ey * ez;
+      const double czz = m[kZZ] / nd - ez * ez;
       const double det = cxx * cyy - cxy * cxy;
       if (!(det > 1e-12 * cell * cell * cell * cell)) {  // cells collapsed onto a line (a wall)
         reject(z, LandingReject::kUnobserved, i, j);
@@ -325,7 +351,7 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
           pl.at(cxl, cyl) - (std::abs(pl.a) + std::abs(pl.b)) * (hc + 1) * cell;
       const bool ring_observed =
           i - hr >= 0 && j - hr >= 0 && i + hr < nx && j + hr < ny &&
-          S[kN].sum(i - hr, j - hr, i + hr, j + hr) >= (2.0 * hr + 1) * (2.0 * hr + 1);
+          observed.sum(i - hr, j - hr, i + hr, j + hr) >= (2.0 * hr + 1) * (2.0 * hr + 1);
       if (!ring_observed || win_max[idx(i, j)] > plane_low + o.taller_than_m) {
         double nearest = radius + clearance_cap;
         for (int dj = -hc; dj <= hc; ++dj)

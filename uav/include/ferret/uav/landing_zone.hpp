@@ -4,14 +4,14 @@
 // Pipeline: depth (mm along the optical axis, 0 = no return) -> points in the world
 // (X_WC) -> a height grid of cells (count, mean, and the sums of a plane fit) ->
 // candidate discs centred on every cell, of the UAV's footprint radius plus a margin
-// -> per disc: least-squares plane z = a x + b y + c through the cell means, slope,
+// -> per disc: least-squares plane z = a x + b y + c through the disc's cell means, slope,
 // roughness (residual RMS), largest step (peak-to-peak deviation of the cell means
 // from the plane), clearance from anything taller around it; a disc with an
 // unobserved cell is not safe (unknown is not free). Safe discs are ranked by their
 // safety margin and their distance to the hidden space's opening.
 //
-// The per-disc sums come from summed-area tables of the grid, so the cost per
-// candidate does not grow with the number of points.
+// The cost per candidate is that of its disc's cells (about 150 at 0.1 m); it does
+// not grow with the number of points.
 //
 // Also here: Px4LandingBaseline, the published rule of PX4-Avoidance's
 // safe_landing_planner, producing the same LandingResult so both run on one frame.
