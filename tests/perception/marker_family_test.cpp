@@ -109,6 +109,26 @@ TEST(MarkerFamily, NewerAprilTagLayoutsPutTheBlackSquareInside) {
   tagStandard41h12_destroy(family);
 }
 
+// OpenCV 4.6's DICT_APRILTAG_36h11 holds the tag36h11 codes, but each bitmap is the
+// AprilTag library's turned by 180 degrees: OpenCV reads a tag printed by AprilTag with
+// the same id and its marker frame turned half a turn about z (corners two places on).
+TEST(MarkerFamily, OpenCvsAprilTagDictionaryIsAprilTagTurnedHalfATurn) {
+  for (const int id : {0, 1, 100, 586}) {
+    const MarkerBitmap tag = marker_bitmap({MarkerFamily::kAprilTag, "tag36h11"}, id);
+    const MarkerBitmap cv = marker_bitmap({MarkerFamily::kAruco, "DICT_APRILTAG_36h11"}, id);
+    const int s = tag.black_square_cells, o = tag.black_square_offset;
+    ASSERT_EQ(cv.cells.width_px, s);
+    int same = 0, turned = 0;
+    for (int y = 0; y < s; ++y)
+      for (int x = 0; x < s; ++x) {
+        same += tag.cells.at(x + o, y + o) == cv.cells.at(x, y);
+        turned += tag.cells.at(x + o, y + o) == cv.cells.at(s - 1 - x, s - 1 - y);
+      }
+    EXPECT_EQ(turned, s * s) << id;
+    EXPECT_LT(same, s * s) << id;
+  }
+}
+
 TEST(MarkerFamily, BadNamesAndIds) {
   try {
     check_marker_dictionary({MarkerFamily::kAprilTag, "DICT_4X4_50"}, "w.yaml",
