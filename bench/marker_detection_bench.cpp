@@ -25,6 +25,7 @@
 
 #include "ferret/core/random.hpp"
 #include "ferret/mapping/world_spec.hpp"
+#include "ferret/perception/colour.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/uav/marker_detector.hpp"
 #include "ferret/uav/opening_locator.hpp"
@@ -47,16 +48,6 @@ WorldSpec world_with(MarkerFamily family) {
     h.marker.dictionary.name = default_marker_dictionary(family);
   }
   return w;
-}
-
-// BT.601 luma, as OpenCV's RGB2GRAY (what `ferret detect marker` reads a colour file as).
-GrayImage to_gray(const RgbImage& rgb) {
-  GrayImage g(rgb.width_px, rgb.height_px);
-  for (int y = 0; y < rgb.height_px; ++y)
-    for (int x = 0; x < rgb.width_px; ++x)
-      g.at(x, y) = static_cast<std::uint8_t>(
-          std::lround(0.299 * rgb.at(x, y, 0) + 0.587 * rgb.at(x, y, 1) + 0.114 * rgb.at(x, y, 2)));
-  return g;
 }
 
 // A camera looking from `p_W` towards `target_W`, rolled about its optical axis.

@@ -8,6 +8,7 @@
 #include <jpeglib.h>
 #include <png.h>
 
+#include <cmath>
 #include <csetjmp>
 #include <cstring>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include <string>
 
 #include "ferret/core/error.hpp"
+#include "ferret/perception/colour.hpp"
 
 namespace ferret {
 namespace {
@@ -133,7 +135,9 @@ Image<T, C> decode_png(const std::vector<std::uint8_t>& bytes, const std::string
     png_set_strip_alpha(png);
     const bool gray_in = (colour & PNG_COLOR_MASK_COLOR) == 0;
     if (want == PngWant::kRgb8 && gray_in) png_set_gray_to_rgb(png);
-    if (want == PngWant::kGray8 && !gray_in) png_set_rgb_to_gray_fixed(png, 1, -1, -1);
+    // BT.601 weights (perception/colour.hpp), not libpng's default BT.709: the same grey
+    // as a JPEG of the same frame (libjpeg) and as to_gray().
+    if (want == PngWant::kGray8 && !gray_in) png_set_rgb_to_gray_fixed(png, 1, 29900, 58700);
   }
   const int passes = png_set_interlace_handling(png);
   png_read_update_info(png, info);
@@ -259,6 +263,14 @@ RgbImage read_rgb_image(const std::filesystem::path& path) {
 }
 DepthImageMm read_depth_png(const std::filesystem::path& path) {
   return decode_depth_png(read_bytes(path), path.string());
+}
+
+GrayImage to_gray(const RgbImage& rgb) {
+  GrayImage g(rgb.width_px, rgb.height_px);
+  for (std::size_t i = 0; i < g.data.size(); ++i)
+    g.data[i] = static_cast<std::uint8_t>(std::lround(
+        0.299 * rgb.data[3 * i] + 0.587 * rgb.data[3 * i + 1] + 0.114 * rgb.data[3 * i + 2]));
+  return g;
 }
 
 std::vector<std::uint8_t> encode_png(const GrayImage& image) {

@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "ferret/core/error.hpp"
+#include "ferret/perception/colour.hpp"
 #include "ferret/perception/image.hpp"
 
 namespace ferret {
@@ -36,10 +37,17 @@ TEST(ImageCodec, RgbPngKeepsChannelOrder) {
   EXPECT_EQ(decode_rgb_image(png, "c.png").data, rgb.data);
   const cv::Mat bgr = cv::imdecode(png, cv::IMREAD_COLOR);
   EXPECT_EQ(bgr.at<cv::Vec3b>(0, 0), cv::Vec3b(0, 0, 255));  // OpenCV's BGR: red
-  // Grey from colour: ITU-R BT.709 weights (libpng's default), red is dark, green bright.
+  // Grey from colour: BT.601 weights, as to_gray() and libjpeg (not libpng's BT.709).
   const GrayImage grey = decode_gray_image(png, "c.png");
-  EXPECT_NEAR(grey.at(0, 0), 0.2126 * 255, 2);
-  EXPECT_NEAR(grey.at(1, 0), 0.7152 * 255, 2);
+  const GrayImage same = to_gray(rgb);
+  EXPECT_NEAR(grey.at(0, 0), 0.299 * 255, 1);
+  EXPECT_NEAR(grey.at(1, 0), 0.587 * 255, 1);
+  EXPECT_NEAR(grey.at(0, 1), 0.114 * 255, 1);
+  EXPECT_EQ(same.at(0, 0), 76);   // round(0.299 * 255)
+  EXPECT_EQ(same.at(1, 0), 150);  // round(0.587 * 255)
+  EXPECT_EQ(same.at(0, 1), 29);   // round(0.114 * 255)
+  for (std::size_t i = 0; i < grey.data.size(); ++i)
+    EXPECT_NEAR(grey.data[i], same.data[i], 1) << i;
 }
 
 TEST(ImageCodec, GreyPngAndJpegDecode) {

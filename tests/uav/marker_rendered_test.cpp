@@ -11,6 +11,7 @@
 
 #include "ferret/core/random.hpp"
 #include "ferret/mapping/world_spec.hpp"
+#include "ferret/perception/colour.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/uav/marker_detector.hpp"
 #include "ferret/uav/opening_locator.hpp"
@@ -33,14 +34,6 @@ WorldSpec default_world(MarkerFamily family) {
     h.marker.dictionary.name = default_marker_dictionary(family);
   }
   return w;
-}
-
-GrayImage to_gray(const RgbImage& rgb) {
-  GrayImage g(rgb.width_px, rgb.height_px);
-  for (std::size_t i = 0; i < g.data.size(); ++i)
-    g.data[i] = static_cast<std::uint8_t>(std::lround(
-        0.299 * rgb.data[3 * i] + 0.587 * rgb.data[3 * i + 1] + 0.114 * rgb.data[3 * i + 2]));
-  return g;
 }
 
 Pose3 look_at(const Eigen::Vector3d& p_W, const Eigen::Vector3d& target_W, double roll_rad) {
