@@ -30,7 +30,8 @@ TEST(SenseCli, CameraFrameIsAnRgbPngOfTheRolesSizeShowingTheMarker) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("DICT_4X4_50 7 (100 % visible"));
   const RgbImage img = read_rgb_image(dir / "c.png");
-  const CameraSensor& cam = load_robot("m100").marker_camera();
+  const RobotDescription m100 = load_robot("m100");  // the camera refers into it
+  const CameraSensor& cam = m100.marker_camera();
   EXPECT_EQ(img.width_px, cam.image_width_px);
   EXPECT_EQ(img.height_px, cam.image_height_px);
   // An 8-bit frame, read as 16 bits, is refused: the PNG's depth is 8.
@@ -57,7 +58,8 @@ TEST(SenseCli, DepthFrameIsA16BitPngInMillimetres) {
       (dir / "d.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const DepthImageMm d = read_depth_png(dir / "d.png");
-  const CameraSensor& cam = load_robot("m100").depth_camera();
+  const RobotDescription m100 = load_robot("m100");  // the camera refers into it
+  const CameraSensor& cam = m100.depth_camera();
   ASSERT_EQ(d.width_px, cam.image_width_px);
   ASSERT_EQ(d.height_px, cam.image_height_px);
   const int centre = d.at(d.width_px / 2, d.height_px / 2);

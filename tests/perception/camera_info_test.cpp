@@ -285,7 +285,9 @@ struct Malformed {
 
 TEST(CameraInfo, EveryMalformedFileNamesFileAndField) {
   std::string binary = "\x89PNG\r\n\x1a\n";
-  binary += std::string("\0\0\0\rIHDR\xff\xfe", 14);
+  // sizeof - 1: the literal holds NULs, so its length cannot come from strlen.
+  static constexpr char kChunk[] = "\0\0\0\rIHDR\xff\xfe";
+  binary += std::string(kChunk, sizeof kChunk - 1);
   const std::string r_scaled =
       "data: [ 2.,  0.,  0.,\n          0.,  1.,  0.,\n          0.,  0.,  1.]";
   const std::string r_mirror =
