@@ -109,7 +109,7 @@ const CommandRegistration kDetectMarker{
       auto args = std::make_shared<MarkerArgs>();
       auto* sub = detect_group(app).add_subcommand(
           "marker", "Fiducial markers in a camera image, with their poses in the optical frame");
-      sub->add_option("IMAGE", args->image, "camera image (PNG, JPEG, PPM/PGM, BMP)")->required();
+      sub->add_option("IMAGE", args->image, "camera image (PNG or JPEG)")->required();
       add_camera_option(sub, args->camera, kRoleMarkerCamera);
       add_robot_option(sub, args->robot, "none: --camera or --robot; the URDF's marker_camera");
       sub->add_option("--family", args->family, "marker family: apriltag or aruco")->required();

@@ -111,7 +111,7 @@ const CommandRegistration kDetectObject{
           "object",
           "Find the object (its orange colour patch) in a camera image: bearing, "
           "distance from apparent size, confidence eta / d");
-      sub->add_option("IMAGE", args->image, "The camera image (PNG, JPEG, PPM, BMP)")->required();
+      sub->add_option("IMAGE", args->image, "The camera image (PNG or JPEG)")->required();
       add_camera_option(sub, args->camera, kRoleObjectCamera);
       add_robot_option(sub, args->robot, "none: --camera gives the camera");
       add_mission_option(sub, args->mission, false);

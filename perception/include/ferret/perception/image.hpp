@@ -45,7 +45,7 @@ using DepthImageMm = Image<std::uint16_t, 1>;
 /// Largest width or height ferret reads (a larger image is bad input, not a long run).
 inline constexpr int kMaxImageSidePx = 16384;
 
-/// Reads a colour or grey camera frame (PNG, JPEG, PPM/PGM, BMP: what OpenCV decodes),
+/// Reads a colour or grey camera frame (PNG or JPEG),
 /// converted to grey / RGB. Throws InputError naming the file for a missing file, a
 /// file that is not an image, and a size beyond kMaxImageSidePx.
 [[nodiscard]] GrayImage read_gray_image(const std::filesystem::path& path);
