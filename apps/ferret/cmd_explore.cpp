@@ -2,7 +2,8 @@
 //   ferret explore --map examples/maps/sparse.yaml --start 1,4,0 --object 9,6
 //                  --method cdos --seed 1 --out out/
 // Prints the time to find, the path length and the number of decisions; with --out,
-// writes G.png, O.png, G_O.png (the paper's map figure) and log.json.
+// writes G.png, O.png, G_O.png (the paper's map figure) and log.json. With --retrieve,
+// the miniUGV's whole mission (docs/mission.md): the transitions, then the outcome.
 
 #include <fmt/format.h>
 
@@ -25,6 +26,7 @@
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/search_robot.hpp"
+#include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -44,6 +46,7 @@ struct Options {
   bool closest_approach = false;
   std::string planner =
       "grid";  // "ompl": the frontier valid-state sampler with PRM (docs/planning.md)
+  bool retrieve = false;  // the miniUGV's whole mission (ugv/mini_ugv_mission.hpp)
 };
 
 void check_positive(double value, const char* option) {
@@ -51,9 +54,77 @@ void check_positive(double value, const char* option) {
     throw InputError(option, "", "a number > 0", std::to_string(value));
 }
 
+// --retrieve: search, servo, grasp, return, wait for the winch; the transitions print
+// as they happen (simulated time), then the outcome.
+void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& start,
+                   const std::optional<Eigen::Vector2d>& object, const ExplorationSettings& s,
+                   const std::string& robot_name) {
+  UgvMissionRunSettings settings;
+  settings.exploration = s;
+  settings.ugv.explore_timeout_s = o.time_limit_s;
+  TransitionLog log;
+  log.on_transition([](const Transition& t) {
+    std::printf("%s\n", TransitionLog::format(t).c_str());
+    std::fflush(stdout);
+  });
+  const UgvMissionRunResult r = run_ugv_mission(map, start, object, settings, o.seed, &log);
+  std::printf(
+      "method: %s\noutcome: %s\ntime_s: %.2f\npath_m: %.2f\nbattery_left: %.3f\n"
+      "grasp_attempts: %d\n",
+      s.method.c_str(), std::string(to_string(r.outcome)).c_str(), r.time_s, r.path_m,
+      r.battery_left, r.grasp_attempts);
+  if (o.out.empty()) return;
+
+  const fs::path out(o.out);
+  OutputSet files(out, OutputKind::kDirectory);
+  EpisodeResult figure;  // the figure of the search part, drawn from the mission's maps
+  figure.found = r.found_right;
+  figure.time_s = r.time_s;
+  figure.path_m = r.path_m;
+  figure.end_reason = std::string(to_string(r.outcome));
+  figure.found_W = r.found_W.value_or(Eigen::Vector2d::Zero());
+  figure.trajectory = r.trajectory;
+  figure.grid = r.grid;
+  figure.objects = r.objects;
+  // With no object the figure marks it outside the map, where nothing is drawn.
+  const Eigen::Vector2d drawn = object.value_or(Eigen::Vector2d(-1e6, -1e6));
+  write_exploration_images(
+      map, drawn, figure, files.staging_dir(),
+      fmt::format("{}, {} mission{}, seed {}: {}", fs::path(o.map).filename().string(), s.method,
+                  robot_name.empty() ? std::string() : ", robot " + robot_name, o.seed,
+                  to_string(r.outcome)));
+  nlohmann::json j;
+  j["map"] = o.map;
+  j["method"] = s.method;
+  j["seed"] = o.seed;
+  j["start"] = {start.x_m, start.y_m, start.yaw_rad};
+  j["object"] = object ? nlohmann::json{object->x(), object->y()} : nlohmann::json();
+  j["result"] = {{"outcome", to_string(r.outcome)},
+                 {"final_state", to_string(r.final_state)},
+                 {"time_s", r.time_s},
+                 {"path_m", r.path_m},
+                 {"battery_left", r.battery_left},
+                 {"grasp_attempts", r.grasp_attempts},
+                 {"found_at", r.found_W ? nlohmann::json{r.found_W->x(), r.found_W->y()}
+                                        : nlohmann::json()}};
+  auto& transitions = j["transitions"] = nlohmann::json::array();
+  for (const auto& t : r.transitions)
+    transitions.push_back({{"t_s", t.t_s}, {"from", t.from}, {"to", t.to}, {"reason", t.reason}});
+  auto& trajectory = j["trajectory"] = nlohmann::json::array();  // every 0.1 s
+  for (std::size_t k = 0; k < r.trajectory.size(); k += 2)
+    trajectory.push_back({r.trajectory[k].x_m, r.trajectory[k].y_m, r.trajectory[k].yaw_rad});
+  files.write_text("log.json", j.dump(1) + "\n");
+  files.commit();
+  std::printf("wrote: %s %s %s %s\n", (out / "G.png").c_str(), (out / "O.png").c_str(),
+              (out / "G_O.png").c_str(), (out / "log.json").c_str());
+}
+
 void run(const Options& o) {
   const auto start_v = parse_number_list(o.start, 3, "--start");
-  const auto object_v = parse_number_list(o.object, 2, "--object");
+  // "none": an empty hidden space (only for --retrieve, where "no object" is a result).
+  const bool no_object = o.retrieve && o.object == "none";
+  const auto object_v =
+      no_object ? std::vector<double>{0.0, 0.0} : parse_number_list(o.object, 2, "--object");
   if (!has_exploration_policy(o.method)) {
     std::string names;
     for (const auto& n : exploration_policy_names()) names += (names.empty() ? "" : ", ") + n;
@@ -86,7 +157,7 @@ void run(const Options& o) {
   const Eigen::Vector2d object(object_v[0], object_v[1]);
   if (!map.is_free(map.geometry.cell_at(start.x_m, start.y_m)))
     throw InputError("--start", "", "a position on a free cell of " + o.map, o.start);
-  if (!map.is_free(map.geometry.cell_at(object.x(), object.y())))
+  if (!no_object && !map.is_free(map.geometry.cell_at(object.x(), object.y())))
     throw InputError("--object", "", "a position on a free cell of " + o.map,
                      o.object);
 
@@ -122,6 +193,11 @@ void run(const Options& o) {
   s.cdos_closest_approach = o.closest_approach;
   s.record = !o.out.empty();
 
+  if (o.retrieve) {
+    run_retrieval(o, map, start, no_object ? std::nullopt : std::optional(object), s,
+                  robot ? robot->name : std::string());
+    return;
+  }
   const EpisodeResult r = run_exploration(map, start, object, s, o.seed);
 
   std::printf("method: %s\nfound: %s\ntime_s: %.2f\npath_m: %.2f\ndecisions: %d\nend: %s\n",
@@ -226,6 +302,10 @@ const CommandRegistration kExplore{
           ->capture_default_str();
       sub->add_flag("--closest-approach", o->closest_approach,
                     "cdos: d_{t+1} is the closest approach on the way");
+      sub->add_flag("--retrieve", o->retrieve,
+                    "The miniUGV's whole mission: search, servo to the object, grasp it with "
+                    "the EPM, return to the start and wait for the winch (--object none: an "
+                    "empty hidden space); --time-limit bounds the search");
       sub->callback([o, sub] {
         refuse_empty_out(sub, o->out);
         run(*o);

@@ -125,3 +125,39 @@ TEST(ExploreCli, ARobotWithoutTheSensorRolesIsBadInputNamingTheRole) {
 
 }  // namespace
 }  // namespace ferret::test
+
+namespace ferret::test {
+namespace {
+
+TEST(ExploreCli, RetrieveRunsTheWholeMissionAndLogsEveryTransition) {
+  Room room;
+  const std::string out = room.dir / "mission";
+  const auto r = run_cli("explore --map " + room.map +
+                         " --start 0.5,1,0 --object 3.2,0.8 --retrieve --seed 5 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("ugv  explore -> track"));
+  EXPECT_THAT(r.out, HasSubstr("ugv  grasp -> return"));
+  EXPECT_THAT(r.out, HasSubstr("outcome: object_retrieved"));
+  std::ifstream in(std::filesystem::path(out) / "log.json");
+  const auto log = nlohmann::json::parse(in);
+  EXPECT_EQ(log["result"]["outcome"], "object_retrieved");
+  EXPECT_EQ(log["result"]["final_state"], "done");
+  ASSERT_GE(log["transitions"].size(), 7u);
+  EXPECT_EQ(log["transitions"].back()["to"], "done");
+  EXPECT_TRUE(std::filesystem::is_regular_file(std::filesystem::path(out) / "G_O.png"));
+}
+
+TEST(ExploreCli, RetrieveInAnEmptySpaceReportsNoObject) {
+  Room room;
+  const auto r = run_cli("explore --map " + room.map +
+                         " --start 0.5,1,0 --object none --retrieve --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("outcome: no_object"));
+  // "none" is a mission's word: the plain search needs an object.
+  const auto bad = run_cli("explore --map " + room.map + " --start 0.5,1,0 --object none");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("--object"));
+}
+
+}  // namespace
+}  // namespace ferret::test

@@ -1,10 +1,9 @@
 #pragma once
 // One object search in the simulated hidden space (the episode of the paper's
-// experiment): the miniUGV starts at a pose, folds IR scans into G (20 Hz) and camera
-// frames into O (10 Hz), re-decides its goal with an exploration policy (10 Hz, or at
-// once when a goal is reached), drives the shortest known-free path with skid-steer
-// limits, and stops when a cell of O passes lambda2 (or nothing is left to explore,
-// or time runs out). docs/object_search.md describes the loop.
+// experiment): the miniUGV's explore controller (ugv/explore_controller.hpp) drives the
+// simulated miniUGV (sim_ugv_base.hpp) from a start pose, IR at 20 Hz, camera at 10 Hz,
+// until a cell of O passes lambda2 (or nothing is left to explore, or time runs out).
+// The harness alone knows the object and judges the find. docs/object_search.md.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -18,19 +17,10 @@
 #include "ferret/mapping/object_map.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/sim/hidden_space_sim.hpp"
+#include "ferret/ugv/explore_controller.hpp"
 #include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
-
-struct RobotOptions {
-  double max_velocity_mps = 2.0;
-  double max_yaw_rate_radps = 2.0;
-  double max_acceleration_mps2 = 2.0;
-  double clearance_m = 0.15;  ///< paths keep this far from occupied cells of G
-  /// Within this of the robot the clearance is waived, so that a robot that finds a
-  /// wall (or a gap narrower than twice the clearance) around it can drive out.
-  double escape_radius_m = 1.0;
-};
 
 struct ExplorationSettings {
   std::string method = "cdos";
@@ -43,15 +33,6 @@ struct ExplorationSettings {
   bool cdos_candidates_global = false;  ///< cdos option: score F_g, not F_v
   bool cdos_closest_approach = false;   ///< cdos option: d_{t+1} at the closest approach
   bool record = false;                  ///< keep the trajectory, decisions and final maps
-};
-
-struct DecisionRecord {
-  double time_s = 0.0;
-  Pose2 pose;
-  Eigen::Vector2d goal_W = Eigen::Vector2d::Zero();
-  std::string reason;
-  double score = 0.0;
-  std::size_t frontier_global = 0, frontier_visible = 0, evidence_cells = 0;
 };
 
 struct EpisodeResult {
@@ -68,6 +49,17 @@ struct EpisodeResult {
   std::shared_ptr<const ObjectMap> objects;
   std::vector<Cell> frontier;  ///< the frontier cells of G at the end
 };
+
+/// The controller's view of the simulated sensors.
+[[nodiscard]] UgvSensorGeometry sensor_geometry(const SensorOptions& sensors);
+/// The explore controller's options for a run of `settings` with `seed`; the object's
+/// position is kept for the oracle policy only.
+[[nodiscard]] ExploreOptions explore_options(const ExplorationSettings& settings,
+                                             std::uint64_t seed, const Eigen::Vector2d& object_W);
+
+/// The checks every simulated episode makes of its inputs.
+/// @throws std::invalid_argument for an unknown method or a start off the free space.
+void check_episode(const OccupancyMap2D& truth, const Pose2& start, const std::string& method);
 
 /// Runs one search. Deterministic for a given seed.
 /// @throws std::invalid_argument for an unknown method or a start off the free space.

@@ -1,0 +1,69 @@
+#pragma once
+// The simulated miniUGV: a UgvBase over the simulated hidden space. Unicycle
+// kinematics with the robot's limits, the IR and camera of HiddenSpaceSim, the EPM at
+// the robot's rear (contact when the rear touches the object; the object follows a
+// magnet that is on), and a battery that drains with time and speed. Odometry is the
+// true pose (the hidden space's maps are in the robot's own frame).
+
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "ferret/sim/hidden_space_sim.hpp"
+#include "ferret/ugv/path_follower.hpp"
+#include "ferret/ugv/ugv_base.hpp"
+
+namespace ferret {
+
+struct SimUgvOptions {
+  RobotOptions robot;
+  /// Centre to the rear face (the EPM), m: half the miniUGV's 130 mm length.
+  double rear_offset_m = 0.065;
+  /// Driving time a full battery gives at full speed, s (the real one: about 18 min).
+  double battery_endurance_s = 18.0 * 60.0;
+  /// Share of the full-speed drain the robot draws standing still (computer, sensors).
+  double idle_drain_share = 0.5;
+  double initial_battery_fraction = 1.0;
+  /// An object the magnet cannot hold (not ferromagnetic): contact, but no grip.
+  bool object_graspable = true;
+};
+
+class SimUgvBase final : public UgvBase {
+ public:
+  /// @param sim the sensors and the truth; must outlive the base. No object: pass a sim
+  ///        whose object is far outside the map.
+  SimUgvBase(HiddenSpaceSim& sim, const Pose2& start, SimUgvOptions options);
+
+  [[nodiscard]] std::string backend() const override { return "sim"; }
+  [[nodiscard]] Pose2 odometry() const override { return pose_; }
+  [[nodiscard]] double speed_mps() const override { return v_mps_; }
+  [[nodiscard]] RangeScan ir_scan() override { return sim_.ir_scan(pose_); }
+  [[nodiscard]] CameraFrame camera_frame(double time_s) override {
+    return sim_.camera_frame(pose_, time_s);
+  }
+  void command_velocity(double v_mps, double w_radps) override;
+  void set_epm(bool on) override { epm_on_ = on; }
+  [[nodiscard]] UgvStatus status() const override;
+
+  /// Moves the robot by dt under the last command (the world's step).
+  void step(double dt_s);
+  /// Ground truth, for the simulation's own bookkeeping (never for a controller).
+  [[nodiscard]] const Pose2& true_pose() const { return pose_; }
+  [[nodiscard]] bool object_held() const { return held_; }
+  [[nodiscard]] double distance_driven_m() const { return driven_m_; }
+
+ private:
+  [[nodiscard]] Eigen::Vector2d rear(const Pose2& pose) const;
+
+  HiddenSpaceSim& sim_;
+  SimUgvOptions options_;
+  Pose2 pose_;
+  VelocityCommand command_;
+  double v_mps_ = 0.0;
+  bool epm_on_ = false;
+  bool contact_ = false;
+  bool held_ = false;
+  double battery_ = 1.0;
+  double driven_m_ = 0.0;
+};
+
+}  // namespace ferret

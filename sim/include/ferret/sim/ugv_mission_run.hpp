@@ -1,0 +1,54 @@
+#pragma once
+// The miniUGV's whole mission in the simulated hidden space: MiniUgvMission driving a
+// SimUgvBase on a SimClock, the winch's lift simulated when the robot asks for it.
+// Deterministic for a seed; only this harness knows where the object really is.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "ferret/core/transition_log.hpp"
+#include "ferret/sim/exploration_run.hpp"
+#include "ferret/sim/sim_ugv_base.hpp"
+#include "ferret/ugv/mini_ugv_mission.hpp"
+
+namespace ferret {
+
+struct UgvMissionRunSettings {
+  /// Method, sensors, robot, mission (ExplorationSettings::time_limit_s is not used:
+  /// the mission's explore_timeout_s bounds the search).
+  ExplorationSettings exploration;
+  UgvMissionOptions ugv;  ///< its `explore` is filled from `exploration`
+  SimUgvOptions base;     ///< its `robot` is filled from `exploration`
+  double retract_time_s = 10.0;  ///< the winch lifting the robot out of the hidden space
+  double time_limit_s = 3600.0;  ///< the simulation's own bound (a mission that never ends)
+};
+
+struct UgvMissionRunResult {
+  UgvMissionOutcome outcome = UgvMissionOutcome::kNone;
+  UgvMissionState final_state = UgvMissionState::kIdle;
+  double time_s = 0.0;
+  double path_m = 0.0;
+  double battery_left = 1.0;
+  bool object_held = false;  ///< the truth: the object on the magnet at the end
+  /// Where O confirmed the object, and whether that was where it is (the truth).
+  std::optional<Eigen::Vector2d> found_W;
+  bool found_right = false;
+  int grasp_attempts = 0;
+  std::vector<Transition> transitions;
+  std::vector<Pose2> trajectory;  ///< one pose a tick
+  std::shared_ptr<const IrGrid> grid;
+  std::shared_ptr<const ObjectMap> objects;
+};
+
+/// @param object_W the object, or none (an empty hidden space)
+/// @param log      receives the transitions as they happen (may be null)
+/// @throws std::invalid_argument as run_exploration; InputError for bad options.
+[[nodiscard]] UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& start,
+                                                  const std::optional<Eigen::Vector2d>& object_W,
+                                                  const UgvMissionRunSettings& settings,
+                                                  std::uint64_t seed, TransitionLog* log = nullptr);
+
+}  // namespace ferret

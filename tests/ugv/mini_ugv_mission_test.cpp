@@ -1,0 +1,264 @@
+#include "ferret/ugv/mini_ugv_mission.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "ferret/core/error.hpp"
+#include "ferret/sim/ugv_mission_run.hpp"
+#include "support/test_maps.hpp"
+
+namespace ferret {
+namespace {
+
+const Pose2 kEntry{0.5, 1.0, 0.0};
+const Eigen::Vector2d kBehindPartition{3.2, 0.8};  // out of sight from the entry
+
+UgvMissionRunSettings settings() {
+  UgvMissionRunSettings s;
+  s.exploration.method = "cdos";
+  s.exploration.record = true;
+  s.ugv.explore_timeout_s = 200.0;
+  return s;
+}
+
+bool visited(const UgvMissionRunResult& r, UgvMissionState state) {
+  const std::string name(to_string(state));
+  return std::any_of(r.transitions.begin(), r.transitions.end(),
+                     [&](const Transition& t) { return t.to == name; });
+}
+
+double distance_to_entry(const UgvMissionRunResult& r) {
+  return (r.trajectory.back().position() - kEntry.position()).norm();
+}
+
+TEST(UgvMission, FindsGraspsAndBringsTheObjectBackToTheEntry) {
+  const auto map = test::small_hidden_space();
+  const auto r = run_ugv_mission(map, kEntry, kBehindPartition, settings(), 5);
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kObjectRetrieved) << to_string(r.outcome);
+  EXPECT_EQ(r.final_state, UgvMissionState::kDone);
+  EXPECT_TRUE(r.object_held);  // the simulator's truth agrees with the magnet's sensor
+  EXPECT_TRUE(r.found_right);
+  ASSERT_FALSE(r.trajectory.empty());
+  EXPECT_LE(distance_to_entry(r), 0.2 + 1e-9);
+  for (const auto s : {UgvMissionState::kExplore, UgvMissionState::kTrack, UgvMissionState::kTurn,
+                       UgvMissionState::kGrasp, UgvMissionState::kReturn,
+                       UgvMissionState::kAwaitRetract, UgvMissionState::kDone})
+    EXPECT_TRUE(visited(r, s)) << to_string(s);
+  // The transitions are in time order and each names its reason.
+  for (std::size_t i = 1; i < r.transitions.size(); ++i) {
+    EXPECT_LE(r.transitions[i - 1].t_s, r.transitions[i].t_s);
+    EXPECT_EQ(r.transitions[i - 1].to, r.transitions[i].from);
+    EXPECT_FALSE(r.transitions[i].reason.empty());
+  }
+  EXPECT_LT(r.battery_left, 1.0);
+  EXPECT_GT(r.path_m, 4.0);  // round the partition and back
+}
+
+TEST(UgvMission, ServoStopsAtTheStandoffAndTheMagnetFacesTheObject) {
+  const auto map = test::small_hidden_space();
+  const Eigen::Vector2d object{1.8, 2.3};  // in view of the entry
+  const auto r = run_ugv_mission(map, kEntry, object, settings(), 2);
+  ASSERT_EQ(r.outcome, UgvMissionOutcome::kObjectRetrieved) << to_string(r.outcome);
+  // The pose at the start of the grasp: d_min from the object, its back to it.
+  const auto grasp = std::find_if(r.transitions.begin(), r.transitions.end(),
+                                  [](const Transition& t) { return t.to == "grasp"; });
+  ASSERT_NE(grasp, r.transitions.end());
+  const auto k = static_cast<std::size_t>(std::lround(grasp->t_s / 0.05));
+  ASSERT_LT(k, r.trajectory.size());
+  const Pose2 p = r.trajectory[k];
+  EXPECT_NEAR((p.position() - object).norm(), 0.3, 0.06);
+  const Eigen::Vector2d to_object = object - p.position();
+  const double rear_bearing =
+      wrap_angle_rad(std::atan2(to_object.y(), to_object.x()) - (p.yaw_rad + std::numbers::pi));
+  EXPECT_LT(std::abs(rear_bearing), 0.2);
+  EXPECT_EQ(r.grasp_attempts, 1);
+}
+
+TEST(UgvMission, AnEmptyHiddenSpaceIsReportedAsSuchAndTheRobotComesBack) {
+  const auto map = test::small_hidden_space();
+  const auto r = run_ugv_mission(map, kEntry, std::nullopt, settings(), 3);
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kNoObject) << to_string(r.outcome);
+  EXPECT_FALSE(r.found_W.has_value());
+  EXPECT_FALSE(visited(r, UgvMissionState::kTrack));
+  EXPECT_LE(distance_to_entry(r), 0.2 + 1e-9);
+}
+
+TEST(UgvMission, AnObjectTheMagnetCannotHoldEndsAsGraspFailedAfterEveryAttempt) {
+  const auto map = test::small_hidden_space();
+  auto s = settings();
+  s.base.object_graspable = false;
+  s.ugv.grasp_attempts = 2;
+  const auto r = run_ugv_mission(map, kEntry, Eigen::Vector2d{1.8, 2.3}, s, 2);
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kGraspFailed) << to_string(r.outcome);
+  EXPECT_EQ(r.grasp_attempts, 2);
+  EXPECT_FALSE(r.object_held);
+  EXPECT_LE(distance_to_entry(r), 0.2 + 1e-9);
+}
+
+TEST(UgvMission, ALowBatteryEndsTheSearchWithTheWayBackStillCovered) {
+  const auto map = test::small_hidden_space();
+  auto s = settings();
+  // 20 s at full speed in all: less than exploring the whole space takes.
+  s.base.battery_endurance_s = 20.0;
+  s.ugv.battery_endurance_s = 20.0;
+  s.ugv.battery_reserve_fraction = 0.25;
+  const auto r = run_ugv_mission(map, kEntry, std::nullopt, s, 4);
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kBatteryLow) << to_string(r.outcome);
+  EXPECT_GT(r.battery_left, 0.0);  // it made it home on what was left
+  EXPECT_LE(distance_to_entry(r), 0.2 + 1e-9);
+}
+
+TEST(UgvMission, NobodyLiftingItOutEndsInRetractTimeout) {
+  const auto map = test::small_hidden_space();
+  auto s = settings();
+  s.retract_time_s = 1e9;
+  s.ugv.retract_timeout_s = 5.0;
+  const auto r = run_ugv_mission(map, kEntry, std::nullopt, s, 3);
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kRetractTimeout) << to_string(r.outcome);
+  const Transition& last = r.transitions.back();
+  EXPECT_EQ(last.from, "await_retract");
+  const auto await = std::find_if(r.transitions.begin(), r.transitions.end(),
+                                  [](const Transition& t) { return t.to == "await_retract"; });
+  ASSERT_NE(await, r.transitions.end());
+  EXPECT_NEAR(last.t_s - await->t_s, 5.0, 0.1);
+}
+
+TEST(UgvMission, SameSeedSameMission) {
+  const auto map = test::small_hidden_space();
+  const auto a = run_ugv_mission(map, kEntry, kBehindPartition, settings(), 9);
+  const auto b = run_ugv_mission(map, kEntry, kBehindPartition, settings(), 9);
+  EXPECT_EQ(a.time_s, b.time_s);
+  EXPECT_EQ(a.path_m, b.path_m);
+  ASSERT_EQ(a.transitions.size(), b.transitions.size());
+  for (std::size_t i = 0; i < a.transitions.size(); ++i)
+    EXPECT_EQ(a.transitions[i].t_s, b.transitions[i].t_s);
+}
+
+// A base that does nothing it is told: the state machine must still end every state.
+class DeadBase final : public UgvBase {
+ public:
+  explicit DeadBase(bool sees_object) : sees_(sees_object) {}
+  [[nodiscard]] std::string backend() const override { return "test"; }
+  [[nodiscard]] Pose2 odometry() const override { return {1.0, 1.0, 0.0}; }
+  [[nodiscard]] double speed_mps() const override { return 0.0; }
+  [[nodiscard]] RangeScan ir_scan() override {
+    RangeScan s;
+    s.X_WS = odometry();
+    s.max_range_m = 4.0;
+    for (int k = -5; k <= 5; ++k) s.beams.push_back({0.05 * k, 0.5});
+    return s;
+  }
+  [[nodiscard]] CameraFrame camera_frame(double time_s) override {
+    CameraFrame f;
+    f.time_s = time_s;
+    f.view = ir_scan();
+    if (sees_) f.detections.push_back({0.0, 0.35, 0.95});  // 0.35 m ahead: strong evidence
+    return f;
+  }
+  void command_velocity(double, double) override {}
+  void set_epm(bool on) override { epm_ = on; }
+  [[nodiscard]] UgvStatus status() const override { return {0.9, epm_, false}; }
+
+ private:
+  bool sees_;
+  bool epm_ = false;
+};
+
+UgvMissionOptions dead_options() {
+  UgvMissionOptions o;
+  o.explore_timeout_s = 3.0;
+  o.track_timeout_s = 2.0;
+  o.turn_timeout_s = 1.5;
+  o.return_timeout_min_s = 2.5;
+  return o;
+}
+
+UgvMissionRunResult drive_dead(DeadBase& base, const UgvMissionOptions& options,
+                               TransitionLog& log) {
+  SimClock clock;
+  const GridGeometry geo{0.0, 0.0, 0.05, 60, 40};
+  MiniUgvMission mission(base, clock, geo, options, &log);
+  mission.start();
+  for (int k = 1; k < 4000 && !mission.done(); ++k) {
+    mission.tick();
+    clock.set(k * mission.tick_s());
+  }
+  UgvMissionRunResult r;
+  r.outcome = mission.outcome();
+  r.final_state = mission.state();
+  r.time_s = clock.now_s();
+  r.transitions = log.all();
+  return r;
+}
+
+TEST(UgvMissionStates, ARobotThatCannotMoveTimesOutOfTheSearchAndTheReturn) {
+  DeadBase base(false);
+  TransitionLog log;
+  const auto r = drive_dead(base, dead_options(), log);
+  EXPECT_EQ(r.final_state, UgvMissionState::kDone);
+  // It is at the entry already (it never moved): explore times out or ends explored,
+  // then the return finds it home.
+  ASSERT_GE(r.transitions.size(), 3u);
+  EXPECT_EQ(r.transitions[1].from, "explore");
+  EXPECT_EQ(r.transitions[1].to, "return");
+  EXPECT_EQ(r.transitions[2].to, "await_retract");
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kRetractTimeout);
+}
+
+TEST(UgvMissionStates, AServoThatNeverClosesInTimesOutOfTrackAndTheTurnTimesOut) {
+  DeadBase base(true);  // sees the object 0.35 m ahead forever, never gets nearer
+  TransitionLog log;
+  auto o = dead_options();
+  o.standoff_m = 0.2;
+  const auto r = drive_dead(base, o, log);
+  std::vector<std::string> path;
+  for (const auto& t : r.transitions) path.push_back(t.to);
+  ASSERT_GE(path.size(), 3u);
+  EXPECT_EQ(path[0], "explore");
+  EXPECT_EQ(path[1], "track");
+  EXPECT_EQ(path[2], "return");
+  EXPECT_NE(r.transitions[2].reason.find("in time"), std::string::npos) << r.transitions[2].reason;
+  EXPECT_NEAR(r.transitions[2].t_s - r.transitions[1].t_s, 2.0, 0.11);
+  EXPECT_EQ(r.final_state, UgvMissionState::kDone);
+}
+
+TEST(UgvMissionStates, StopAbortsFromAnyStateAndTicksAfterDoneDoNothing) {
+  DeadBase base(false);
+  SimClock clock;
+  TransitionLog log;
+  MiniUgvMission mission(base, clock, {0.0, 0.0, 0.05, 60, 40}, dead_options(), &log);
+  mission.start();
+  mission.tick();
+  mission.stop("operator");
+  EXPECT_EQ(mission.outcome(), UgvMissionOutcome::kAborted);
+  const auto n = log.all().size();
+  mission.tick();
+  mission.stop("again");
+  EXPECT_EQ(log.all().size(), n);
+  EXPECT_NE(log.all().back().reason.find("operator"), std::string::npos);
+}
+
+TEST(UgvMissionStates, BadOptionsNameTheField) {
+  UgvMissionOptions o;
+  o.standoff_m = 0.1;  // no room to turn next to the object
+  try {
+    o.validate("mission.yaml");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "ugv.standoff_m");
+  }
+  o = {};
+  o.track_timeout_s = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(o.validate("m"), InputError);
+  o = {};
+  o.grasp_attempts = 0;
+  EXPECT_THROW(o.validate("m"), InputError);
+}
+
+}  // namespace
+}  // namespace ferret

@@ -1,0 +1,124 @@
+#pragma once
+// The miniUGV's object search (the explore state of its mission, and the episode of
+// the paper's experiment): fold IR scans into G and camera frames into O, re-decide
+// the goal with an exploration policy (every decision period, or at once when a goal
+// is reached or given up), and command the path follower. It sees only what the
+// sensors report; the simulator's truth never reaches it (the oracle policy's object
+// position is an explicit option an experiment sets). docs/object_search.md.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ferret/core/pose.hpp"
+#include "ferret/mapping/ir_grid.hpp"
+#include "ferret/mapping/object_map.hpp"
+#include "ferret/ugv/path_follower.hpp"
+#include "ferret/urdf/mission_config.hpp"
+
+namespace ferret {
+
+class FrontierTracker;
+class GridPathPlanner;
+class ExplorationPolicy;
+struct ExplorationGoal;
+
+/// The sensors' geometry as the controller needs it (the simulator's SensorOptions
+/// and a robot's URDF both give it).
+struct UgvSensorGeometry {
+  double ir_fov_rad = deg_to_rad(30.0);  ///< beta
+  double ir_range_m = 4.0;               ///< D_IR
+  double ir_rate_hz = 20.0;              ///< the controller's tick
+  double camera_range_m = 4.0;           ///< D_cam
+  double camera_rate_hz = 10.0;
+  double object_radius_m = 0.1;
+};
+
+struct ExploreOptions {
+  std::string method = "cdos";
+  UgvSensorGeometry sensors;
+  RobotOptions robot;
+  MissionConfig mission;
+  double decision_period_s = 0.1;
+  int max_revisits = 3;  ///< revisits of the strongest evidence once exploration ends
+  bool cdos_candidates_global = false;  ///< cdos option: score F_g, not F_v
+  bool cdos_closest_approach = false;   ///< cdos option: d_{t+1} at the closest approach
+  std::uint64_t seed = 0;               ///< for policies that draw random numbers
+  /// Only for policies that ask (the oracle): the object's true position.
+  std::optional<Eigen::Vector2d> oracle_object_W;
+  bool record_decisions = false;
+};
+
+struct DecisionRecord {
+  double time_s = 0.0;
+  Pose2 pose;
+  Eigen::Vector2d goal_W = Eigen::Vector2d::Zero();
+  std::string reason;
+  double score = 0.0;
+  std::size_t frontier_global = 0, frontier_visible = 0, evidence_cells = 0;
+};
+
+class ExploreController {
+ public:
+  /// @throws std::invalid_argument for an unknown method.
+  ExploreController(const GridGeometry& geometry, const Pose2& start, ExploreOptions options);
+  ~ExploreController();
+  ExploreController(const ExploreController&) = delete;
+  ExploreController& operator=(const ExploreController&) = delete;
+
+  /// Folds one IR scan into G.
+  void observe_scan(const RangeScan& scan);
+  /// Folds one camera frame into O; returns the cell that passed lambda2, if one did.
+  std::optional<Cell> observe_frame(const CameraFrame& frame);
+  /// Whether a camera frame is due at this tick (every camera_rate of the IR rate).
+  [[nodiscard]] bool frame_due(long tick) const { return tick % camera_every_ == 0; }
+
+  struct Command {
+    VelocityCommand velocity;
+    bool explored = false;  ///< nothing left to explore or revisit: the search is over
+  };
+  /// Decides (when due) and returns the command for the next tick. `tick` counts from
+  /// 0 at the start; the pose is the odometry's.
+  Command decide(long tick, const Pose2& pose);
+
+  [[nodiscard]] double tick_s() const { return dt_s_; }
+  [[nodiscard]] const IrGrid& grid() const { return *grid_; }
+  [[nodiscard]] const ObjectMap& objects() const { return *objects_; }
+  [[nodiscard]] std::shared_ptr<const IrGrid> grid_ptr() const { return grid_; }
+  [[nodiscard]] std::shared_ptr<const ObjectMap> objects_ptr() const { return objects_; }
+  [[nodiscard]] int decisions() const { return decisions_; }
+  [[nodiscard]] const std::vector<DecisionRecord>& decision_log() const { return decision_log_; }
+  /// The frontier cells of G now.
+  [[nodiscard]] std::vector<Cell> frontier();
+
+ private:
+  void drop_goal(bool blacklist);
+
+  GridGeometry geo_;
+  ExploreOptions options_;
+  std::shared_ptr<IrGrid> grid_;
+  std::shared_ptr<ObjectMap> objects_;
+  std::unique_ptr<FrontierTracker> tracker_;
+  std::unique_ptr<GridPathPlanner> planner_;
+  std::unique_ptr<ExplorationPolicy> policy_;
+  double view_distance_m_ = 0.95;
+  PathFollower follower_;
+  double dt_s_ = 0.05;
+  int camera_every_ = 2, decide_every_ = 2;
+  double escape_m_ = 1.0;
+
+  std::unique_ptr<ExplorationGoal> goal_;
+  bool goal_is_revisit_ = false;
+  int revisits_ = 0;
+  bool decide_now_ = true;
+  double last_full_decision_s_ = 0.0;
+  Pose2 progress_pose_;
+  double progress_time_s_ = 0.0;
+  int decisions_ = 0;
+  std::vector<DecisionRecord> decision_log_;
+};
+
+}  // namespace ferret

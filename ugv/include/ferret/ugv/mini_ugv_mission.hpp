@@ -1,0 +1,141 @@
+#pragma once
+// The miniUGV's mission controller (paper sect. III-IV): from the hidden space's entry,
+//   explore        the object search (ExploreController) until a cell of O passes lambda2
+//   track          visual servoing on the detector's bearing and distance to d_min
+//   turn           180 degrees in place, the EPM (at the rear) towards the object
+//   grasp          EPM on, back up to push and confirm contact (retry, then give up)
+//   return         back to the entry on G's known-free cells
+//   await_retract  stopped at the entry, asking the UAV's winch to lift it out
+//   done           a named outcome (object_retrieved, no_object, grasp_failed, ...)
+// Every state has a timeout and a defined exit; every transition goes to the
+// TransitionLog with the clock's time and the reason. The battery bounds the search:
+// when what is left no longer covers the way back (plus a reserve) it returns.
+// The controller sees the UgvBase and the Clock only, never the simulator's truth.
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "ferret/core/clock.hpp"
+#include "ferret/core/transition_log.hpp"
+#include "ferret/ugv/explore_controller.hpp"
+#include "ferret/ugv/ugv_base.hpp"
+
+namespace ferret {
+
+class GridPathPlanner;
+
+enum class UgvMissionState { kIdle, kExplore, kTrack, kTurn, kGrasp, kReturn, kAwaitRetract, kDone };
+[[nodiscard]] std::string_view to_string(UgvMissionState state);
+
+enum class UgvMissionOutcome {
+  kNone,             ///< not done yet
+  kObjectRetrieved,  ///< at the entry with the object on the magnet, lifted out
+  kNoObject,         ///< explored everything reachable, no object: a result, not a failure
+  kGraspFailed,      ///< no contact after every attempt
+  kTrackLost,        ///< the object out of sight too long while servoing
+  kBatteryLow,       ///< returned because the battery would not cover more search
+  kSearchTimeout,    ///< the search's time limit
+  kReturnFailed,     ///< no way back to the entry within the return's timeout
+  kRetractTimeout,   ///< at the entry, but nobody lifted it out
+  kAborted,          ///< stop() (the UAV or the operator)
+};
+[[nodiscard]] std::string_view to_string(UgvMissionOutcome outcome);
+
+struct UgvMissionOptions {
+  ExploreOptions explore;
+  double standoff_m = 0.3;             ///< d_min: the servo stops this far (centre to object)
+  double servo_max_speed_mps = 0.3;
+  double servo_gain_per_s = 1.0;       ///< v = gain (d - d_min)
+  double servo_yaw_gain_per_s = 3.0;   ///< w = gain * bearing
+  double track_lost_s = 3.0;           ///< no detection this long: lost
+  double track_timeout_s = 30.0;
+  double turn_timeout_s = 10.0;
+  double rear_offset_m = 0.065;        ///< centre to the EPM face (half of 130 mm)
+  double grasp_speed_mps = 0.1;
+  double grasp_overshoot_m = 0.05;     ///< back up this much past the expected contact
+  int grasp_attempts = 3;
+  double grasp_timeout_s = 15.0;       ///< per attempt
+  double explore_timeout_s = 600.0;
+  double entry_tolerance_m = 0.2;      ///< "at the entry"
+  double return_timeout_min_s = 30.0;  ///< and 4x the planned path's time at full speed
+  double retract_timeout_s = 120.0;
+  /// Driving time of a full battery at full speed, s (the real one: about 18 min); the
+  /// return estimate divides the way back by half the top speed.
+  double battery_endurance_s = 18.0 * 60.0;
+  double battery_reserve_fraction = 0.05;
+
+  /// Checks every value (finite, positive where it must be). Throws InputError naming
+  /// the field with `source` as the file.
+  void validate(const std::string& source) const;
+};
+
+class MiniUgvMission {
+ public:
+  /// configure: the maps are built on `geometry` (the hidden space's grid, in the
+  /// robot's odometry frame); `log` may be null.
+  MiniUgvMission(UgvBase& base, const Clock& clock, const GridGeometry& geometry,
+                 UgvMissionOptions options, TransitionLog* log);
+  ~MiniUgvMission();
+  MiniUgvMission(const MiniUgvMission&) = delete;
+  MiniUgvMission& operator=(const MiniUgvMission&) = delete;
+
+  /// At the entry (the pose now is the entry): idle -> explore.
+  void start();
+  /// One control step at the IR rate (explore_controller().tick_s()).
+  void tick();
+  /// Stops the wheels and ends the mission as aborted (the EPM keeps what it holds).
+  void stop(const std::string& reason);
+  /// The winch has lifted the robot out: await_retract -> done.
+  void retracted();
+
+  [[nodiscard]] UgvMissionState state() const { return state_; }
+  [[nodiscard]] UgvMissionOutcome outcome() const { return outcome_; }
+  [[nodiscard]] bool done() const { return state_ == UgvMissionState::kDone; }
+  [[nodiscard]] bool wants_retraction() const { return state_ == UgvMissionState::kAwaitRetract; }
+  /// Where O confirmed the object, once it did.
+  [[nodiscard]] std::optional<Eigen::Vector2d> found_W() const { return found_W_; }
+  [[nodiscard]] const ExploreController& explore_controller() const { return *explore_; }
+  [[nodiscard]] double tick_s() const { return explore_->tick_s(); }
+  [[nodiscard]] const Eigen::Vector2d& entry_W() const { return entry_W_; }
+  [[nodiscard]] int grasp_attempts() const { return grasp_attempt_; }
+
+ private:
+  void enter(UgvMissionState next, const std::string& reason);
+  void finish(UgvMissionOutcome outcome, const std::string& reason);
+  void begin_return(UgvMissionOutcome outcome, const std::string& reason);
+  [[nodiscard]] bool battery_calls_return(const Pose2& pose);
+  [[nodiscard]] VelocityCommand servo(const Pose2& pose, const CameraFrame* frame);
+  [[nodiscard]] VelocityCommand guarded(const Pose2& pose, VelocityCommand c) const;
+  [[nodiscard]] std::vector<Eigen::Vector2d> path_home(const Pose2& pose);
+
+  UgvBase& base_;
+  const Clock& clock_;
+  GridGeometry geo_;
+  UgvMissionOptions options_;
+  TransitionLog* log_;
+  std::unique_ptr<ExploreController> explore_;
+  std::unique_ptr<GridPathPlanner> home_planner_;
+  PathFollower follower_;
+
+  UgvMissionState state_ = UgvMissionState::kIdle;
+  UgvMissionOutcome outcome_ = UgvMissionOutcome::kNone;
+  UgvMissionOutcome return_outcome_ = UgvMissionOutcome::kNone;
+  double state_since_s_ = 0.0;
+  double state_timeout_s_ = 0.0;
+  long tick_ = 0;
+  long explore_tick_ = 0;
+  Eigen::Vector2d entry_W_ = Eigen::Vector2d::Zero();
+  std::optional<Eigen::Vector2d> found_W_;
+  Eigen::Vector2d target_W_ = Eigen::Vector2d::Zero();  ///< the object as the servo sees it
+  double last_detection_s_ = 0.0;
+  double turn_target_rad_ = 0.0;
+  Eigen::Vector2d grasp_from_W_ = Eigen::Vector2d::Zero();
+  int grasp_attempt_ = 0;
+  double next_battery_check_s_ = 0.0;
+  double next_replan_s_ = 0.0;
+};
+
+}  // namespace ferret

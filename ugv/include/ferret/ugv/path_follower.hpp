@@ -1,0 +1,61 @@
+#pragma once
+// The miniUGV's skid-steer path follower (pure pursuit with turn-in-place) and the
+// robot's motion limits. It returns a velocity command for the base; it only ever
+// steers into cells that G knows to be free: the robot does not drive into space its
+// IR has not seen.
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "ferret/core/pose.hpp"
+#include "ferret/mapping/ir_grid.hpp"
+
+namespace ferret {
+
+struct RobotOptions {
+  double max_velocity_mps = 2.0;
+  double max_yaw_rate_radps = 2.0;
+  double max_acceleration_mps2 = 2.0;
+  double clearance_m = 0.15;  ///< paths keep this far from occupied cells of G
+  /// Within this of the robot the clearance is waived, so that a robot that finds a
+  /// wall (or a gap narrower than twice the clearance) around it can drive out.
+  double escape_radius_m = 1.0;
+};
+
+struct VelocityCommand {
+  double v_mps = 0.0;
+  double w_radps = 0.0;
+};
+
+/// Where a unicycle ends after dt with command `c`: the yaw first, then the step
+/// along the new heading. Bases and the follower's own look-ahead share it.
+[[nodiscard]] Pose2 integrate_unicycle(const Pose2& pose, const VelocityCommand& c, double dt_s);
+
+class PathFollower {
+ public:
+  explicit PathFollower(const RobotOptions& robot) : robot_(robot) {}
+
+  /// A new path (waypoints in W); with a heading, the goal is a viewpoint to stand on
+  /// and face.
+  void set_path(std::vector<Eigen::Vector2d> path, std::optional<double> heading_rad);
+  [[nodiscard]] bool has_path() const { return !path_.empty(); }
+  void clear() { path_.clear(); }
+
+  /// The command for the next dt from `pose`; `reached` is set once the goal (and
+  /// heading) is reached. Keeps the last commanded speed for its acceleration limit.
+  VelocityCommand step(const Pose2& pose, const IrGrid& grid, double dt_s, bool& reached);
+  /// The speed last commanded.
+  [[nodiscard]] double speed_mps() const { return v_mps_; }
+
+ private:
+  RobotOptions robot_;
+  std::vector<Eigen::Vector2d> path_;
+  int precise_ = 0;           ///< waypoints left to follow precisely after a blocked step
+  bool has_heading_ = false;  // (not std::optional: GCC 12 warns falsely about it here)
+  double heading_rad_ = 0.0;
+  std::size_t next_ = 0;
+  double v_mps_ = 0.0;
+};
+
+}  // namespace ferret

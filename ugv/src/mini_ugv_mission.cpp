@@ -1,0 +1,384 @@
+#include "ferret/ugv/mini_ugv_mission.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ferret/core/error.hpp"
+#include "ferret/core/number.hpp"
+#include "ferret/planning/grid_path_planner.hpp"
+
+namespace ferret {
+namespace {
+
+constexpr double kTurnTolerance_rad = 0.05;
+constexpr double kServoBearingTolerance_rad = 0.1;
+constexpr double kServoDistanceTolerance_m = 0.03;
+constexpr double kBatteryCheckPeriod_s = 1.0;
+constexpr double kReplanPeriod_s = 1.0;
+
+}  // namespace
+
+std::string_view to_string(UgvMissionState state) {
+  switch (state) {
+    case UgvMissionState::kIdle: return "idle";
+    case UgvMissionState::kExplore: return "explore";
+    case UgvMissionState::kTrack: return "track";
+    case UgvMissionState::kTurn: return "turn";
+    case UgvMissionState::kGrasp: return "grasp";
+    case UgvMissionState::kReturn: return "return";
+    case UgvMissionState::kAwaitRetract: return "await_retract";
+    case UgvMissionState::kDone: return "done";
+  }
+  return "?";
+}
+
+std::string_view to_string(UgvMissionOutcome outcome) {
+  switch (outcome) {
+    case UgvMissionOutcome::kNone: return "none";
+    case UgvMissionOutcome::kObjectRetrieved: return "object_retrieved";
+    case UgvMissionOutcome::kNoObject: return "no_object";
+    case UgvMissionOutcome::kGraspFailed: return "grasp_failed";
+    case UgvMissionOutcome::kTrackLost: return "track_lost";
+    case UgvMissionOutcome::kBatteryLow: return "battery_low";
+    case UgvMissionOutcome::kSearchTimeout: return "search_timeout";
+    case UgvMissionOutcome::kReturnFailed: return "return_failed";
+    case UgvMissionOutcome::kRetractTimeout: return "retract_timeout";
+    case UgvMissionOutcome::kAborted: return "aborted";
+  }
+  return "?";
+}
+
+void UgvMissionOptions::validate(const std::string& source) const {
+  const auto positive = [&](double v, const char* field, std::string_view unit) {
+    check_number(v, NumberRange::positive(1e6, unit), source, field);
+  };
+  positive(standoff_m, "ugv.standoff_m", "m");
+  positive(servo_max_speed_mps, "ugv.servo_max_speed_mps", "m/s");
+  positive(servo_gain_per_s, "ugv.servo_gain_per_s", "1/s");
+  positive(servo_yaw_gain_per_s, "ugv.servo_yaw_gain_per_s", "1/s");
+  positive(track_lost_s, "ugv.track_lost_s", "s");
+  positive(track_timeout_s, "ugv.track_timeout_s", "s");
+  positive(turn_timeout_s, "ugv.turn_timeout_s", "s");
+  check_number(rear_offset_m, NumberRange::non_negative(10.0, "m"), source, "ugv.rear_offset_m");
+  positive(grasp_speed_mps, "ugv.grasp_speed_mps", "m/s");
+  check_number(grasp_overshoot_m, NumberRange::non_negative(10.0, "m"), source,
+               "ugv.grasp_overshoot_m");
+  if (grasp_attempts < 1 || grasp_attempts > 100)
+    throw InputError(source, "ugv.grasp_attempts", "an integer in [1, 100]",
+                     std::to_string(grasp_attempts));
+  positive(grasp_timeout_s, "ugv.grasp_timeout_s", "s");
+  positive(explore_timeout_s, "ugv.explore_timeout_s", "s");
+  positive(entry_tolerance_m, "ugv.entry_tolerance_m", "m");
+  positive(return_timeout_min_s, "ugv.return_timeout_min_s", "s");
+  positive(retract_timeout_s, "ugv.retract_timeout_s", "s");
+  positive(battery_endurance_s, "ugv.battery_endurance_s", "s");
+  check_number(battery_reserve_fraction, NumberRange::closed(0.0, 0.9), source,
+               "ugv.battery_reserve_fraction");
+  if (standoff_m <= rear_offset_m + explore.sensors.object_radius_m)
+    throw InputError(source, "ugv.standoff_m",
+                     "more than ugv.rear_offset_m + the object's radius (room to turn)",
+                     std::to_string(standoff_m));
+}
+
+MiniUgvMission::MiniUgvMission(UgvBase& base, const Clock& clock, const GridGeometry& geometry,
+                               UgvMissionOptions options, TransitionLog* log)
+    : base_(base),
+      clock_(clock),
+      geo_(geometry),
+      options_(std::move(options)),
+      log_(log),
+      follower_(options_.explore.robot) {
+  options_.validate("ugv mission options");
+  home_planner_ = std::make_unique<GridPathPlanner>(geo_);
+}
+
+MiniUgvMission::~MiniUgvMission() = default;
+
+void MiniUgvMission::enter(UgvMissionState next, const std::string& reason) {
+  if (log_)
+    log_->add({clock_.now_s(), "ugv", std::string(to_string(state_)), std::string(to_string(next)),
+               reason});
+  state_ = next;
+  state_since_s_ = clock_.now_s();
+  follower_.clear();
+}
+
+void MiniUgvMission::finish(UgvMissionOutcome outcome, const std::string& reason) {
+  base_.command_velocity(0.0, 0.0);
+  outcome_ = outcome;
+  enter(UgvMissionState::kDone, std::string(to_string(outcome)) + ": " + reason);
+}
+
+void MiniUgvMission::start() {
+  if (state_ != UgvMissionState::kIdle) return;
+  const Pose2 pose = base_.odometry();
+  entry_W_ = pose.position();
+  explore_ = std::make_unique<ExploreController>(geo_, pose, options_.explore);
+  tick_ = explore_tick_ = 0;
+  next_battery_check_s_ = clock_.now_s();
+  enter(UgvMissionState::kExplore, "started at the entry");
+  state_timeout_s_ = options_.explore_timeout_s;
+}
+
+void MiniUgvMission::stop(const std::string& reason) {
+  if (state_ == UgvMissionState::kDone) return;
+  finish(UgvMissionOutcome::kAborted, reason);
+}
+
+void MiniUgvMission::retracted() {
+  if (state_ != UgvMissionState::kAwaitRetract) return;
+  const UgvStatus status = base_.status();
+  const bool held = status.epm_on && status.contact;
+  if (held) {
+    finish(UgvMissionOutcome::kObjectRetrieved, "lifted out with the object");
+  } else if (return_outcome_ == UgvMissionOutcome::kObjectRetrieved) {
+    finish(UgvMissionOutcome::kGraspFailed, "lifted out, but the object was lost on the way");
+  } else {
+    finish(return_outcome_, "lifted out");
+  }
+}
+
+std::vector<Eigen::Vector2d> MiniUgvMission::path_home(const Pose2& pose) {
+  const Cell robot = geo_.cell_at(pose.x_m, pose.y_m);
+  const Cell entry = geo_.cell_at(entry_W_.x(), entry_W_.y());
+  home_planner_->compute(explore_->grid(), robot, GridPathPlanner::Traversal::kKnownFree,
+                         options_.explore.robot.escape_radius_m);
+  if (!home_planner_->reachable(entry)) return {};
+  auto path = home_planner_->path_to(entry);
+  if (!path.empty()) path.back() = entry_W_;  // the entry itself, not its cell's centre
+  return path;
+}
+
+bool MiniUgvMission::battery_calls_return(const Pose2& pose) {
+  const double now = clock_.now_s();
+  if (now < next_battery_check_s_) return false;
+  next_battery_check_s_ = now + kBatteryCheckPeriod_s;
+  const Cell robot = geo_.cell_at(pose.x_m, pose.y_m);
+  const Cell entry = geo_.cell_at(entry_W_.x(), entry_W_.y());
+  home_planner_->compute(explore_->grid(), robot, GridPathPlanner::Traversal::kKnownFree,
+                         options_.explore.robot.escape_radius_m);
+  // The way back as driven (known free) or, if the map cannot say, as the crow flies
+  // (a floor for it: a robot that came in got here somehow).
+  const double way_m = home_planner_->reachable(entry)
+                           ? static_cast<double>(home_planner_->distance_m(entry))
+                           : (pose.position() - entry_W_).norm();
+  const double return_s = way_m / (0.5 * options_.explore.robot.max_velocity_mps);
+  const double needed = return_s / options_.battery_endurance_s + options_.battery_reserve_fraction;
+  return base_.status().battery_fraction <= needed;
+}
+
+void MiniUgvMission::begin_return(UgvMissionOutcome outcome, const std::string& reason) {
+  return_outcome_ = outcome;
+  enter(UgvMissionState::kReturn, reason);
+  const Pose2 pose = base_.odometry();
+  auto path = path_home(pose);
+  double length_m = (pose.position() - entry_W_).norm();
+  if (!path.empty()) {
+    length_m = 0.0;
+    Eigen::Vector2d prev = pose.position();
+    for (const auto& p : path) {
+      length_m += (p - prev).norm();
+      prev = p;
+    }
+    follower_.set_path(std::move(path), std::nullopt);
+  }
+  state_timeout_s_ = std::max(options_.return_timeout_min_s,
+                              4.0 * length_m / options_.explore.robot.max_velocity_mps);
+  next_replan_s_ = clock_.now_s() + kReplanPeriod_s;
+}
+
+VelocityCommand MiniUgvMission::guarded(const Pose2& pose, VelocityCommand c) const {
+  // Forward only into cells G knows to be free (as the path follower): the servo must
+  // not drive the robot into a wall it has not seen.
+  const Pose2 next = integrate_unicycle(pose, c, explore_->tick_s());
+  const Cell to = geo_.cell_at(next.x_m, next.y_m);
+  const bool same = to == geo_.cell_at(pose.x_m, pose.y_m);
+  if (c.v_mps > 0 && !same &&
+      (!geo_.contains(to) || explore_->grid().label(to) != GridLabel::kFree))
+    c.v_mps = 0.0;
+  return c;
+}
+
+VelocityCommand MiniUgvMission::servo(const Pose2& pose, const CameraFrame* frame) {
+  const double now = clock_.now_s();
+  if (frame && !frame->detections.empty()) {
+    // The detection nearest to where the object is expected (one object, but a
+    // detector may report a spurious second).
+    const ObjectDetection* best = nullptr;
+    double best_err = std::numeric_limits<double>::infinity();
+    for (const auto& d : frame->detections) {
+      if (!(d.distance_m > 0) || !std::isfinite(d.bearing_rad)) continue;
+      const double a = pose.yaw_rad + d.bearing_rad;
+      const Eigen::Vector2d p = pose.position() + d.distance_m * Eigen::Vector2d(std::cos(a), std::sin(a));
+      const double err = (p - target_W_).norm();
+      if (err < best_err) {
+        best_err = err;
+        best = &d;
+      }
+    }
+    if (best) {
+      const double a = pose.yaw_rad + best->bearing_rad;
+      target_W_ = pose.position() +
+                  best->distance_m * Eigen::Vector2d(std::cos(a), std::sin(a));
+      last_detection_s_ = now;
+    }
+  }
+  const Eigen::Vector2d to = target_W_ - pose.position();
+  const double bearing = wrap_angle_rad(std::atan2(to.y(), to.x()) - pose.yaw_rad);
+  const double distance = to.norm();
+  const RobotOptions& r = options_.explore.robot;
+  VelocityCommand c;
+  c.w_radps = std::clamp(options_.servo_yaw_gain_per_s * bearing, -r.max_yaw_rate_radps,
+                         r.max_yaw_rate_radps);
+  if (std::abs(bearing) < 0.3)
+    c.v_mps = std::clamp(options_.servo_gain_per_s * (distance - options_.standoff_m), -0.5 * options_.servo_max_speed_mps,
+                         options_.servo_max_speed_mps);
+  return guarded(pose, c);
+}
+
+void MiniUgvMission::tick() {
+  if (state_ == UgvMissionState::kIdle || state_ == UgvMissionState::kDone) return;
+  const double now = clock_.now_s();
+  const Pose2 pose = base_.odometry();
+  // The maps keep growing in every state: the way home is planned on them.
+  explore_->observe_scan(base_.ir_scan());
+  std::optional<CameraFrame> frame;
+  if (explore_->frame_due(tick_)) frame = base_.camera_frame(now);
+  ++tick_;
+  const bool timed_out = now - state_since_s_ > state_timeout_s_;
+  VelocityCommand command;
+
+  switch (state_) {
+    case UgvMissionState::kExplore: {
+      if (frame) {
+        if (const auto cell = explore_->observe_frame(*frame)) {
+          found_W_ = geo_.center(*cell);
+          target_W_ = *found_W_;
+          last_detection_s_ = now;
+          enter(UgvMissionState::kTrack, "the object's probability passed lambda2");
+          state_timeout_s_ = options_.track_timeout_s;
+          command = servo(pose, nullptr);
+          break;
+        }
+      }
+      if (timed_out) {
+        begin_return(UgvMissionOutcome::kSearchTimeout, "the search's time limit");
+        break;
+      }
+      if (battery_calls_return(pose)) {
+        begin_return(UgvMissionOutcome::kBatteryLow, "the battery left covers only the way back");
+        break;
+      }
+      const ExploreController::Command c = explore_->decide(explore_tick_++, pose);
+      if (c.explored) {
+        begin_return(UgvMissionOutcome::kNoObject, "explored everything reachable, no object");
+        break;
+      }
+      command = c.velocity;
+      break;
+    }
+    case UgvMissionState::kTrack: {
+      if (frame) explore_->observe_frame(*frame);
+      if (timed_out) {
+        begin_return(UgvMissionOutcome::kTrackLost, "could not close in on the object in time");
+        break;
+      }
+      if (now - last_detection_s_ > options_.track_lost_s) {
+        begin_return(UgvMissionOutcome::kTrackLost, "the object out of sight too long");
+        break;
+      }
+      if (battery_calls_return(pose)) {
+        begin_return(UgvMissionOutcome::kBatteryLow, "the battery left covers only the way back");
+        break;
+      }
+      command = servo(pose, frame ? &*frame : nullptr);
+      const Eigen::Vector2d to = target_W_ - pose.position();
+      const double bearing = wrap_angle_rad(std::atan2(to.y(), to.x()) - pose.yaw_rad);
+      if (std::abs(to.norm() - options_.standoff_m) < kServoDistanceTolerance_m &&
+          std::abs(bearing) < kServoBearingTolerance_rad) {
+        turn_target_rad_ = wrap_angle_rad(pose.yaw_rad + std::numbers::pi);
+        enter(UgvMissionState::kTurn, "at d_min facing the object");
+        state_timeout_s_ = options_.turn_timeout_s;
+        command = {};
+      }
+      break;
+    }
+    case UgvMissionState::kTurn: {
+      if (timed_out) {
+        begin_return(UgvMissionOutcome::kGraspFailed, "could not turn in place");
+        break;
+      }
+      const double e = wrap_angle_rad(turn_target_rad_ - pose.yaw_rad);
+      if (std::abs(e) < kTurnTolerance_rad) {
+        base_.set_epm(true);
+        grasp_from_W_ = pose.position();
+        ++grasp_attempt_;
+        enter(UgvMissionState::kGrasp, "EPM on, backing onto the object (attempt " +
+                                           std::to_string(grasp_attempt_) + ")");
+        state_timeout_s_ = options_.grasp_timeout_s;
+        break;
+      }
+      const double w_max = options_.explore.robot.max_yaw_rate_radps;
+      command = {0.0, std::clamp(3.0 * e, -w_max, w_max)};
+      break;
+    }
+    case UgvMissionState::kGrasp: {
+      const UgvStatus status = base_.status();
+      if (status.epm_on && status.contact) {
+        begin_return(UgvMissionOutcome::kObjectRetrieved, "contact: the object is on the magnet");
+        break;
+      }
+      const double backed_m = (pose.position() - grasp_from_W_).norm();
+      const double gap_m = options_.standoff_m - options_.rear_offset_m -
+                           options_.explore.sensors.object_radius_m;
+      if (backed_m >= gap_m + options_.grasp_overshoot_m || timed_out) {
+        base_.set_epm(false);
+        if (grasp_attempt_ >= options_.grasp_attempts) {
+          begin_return(UgvMissionOutcome::kGraspFailed,
+                       "no contact after " + std::to_string(grasp_attempt_) + " attempts");
+          break;
+        }
+        // Again from the start: find the object, close in, turn, back up.
+        last_detection_s_ = now;
+        enter(UgvMissionState::kTrack, "no contact: servo onto the object again");
+        state_timeout_s_ = options_.track_timeout_s;
+        break;
+      }
+      command = {-options_.grasp_speed_mps, 0.0};
+      break;
+    }
+    case UgvMissionState::kReturn: {
+      if ((pose.position() - entry_W_).norm() <= options_.entry_tolerance_m) {
+        enter(UgvMissionState::kAwaitRetract, "at the entry, asking for retraction");
+        state_timeout_s_ = options_.retract_timeout_s;
+        break;
+      }
+      if (timed_out) {
+        finish(UgvMissionOutcome::kReturnFailed, "did not reach the entry in time");
+        return;
+      }
+      if (!follower_.has_path() && now >= next_replan_s_) {
+        next_replan_s_ = now + kReplanPeriod_s;
+        auto path = path_home(pose);
+        if (!path.empty()) follower_.set_path(std::move(path), std::nullopt);
+      }
+      bool reached = false;
+      command = follower_.step(pose, explore_->grid(), explore_->tick_s(), reached);
+      if (reached) follower_.clear();  // near the entry cell; the tolerance check decides
+      break;
+    }
+    case UgvMissionState::kAwaitRetract:
+      if (timed_out) {
+        finish(UgvMissionOutcome::kRetractTimeout, "nobody lifted the robot out");
+        return;
+      }
+      break;
+    case UgvMissionState::kIdle:
+    case UgvMissionState::kDone:
+      break;
+  }
+  if (state_ != UgvMissionState::kDone) base_.command_velocity(command.v_mps, command.w_radps);
+}
+
+}  // namespace ferret

@@ -1,0 +1,97 @@
+#include "ferret/ugv/path_follower.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ferret {
+namespace {
+
+constexpr double kPositionTolerance_m = 0.1;
+constexpr double kViewpointTolerance_m = 0.04;
+constexpr double kHeadingTolerance_rad = 0.15;
+constexpr double kLookahead_m = 0.3;
+
+}  // namespace
+
+Pose2 integrate_unicycle(const Pose2& pose, const VelocityCommand& c, double dt_s) {
+  const double yaw = wrap_angle_rad(pose.yaw_rad + c.w_radps * dt_s);
+  return {pose.x_m + c.v_mps * dt_s * std::cos(yaw), pose.y_m + c.v_mps * dt_s * std::sin(yaw),
+          yaw};
+}
+
+void PathFollower::set_path(std::vector<Eigen::Vector2d> path, std::optional<double> heading_rad) {
+  path_ = std::move(path);
+  has_heading_ = heading_rad.has_value();
+  heading_rad_ = heading_rad.value_or(0.0);
+  // After a blocked step, stay precise on the new path too, starting from its first
+  // waypoint (the centre of the robot's cell): re-planning every cycle must not throw
+  // the robot back into the corner it was cutting.
+  next_ = path_.size() > 1 && precise_ == 0 ? 1 : 0;
+}
+
+VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double dt,
+                                   bool& reached) {
+  reached = false;
+  if (path_.empty()) {
+    v_mps_ = 0.0;
+    return {};
+  }
+  const Eigen::Vector2d p = pose.position();
+  const Eigen::Vector2d goal = path_.back();
+  const double to_goal = (goal - p).norm();
+  // A goal with a heading is a viewpoint chosen for its line of sight: stand on it.
+  if (to_goal < (has_heading_ ? kViewpointTolerance_m : kPositionTolerance_m)) {
+    v_mps_ = 0.0;
+    if (!has_heading_) {
+      reached = true;
+      return {};
+    }
+    const double e = wrap_angle_rad(heading_rad_ - pose.yaw_rad);
+    if (std::abs(e) < kHeadingTolerance_rad) {
+      reached = true;
+      return {};
+    }
+    return {0.0, std::clamp(4.0 * e, -robot_.max_yaw_rate_radps, robot_.max_yaw_rate_radps)};
+  }
+  if (precise_ > 0) {
+    // Recovery after a blocked step: waypoint by waypoint, exactly along the segments
+    // (which cross only free cells), turning on the spot at each.
+    while ((path_[next_] - p).norm() < 0.02 && next_ + 1 < path_.size()) {
+      ++next_;
+      --precise_;
+    }
+  } else {
+    while (next_ + 1 < path_.size() && (path_[next_] - p).norm() < kLookahead_m) ++next_;
+  }
+  const Eigen::Vector2d target = path_[next_];
+  const Eigen::Vector2d to = target - p;
+  const double e = wrap_angle_rad(std::atan2(to.y(), to.x()) - pose.yaw_rad);
+  const double w = std::clamp(4.0 * e, -robot_.max_yaw_rate_radps, robot_.max_yaw_rate_radps);
+  double v_des = 0.0;
+  if (std::abs(e) < (precise_ > 0 ? 0.03 : 0.6)) {
+    v_des = robot_.max_velocity_mps * std::cos(e);
+    v_des = std::min(v_des,
+                     std::sqrt(2.0 * robot_.max_acceleration_mps2 * to_goal));  // stop at the goal
+    if (precise_ > 0) v_des = std::min(v_des, to.norm() / dt);  // land on the waypoint
+  }
+  const double dv = robot_.max_acceleration_mps2 * dt;
+  double v = std::clamp(v_des, v_mps_ - 2 * dv, v_mps_ + dv);  // brake harder than accelerate
+  v = std::max(v, 0.0);
+  const Eigen::Vector2d next = integrate_unicycle(pose, {v, w}, dt).position();
+  const GridGeometry& g = grid.geometry();
+  const Cell c = g.cell_at(next.x(), next.y());
+  const bool same_cell = c == g.cell_at(p.x(), p.y());  // a noisy hit may mark the robot's cell
+  if (!g.contains(c) || (grid.label(c) != GridLabel::kFree && !same_cell)) {
+    // Not known free (a corner cut, or space the IR has not seen): stop, and go on
+    // precisely from the centre of the current cell along the path's segments.
+    v = 0.0;
+    const Eigen::Vector2d centre = g.center(g.cell_at(p.x(), p.y()));
+    if ((path_[next_] - centre).norm() > 1e-9)
+      path_.insert(path_.begin() + static_cast<std::ptrdiff_t>(next_), centre);
+    precise_ = 3;
+  }
+  v_mps_ = v;
+  return {v, w};
+}
+
+}  // namespace ferret
