@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ferret/core/error.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "support/test_maps.hpp"
 
@@ -126,6 +127,20 @@ TEST(UgvMission, NobodyLiftingItOutEndsInRetractTimeout) {
                                   [](const Transition& t) { return t.to == "await_retract"; });
   ASSERT_NE(await, r.transitions.end());
   EXPECT_NEAR(last.t_s - await->t_s, 5.0, 0.1);
+}
+
+TEST(UgvMission, AReturnThatStallsAtAWallPlansAgainAndGetsHome) {
+  // Found by scripts/ugv-mission-campaign: the search of the empty dense space ends
+  // against the bottom wall, and the first way home starts inside the wall's clearance
+  // band; without re-planning the return timed out (return_failed).
+  const auto map =
+      load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/dense.yaml");
+  const Pose2 entry{1.0, 4.0, 0.0};
+  auto s = settings();
+  s.ugv.explore_timeout_s = 600.0;
+  const auto r = run_ugv_mission(map, entry, std::nullopt, s, 1);
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kNoObject) << to_string(r.outcome);
+  EXPECT_LE((r.trajectory.back().position() - entry.position()).norm(), 0.2 + 1e-9);
 }
 
 TEST(UgvMission, SameSeedSameMission) {

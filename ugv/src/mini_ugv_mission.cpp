@@ -16,6 +16,7 @@ constexpr double kServoBearingTolerance_rad = 0.1;
 constexpr double kServoDistanceTolerance_m = 0.03;
 constexpr double kBatteryCheckPeriod_s = 1.0;
 constexpr double kReplanPeriod_s = 1.0;
+constexpr double kReturnStuck_s = 3.0;
 
 }  // namespace
 
@@ -139,11 +140,11 @@ void MiniUgvMission::retracted() {
   }
 }
 
-std::vector<Eigen::Vector2d> MiniUgvMission::path_home(const Pose2& pose) {
+std::vector<Eigen::Vector2d> MiniUgvMission::path_home(const Pose2& pose, int widen) {
   const Cell robot = geo_.cell_at(pose.x_m, pose.y_m);
   const Cell entry = geo_.cell_at(entry_W_.x(), entry_W_.y());
   home_planner_->compute(explore_->grid(), robot, GridPathPlanner::Traversal::kKnownFree,
-                         options_.explore.robot.escape_radius_m);
+                         options_.explore.robot.escape_radius_m * (1 + widen));
   if (!home_planner_->reachable(entry)) return {};
   auto path = home_planner_->path_to(entry);
   if (!path.empty()) path.back() = entry_W_;  // the entry itself, not its cell's centre
@@ -172,7 +173,10 @@ void MiniUgvMission::begin_return(UgvMissionOutcome outcome, const std::string& 
   return_outcome_ = outcome;
   enter(UgvMissionState::kReturn, reason);
   const Pose2 pose = base_.odometry();
-  auto path = path_home(pose);
+  return_replans_ = 0;
+  progress_W_ = pose.position();
+  progress_since_s_ = clock_.now_s();
+  auto path = path_home(pose, 0);
   double length_m = (pose.position() - entry_W_).norm();
   if (!path.empty()) {
     length_m = 0.0;
@@ -358,9 +362,21 @@ void MiniUgvMission::tick() {
         finish(UgvMissionOutcome::kReturnFailed, "did not reach the entry in time");
         return;
       }
+      // No headway for kReturnStuck_s (a path cut into the clearance band of a wall, a
+      // blocked step the follower cannot recover from): plan again from here, the
+      // clearance waived further out each time.
+      if ((pose.position() - progress_W_).norm() > 0.05) {
+        progress_W_ = pose.position();
+        progress_since_s_ = now;
+      } else if (now - progress_since_s_ > kReturnStuck_s) {
+        ++return_replans_;
+        follower_.clear();
+        next_replan_s_ = now;
+        progress_since_s_ = now;
+      }
       if (!follower_.has_path() && now >= next_replan_s_) {
         next_replan_s_ = now + kReplanPeriod_s;
-        auto path = path_home(pose);
+        auto path = path_home(pose, return_replans_);
         if (!path.empty()) follower_.set_path(std::move(path), std::nullopt);
       }
       bool reached = false;

@@ -109,7 +109,8 @@ class MiniUgvMission {
   [[nodiscard]] bool battery_calls_return(const Pose2& pose);
   [[nodiscard]] VelocityCommand servo(const Pose2& pose, const CameraFrame* frame);
   [[nodiscard]] VelocityCommand guarded(const Pose2& pose, VelocityCommand c) const;
-  [[nodiscard]] std::vector<Eigen::Vector2d> path_home(const Pose2& pose);
+  /// The known-free path to the entry; `widen` > 0 waives the clearance further out.
+  [[nodiscard]] std::vector<Eigen::Vector2d> path_home(const Pose2& pose, int widen);
 
   UgvBase& base_;
   const Clock& clock_;
@@ -136,6 +137,9 @@ class MiniUgvMission {
   int grasp_attempt_ = 0;
   double next_battery_check_s_ = 0.0;
   double next_replan_s_ = 0.0;
+  Eigen::Vector2d progress_W_ = Eigen::Vector2d::Zero();  ///< return: last headway
+  double progress_since_s_ = 0.0;
+  int return_replans_ = 0;
 };
 
 }  // namespace ferret
