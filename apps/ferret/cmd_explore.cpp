@@ -26,6 +26,7 @@
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/search_robot.hpp"
+#include "ferret/sim/ugv_mission_log.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
@@ -62,10 +63,13 @@ void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& sta
   UgvMissionRunSettings settings;
   settings.exploration = s;
   settings.ugv.explore_timeout_s = o.time_limit_s;
+  UgvMissionRecorder recorder;  // mission.mcap, with --out
+  if (!o.out.empty()) settings.on_tick = recorder.hook();
   TransitionLog log;
-  log.on_transition([](const Transition& t) {
+  log.on_transition([&](const Transition& t) {
     std::printf("%s\n", TransitionLog::format(t).c_str());
     std::fflush(stdout);
+    if (!o.out.empty()) recorder.transition(t);
   });
   const UgvMissionRunResult r = run_ugv_mission(map, start, object, settings, o.seed, &log);
   std::printf(
@@ -114,9 +118,11 @@ void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& sta
   for (std::size_t k = 0; k < r.trajectory.size(); k += 2)
     trajectory.push_back({r.trajectory[k].x_m, r.trajectory[k].y_m, r.trajectory[k].yaw_rad});
   files.write_text("log.json", j.dump(1) + "\n");
+  files.write_text("mission.mcap", recorder.finish(r, object));
   files.commit();
-  std::printf("wrote: %s %s %s %s\n", (out / "G.png").c_str(), (out / "O.png").c_str(),
-              (out / "G_O.png").c_str(), (out / "log.json").c_str());
+  std::printf("wrote: %s %s %s %s %s\n", (out / "G.png").c_str(), (out / "O.png").c_str(),
+              (out / "G_O.png").c_str(), (out / "log.json").c_str(),
+              (out / "mission.mcap").c_str());
 }
 
 void run(const Options& o) {

@@ -49,6 +49,7 @@ UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& st
     }
     mission.tick();
     base.step(dt);
+    if (settings.on_tick) settings.on_tick(clock.now_s(), mission, base);
   }
   if (!mission.done()) mission.stop("the simulation's time limit");
   result.outcome = mission.outcome();

@@ -145,6 +145,11 @@ TEST(ExploreCli, RetrieveRunsTheWholeMissionAndLogsEveryTransition) {
   ASSERT_GE(log["transitions"].size(), 7u);
   EXPECT_EQ(log["transitions"].back()["to"], "done");
   EXPECT_TRUE(std::filesystem::is_regular_file(std::filesystem::path(out) / "G_O.png"));
+  // The MCAP log (read whole by Foxglove's reader in mission_mcap_reader.js).
+  std::ifstream mcap(std::filesystem::path(out) / "mission.mcap", std::ios::binary);
+  std::string head(8, '\0');
+  mcap.read(head.data(), 8);
+  EXPECT_EQ(head, std::string("\x89MCAP0\r\n", 8));
 }
 
 TEST(ExploreCli, RetrieveInAnEmptySpaceReportsNoObject) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -24,6 +25,9 @@ struct UgvMissionRunSettings {
   SimUgvOptions base;     ///< its `robot` is filled from `exploration`
   double retract_time_s = 10.0;  ///< the winch lifting the robot out of the hidden space
   double time_limit_s = 3600.0;  ///< the simulation's own bound (a mission that never ends)
+  /// Called after every tick with the time, the controller and the simulated robot (a
+  /// recorder's hook: UgvMissionRecorder writes the MCAP log from it).
+  std::function<void(double t_s, const MiniUgvMission&, const SimUgvBase&)> on_tick;
 };
 
 struct UgvMissionRunResult {
