@@ -74,9 +74,10 @@ void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& sta
   const UgvMissionRunResult r = run_ugv_mission(map, start, object, settings, o.seed, &log);
   std::printf(
       "method: %s\noutcome: %s\ntime_s: %.2f\npath_m: %.2f\nbattery_left: %.3f\n"
-      "grasp_attempts: %d\n",
+      "grasp_attempts: %d\ntether_max_m: %.2f\ntether_max_in: %s\n",
       s.method.c_str(), std::string(to_string(r.outcome)).c_str(), r.time_s, r.path_m,
-      r.battery_left, r.grasp_attempts);
+      r.battery_left, r.grasp_attempts, r.max_tether_m,
+      std::string(to_string(r.max_tether_state)).c_str());
   if (o.out.empty()) return;
 
   const fs::path out(o.out);
@@ -109,6 +110,8 @@ void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& sta
                  {"path_m", r.path_m},
                  {"battery_left", r.battery_left},
                  {"grasp_attempts", r.grasp_attempts},
+                 {"tether_max_m", r.max_tether_m},
+                 {"tether_max_in", to_string(r.max_tether_state)},
                  {"found_at", r.found_W ? nlohmann::json{r.found_W->x(), r.found_W->y()}
                                         : nlohmann::json()}};
   auto& transitions = j["transitions"] = nlohmann::json::array();

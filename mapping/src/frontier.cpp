@@ -54,15 +54,21 @@ void FrontierTracker::rebuild(const IrGrid& grid) {
   for (std::size_t idx = 0; idx < geometry_.size(); ++idx) refresh(grid, idx);
 }
 
-void FrontierTracker::blacklist(Cell c) {
+void FrontierTracker::clear_blacklist(std::uint8_t kind) {
+  for (auto& b : blacklist_)
+    if (b == kind) b = 0;
+}
+
+void FrontierTracker::blacklist(Cell c, std::uint8_t kind) {
   const int r = static_cast<int>(std::ceil(options_.blacklist_radius_m / geometry_.resolution_m));
   const Eigen::Vector2d p = geometry_.center(c);
   for (int dj = -r; dj <= r; ++dj)
     for (int di = -r; di <= r; ++di) {
       const Cell n{c.i + di, c.j + dj};
       if (geometry_.contains(n) &&
-          (geometry_.center(n) - p).norm() <= options_.blacklist_radius_m + 1e-9)
-        blacklist_[geometry_.index(n)] = 1;
+          (geometry_.center(n) - p).norm() <= options_.blacklist_radius_m + 1e-9 &&
+          blacklist_[geometry_.index(n)] == 0)
+        blacklist_[geometry_.index(n)] = kind;
     }
 }
 

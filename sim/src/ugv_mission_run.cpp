@@ -49,6 +49,10 @@ UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& st
     }
     mission.tick();
     base.step(dt);
+    if (const double l = mission.explore_controller().tether_length_m(); l > result.max_tether_m) {
+      result.max_tether_m = l;
+      result.max_tether_state = mission.state();
+    }
     if (settings.on_tick) settings.on_tick(clock.now_s(), mission, base);
   }
   if (!mission.done()) mission.stop("the simulation's time limit");

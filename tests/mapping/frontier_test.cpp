@@ -76,6 +76,21 @@ TEST(Frontier, UnreachableAndBlacklistedCellsAreLeftOut) {
   EXPECT_FALSE(t.blacklisted({9, 8}));
 }
 
+TEST(Frontier, OneKindOfBlacklistMarkCanBeLiftedAndLeavesTheOthers) {
+  IrGrid g = half_known();
+  FrontierTracker t(geometry(), {0.05});
+  t.update(g);
+  t.blacklist({9, 3});      // kind 1: a goal reached
+  t.blacklist({9, 3}, 2);   // already marked: keeps kind 1
+  t.blacklist({9, 6}, 2);   // kind 2: out of the tether's reach
+  EXPECT_TRUE(t.blacklisted({9, 6}));
+  t.clear_blacklist(2);
+  EXPECT_FALSE(t.blacklisted({9, 6}));
+  EXPECT_TRUE(t.blacklisted({9, 3}));
+  const auto sets = t.extract(all_reachable(), {0.05, 0.55, 0.0}, deg_to_rad(30), 4.0);
+  EXPECT_EQ(sets.global.size(), 9u);
+}
+
 TEST(Frontier, ClustersAreEightConnectedGroups) {
   IrGrid g = half_known();
   FrontierTracker t(geometry());

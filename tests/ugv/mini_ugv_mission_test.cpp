@@ -11,6 +11,7 @@
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
+#include "ferret/tether_model/taut_tether.hpp"
 #include "support/test_maps.hpp"
 
 namespace ferret {
@@ -141,6 +142,40 @@ TEST(UgvMission, AReturnThatStallsAtAWallPlansAgainAndGetsHome) {
   const auto r = run_ugv_mission(map, entry, std::nullopt, s, 1);
   EXPECT_EQ(r.outcome, UgvMissionOutcome::kNoObject) << to_string(r.outcome);
   EXPECT_LE((r.trajectory.back().position() - entry.position()).norm(), 0.2 + 1e-9);
+}
+
+// The taut tether over the driven path, wrapped round the corners of the truth's walls.
+double longest_true_tether(const OccupancyMap2D& truth, const UgvMissionRunResult& r,
+                           const Pose2& entry) {
+  TautTether t(TetherCorners::from_map(truth), entry.position());
+  double longest = 0.0;
+  for (const Pose2& p : r.trajectory) {
+    t.move_to(p.position());
+    longest = std::max(longest, t.length_m());
+  }
+  return longest;
+}
+
+TEST(UgvMission, AnObjectBeyondTheTethersReachIsNeverDrivenTo) {
+  const auto map = test::small_hidden_space();
+  auto s = settings();
+  // L - l_0 = 2 m: the way round the partition to the object needs about 3.5 m.
+  s.exploration.mission.tether.total_length_m = 3.0;
+  s.exploration.mission.tether.entry_offset_m = 1.0;
+  const auto r = run_ugv_mission(map, kEntry, kBehindPartition, s, 5);
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kNoObject) << to_string(r.outcome);
+  const auto explored = std::find_if(r.transitions.begin(), r.transitions.end(),
+                                     [](const Transition& t) { return t.to == "return"; });
+  ASSERT_NE(explored, r.transitions.end());
+  EXPECT_NE(explored->reason.find("tether's reach"), std::string::npos) << explored->reason;
+  EXPECT_LE(r.max_tether_m, 2.0);
+  EXPECT_LE(longest_true_tether(map, r, kEntry), 2.0 + 0.1);  // G's corners vs the truth's
+  EXPECT_LE(distance_to_entry(r), 0.2 + 1e-9);
+  // The same object with the mission's 15 m tether is retrieved, the tether model tracking it.
+  const auto free = run_ugv_mission(map, kEntry, kBehindPartition, settings(), 5);
+  EXPECT_EQ(free.outcome, UgvMissionOutcome::kObjectRetrieved) << to_string(free.outcome);
+  EXPECT_GT(free.max_tether_m, 2.5);
+  EXPECT_NEAR(free.max_tether_m, longest_true_tether(map, free, kEntry), 0.3);
 }
 
 TEST(UgvMission, SameSeedSameMission) {

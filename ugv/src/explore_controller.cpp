@@ -8,6 +8,7 @@
 #include "ferret/planning/curiosity.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/grid_path_planner.hpp"
+#include "ferret/tether_model/taut_tether.hpp"
 
 namespace ferret {
 namespace {
@@ -15,6 +16,11 @@ namespace {
 constexpr double kStuckTime_s = 4.0;
 constexpr double kWideEscape_m = 4.0;
 constexpr double kFullDecision_s = 1.0;
+constexpr double kCornerRefresh_s = 2.0;
+constexpr double kDrivenStep_m = 0.05;
+constexpr int kMaxReachRejections = 32;  ///< per decision: then the search is over
+constexpr std::uint8_t kReachMark = 2;   ///< blacklist kind of goals out of the tether's reach
+constexpr int kMaxUnwinds = 3;
 
 }  // namespace
 
@@ -49,6 +55,10 @@ ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& 
   escape_m_ = std::max(options_.robot.escape_radius_m,
                        options_.robot.clearance_m + 2 * geo_.resolution_m);
   progress_pose_ = start;
+  entry_W_ = start.position();
+  driven_W_.push_back(entry_W_);
+  if (options_.tether_budget_m)
+    tether_ = std::make_unique<TautTether>(TetherCorners::from_list({}), entry_W_);
 }
 
 ExploreController::~ExploreController() = default;
@@ -60,7 +70,58 @@ std::optional<Cell> ExploreController::observe_frame(const CameraFrame& frame) {
   return objects_->found_cell();
 }
 
+void ExploreController::follow_tether(const Pose2& pose, double t_s) {
+  if (!tether_) return;
+  const Eigen::Vector2d p = pose.position();
+  if ((p - driven_W_.back()).norm() >= kDrivenStep_m) driven_W_.push_back(p);
+  if (t_s - corners_refreshed_s_ >= kCornerRefresh_s) {
+    // G has grown: replay the driven path over its corners now, so corners seen only
+    // after the robot passed them still wrap the tether.
+    corners_refreshed_s_ = t_s;
+    auto corners = TetherCorners::from_grid(
+        geo_, [this](Cell c) { return grid_->label(c) == GridLabel::kOccupied; });
+    auto replay = std::make_unique<TautTether>(std::move(corners), entry_W_);
+    for (const auto& q : driven_W_) replay->move_to(q);
+    replay->move_to(p);
+    tether_ = std::move(replay);
+  } else {
+    tether_->move_to(p);
+  }
+}
+
+double ExploreController::tether_length_m() const { return tether_ ? tether_->length_m() : 0.0; }
+
+bool ExploreController::within_reach(const std::vector<Eigen::Vector2d>& path_W) const {
+  if (!tether_) return true;
+  TautTether t = *tether_;
+  for (const auto& p : path_W) t.move_to(p);
+  return t.length_m() + options_.tether_margin_m <= *options_.tether_budget_m;
+}
+
+std::vector<Eigen::Vector2d> ExploreController::retrace_path(double enough_m,
+                                                             std::size_t* cursor) const {
+  std::vector<Eigen::Vector2d> path;
+  if (!tether_ || tether_->wrap_points().empty()) return path;
+  TautTether t = *tether_;
+  std::size_t k = cursor && *cursor < driven_W_.size() ? *cursor : driven_W_.size() - 1;
+  for (;; --k) {
+    path.push_back(driven_W_[k]);
+    t.move_to(driven_W_[k]);
+    if (k == 0 || t.wrap_points().empty() || t.length_m() <= enough_m) break;
+  }
+  if (cursor) *cursor = k;
+  return path;
+}
+
 void ExploreController::drop_goal(bool blacklist) {
+  if (unwinding_) {
+    // Unwound (or given up on it): the goals the wound tether could not reach may be
+    // reachable now.
+    unwinding_ = false;
+    ++unwinds_;
+    blacklist = false;
+    tracker_->clear_blacklist(kReachMark);
+  }
   if (blacklist && goal_) tracker_->blacklist(goal_->cell);
   policy_->goal_done();
   goal_.reset();
@@ -71,6 +132,7 @@ void ExploreController::drop_goal(bool blacklist) {
 
 ExploreController::Command ExploreController::decide(long tick, const Pose2& pose) {
   const double t = static_cast<double>(tick) * dt_s_;
+  follow_tether(pose, t);
   // Stuck (no headway with a goal over the last kStuckTime_s; turning on the spot does
   // not count): give the goal up. Judged on the pose the last command led to.
   if (tick > 0) {
@@ -105,25 +167,49 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
     const Eigen::Vector2d v_W =
         v_mps * Eigen::Vector2d(std::cos(pose.yaw_rad), std::sin(pose.yaw_rad));
     if (!(goal_ && goal_is_revisit_)) {
-      ExplorationState state{*grid_,      *objects_,     *tracker_,
-                             sets,        *planner_,     pose,
-                             v_W,         s.ir_fov_rad,  s.ir_range_m,
-                             std::nullopt};
-      if (policy_->needs_oracle()) state.oracle_object_W = options_.oracle_object_W;
-      std::optional<ExplorationGoal> goal = policy_->choose(state);
+      int rejected_now = 0;
+      std::optional<Eigen::Vector2d> oracle;
+      if (policy_->needs_oracle()) oracle = options_.oracle_object_W;
+      // The policy's choice, unless its tether would be too long: then that goal is
+      // never chosen again, and the policy chooses among the rest.
+      const auto choose = [&](const FrontierSets& first) -> std::optional<ExplorationGoal> {
+        FrontierSets current = first;
+        for (int k = 0; k < kMaxReachRejections; ++k) {
+          const ExplorationState state{*grid_,    *objects_, *tracker_,    current,
+                                       *planner_, pose,      v_W,          s.ir_fov_rad,
+                                       s.ir_range_m, oracle};
+          auto g = policy_->choose(state);
+          if (!g || !tether_) return g;
+          if (within_reach(g->path_W.empty() ? planner_->path_to(g->cell) : g->path_W))
+            return g;
+          ++reach_rejections_;
+          ++rejected_now;
+          tracker_->blacklist(g->cell, kReachMark);
+          policy_->goal_done();
+          current = tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m);
+        }
+        return std::nullopt;
+      };
+      std::optional<ExplorationGoal> goal = choose(sets);
       goal_is_revisit_ = false;
       if (!goal && tracker_->frontier_count() > 0) {
         // Nothing reachable: perhaps the robot is boxed in by the clearance of walls it
         // has just seen. Look again with the clearance waived further out.
         planner_->compute(*grid_, robot_cell, GridPathPlanner::Traversal::kKnownFree,
                           kWideEscape_m);
-        const FrontierSets wide =
-            tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m);
-        ExplorationState again{*grid_,      *objects_,    *tracker_,
-                               wide,        *planner_,    pose,
-                               v_W,         s.ir_fov_rad, s.ir_range_m,
-                               state.oracle_object_W};
-        goal = policy_->choose(again);
+        goal = choose(
+            tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m));
+      }
+      if (!goal && rejected_now > 0 && unwinds_ < kMaxUnwinds) {
+        // Goals are left, but the tether is wound round obstacles too far to reach them:
+        // retrace the driven path (which unwinds it), then search on.
+        auto path = retrace_path(0.5 * *options_.tether_budget_m);
+        if (path.size() > 1) {
+          goal = ExplorationGoal{geo_.cell_at(path.back().x(), path.back().y()), path.back(),
+                                 std::nullopt, std::move(path), 0.0, "unwind"};
+          goal_is_revisit_ = true;  // follow it to the end, no re-decision on the way
+          unwinding_ = true;
+        }
       }
       if (!goal) {
         // Exploration is over with the object unconfirmed: revisit the strongest evidence.
@@ -131,6 +217,11 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
         if (!evidence.empty() && revisits_ < options_.max_revisits) {
           goal = viewing_goal(*grid_, *tracker_, *planner_, strongest_evidence(evidence).p_W,
                               view_distance_m_);
+          if (goal && !within_reach(goal->path_W.empty() ? planner_->path_to(goal->cell)
+                                                         : goal->path_W)) {
+            ++reach_rejections_;
+            goal.reset();
+          }
           if (goal) {
             goal->reason = "revisit";
             goal_is_revisit_ = true;

@@ -76,6 +76,9 @@ void UgvMissionOptions::validate(const std::string& source) const {
   positive(battery_endurance_s, "ugv.battery_endurance_s", "s");
   check_number(battery_reserve_fraction, NumberRange::closed(0.0, 0.9), source,
                "ugv.battery_reserve_fraction");
+  if (explore.tether_budget_m)
+    check_number(*explore.tether_budget_m, NumberRange::positive(1000.0, "m"), source,
+                 "tether budget (tether.total_length_m - tether.entry_offset_m)");
   if (standoff_m <= rear_offset_m + explore.sensors.object_radius_m)
     throw InputError(source, "ugv.standoff_m",
                      "more than ugv.rear_offset_m + the object's radius (room to turn)",
@@ -90,6 +93,10 @@ MiniUgvMission::MiniUgvMission(UgvBase& base, const Clock& clock, const GridGeom
       options_(std::move(options)),
       log_(log),
       follower_(options_.explore.robot) {
+  if (options_.tether_aware && !options_.explore.tether_budget_m) {
+    const TetherParams& tether = options_.explore.mission.tether;
+    options_.explore.tether_budget_m = tether.total_length_m - tether.entry_offset_m;
+  }
   options_.validate("ugv mission options");
   home_planner_ = std::make_unique<GridPathPlanner>(geo_);
 }
@@ -161,9 +168,18 @@ bool MiniUgvMission::battery_calls_return(const Pose2& pose) {
                          options_.explore.robot.escape_radius_m);
   // The way back as driven (known free) or, if the map cannot say, as the crow flies
   // (a floor for it: a robot that came in got here somehow).
-  const double way_m = home_planner_->reachable(entry)
-                           ? static_cast<double>(home_planner_->distance_m(entry))
-                           : (pose.position() - entry_W_).norm();
+  double way_m = home_planner_->reachable(entry)
+                     ? static_cast<double>(home_planner_->distance_m(entry))
+                     : (pose.position() - entry_W_).norm();
+  // The return retraces a wound tether first (begin_return): price that way instead.
+  if (const auto retrace = explore_->retrace_path(); !retrace.empty()) {
+    way_m = (retrace.back() - entry_W_).norm();  // then straight, as the tether lies
+    Eigen::Vector2d prev = pose.position();
+    for (const auto& p : retrace) {
+      way_m += (p - prev).norm();
+      prev = p;
+    }
+  }
   const double return_s = way_m / (0.5 * options_.explore.robot.max_velocity_mps);
   const double needed = return_s / options_.battery_endurance_s + options_.battery_reserve_fraction;
   return base_.status().battery_fraction <= needed;
@@ -176,7 +192,18 @@ void MiniUgvMission::begin_return(UgvMissionOutcome outcome, const std::string& 
   return_replans_ = 0;
   progress_W_ = pose.position();
   progress_since_s_ = clock_.now_s();
-  auto path = path_home(pose, 0);
+  // Back along the tether: retrace the driven path until the tether lies straight from
+  // the entry (going round an obstacle the other way would wrap it), then the shortest
+  // known-free way from there.
+  retrace_cursor_ = std::numeric_limits<std::size_t>::max();  // from the robot
+  auto path = explore_->retrace_path(0.0, &retrace_cursor_);
+  if (!path.empty()) {
+    const Eigen::Vector2d from = path.back();
+    auto rest = path_home(Pose2{from.x(), from.y(), 0.0}, 0);
+    path.insert(path.end(), rest.begin(), rest.end());
+  } else {
+    path = path_home(pose, 0);
+  }
   double length_m = (pose.position() - entry_W_).norm();
   if (!path.empty()) {
     length_m = 0.0;
@@ -200,6 +227,11 @@ VelocityCommand MiniUgvMission::guarded(const Pose2& pose, VelocityCommand c) co
   const bool same = to == geo_.cell_at(pose.x_m, pose.y_m);
   if (c.v_mps > 0 && !same &&
       (!geo_.contains(to) || explore_->grid().label(to) != GridLabel::kFree))
+    c.v_mps = 0.0;
+  // Nor further out on a tether at its budget (turning and backing up stay allowed).
+  const auto budget = explore_->tether_budget_m();
+  if (c.v_mps > 0 && budget &&
+      explore_->tether_length_m() + 0.5 * options_.explore.tether_margin_m >= *budget)
     c.v_mps = 0.0;
   return c;
 }
@@ -247,6 +279,7 @@ void MiniUgvMission::tick() {
   const Pose2 pose = base_.odometry();
   // The maps keep growing in every state: the way home is planned on them.
   explore_->observe_scan(base_.ir_scan());
+  if (state_ != UgvMissionState::kExplore) explore_->follow_tether(pose, now);
   std::optional<CameraFrame> frame;
   if (explore_->frame_due(tick_)) frame = base_.camera_frame(now);
   ++tick_;
@@ -276,7 +309,10 @@ void MiniUgvMission::tick() {
       }
       const ExploreController::Command c = explore_->decide(explore_tick_++, pose);
       if (c.explored) {
-        begin_return(UgvMissionOutcome::kNoObject, "explored everything reachable, no object");
+        begin_return(UgvMissionOutcome::kNoObject,
+                     explore_->reach_rejections() > 0
+                         ? "explored everything within the tether's reach, no object"
+                         : "explored everything reachable, no object");
         break;
       }
       command = c.velocity;

@@ -64,7 +64,12 @@ class FrontierTracker {
   /// Every frontier cell, blacklisted or not, reachable or not.
   [[nodiscard]] const std::vector<std::size_t>& frontier_cells() const { return cells_; }
 
-  void blacklist(Cell c);
+  /// Blacklists the cells within blacklist_radius_m of c. `kind` (1..255) tells marks
+  /// apart so that one kind can be lifted later (clear_blacklist); a cell keeps the
+  /// first kind it was marked with.
+  void blacklist(Cell c, std::uint8_t kind = 1);
+  /// Lifts every mark of `kind`.
+  void clear_blacklist(std::uint8_t kind);
   [[nodiscard]] bool blacklisted(Cell c) const { return blacklist_[geometry_.index(c)] != 0; }
   [[nodiscard]] bool blacklisted_at(std::size_t idx) const { return blacklist_[idx] != 0; }
 

@@ -22,6 +22,7 @@
 namespace ferret {
 
 class FrontierTracker;
+class TautTether;
 class GridPathPlanner;
 class ExplorationPolicy;
 struct ExplorationGoal;
@@ -50,6 +51,12 @@ struct ExploreOptions {
   /// Only for policies that ask (the oracle): the object's true position.
   std::optional<Eigen::Vector2d> oracle_object_W;
   bool record_decisions = false;
+  /// The taut tether the robot may use on the floor, L - l_0 (m); none: no tether
+  /// (the paper's experiment). With it, a goal whose taut tether (the tether of the
+  /// path driven so far, then the path to the goal, wrapped round the corners of G's
+  /// occupied cells) would exceed the budget less `tether_margin_m` is never chosen.
+  std::optional<double> tether_budget_m;
+  double tether_margin_m = 0.3;
 };
 
 struct DecisionRecord {
@@ -93,6 +100,28 @@ class ExploreController {
   [[nodiscard]] const std::vector<DecisionRecord>& decision_log() const { return decision_log_; }
   /// The frontier cells of G now.
   [[nodiscard]] std::vector<Cell> frontier();
+  /// Follows the robot with the tether model (decide() does it; a caller that drives
+  /// the robot itself, as the mission's servo does, calls it every tick).
+  void follow_tether(const Pose2& pose, double t_s);
+  /// The tether budget, if there is one.
+  [[nodiscard]] std::optional<double> tether_budget_m() const { return options_.tether_budget_m; }
+  /// The taut tether's length now (0 without a tether budget).
+  [[nodiscard]] double tether_length_m() const;
+  /// Goals refused because their tether would be too long.
+  [[nodiscard]] int reach_rejections() const { return reach_rejections_; }
+  /// The driven path backwards until the tether lies straight from the entry (no wrap
+  /// points), or until it is no longer than `enough_m`. Empty when the tether is
+  /// straight already (or there is no tether model). With `cursor`, the retrace goes on
+  /// from that sample of the driven path (where an earlier retrace stopped; the
+  /// robot drives back to it first) and `cursor` is set to where this one stops, so a
+  /// return never retraces its own way back.
+  [[nodiscard]] std::vector<Eigen::Vector2d> retrace_path(double enough_m = 0.0,
+                                                          std::size_t* cursor = nullptr) const;
+  /// Times the robot retraced its path to unwind a tether wound round obstacles.
+  [[nodiscard]] int unwinds() const { return unwinds_; }
+  /// Whether the taut tether of the path driven so far, continued along `path_W`,
+  /// stays within the budget (always, without one).
+  [[nodiscard]] bool within_reach(const std::vector<Eigen::Vector2d>& path_W) const;
 
  private:
   void drop_goal(bool blacklist);
@@ -119,6 +148,15 @@ class ExploreController {
   double progress_time_s_ = 0.0;
   int decisions_ = 0;
   std::vector<DecisionRecord> decision_log_;
+  // The tether (with a budget): the driven path (every 5 cm) replayed over the corners
+  // of G's occupied cells when they are refreshed, followed tick by tick in between.
+  Eigen::Vector2d entry_W_ = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> driven_W_;
+  std::unique_ptr<TautTether> tether_;
+  double corners_refreshed_s_ = -1e9;
+  int reach_rejections_ = 0;
+  bool unwinding_ = false;  ///< retracing the driven path to unwind the tether
+  int unwinds_ = 0;
 };
 
 }  // namespace ferret

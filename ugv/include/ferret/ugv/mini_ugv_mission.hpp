@@ -46,6 +46,9 @@ enum class UgvMissionOutcome {
 
 struct UgvMissionOptions {
   ExploreOptions explore;
+  /// Hold the search within the tether's reach: unless `explore.tether_budget_m` is
+  /// set, the budget is the mission's L - l_0 (tether.total_length_m - entry_offset_m).
+  bool tether_aware = true;
   double standoff_m = 0.3;             ///< d_min: the servo stops this far (centre to object)
   double servo_max_speed_mps = 0.3;
   double servo_gain_per_s = 1.0;       ///< v = gain (d - d_min)
@@ -140,6 +143,7 @@ class MiniUgvMission {
   Eigen::Vector2d progress_W_ = Eigen::Vector2d::Zero();  ///< return: last headway
   double progress_since_s_ = 0.0;
   int return_replans_ = 0;
+  std::size_t retrace_cursor_ = 0;  ///< where the return's retrace of the driven path stands
 };
 
 }  // namespace ferret
