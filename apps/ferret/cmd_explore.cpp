@@ -86,6 +86,7 @@ void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& sta
   figure.found = r.found_right;
   figure.time_s = r.time_s;
   figure.path_m = r.path_m;
+  figure.decisions = r.decisions;
   figure.end_reason = std::string(to_string(r.outcome));
   figure.found_W = r.found_W.value_or(Eigen::Vector2d::Zero());
   figure.trajectory = r.trajectory;
@@ -110,6 +111,7 @@ void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& sta
                  {"path_m", r.path_m},
                  {"battery_left", r.battery_left},
                  {"grasp_attempts", r.grasp_attempts},
+                 {"decisions", r.decisions},
                  {"tether_max_m", r.max_tether_m},
                  {"tether_max_in", to_string(r.max_tether_state)},
                  {"found_at", r.found_W ? nlohmann::json{r.found_W->x(), r.found_W->y()}

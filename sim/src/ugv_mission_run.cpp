@@ -67,6 +67,7 @@ UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& st
     result.found_right =
         (*result.found_W - *object_W).norm() <= sensors.object_radius_m + 2 * geo.resolution_m;
   result.grasp_attempts = mission.grasp_attempts();
+  result.decisions = mission.explore_controller().decisions();
   result.transitions = transitions.all();
   result.grid = mission.explore_controller().grid_ptr();
   result.objects = mission.explore_controller().objects_ptr();

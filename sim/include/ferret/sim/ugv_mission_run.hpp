@@ -41,6 +41,7 @@ struct UgvMissionRunResult {
   std::optional<Eigen::Vector2d> found_W;
   bool found_right = false;
   int grasp_attempts = 0;
+  int decisions = 0;  ///< the search's decisions (goals chosen)
   double max_tether_m = 0.0;  ///< the controller's taut tether model, longest over the run
   UgvMissionState max_tether_state = UgvMissionState::kIdle;  ///< the state it was in then
   std::vector<Transition> transitions;
