@@ -98,18 +98,15 @@ bool ExploreController::within_reach(const std::vector<Eigen::Vector2d>& path_W)
   return t.length_m() + options_.tether_margin_m <= *options_.tether_budget_m;
 }
 
-std::vector<Eigen::Vector2d> ExploreController::retrace_path(double enough_m,
-                                                             std::size_t* cursor) const {
+std::vector<Eigen::Vector2d> ExploreController::retrace_path(double enough_m) const {
   std::vector<Eigen::Vector2d> path;
   if (!tether_ || tether_->wrap_points().empty()) return path;
   TautTether t = *tether_;
-  std::size_t k = cursor && *cursor < driven_W_.size() ? *cursor : driven_W_.size() - 1;
-  for (;; --k) {
+  for (std::size_t k = driven_W_.size() - 1;; --k) {
     path.push_back(driven_W_[k]);
     t.move_to(driven_W_[k]);
     if (k == 0 || t.wrap_points().empty() || t.length_m() <= enough_m) break;
   }
-  if (cursor) *cursor = k;
   return path;
 }
 

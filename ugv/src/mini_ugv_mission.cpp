@@ -195,8 +195,7 @@ void MiniUgvMission::begin_return(UgvMissionOutcome outcome, const std::string& 
   // Back along the tether: retrace the driven path until the tether lies straight from
   // the entry (going round an obstacle the other way would wrap it), then the shortest
   // known-free way from there.
-  retrace_cursor_ = std::numeric_limits<std::size_t>::max();  // from the robot
-  auto path = explore_->retrace_path(0.0, &retrace_cursor_);
+  auto path = explore_->retrace_path();
   if (!path.empty()) {
     const Eigen::Vector2d from = path.back();
     auto rest = path_home(Pose2{from.x(), from.y(), 0.0}, 0);

@@ -109,14 +109,10 @@ class ExploreController {
   [[nodiscard]] double tether_length_m() const;
   /// Goals refused because their tether would be too long.
   [[nodiscard]] int reach_rejections() const { return reach_rejections_; }
-  /// The driven path backwards until the tether lies straight from the entry (no wrap
-  /// points), or until it is no longer than `enough_m`. Empty when the tether is
-  /// straight already (or there is no tether model). With `cursor`, the retrace goes on
-  /// from that sample of the driven path (where an earlier retrace stopped; the
-  /// robot drives back to it first) and `cursor` is set to where this one stops, so a
-  /// return never retraces its own way back.
-  [[nodiscard]] std::vector<Eigen::Vector2d> retrace_path(double enough_m = 0.0,
-                                                          std::size_t* cursor = nullptr) const;
+  /// The driven path backwards from the robot until the tether lies straight from the
+  /// entry (no wrap points), or until it is no longer than `enough_m`. Empty when the
+  /// tether is straight already (or there is no tether model).
+  [[nodiscard]] std::vector<Eigen::Vector2d> retrace_path(double enough_m = 0.0) const;
   /// Times the robot retraced its path to unwind a tether wound round obstacles.
   [[nodiscard]] int unwinds() const { return unwinds_; }
   /// Whether the taut tether of the path driven so far, continued along `path_W`,

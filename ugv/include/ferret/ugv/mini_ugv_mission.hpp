@@ -143,7 +143,6 @@ class MiniUgvMission {
   Eigen::Vector2d progress_W_ = Eigen::Vector2d::Zero();  ///< return: last headway
   double progress_since_s_ = 0.0;
   int return_replans_ = 0;
-  std::size_t retrace_cursor_ = 0;  ///< where the return's retrace of the driven path stands
 };
 
 }  // namespace ferret
