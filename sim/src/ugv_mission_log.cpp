@@ -34,7 +34,8 @@ void UgvMissionRecorder::transition(const Transition& t) {
   log_.log(t.t_s, t.component, t.from + " -> " + t.to + (t.reason.empty() ? "" : ": " + t.reason));
 }
 
-void UgvMissionRecorder::maps(double t_s, const IrGrid& g, const ObjectMap& o) {
+void log_search_maps(FoxgloveLog& log, double t_s, const IrGrid& g, const ObjectMap& o,
+                     const std::string& prefix, const std::string& frame) {
   const GridGeometry& geo = g.geometry();
   std::vector<std::uint8_t> occupancy(geo.size()), object(geo.size());
   for (int j = 0; j < geo.height; ++j)
@@ -46,10 +47,14 @@ void UgvMissionRecorder::maps(double t_s, const IrGrid& g, const ObjectMap& o) {
       object[idx] =
           static_cast<std::uint8_t>(std::lround(std::clamp(o.probability(c), 0.0, 1.0) * 100));
     }
-  log_.grid(t_s, "/maps/G", "map", geo.origin_x_m, geo.origin_y_m, geo.resolution_m, geo.width,
-            geo.height, occupancy, "occupancy");
-  log_.grid(t_s, "/maps/O", "map", geo.origin_x_m, geo.origin_y_m, geo.resolution_m, geo.width,
-            geo.height, object, "object_probability");
+  log.grid(t_s, prefix + "/G", frame, geo.origin_x_m, geo.origin_y_m, geo.resolution_m, geo.width,
+           geo.height, occupancy, "occupancy");
+  log.grid(t_s, prefix + "/O", frame, geo.origin_x_m, geo.origin_y_m, geo.resolution_m, geo.width,
+           geo.height, object, "object_probability");
+}
+
+void UgvMissionRecorder::maps(double t_s, const IrGrid& g, const ObjectMap& o) {
+  log_search_maps(log_, t_s, g, o);
 }
 
 std::string UgvMissionRecorder::finish(const UgvMissionRunResult& result,

@@ -91,6 +91,12 @@ void ExploreController::follow_tether(const Pose2& pose, double t_s) {
 
 double ExploreController::tether_length_m() const { return tether_ ? tether_->length_m() : 0.0; }
 
+std::optional<std::pair<Eigen::Vector2d, double>> ExploreController::tether_anchor() const {
+  if (!tether_) return std::nullopt;
+  const Eigen::Vector2d a = tether_->anchor();
+  return std::pair{a, tether_->length_m() - (tether_->robot() - a).norm()};
+}
+
 bool ExploreController::within_reach(const std::vector<Eigen::Vector2d>& path_W) const {
   if (!tether_) return true;
   TautTether t = *tether_;

@@ -21,6 +21,11 @@
 
 namespace ferret {
 
+/// G (0 free, 50 unknown, 100 occupied) and O (probability x 100) as foxglove.Grid
+/// messages on `prefix`/G and `prefix`/O in `frame`.
+void log_search_maps(FoxgloveLog& log, double t_s, const IrGrid& g, const ObjectMap& o,
+                     const std::string& prefix = "/maps", const std::string& frame = "map");
+
 class UgvMissionRecorder {
  public:
   UgvMissionRecorder() = default;

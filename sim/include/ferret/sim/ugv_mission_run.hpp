@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
@@ -48,6 +49,45 @@ struct UgvMissionRunResult {
   std::vector<Pose2> trajectory;  ///< one pose a tick
   std::shared_ptr<const IrGrid> grid;
   std::shared_ptr<const ObjectMap> objects;
+};
+
+/// One miniUGV mission in a simulated hidden space, stepped by its owner: the
+/// harness run_ugv_mission uses, and the whole mission's simulation (sim/mission_run),
+/// which steps it on the clock it shares with the UAV. Holds the truth (the map, the
+/// object); the controller inside sees only the simulated base.
+class UgvMissionSim {
+ public:
+  /// `truth` and `clock` must outlive the simulation. Throws as run_ugv_mission.
+  UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
+                const std::optional<Eigen::Vector2d>& object_W, const UgvMissionRunSettings& settings,
+                std::uint64_t seed, const Clock& clock, TransitionLog& log);
+  ~UgvMissionSim();
+  UgvMissionSim(const UgvMissionSim&) = delete;
+  UgvMissionSim& operator=(const UgvMissionSim&) = delete;
+
+  void start() { mission_->start(); }
+  /// The controller's tick at the clock's time, then the robot moves by `dt_s`.
+  void step(double dt_s);
+  /// The control period (the IR rate).
+  [[nodiscard]] double tick_s() const { return tick_s_; }
+  [[nodiscard]] MiniUgvMission& mission() { return *mission_; }
+  [[nodiscard]] const MiniUgvMission& mission() const { return *mission_; }
+  [[nodiscard]] const SimUgvBase& base() const { return *base_; }
+  /// The result so far (outcome kNone while running); `log` fills transitions.
+  [[nodiscard]] UgvMissionRunResult result(const TransitionLog& log) const;
+
+ private:
+  const OccupancyMap2D& truth_;
+  std::optional<Eigen::Vector2d> object_W_;
+  double object_radius_m_ = 0.0;
+  bool record_ = false;
+  double tick_s_ = 0.05;
+  std::unique_ptr<HiddenSpaceSim> sim_;
+  std::unique_ptr<SimUgvBase> base_;
+  std::unique_ptr<MiniUgvMission> mission_;
+  std::vector<Pose2> trajectory_;
+  double max_tether_m_ = 0.0;
+  UgvMissionState max_tether_state_ = UgvMissionState::kIdle;
 };
 
 /// @param object_W the object, or none (an empty hidden space)

@@ -107,6 +107,10 @@ class ExploreController {
   [[nodiscard]] std::optional<double> tether_budget_m() const { return options_.tether_budget_m; }
   /// The taut tether's length now (0 without a tether budget).
   [[nodiscard]] double tether_length_m() const;
+  /// The tether's last fixed point (its last wrap point, or the entry) and the taut
+  /// length from the entry to it: what the robot reports over the link so that the
+  /// winch prices its motion between reports. None without a tether model.
+  [[nodiscard]] std::optional<std::pair<Eigen::Vector2d, double>> tether_anchor() const;
   /// Goals refused because their tether would be too long.
   [[nodiscard]] int reach_rejections() const { return reach_rejections_; }
   /// The driven path backwards from the robot until the tether lies straight from the

@@ -96,6 +96,8 @@ class MiniUgvMission {
 
   [[nodiscard]] UgvMissionState state() const { return state_; }
   [[nodiscard]] UgvMissionOutcome outcome() const { return outcome_; }
+  /// The outcome the mission will end with once lifted out (set when it heads home).
+  [[nodiscard]] UgvMissionOutcome return_outcome() const { return return_outcome_; }
   [[nodiscard]] bool done() const { return state_ == UgvMissionState::kDone; }
   [[nodiscard]] bool wants_retraction() const { return state_ == UgvMissionState::kAwaitRetract; }
   /// Where O confirmed the object, once it did.

@@ -1,0 +1,317 @@
+// `ferret mission`: the whole mission in the simulated world (docs/mission.md): the
+// UAV searches, finds the marked openings, lands (or hovers) beside each, lowers the
+// miniUGV, which searches the hidden space and brings the object out, and the UAV drops
+// it in the drop zone and searches on.
+//   ferret mission [--world W.yaml] [--robot-uav URDF] [--robot-ugv URDF]
+//                  [--mission M.yaml] [--seed N] [--out DIR]
+// Prints the transitions as they happen (simulated time), a progress line a simulated
+// minute, then a summary; --out writes report.json, the figures, map.bt and mission.mcap.
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_options.hpp"
+#include "command.hpp"
+#include "ferret/core/data_path.hpp"
+#include "ferret/core/error.hpp"
+#include "ferret/core/foxglove_log.hpp"
+#include "ferret/core/output_set.hpp"
+#include "ferret/mapping/map_render.hpp"
+#include "ferret/mapping/world_octree.hpp"
+#include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/planning_world.hpp"
+#include "ferret/sim/exploration_run.hpp"
+#include "ferret/sim/mission_run.hpp"
+#include "ferret/sim/search_robot.hpp"
+#include "ferret/sim/tether_sim.hpp"
+#include "ferret/sim/ugv_mission_log.hpp"
+#include "ferret/urdf/mission_config.hpp"
+#include "ferret/urdf/robot_description.hpp"
+
+namespace ferret::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Options {
+  std::string world, robot_uav, robot_ugv, mission, out, method = "cdos";
+  std::string no_landing_zone = "hover";
+  std::uint64_t seed = 1;
+  bool quiet = false;
+};
+
+nlohmann::json xyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+nlohmann::json report_json(const Options& o, const fs::path& world, const MissionRunResult& r) {
+  nlohmann::json j;
+  j["schema"] = "ferret.mission_report/1";
+  j["world"] = world.string();
+  j["seed"] = o.seed;
+  j["outcome"] = to_string(r.outcome);
+  j["time_s"] = r.time_s;
+  j["summary"] = {{"hidden_spaces_in_world", r.hidden_spaces_in_world},
+                  {"hidden_spaces_found", r.visits.size()},
+                  {"objects_in_world", r.objects_in_world},
+                  {"objects_retrieved", std::count_if(r.visits.begin(), r.visits.end(),
+                                                      [](const auto& v) { return v.object_retrieved; })},
+                  {"objects_dropped", r.objects_dropped},
+                  {"flown_m", r.flown_m},
+                  {"battery_left", r.battery_left},
+                  {"uav_collisions", r.uav_collisions},
+                  {"tether_max_released_m", r.max_released_m},
+                  {"tether_required_over_length_steps", r.required_over_length},
+                  {"tether_over_tension_events", r.over_tension_events},
+                  {"tether_max_tension_n", r.max_tension_n},
+                  {"leg_spacing_m", r.leg_spacing_m},
+                  {"pattern_waypoints", r.pattern_waypoints},
+                  {"pattern_done", r.pattern_done},
+                  {"marker_frames", r.frames}};
+  j["time_in_state_s"] = r.time_in_state;
+  auto& visits = j["hidden_spaces"] = nlohmann::json::array();
+  for (const HiddenSpaceVisit& v : r.visits) {
+    nlohmann::json e = {{"marker_id", v.marker_id},
+                        {"detected_s", v.detected_s},
+                        {"detected_on_pass", v.pattern_index < r.first_pass_waypoints ? 1 : 2},
+                        {"opening_estimate_m", xyz(v.opening.p_WE)},
+                        {"entry_yaw_rad", v.opening.entry_yaw_rad},
+                        {"state", v.state},
+                        {"note", v.note},
+                        {"landed", v.landed},
+                        {"deployed_s", v.deployed_s},
+                        {"retracted_s", v.retracted_s},
+                        {"ugv_outcome", v.ugv_outcome},
+                        {"object_retrieved", v.object_retrieved},
+                        {"object_dropped", v.object_dropped},
+                        {"tether_max_released_m", v.max_released_m}};
+    e["landing_zone"] = v.landing_zone ? nlohmann::json{{"center_m", xyz(v.landing_zone->center_m)},
+                                                        {"slope_deg", v.landing_zone->slope_deg},
+                                                        {"clearance_m", v.landing_zone->clearance_m},
+                                                        {"distance_to_opening_m", v.landing_zone->distance_to_opening_m}}
+                                       : nlohmann::json();
+    visits.push_back(e);
+  }
+  auto& deps = j["ugv_deployments"] = nlohmann::json::array();
+  for (const UgvDeployment& d : r.deployments) {
+    const UgvMissionRunResult& u = d.result;
+    deps.push_back({{"hidden_space", d.hidden_space},
+                    {"deployed_s", d.deployed_s},
+                    {"object_present", d.object_W.has_value()},
+                    {"outcome", to_string(u.outcome)},
+                    {"time_s", u.time_s},
+                    {"path_m", u.path_m},
+                    {"battery_left", u.battery_left},
+                    {"grasp_attempts", u.grasp_attempts},
+                    {"decisions", u.decisions},
+                    {"object_held", u.object_held},
+                    {"tether_model_max_m", u.max_tether_m},
+                    {"tether_true_max_m", d.max_true_tether_m}});
+  }
+  auto& tr = j["transitions"] = nlohmann::json::array();
+  for (const Transition& t : r.transitions)
+    tr.push_back({{"t_s", t.t_s}, {"component", t.component}, {"from", t.from}, {"to", t.to}, {"reason", t.reason}});
+  auto& samples = j["samples"] = nlohmann::json::array();  // every 0.5 s
+  for (const MissionSample& s : r.samples)
+    samples.push_back({s.t_s, s.p_W.x(), s.p_W.y(), s.p_W.z(), s.yaw_rad, s.state, s.battery, s.released_m,
+                       s.required_m, s.tension_n, s.ugv_battery});
+  j["samples_columns"] = {"t_s", "x_m", "y_m", "z_m", "yaw_rad", "state", "battery", "released_m",
+                          "required_m", "tension_n", "ugv_battery"};
+  return j;
+}
+
+// The aerial map: the world cut just above the ground, the flight path, each opening
+// the UAV estimated, the landing points, the drop zone.
+void write_aerial_png(const octomap::OcTree& tree, const WorldSpec& spec, const MissionRunResult& r,
+                      const fs::path& path) {
+  SliceOptions so;
+  so.z_m = spec.ground.height_m + 0.35;
+  const OccupancyMap2D slice = slice_octree(tree, so);
+  MapCanvas c(slice);
+  std::vector<Eigen::Vector2d> flight;
+  for (const MissionSample& s : r.samples) flight.push_back(s.p_W.head<2>());
+  c.draw_path(flight, Rgb{30, 90, 220}, 2);
+  c.add_legend("flight path", Rgb{30, 90, 220}, LegendMark::kLine);
+  for (const HiddenSpaceVisit& v : r.visits) {
+    c.draw_marker(v.opening.p_WE.head<2>(), Rgb{230, 120, 0}, LegendMark::kDiamond, 7);
+    c.draw_text(v.opening.p_WE.head<2>() + Eigen::Vector2d(0.8, 0.8),
+                fmt::format("#{} {}", v.marker_id, v.object_retrieved ? "object" : v.ugv_outcome), Rgb{120, 60, 0});
+    if (v.landing_zone) c.draw_marker(v.landing_zone->center_m.head<2>(), Rgb{0, 170, 0}, LegendMark::kSquare, 5);
+  }
+  c.add_legend("opening (from its marker)", Rgb{230, 120, 0}, LegendMark::kDiamond);
+  c.add_legend("landing zone", Rgb{0, 170, 0}, LegendMark::kSquare);
+  if (spec.drop_zone) {
+    c.draw_circle(spec.drop_zone->center_m, spec.drop_zone->radius_m, Rgb{200, 0, 160});
+    c.add_legend("drop zone", Rgb{200, 0, 160}, LegendMark::kRing);
+  }
+  c.set_title(fmt::format("{}: {} in {:.0f} s, {:.0f} m flown, {} of {} hidden spaces found", spec.name,
+                          to_string(r.outcome), r.time_s, r.flown_m, r.visits.size(), r.hidden_spaces_in_world));
+  c.save_png(path);
+}
+
+// The tether over the whole mission as the tether simulation's plot draws it.
+void write_tether_png(const MissionRunResult& r, double total_length_m, const fs::path& path) {
+  sim::TetherSimResult t;
+  t.scenario = "mission";
+  t.controller = "mpc";
+  for (const MissionSample& s : r.samples) {
+    sim::TetherSimSample row;
+    row.t_s = s.t_s;
+    row.released_m = s.released_m;
+    row.required_m = s.required_m > 0 ? s.required_m : s.released_m;
+    row.slack_m = row.released_m - row.required_m;
+    row.winch_tension_n = row.ugv_tension_n = s.tension_n;
+    t.log.push_back(row);
+  }
+  if (t.log.size() >= 2) sim::write_tether_sim_plot(t, 0.15, total_length_m, path);
+}
+
+std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition>& transitions) {
+  FoxgloveLog log;
+  for (const MissionSample& s : r.samples) {
+    Pose3 X_WB = Pose3::Identity();
+    X_WB.translation() = s.p_W;
+    X_WB.linear() = Eigen::AngleAxisd(s.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    log.transform(s.t_s, "world", "uav", X_WB);
+  }
+  std::vector<Eigen::Vector3d> flight;
+  for (const MissionSample& s : r.samples) flight.push_back(s.p_W);
+  if (!r.samples.empty()) log.line(r.samples.back().t_s, "/uav/path", "world", "flight", flight, RgbaColor{0.1, 0.35, 0.9, 1.0});
+  for (const UgvDeployment& d : r.deployments) {
+    const double t0 = d.deployed_s;
+    for (std::size_t k = 0; k < d.result.trajectory.size(); k += 2) {
+      const Pose2& p = d.result.trajectory[k];
+      Pose3 X = Pose3::Identity();
+      X.translation() = Eigen::Vector3d(p.x_m, p.y_m, 0.03);
+      X.linear() = Eigen::AngleAxisd(p.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      log.transform(t0 + 0.05 * static_cast<double>(k), "world", "ugv", X);
+    }
+    if (d.result.grid && d.result.objects)
+      log_search_maps(log, t0 + d.result.time_s, *d.result.grid, *d.result.objects,
+                      "/maps/" + (d.hidden_space.empty() ? std::string("none") : d.hidden_space), "world");
+  }
+  for (const HiddenSpaceVisit& v : r.visits)
+    log.marker(v.detected_s, "/detections", "world", "opening_" + std::to_string(v.marker_id), v.opening.p_WE, 0.3,
+               {1.0, 0.5, 0.0, 1.0}, "marker " + std::to_string(v.marker_id));
+  for (const Transition& t : transitions)
+    log.log(t.t_s, t.component, t.from + " -> " + t.to + " (" + t.reason + ")");
+  return log.finish();
+}
+
+void run(const Options& o) {
+  if (o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
+    throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
+  if (!has_exploration_policy(o.method))
+    throw InputError("--method", "", one_of(exploration_policy_names()), o.method);
+  if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
+  const fs::path world_path = o.world.empty() ? data_path("worlds/default.yaml") : fs::path(o.world);
+  const MissionConfig mission = load_mission_or_defaults(o.mission);
+  const RobotDescription uav = load_robot_description(resolve_robot(o.robot_uav, "m100.urdf"), mission);
+  const RobotDescription ugv = load_robot_description(resolve_robot(o.robot_ugv, "miniugv.urdf"), mission);
+  const PlanningWorld world = load_planning_world(world_path);
+  if (!world.spec)
+    throw InputError(world_path.string(), "", "a world YAML (an OctoMap file names no hidden spaces or markers)");
+  if (world.spec->hidden_spaces.empty())
+    throw InputError(world_path.string(), "hidden_spaces", "at least one hidden space with a marker");
+
+  MissionRunSettings settings = mission_settings_for(uav, ugv, mission, *world.spec);
+  settings.ugv.exploration.method = o.method;
+  settings.uav.no_landing_zone = o.no_landing_zone;
+  const WorldSpec& spec = *world.spec;
+
+  TransitionLog log;
+  double next_progress_s = 60.0;
+  log.on_transition([&](const Transition& t) {
+    if (o.quiet) return;
+    std::printf("%s\n", TransitionLog::format(t).c_str());
+    std::fflush(stdout);
+  });
+  settings.on_sample = [&](double t_s, const MissionSim& m) {
+    if (o.quiet || t_s < next_progress_s) return;
+    next_progress_s += 60.0;
+    const FlightState s = m.uav_truth();
+    std::printf("  [%6.0f s] uav %s at (%.1f, %.1f, %.1f), battery %.0f %%, l_t %.2f m, %zu/%zu waypoints\n", t_s,
+                std::string(to_string(m.uav().state())).c_str(), s.p_W.x(), s.p_W.y(), s.p_W.z(),
+                100 * s.battery_fraction, m.released_m(), m.uav().pattern_done(), m.uav().pattern().size());
+    std::fflush(stdout);
+  };
+  const MissionRunResult r = run_mission(world, uav, settings, o.seed, &log);
+
+  int retrieved = 0;
+  for (const HiddenSpaceVisit& v : r.visits) retrieved += v.object_retrieved ? 1 : 0;
+  std::printf("outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu of %d\nobjects_retrieved: %d of %d\n"
+              "objects_dropped: %d\nflown_m: %.1f\nbattery_left: %.3f\ntether_max_m: %.2f\n"
+              "tether_over_tension_events: %d\nuav_collisions: %d\n",
+              std::string(to_string(r.outcome)).c_str(), r.time_s, r.visits.size(), r.hidden_spaces_in_world,
+              retrieved, r.objects_in_world, r.objects_dropped, r.flown_m, r.battery_left, r.max_released_m,
+              r.over_tension_events, r.uav_collisions);
+  for (const HiddenSpaceVisit& v : r.visits)
+    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, v.state.c_str(),
+                v.state == "serviced" ? (v.landed ? " (landed)" : " (hovered)") : "",
+                v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(), v.object_dropped ? ", object dropped" : "");
+  for (const auto& [state, n] : r.collisions_in) std::printf("  uav collision checks failed in %s: %d\n", state.c_str(), n);
+  std::printf("time_per_state_s:");
+  for (const auto& [state, t] : r.time_in_state) std::printf(" %s %.0f", state.c_str(), t);
+  std::printf("\n");
+  for (const UgvDeployment& d : r.deployments)
+    std::printf("  miniUGV in %s: %s in %.0f s, %.1f m driven, battery %.2f\n",
+                d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(),
+                std::string(to_string(d.result.outcome)).c_str(), d.result.time_s, d.result.path_m,
+                d.result.battery_left);
+  if (o.out.empty()) return;
+
+  OutputSet files(fs::path(o.out), OutputKind::kDirectory);
+  files.write_text("report.json", report_json(o, world_path, r).dump(1) + "\n");
+  files.write("aerial.png", [&](const fs::path& p) { write_aerial_png(*world.tree, spec, r, p); });
+  files.write("tether.png", [&](const fs::path& p) {
+    write_tether_png(r, mission.tether.total_length_m, p);
+  });
+  for (const UgvDeployment& d : r.deployments) {
+    if (d.hidden_space.empty() || !d.result.grid) continue;
+    EpisodeResult figure;
+    figure.found = d.result.found_right;
+    figure.time_s = d.result.time_s;
+    figure.path_m = d.result.path_m;
+    figure.decisions = d.result.decisions;
+    figure.end_reason = std::string(to_string(d.result.outcome));
+    figure.found_W = d.result.found_W.value_or(Eigen::Vector2d::Zero());
+    figure.trajectory = d.result.trajectory;
+    figure.grid = d.result.grid;
+    figure.objects = d.result.objects;
+    const fs::path dir = files.path("spaces/" + d.hidden_space + "/G.png").parent_path();
+    write_exploration_images(d.truth, d.object_W.value_or(Eigen::Vector2d(-1e6, -1e6)), figure, dir,
+                             fmt::format("{}: {}", d.hidden_space, to_string(d.result.outcome)));
+  }
+  files.write("map.bt", [&](const fs::path& p) { save_octree(*world.tree, p); });
+  files.write_text("mission.mcap", mission_mcap(r, r.transitions));
+  files.commit();
+  std::printf("wrote: %s (report.json, aerial.png, tether.png, spaces/*/G.png O.png G_O.png, map.bt, mission.mcap)\n",
+              o.out.c_str());
+}
+
+}  // namespace
+
+const CommandRegistration kMission{
+    "mission", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      auto* sub = app.add_subcommand("mission", "Simulate the whole mission: search, land, retrieve, drop");
+      sub->add_option("--world", o->world, "World YAML (default: the shipped default world)");
+      sub->add_option("--robot-uav", o->robot_uav, "The UAV's URDF (default: the shipped m100)");
+      sub->add_option("--robot-ugv", o->robot_ugv, "The miniUGV's URDF (default: the shipped miniugv)");
+      sub->add_option("--mission", o->mission, "Mission YAML (default: the built-in defaults)");
+      add_seed_option(sub, o->seed, "mission");
+      sub->add_option("--method", o->method, "The miniUGV's search: cdos, rapid, nearest, ...");
+      sub->add_option("--no-landing-zone", o->no_landing_zone,
+                      "No safe landing zone by an opening: hover (lower from a hover) or skip");
+      sub->add_option("-o,--out", o->out,
+                      "Directory for report.json, aerial.png, tether.png, spaces/*/, map.bt, mission.mcap");
+      sub->add_flag("-q,--quiet", o->quiet, "Print the summary only");
+      sub->callback([o] { run(*o); });
+    }};
+
+}  // namespace ferret::cli

@@ -1,0 +1,119 @@
+#pragma once
+// The whole mission in one simulated world (docs/mission.md): the UAV's mission
+// controller (uav/uav_mission.hpp) flying a simulated M100 with rendered camera and
+// depth frames, the winch (tether::SimulatedWinch) and the tether, and the miniUGV's
+// mission controller in each hidden space the UAV lowers it into, all on one SimClock.
+// Only this harness reads the truth: the world's geometry, where the hidden spaces and
+// objects are, the true taut tether. Deterministic for a seed.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ferret/core/transition_log.hpp"
+#include "ferret/planning/planning_world.hpp"
+#include "ferret/sim/ugv_mission_run.hpp"
+#include "ferret/uav/uav_mission.hpp"
+#include "ferret/urdf/robot_description.hpp"
+
+namespace ferret {
+
+struct MissionRunSettings {
+  /// The UAV's mission. Its openings, search area, drop zone and tether are filled
+  /// from the world and the mission config where they are left empty / at defaults.
+  UavMissionOptions uav;
+  /// The miniUGV's mission, search and simulated base (as `ferret explore --retrieve`).
+  UgvMissionRunSettings ugv;
+  double uav_max_speed_mps = 5.0;      ///< the M100's limits (the UAV URDF's)
+  double uav_max_accel_mps2 = 2.0;
+  double uav_max_yaw_rate_radps = 1.0;
+  double landed_height_m = 0.25;       ///< base_link above the ground when landed
+  double time_limit_s = 4 * 3600.0;    ///< the simulation's own bound
+  /// Called every 0.1 s of simulated time (the MCAP recorder's hook).
+  std::function<void(double t_s, const class MissionSim&)> on_sample;
+};
+
+/// What the miniUGV did in one hidden space.
+struct UgvDeployment {
+  std::string hidden_space;  ///< the world's name for it ("" when the UAV's estimate hit none)
+  UgvMissionRunResult result;
+  OccupancyMap2D truth;      ///< the slice it searched (for the figures)
+  std::optional<Eigen::Vector2d> object_W;
+  double max_true_tether_m = 0.0;  ///< l_0 + the true taut tether, longest
+  double deployed_s = 0.0;
+};
+
+struct MissionSample {
+  double t_s = 0.0;
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
+  double yaw_rad = 0.0;
+  std::string state;
+  double battery = 1.0;
+  double released_m = 0.0;   ///< l_t
+  double required_m = 0.0;   ///< l_0 + true taut tether while the miniUGV works, else 0
+  double tension_n = 0.0;
+  double ugv_battery = 1.0;
+};
+
+struct MissionRunResult {
+  UavMissionOutcome outcome = UavMissionOutcome::kNone;
+  double time_s = 0.0;
+  std::vector<HiddenSpaceVisit> visits;
+  std::vector<UgvDeployment> deployments;
+  std::map<std::string, double> time_in_state;
+  double flown_m = 0.0;
+  double battery_left = 1.0;
+  int objects_in_world = 0;        ///< objects inside hidden spaces
+  int objects_dropped = 0;         ///< released inside the drop zone (truth)
+  int hidden_spaces_in_world = 0;
+  int uav_collisions = 0;          ///< checks (every 0.1 s) with the UAV's shape in an occupied voxel
+  std::map<std::string, int> collisions_in;  ///< the same by the UAV's state
+  double max_released_m = 0.0;     ///< l_t, longest
+  int required_over_length = 0;    ///< steps where the true taut tether needed more than L
+  int over_tension_events = 0;     ///< rising edges of tension above the limit
+  double max_tension_n = 0.0;
+  double leg_spacing_m = 0.0;
+  std::size_t pattern_waypoints = 0, pattern_done = 0, first_pass_waypoints = 0;
+  int frames = 0;
+  std::vector<MissionSample> samples;  ///< every 0.5 s
+  std::vector<Transition> transitions;
+};
+
+class MissionSimImpl;
+
+/// The running simulation, for hooks (read only).
+class MissionSim {
+ public:
+  explicit MissionSim(const MissionSimImpl& impl) : impl_(impl) {}
+  [[nodiscard]] const UavMission& uav() const;
+  [[nodiscard]] FlightState uav_truth() const;
+  /// The miniUGV's mission in the hidden space it works in now, or null.
+  [[nodiscard]] const UgvMissionSim* ugv() const;
+  [[nodiscard]] double released_m() const;
+
+ private:
+  const MissionSimImpl& impl_;
+};
+
+/// The openings of a world's markers (what the team placed and tells the UAV).
+[[nodiscard]] std::vector<OpeningInMarker> world_openings(const WorldSpec& world);
+
+/// The settings `ferret mission` runs with: the miniUGV's search from its robot and the
+/// mission (method cdos, trajectories recorded), the UAV's limits and landing-zone
+/// footprint from its robot, the search area the world's bounds less 1 m (the legs
+/// start at the edge so that the forward camera sees markers near it).
+[[nodiscard]] MissionRunSettings mission_settings_for(const RobotDescription& uav, const RobotDescription& ugv,
+                                                      const MissionConfig& mission, const WorldSpec& world);
+
+/// Runs the mission. `uav_robot` is the UAV's description (its marker and depth
+/// cameras, its shape); throws InputError for a world without a world YAML's hidden
+/// spaces, a robot without the cameras, or bad options.
+[[nodiscard]] MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription& uav_robot,
+                                           const MissionRunSettings& settings, std::uint64_t seed,
+                                           TransitionLog* log = nullptr);
+
+}  // namespace ferret

@@ -1,0 +1,179 @@
+// The whole mission end to end in simulation (sim/mission_run.hpp): the UAV's and the
+// miniUGV's controllers on the rendered world, against the world's truth.
+
+#include "ferret/sim/mission_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "ferret/core/data_path.hpp"
+#include "ferret/urdf/mission_config.hpp"
+#include "ferret/urdf/robot_description.hpp"
+
+namespace ferret {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A variant of the shipped second world, written where the test can load it.
+fs::path world_variant(const std::string& name, const std::string& from, const std::string& to) {
+  std::string text = read_text(data_path("worlds/two_sites.yaml"));
+  if (!from.empty()) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  }
+  const fs::path p = fs::temp_directory_path() / ("ferret_mission_" + name + ".yaml");
+  std::ofstream(p) << text;
+  return p;
+}
+
+struct MissionRunOut {
+  MissionRunResult result;
+  PlanningWorld world;
+};
+
+MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::uint64_t seed = 1,
+        const std::string& no_landing_zone = "hover") {
+  const RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), mission);
+  const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
+  MissionRunOut r{{}, load_planning_world(world_path)};
+  MissionRunSettings s = mission_settings_for(uav, ugv, mission, *r.world.spec);
+  s.uav.no_landing_zone = no_landing_zone;
+  r.result = run_mission(r.world, uav, s, seed);
+  return r;
+}
+
+const HiddenSpaceVisit* visit_of(const MissionRunResult& r, int marker_id) {
+  for (const auto& v : r.visits)
+    if (v.marker_id == marker_id) return &v;
+  return nullptr;
+}
+
+// What every run must keep, whatever happens: a named end, no collision, the tether
+// never paid out beyond L. (Tension spikes over the limit are still measured, not
+// asserted: docs/mission.md, open defects.)
+void expect_safe(const MissionRunResult& r, const MissionConfig& mission) {
+  EXPECT_NE(r.outcome, UavMissionOutcome::kNone);
+  EXPECT_NE(r.outcome, UavMissionOutcome::kAborted);
+  EXPECT_EQ(r.uav_collisions, 0);
+  EXPECT_LE(r.max_released_m, mission.tether.total_length_m + 1e-3);
+  for (const auto& d : r.deployments) EXPECT_NE(d.result.outcome, UgvMissionOutcome::kNone) << d.hidden_space;
+}
+
+TEST(MissionRun, FindsBothSpacesRetrievesTheObjectAndReportsTheEmptyOne) {
+  const MissionRunOut run_ = run(data_path("worlds/two_sites.yaml"));
+  const MissionRunResult& r = run_.result;
+  expect_safe(r, {});
+  EXPECT_EQ(r.outcome, UavMissionOutcome::kSearchComplete);
+  ASSERT_EQ(r.visits.size(), 2u);
+  const HiddenSpaceVisit* shed = visit_of(r, 5);
+  const HiddenSpaceVisit* kiln = visit_of(r, 9);
+  ASSERT_TRUE(shed && kiln);
+  // The opening from the marker is where the world has it (to a few centimetres).
+  const auto& spec = *run_.world.spec;
+  EXPECT_LT(Eigen::Vector2d((shed->opening.p_WE - spec.hidden_spaces[0].p_WE).head(2)).norm(), 0.3);
+  EXPECT_LT(Eigen::Vector2d((kiln->opening.p_WE - spec.hidden_spaces[1].p_WE).head(2)).norm(), 0.3);
+  EXPECT_EQ(shed->state, "serviced");
+  EXPECT_TRUE(shed->object_retrieved);
+  EXPECT_TRUE(shed->object_dropped);
+  // The miniUGV's return can stall on its way back (docs/mission.md, open defects);
+  // the winch then drags it out along its tether, the object on the magnet.
+  EXPECT_TRUE(shed->ugv_outcome == "object_retrieved" || shed->ugv_outcome == "return_failed")
+      << shed->ugv_outcome;
+  EXPECT_EQ(kiln->state, "serviced");
+  EXPECT_FALSE(kiln->object_retrieved);
+  EXPECT_TRUE(kiln->ugv_outcome == "no_object" || kiln->ugv_outcome == "return_failed") << kiln->ugv_outcome;
+  EXPECT_EQ(r.objects_dropped, 1);
+  ASSERT_EQ(r.deployments.size(), 2u);
+  EXPECT_GT(r.battery_left, 0.0);
+}
+
+TEST(MissionRun, TheSameSeedGivesTheSameMission) {
+  // OMPL is seeded once per process, so the same mission is flown by two processes.
+  const fs::path w = world_variant("seed", "", "");
+  const std::string cmd = std::string(FERRET_CLI) + " mission -q --seed 3 --world " + w.string();
+  const auto output = [&] {
+    std::string out;
+    FILE* p = popen(cmd.c_str(), "r");
+    char buf[4096];
+    while (p && fgets(buf, sizeof buf, p)) out += buf;
+    if (p) {
+      EXPECT_EQ(pclose(p), 0);
+    }
+    return out;
+  };
+  const std::string a = output();
+  EXPECT_NE(a.find("outcome: "), std::string::npos) << a;
+  EXPECT_EQ(a, output());
+}
+
+TEST(MissionRun, NoObjectAnywhereEndsWithEverySpaceEmpty) {
+  const fs::path w = world_variant("no_object", "  - {name: canister, hidden_space: shed_void, position_m: [1.8, 1.0], size_m: [0.08, 0.08, 0.05]}\n", "");
+  const MissionRunResult r = run(w).result;
+  expect_safe(r, {});
+  EXPECT_EQ(r.outcome, UavMissionOutcome::kSearchComplete);
+  ASSERT_EQ(r.visits.size(), 2u);
+  for (const auto& v : r.visits) {
+    EXPECT_TRUE(v.ugv_outcome == "no_object" || v.ugv_outcome == "return_failed") << v.ugv_outcome;
+    EXPECT_FALSE(v.object_retrieved);
+  }
+  EXPECT_EQ(r.objects_dropped, 0);
+}
+
+TEST(MissionRun, UnsafeGroundByAnOpeningHoversOrSkips) {
+  // Low debris 0.9 m out from the kiln's opening: no disc within l_0 of it is clear,
+  // but a hover over it is.
+  const std::string debris =
+      "boxes:\n"
+      "  - {name: debris_1, center_m: [-11.55, -5.0], size_m: [0.3, 0.3, 0.3]}\n"
+      "  - {name: debris_2, center_m: [-11.55, -5.5], size_m: [0.3, 0.3, 0.3]}\n"
+      "  - {name: debris_3, center_m: [-11.55, -6.0], size_m: [0.3, 0.3, 0.3]}\n";
+  const fs::path w = world_variant("unsafe_landing", "boxes:\n", debris);
+  const MissionRunResult hover = run(w).result;
+  expect_safe(hover, {});
+  const HiddenSpaceVisit* kiln = visit_of(hover, 9);
+  ASSERT_TRUE(kiln);
+  EXPECT_FALSE(kiln->landed);
+  EXPECT_FALSE(kiln->landing_zone.has_value());
+  EXPECT_EQ(kiln->state, "serviced") << kiln->note;
+  EXPECT_GE(kiln->deployed_s, 0.0);
+  const HiddenSpaceVisit* shed = visit_of(hover, 5);
+  ASSERT_TRUE(shed);
+  EXPECT_TRUE(shed->object_dropped);
+
+  const MissionRunResult skip = run(w, {}, 1, "skip").result;
+  expect_safe(skip, {});
+  kiln = visit_of(skip, 9);
+  ASSERT_TRUE(kiln);
+  EXPECT_EQ(kiln->state, "skipped");
+  EXPECT_LT(kiln->deployed_s, 0.0);
+}
+
+TEST(MissionRun, AnObjectBeyondTheTethersReachIsNeverReached) {
+  MissionConfig short_tether;
+  short_tether.tether.total_length_m = 3.0;  // 2 m on the floor; the object is 3.3 m in
+  const MissionRunResult r = run(data_path("worlds/two_sites.yaml"), short_tether).result;
+  expect_safe(r, short_tether);
+  const HiddenSpaceVisit* shed = visit_of(r, 5);
+  ASSERT_TRUE(shed);
+  EXPECT_FALSE(shed->object_retrieved);
+  EXPECT_TRUE(shed->ugv_outcome == "no_object" || shed->ugv_outcome == "return_failed") << shed->ugv_outcome;
+  for (const auto& d : r.deployments) EXPECT_FALSE(d.result.object_held) << d.hidden_space;
+}
+
+}  // namespace
+}  // namespace ferret

@@ -1,0 +1,246 @@
+#pragma once
+// The UAV's mission controller (paper sect. III):
+//   takeoff      climb to the search altitude
+//   search       a coverage pattern over the area (legs spaced by what the marker
+//                camera resolves, a second pass across the first), each leg a planned
+//                flight; marker frames at a fixed period; a marker of a hidden space not
+//                yet visited -> approach
+//   approach     fly to the survey point out from the opening the marker gives
+//   survey       depth frames from there: the best safe landing zone within reach of
+//                the opening (unknown is not free); none -> hover or skip (an option)
+//   land         over the zone, then down (or hold the hover)
+//   lower        release the miniUGV: l_t from 0 to l_0 with the IMU touchdown check
+//   ugv_ops      the miniUGV's mission; the winch's taut-tether control keeps l_t on the
+//                length the miniUGV's pose asks for
+//   retract      reel the miniUGV in
+//   liftoff      back to the search altitude
+//   deliver      fly the object to the drop zone (planned with the miniUGV hanging)
+//   drop         release it there, then search on
+//   return_home  the pattern done, or the battery only covers the way home
+//   land_home    down at home -> done
+// Every state has a timeout and a defined exit; every transition goes to the
+// TransitionLog with the clock's time and the reason. The controller sees the
+// interfaces of flight_controller.hpp, a tether::Winch, a Clock and a flight planner,
+// never the simulator's truth.
+
+#include <Eigen/Core>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ferret/core/clock.hpp"
+#include "ferret/core/transition_log.hpp"
+#include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/tether_model/tether_modes.hpp"
+#include "ferret/tether_model/winch.hpp"
+#include "ferret/uav/flight_controller.hpp"
+#include "ferret/uav/landing_zone.hpp"
+#include "ferret/uav/marker_detector.hpp"
+#include "ferret/uav/opening_locator.hpp"
+
+namespace ferret {
+
+enum class UavMissionState {
+  kIdle, kTakeoff, kSearch, kApproach, kSurvey, kLand, kLower, kUgvOps, kRetract,
+  kLiftoff, kDeliver, kDrop, kReturnHome, kLandHome, kDone
+};
+[[nodiscard]] std::string_view to_string(UavMissionState state);
+
+enum class UavMissionOutcome {
+  kNone,
+  kSearchComplete,  ///< the whole pattern flown, landed at home
+  kFlightBudget,    ///< the battery only covered the way home: returned early, landed
+  kTakeoffFailed,   ///< never reached the search altitude
+  kRetractFailed,   ///< the miniUGV could not be reeled in (the UAV stays landed)
+  kAborted,         ///< stop()
+};
+[[nodiscard]] std::string_view to_string(UavMissionOutcome outcome);
+
+/// A flight planner: a collision-free path from `from` to `to` (both included), with
+/// the miniUGV hanging below when `carrying`; nullopt when there is none.
+using FlightPlanner = std::function<std::optional<std::vector<Eigen::Vector3d>>(
+    const Eigen::Vector3d& from, const Eigen::Vector3d& to, bool carrying)>;
+
+struct UavMissionOptions {
+  /// The area to search, [x0, y0, x1, y1] (m) in the world.
+  Eigen::Vector4d search_area_m{-25.0, -25.0, 25.0, 25.0};
+  double search_altitude_m = 4.0;
+  double search_speed_mps = 3.0;
+  double cruise_speed_mps = 5.0;
+  /// Distance between the pattern's legs; 0: from the marker camera (twice the lateral
+  /// reach, at half the range where a marker still spans min_marker_side_px).
+  double leg_spacing_m = 0.0;
+  int passes = 2;                ///< 1: legs along x; 2: then legs along y
+  double frame_period_s = 0.5;   ///< marker frames while searching
+  double waypoint_tolerance_m = 0.4;
+  /// The markers the team placed: where each one's opening lies in its frame.
+  std::vector<OpeningInMarker> openings;
+  MarkerDetectorOptions marker;
+  /// Detections of the same marker needed before the UAV goes (a single frame can lie).
+  int confirm_detections = 2;
+  LandingZoneDetector::Options landing;
+  double survey_height_m = 3.5;   ///< above the opening, for the depth frames
+  double survey_standoff_m = 1.0; ///< out from the opening, horizontally
+  int survey_views = 3;           ///< survey points tried (round the opening) before giving up
+  /// No safe landing zone within reach: "hover" (lower from a hover over the opening's
+  /// standoff point) or "skip" (leave the hidden space and search on).
+  std::string no_landing_zone = "hover";
+  double hover_height_m = 1.5;    ///< above the opening's floor
+  double hover_standoff_m = 0.6;  ///< out from the opening
+  double touchdown_height_m = 0.25; ///< the winch above the ground when landed (Z_W)
+  TetherParams tether;            ///< L and l_0
+  tether::TouchdownGuard::Options touchdown;
+  std::string winch_controller = "mpc";
+  /// The winch's control (its slack reference is raised to 10 cm by default: the
+  /// miniUGV's tether model, from its own map's corners, differs from the real tether
+  /// by a few centimetres, and a taut line has no room for that).
+  tether::TautControlOptions winch_control = default_winch_control();
+  [[nodiscard]] static tether::TautControlOptions default_winch_control() {
+    tether::TautControlOptions o;
+    o.slack_reference_m = 0.10;
+    return o;
+  }
+  double retract_speed_mps = 0.4;
+  Eigen::Vector2d drop_zone_W = Eigen::Vector2d::Zero();
+  double drop_altitude_m = 3.0;
+  double drop_time_s = 3.0;       ///< the EPM off and the object falling clear
+  /// Flight endurance of a full battery (the M100 with its payload: about 20 min) and
+  /// the reserve kept over what the way home costs at cruise speed.
+  double flight_endurance_s = 20.0 * 60.0;
+  double battery_reserve_fraction = 0.10;
+  double takeoff_timeout_s = 40.0;
+  double approach_timeout_s = 120.0;
+  double survey_timeout_s = 60.0;
+  double land_timeout_s = 60.0;
+  double lower_timeout_s = 60.0;
+  double ugv_ops_timeout_s = 25.0 * 60.0;
+  double retract_timeout_s = 120.0;
+  double deliver_timeout_s = 240.0;
+  double return_timeout_s = 300.0;
+
+  /// Throws InputError(source, field, ...) for a value out of range.
+  void validate(const std::string& source) const;
+};
+
+/// One hidden space the UAV found, and what came of it.
+struct HiddenSpaceVisit {
+  int marker_id = -1;
+  OpeningEstimate opening;         ///< from the nearest frame of its marker
+  double marker_distance_m = 1e9;  ///< camera to marker in that frame
+  double detected_s = 0.0;
+  std::size_t pattern_index = 0;   ///< the pattern waypoint the UAV was flying to then
+  std::string state = "detected";  ///< detected, skipped, serviced
+  std::string note;                ///< why skipped
+  bool landed = false;             ///< landed beside it (false: hovered)
+  std::optional<LandingZone> landing_zone;
+  double deployed_s = -1.0;
+  double retracted_s = -1.0;
+  std::string ugv_outcome;
+  bool object_retrieved = false;   ///< the miniUGV came out with it
+  bool object_dropped = false;     ///< released in the drop zone
+  double max_released_m = 0.0;     ///< longest l_t while the miniUGV worked
+};
+
+class UavMission {
+ public:
+  struct Hardware {
+    FlightController& flight;
+    UavCameras& cameras;
+    tether::Winch& winch;
+    UgvLink& ugv;
+  };
+  /// configure: `marker_camera`, `depth_camera` are the cameras' models; `log` may be null.
+  UavMission(Hardware hardware, const Clock& clock, FlightPlanner planner,
+             CameraModel marker_camera, CameraModel depth_camera, UavMissionOptions options,
+             TransitionLog* log);
+  ~UavMission();
+  UavMission(const UavMission&) = delete;
+  UavMission& operator=(const UavMission&) = delete;
+
+  /// On the ground at home: idle -> takeoff.
+  void start();
+  /// One control step (every control_period_s of the winch control).
+  void tick();
+  /// Ends the mission (the vehicle holds where it is).
+  void stop(const std::string& reason);
+
+  [[nodiscard]] UavMissionState state() const { return state_; }
+  [[nodiscard]] UavMissionOutcome outcome() const { return outcome_; }
+  [[nodiscard]] bool done() const { return state_ == UavMissionState::kDone; }
+  [[nodiscard]] const std::vector<HiddenSpaceVisit>& visits() const { return visits_; }
+  /// The coverage pattern's waypoints (at the search altitude) and how far it got.
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& pattern() const { return pattern_; }
+  [[nodiscard]] std::size_t pattern_done() const { return pattern_next_; }
+  [[nodiscard]] double leg_spacing_m() const { return leg_spacing_m_; }
+  /// Waypoints of the first pass (legs along x); the second pass follows.
+  [[nodiscard]] std::size_t first_pass_waypoints() const { return first_pass_end_; }
+  /// Seconds spent in each state.
+  [[nodiscard]] const std::map<std::string, double>& time_in_state() const { return time_in_; }
+  [[nodiscard]] tether::TetherMode tether_mode() const { return modes_.mode(); }
+  [[nodiscard]] const tether::TautControlOptions& winch_control() const { return options_.winch_control; }
+  [[nodiscard]] int frames_processed() const { return frames_; }
+  [[nodiscard]] int plans_failed() const { return plans_failed_; }
+
+ private:
+  void enter(UavMissionState next, const std::string& reason);
+  void finish(UavMissionOutcome outcome, const std::string& reason);
+  /// Plans to `goal` and starts following the path; false when there is no plan.
+  bool fly_to(const Eigen::Vector3d& goal, double speed_mps, bool carrying,
+              std::optional<double> yaw_rad = std::nullopt);
+  /// Follows the current path; true when at its end.
+  bool follow(const FlightState& s);
+  void look_for_markers(const FlightState& s);
+  void refine_opening();
+  bool battery_calls_home(const FlightState& s) const;
+  void go_home(const std::string& reason);
+  void start_survey_view();
+  void choose_release(const std::string& why_no_zone);
+  void resume_search(const std::string& reason);
+  void winch_idle();
+  [[nodiscard]] HiddenSpaceVisit& current() { return visits_.at(static_cast<std::size_t>(current_)); }
+  [[nodiscard]] Eigen::Vector3d survey_point(int view) const;
+
+  Hardware hw_;
+  const Clock& clock_;
+  FlightPlanner planner_;
+  CameraModel marker_camera_, depth_camera_;
+  UavMissionOptions options_;
+  TransitionLog* log_;
+  std::unique_ptr<MarkerDetector> detector_;
+  LandingZoneDetector landing_;
+  tether::TetherModeSwitcher modes_;
+  std::unique_ptr<tether::TouchdownGuard> guard_;
+  std::unique_ptr<tether::TetherController> winch_ctl_;
+  std::shared_ptr<class ReportedTetherLength> required_;
+
+  UavMissionState state_ = UavMissionState::kIdle;
+  UavMissionOutcome outcome_ = UavMissionOutcome::kNone;
+  double state_since_s_ = 0.0;
+  double last_tick_s_ = 0.0;
+  std::map<std::string, double> time_in_;
+  std::vector<Eigen::Vector3d> pattern_;
+  std::size_t pattern_next_ = 0;
+  double leg_spacing_m_ = 0.0;
+  std::size_t first_pass_end_ = 0;
+  std::vector<Eigen::Vector3d> path_;
+  std::size_t path_next_ = 0;
+  double path_speed_mps_ = 0.0;
+  std::optional<double> path_yaw_rad_;
+  double next_frame_s_ = 0.0;
+  std::map<int, int> sightings_;  ///< marker id -> detections not yet acted on
+  std::vector<HiddenSpaceVisit> visits_;
+  int current_ = -1;
+  int survey_view_ = 0;
+  double settled_since_s_ = -1.0;
+  Eigen::Vector3d release_W_ = Eigen::Vector3d::Zero();
+  bool carrying_ = false;
+  int frames_ = 0;
+  int plans_failed_ = 0;
+  Eigen::Vector3d home_W_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace ferret
