@@ -1,0 +1,53 @@
+// `ferret mission`'s bad input: one message naming the file or option and the field,
+// exit 2, nothing written. (The missions themselves: tests/mission.)
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "support/cli_runner.hpp"
+
+namespace {
+
+using ::testing::HasSubstr;
+using ferret::test::run_cli;
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("ferret_mission_cli_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+TEST(MissionCli, AWorldWithoutHiddenSpacesExits2AndWritesNothing) {
+  const fs::path world = fs::temp_directory_path() / "ferret_mission_cli_empty_world.yaml";
+  std::ofstream(world) << "name: empty\nresolution_m: 0.1\nbounds_m: {min: [-5, -5, -0.5], max: [5, 5, 5]}\n";
+  const fs::path out = fresh_dir("empty");
+  const auto r = run_cli("mission --world " + world.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("hidden_spaces"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(MissionCli, ABadMissionFileExits2NamingTheField) {
+  const fs::path mission = fs::temp_directory_path() / "ferret_mission_cli_bad_mission.yaml";
+  std::ofstream(mission) << "tether:\n  total_length_m: .nan\n";
+  const fs::path out = fresh_dir("bad_mission");
+  const auto r = run_cli("mission --mission " + mission.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("tether.total_length_m"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(MissionCli, AnUnknownChoiceExits2) {
+  const auto r = run_cli("mission --no-landing-zone crash");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--no-landing-zone"));
+  const auto m = run_cli("mission --world /nonexistent/world.yaml");
+  EXPECT_EQ(m.exit_code, 2);
+  EXPECT_THAT(m.err, HasSubstr("/nonexistent/world.yaml"));
+}
+
+}  // namespace
