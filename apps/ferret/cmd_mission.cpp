@@ -255,6 +255,9 @@ void run(const Options& o) {
                 v.state == "serviced" ? (v.landed ? " (landed)" : " (hovered)") : "",
                 v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(), v.object_dropped ? ", object dropped" : "");
   for (const auto& [state, n] : r.collisions_in) std::printf("  uav collision checks failed in %s: %d\n", state.c_str(), n);
+  if (r.uav_collisions > 0)
+    std::printf("  first at (%.2f, %.2f, %.2f)\n", r.first_collision_W.x(), r.first_collision_W.y(),
+                r.first_collision_W.z());
   std::printf("time_per_state_s:");
   for (const auto& [state, t] : r.time_in_state) std::printf(" %s %.0f", state.c_str(), t);
   std::printf("\n");

@@ -76,9 +76,11 @@ class SimFlightController final : public FlightController {
     }
     Eigen::Vector3d v_cmd = Eigen::Vector3d::Zero();
     if (mode_ == Mode::kPosition) {
-      v_cmd = 1.2 * (setpoint_ - state_.p_W);
-      const double cap = std::min(speed_ > 0 ? speed_ : 0.5, settings_.uav_max_speed_mps);
-      if (v_cmd.norm() > cap) v_cmd *= cap / v_cmd.norm();
+      // Towards the setpoint, braking in time to stop on it (no overshoot past a corner).
+      const Eigen::Vector3d d = setpoint_ - state_.p_W;
+      const double brake = std::sqrt(2.0 * 0.8 * settings_.uav_max_accel_mps2 * d.norm());
+      const double cap = std::min({speed_ > 0 ? speed_ : 0.5, settings_.uav_max_speed_mps, brake, 1.2 * d.norm()});
+      v_cmd = d.norm() > 1e-9 ? Eigen::Vector3d(d.normalized() * cap) : Eigen::Vector3d::Zero();
     } else {
       v_cmd = {0.0, 0.0, -0.6};
     }
@@ -497,6 +499,7 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
         truth_checker.in_collision(body_pose(fs))) {
       ++result.uav_collisions;
       ++result.collisions_in[std::string(to_string(mission.state()))];
+      if (result.uav_collisions == 1) result.first_collision_W = fs.p_W;
     }
     if (step % 50 == 0) {
       MissionSample s;

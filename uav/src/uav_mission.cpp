@@ -230,8 +230,10 @@ bool UavMission::follow(const FlightState& s) {
   if (path_.empty()) return true;
   // Corners of a planned path are passed closely: the plan is collision-checked along
   // its segments only, so cutting a corner could graze what the planner went round.
+  // A corner is left only once reached and slowed down, so the turn happens on it.
   while (path_next_ + 1 < path_.size() &&
-         (path_[path_next_] - s.p_W).norm() <= std::min(0.15, options_.waypoint_tolerance_m))
+         (path_[path_next_] - s.p_W).norm() <= std::min(0.15, options_.waypoint_tolerance_m) &&
+         s.v_W.norm() < 0.5)
     ++path_next_;
   const Eigen::Vector3d& target = path_[path_next_];
   const bool last = path_next_ + 1 == path_.size();

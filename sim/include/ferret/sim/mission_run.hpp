@@ -72,6 +72,7 @@ struct MissionRunResult {
   int hidden_spaces_in_world = 0;
   int uav_collisions = 0;          ///< checks (every 0.1 s) with the UAV's shape in an occupied voxel
   std::map<std::string, int> collisions_in;  ///< the same by the UAV's state
+  Eigen::Vector3d first_collision_W = Eigen::Vector3d::Zero();  ///< where the first was
   double max_released_m = 0.0;     ///< l_t, longest
   int required_over_length = 0;    ///< steps where the true taut tether needed more than L
   int over_tension_events = 0;     ///< rising edges of tension above the limit
