@@ -7,7 +7,8 @@
 // field: F_g is the reachable frontier). A decision is what each planner adds on top:
 //   grid  cdos chooses (curiosity loss or the rapid rule) and G's shortest path to the goal
 //   ompl  cdos+ompl weighs the candidates and PRM (frontier sampler, goal region) plans
-// Every decision starts afresh (no committed goal).
+// Every decision starts afresh (no committed goal). For scale, `field` is what both pay
+// before they decide (the field and the frontier sets).
 //
 //   build/<dir>/bench/ferret_bench_frontier_planner
 //
@@ -43,10 +44,11 @@ struct Snapshot {
   Pose2 pose;
   Eigen::Vector2d v_W;
   UgvSensorGeometry sensors;
+  double escape_m;
 
   Snapshot(const IrGrid& g, const ObjectMap& o, const Pose2& p, const Eigen::Vector2d& v, const UgvSensorGeometry& s,
            double escape_m)
-      : grid(g), objects(o), tracker(g.geometry()), paths(g.geometry()), pose(p), v_W(v), sensors(s) {
+      : grid(g), objects(o), tracker(g.geometry()), paths(g.geometry()), pose(p), v_W(v), sensors(s), escape_m(escape_m) {
     tracker.update(grid);
     paths.compute(grid, grid.geometry().cell_at(p.x_m, p.y_m), GridPathPlanner::Traversal::kKnownFree, escape_m);
     sets = tracker.extract(paths.distances_m(), pose, s.ir_fov_rad, s.ir_range_m);
@@ -57,7 +59,7 @@ struct Snapshot {
 };
 
 struct States {
-  std::vector<std::unique_ptr<Snapshot>> all;
+  std::vector<std::unique_ptr<Snapshot>> all;  // mutable: the field benchmark recomputes the same field
   PolicyOptions options;
 };
 
@@ -120,6 +122,21 @@ void decision(benchmark::State& state, const char* planner) {
   state.counters["states"] = static_cast<double>(s.all.size());
 }
 
+// What both planners pay before they decide (for scale): the path-distance field and
+// the frontier sets.
+void field(benchmark::State& state) {
+  const States& s = states();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    Snapshot& snapshot = *s.all[k++ % s.all.size()];
+    snapshot.paths.compute(snapshot.grid, snapshot.grid.geometry().cell_at(snapshot.pose.x_m, snapshot.pose.y_m),
+                           GridPathPlanner::Traversal::kKnownFree, snapshot.escape_m);
+    benchmark::DoNotOptimize(snapshot.tracker.extract(snapshot.paths.distances_m(), snapshot.pose,
+                                                      snapshot.sensors.ir_fov_rad, snapshot.sensors.ir_range_m));
+  }
+}
+
+BENCHMARK(field)->Unit(benchmark::kMicrosecond)->Repetitions(15);
 BENCHMARK_CAPTURE(decision, grid, "grid")->Unit(benchmark::kMicrosecond)->Repetitions(15);
 BENCHMARK_CAPTURE(decision, ompl, "ompl")->Unit(benchmark::kMicrosecond)->Repetitions(15);
 
