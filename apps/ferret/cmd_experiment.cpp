@@ -20,6 +20,7 @@
 #include "command.hpp"
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/experiment.hpp"
 
 namespace ferret::cli {
@@ -118,7 +119,7 @@ void run(const Options& o) {
   if (o.planner == "ompl")
     for (auto* list : {&config.methods, &config.sweep_methods})
       for (auto& m : *list)
-        if (m == "cdos" || m == "rapid") m += "+ompl";
+        m = policy_for_planner(m, o.planner);
 
   ExperimentOptions eo;
   eo.jobs = o.jobs;

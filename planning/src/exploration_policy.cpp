@@ -77,6 +77,14 @@ bool has_exploration_policy(std::string_view name) {
   return r.factories.find(name) != r.factories.end();
 }
 
+std::string policy_for_planner(std::string_view method, std::string_view planner) {
+  if (planner == "grid") return std::string(method);
+  if (planner != "ompl")
+    throw std::invalid_argument("unknown planner: " + std::string(planner) + " (grid or ompl)");
+  std::string ompl = std::string(method) + "+ompl";
+  return has_exploration_policy(ompl) ? ompl : std::string(method);
+}
+
 std::unique_ptr<ExplorationPolicy> make_exploration_policy(std::string_view name,
                                                            const PolicyOptions& options) {
   ExplorationPolicyFactory factory;

@@ -1,6 +1,7 @@
 #include "ferret/planning/frontier_sampler.hpp"
 
 #include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/OptimizationObjective.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/datastructures/NearestNeighborsLinear.h>
@@ -11,20 +12,27 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "ferret/core/pose.hpp"
 #include "ferret/planning/curiosity.hpp"
+#include "ferret/planning/policies.hpp"
 
 namespace ob = ompl::base;
 
 namespace ferret {
 
-void FrontierCandidates::finalize() {
+void FrontierCandidates::finalize(std::optional<std::size_t> first) {
   cumulative.resize(weights.size());
   double sum = 0.0;
   for (std::size_t k = 0; k < weights.size(); ++k) cumulative[k] = sum += weights[k];
   by_cell_.assign(geometry.size(), -1);
   for (std::size_t k = 0; k < cells.size(); ++k) by_cell_[geometry.index(cells[k])] = static_cast<int>(k);
+  order.resize(cells.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) { return weights[a] > weights[b]; });
+  if (const auto it = std::find(order.begin(), order.end(), first.value_or(order.size())); it != order.end())
+    std::rotate(order.begin(), it, it + 1);
 }
 
 std::size_t FrontierCandidates::draw(Rng& rng) const {
@@ -63,7 +71,11 @@ FrontierCandidates rapid_weights(const ExplorationState& s, double max_velocity_
   }
   // Far candidates underflow to 0: keep every weight positive but tiny.
   for (double& w : out.weights) w = std::max(w, 1e-12);
-  out.finalize();
+  std::optional<std::size_t> first;
+  if (out.rule == "rapid")  // the rapid policy's goal, near-ties resolved as there
+    if (const auto goal = RapidFrontierPolicy::choose_visible(s, max_velocity_mps))
+      first = static_cast<std::size_t>(std::find(out.cells.begin(), out.cells.end(), goal->cell) - out.cells.begin());
+  out.finalize(first);
   return out;
 }
 
@@ -74,9 +86,9 @@ FrontierCandidates rapid_candidates(const ExplorationState& s, double max_veloci
 }
 
 FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOptions& options,
-                                   double max_velocity_mps) {
+                                   double max_velocity_mps, bool global) {
   const auto evidence = collect_evidence(s.objects);
-  const std::vector<Cell>& set = s.frontiers.visible.empty() ? s.frontiers.global : s.frontiers.visible;
+  const std::vector<Cell>& set = global ? s.frontiers.global : s.frontiers.visible;
   if (!evidence.empty() && !set.empty()) {
     const auto scored = score_frontiers(set, s.grid.geometry(), s.X_WG.position(), evidence, options);
     double best = 0.0;
@@ -90,7 +102,7 @@ FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOpt
         out.weights.push_back(std::max(std::exp((f.loss - best) / (0.1 * best)), 1e-12));
       }
       out.rule = "curiosity";
-      out.finalize();
+      out.finalize(cdos_argmax(scored, strongest_evidence(evidence).p_W));  // the cdos policy's goal first
       return out;
     }
   }
@@ -145,8 +157,8 @@ ob::ValidStateSamplerAllocator frontier_sampler_allocator(std::shared_ptr<const 
 }
 
 FrontierGoal::FrontierGoal(const ob::SpaceInformationPtr& si, std::shared_ptr<const FrontierCandidates> candidates,
-                           std::uint64_t seed)
-    : ob::GoalSampleableRegion(si), candidates_(std::move(candidates)), rng_(derive_seed(seed, {0x60a1})) {
+                           Reach within_reach)
+    : ob::GoalSampleableRegion(si), candidates_(std::move(candidates)), within_reach_(std::move(within_reach)) {
   // Satisfied on a candidate cell: within half a cell diagonal of its centre.
   setThreshold(0.75 * candidates_->geometry.resolution_m);
 }
@@ -161,11 +173,16 @@ double FrontierGoal::distanceGoal(const ob::State* state) const {
 }
 
 void FrontierGoal::sampleGoal(ob::State* state) const {
-  const std::size_t k = candidates_->draw(rng_);
+  const std::size_t k = candidates_->order[next_++ % candidates_->order.size()];
   const Eigen::Vector2d c = candidates_->geometry.center(candidates_->cells[k]);
   auto* se2 = state->as<ob::SE2StateSpace::StateType>();
   se2->setXY(c.x(), c.y());
   se2->setYaw(0.0);
+}
+
+bool FrontierGoal::path_within_reach(const std::vector<Eigen::Vector2d>& path_W) const {
+  if (!within_reach_ || path_W.empty()) return true;
+  return within_reach_(candidates_->geometry.cell_at(path_W.back().x(), path_W.back().y()), path_W);
 }
 
 unsigned int FrontierGoal::maxSampleCount() const { return static_cast<unsigned>(candidates_->cells.size()); }
@@ -219,11 +236,14 @@ ob::PlannerTerminationCondition after_evaluations(std::size_t n) {
 
 // PRM driven in the caller's thread on a work budget. PRM::solve grows the roadmap in
 // one thread while a second looks for a solution every millisecond, and stops on wall
-// time: its result depends on the machine's load. This keeps PRM's pattern (grow
-// twice, expand once by random bounces, goals added as it goes) but counts the work
-// and checks for a solution between batches, so the same seed gives the same roadmap.
+// time: its result depends on the machine's load. This keeps PRM's pattern (grow,
+// optionally expand by random bounces, goals added as it goes) but counts the work and
+// checks for a solution between batches, so the same seed gives the same roadmap.
 class BudgetedPrm final : public ompl::geometric::PRM {
  public:
+  /// World waypoints to add to the roadmap before a goal (none: nothing).
+  using Seeds = std::function<std::vector<Eigen::Vector2d>(const ob::State* goal)>;
+
   explicit BudgetedPrm(const ob::SpaceInformationPtr& si) : PRM(si) {
     // Exact k-nearest with a fixed tie order (GNAT's pivots come from OMPL's RNG).
     setNearestNeighbors<ompl::NearestNeighborsLinear>();
@@ -235,11 +255,11 @@ class BudgetedPrm final : public ompl::geometric::PRM {
   // The path found within `budget`, or null; `cap` (wall time) is only a safety net.
   ob::PathPtr solve_on_budget(const FrontierPlanBudget& budget, std::uint64_t seed,
                               const std::atomic<std::size_t>& draws,
-                              const ob::PlannerTerminationCondition& cap) {
+                              const ob::PlannerTerminationCondition& cap, const Seeds& seeds) {
     checkValidity();
     rng_.setLocalSeed(static_cast<std::uint_fast32_t>(derive_seed(seed, {0x9e3}) & 0x7fffffffu) |
                       1u);
-    auto* goal = dynamic_cast<ob::GoalSampleableRegion*>(pdef_->getGoal().get());
+    auto* goal = dynamic_cast<FrontierGoal*>(pdef_->getGoal().get());
     if (goal == nullptr) return nullptr;
     while (const ob::State* st = pis_.nextStart())
       startM_.push_back(addMilestone(si_->cloneState(st)));
@@ -250,35 +270,116 @@ class BudgetedPrm final : public ompl::geometric::PRM {
     std::vector<ob::State*> bounce(kBounceSteps);
     si_->allocStates(bounce);
     ob::PathPtr solution;
-    for (std::size_t round = 0; round < budget.rounds && !cap; ++round) {
-      // Grow: `grow_milestones` new frontier states, or `grow_draws` sampler draws
-      // (first, as PRM::solve grows while its other thread adds goals and looks for
-      // a solution).
+    for (std::size_t round = 0; round < budget.rounds && !cap && !solution; ++round) {
+      // Grow: `grow_milestones` new frontier states, or `grow_draws` sampler draws.
       const std::size_t milestones = milestoneCount() + budget.grow_milestones;
       const std::size_t draw_limit = draws.load() + budget.grow_draws;
       growRoadmap(ob::PlannerTerminationCondition([&] {
                     return milestoneCount() >= milestones || draws.load() >= draw_limit || cap();
                   }),
                   work);
-      if (goal->maxSampleCount() > goalM_.size())
-        if (const ob::State* st = pis_.nextGoal())
-          goalM_.push_back(addMilestone(si_->cloneState(st)));
-      if (maybeConstructSolution(startM_, goalM_, solution)) break;
-      if (budget.expand_bounces > 0) {
+      // The next goal; a goal refused for the tether's reach does not use up the
+      // round: the next one comes at once (up to kMaxRefusals a plan).
+      for (std::size_t refused = out_of_reach_ + 1; !solution && refused != out_of_reach_ &&
+                                                    out_of_reach_ < kMaxRefusals && !cap;) {
+        refused = out_of_reach_;
+        if (goal->maxSampleCount() > goalM_.size())
+          if (const ob::State* st = pis_.nextGoal()) {
+            Vertex last = startM_.front();
+            if (seeds) last = add_seeds(seeds(st), work);
+            goalM_.push_back(addMilestone(si_->cloneState(st)));
+            if (seeds) connect(last, goalM_.back());
+          }
+        solution = best_connected(*goal);
+      }
+      if (!solution && budget.expand_bounces > 0) {
         expandRoadmap(
             ob::plannerOrTerminationCondition(after_evaluations(budget.expand_bounces), cap),
             bounce);
-        if (maybeConstructSolution(startM_, goalM_, solution)) break;
+        solution = best_connected(*goal);
       }
-      solution.reset();  // maybeConstructSolution may leave a path that failed the goal test
     }
     si_->freeStates(bounce);
     si_->freeState(work);
     return solution;
   }
 
+  [[nodiscard]] std::size_t out_of_reach() const { return out_of_reach_; }
+  [[nodiscard]] std::vector<Eigen::Vector2d> roadmap() const {
+    std::vector<Eigen::Vector2d> out;
+    for (auto [v, end] = boost::vertices(g_); v != end; ++v) out.push_back(xy(stateProperty_[*v]));
+    return out;
+  }
+  static Eigen::Vector2d xy(const ob::State* st) {
+    const auto* se2 = st->as<ob::SE2StateSpace::StateType>();
+    return {se2->getX(), se2->getY()};
+  }
+
  private:
   static constexpr unsigned kBounceSteps = 5;  // PRM's magic::MAX_RANDOM_BOUNCE_STEPS
+  static constexpr std::size_t kMaxRefusals = 32;  // goals refused for reach, a plan
+
+  // The seed points as a chain from the start (besides their k-nearest connections:
+  // in a room full of frontier states the start is seldom among a goal's neighbours);
+  // returns the chain's last vertex.
+  Vertex add_seeds(const std::vector<Eigen::Vector2d>& points, ob::State* work) {
+    Vertex last = startM_.front();
+    for (const auto& p : points) {
+      work->as<ob::SE2StateSpace::StateType>()->setXY(p.x(), p.y());
+      work->as<ob::SE2StateSpace::StateType>()->setYaw(0.0);
+      if (!si_->isValid(work)) continue;
+      const Vertex v = addMilestone(si_->cloneState(work));
+      connect(last, v);
+      last = v;
+    }
+    return last;
+  }
+
+  // An edge a-b if the motion is valid and they are not connected yet (as addMilestone adds one).
+  void connect(Vertex a, Vertex b) {
+    if (sameComponent(a, b) || !si_->checkMotion(stateProperty_[a], stateProperty_[b])) return;
+    boost::add_edge(a, b, opt_->motionCost(stateProperty_[a], stateProperty_[b]), g_);
+    uniteComponents(a, b);
+  }
+
+  // The best-weighted goal (goals come heaviest first) in the start's component whose
+  // path, shortened, is within the tether's reach; goals refused once stay refused.
+  ob::PathPtr best_connected(const FrontierGoal& goal) {
+    refused_.resize(goalM_.size(), false);
+    for (std::size_t k = 0; k < goalM_.size(); ++k) {
+      if (refused_[k] || !sameComponent(startM_.front(), goalM_[k])) continue;
+      ob::PathPtr path = constructSolution(startM_.front(), goalM_[k]);
+      if (!path) continue;
+      auto& geometric = *path->as<ompl::geometric::PathGeometric>();
+      shorten(geometric);
+      std::vector<Eigen::Vector2d> points;
+      for (const ob::State* st : geometric.getStates()) points.push_back(xy(st));
+      if (goal.path_within_reach(points)) return path;
+      refused_[k] = true;
+      ++out_of_reach_;
+    }
+    return nullptr;
+  }
+
+  // From each state, straight on to the furthest later state in line of sight
+  // (deterministic, unlike OMPL's randomised shortcutting).
+  void shorten(ompl::geometric::PathGeometric& path) const {
+    auto& states = path.getStates();
+    std::vector<ob::State*> kept{states.front()};
+    std::size_t anchor = 0;
+    while (anchor + 1 < states.size()) {
+      std::size_t next = states.size() - 1;
+      while (next > anchor + 1 && !si_->checkMotion(states[anchor], states[next])) --next;
+      kept.push_back(states[next]);
+      anchor = next;
+    }
+    for (ob::State* st : states)
+      if (std::find(kept.begin(), kept.end(), st) == kept.end()) si_->freeState(st);
+    states = std::move(kept);
+  }
+
+  std::vector<bool> refused_;
+  std::size_t out_of_reach_ = 0;
 };
 
 }  // namespace
@@ -327,13 +428,23 @@ FrontierPlan plan_to_frontier(const ExplorationState& s,
   // A robot beyond the escape radius of free space has no plan (PRM would warn).
   if (!si->isValid(start.get())) return out;
   pdef->addStartState(start);
-  pdef->setGoal(std::make_shared<FrontierGoal>(si, candidates, seed));
+  pdef->setGoal(std::make_shared<FrontierGoal>(si, candidates, s.within_reach));
   BudgetedPrm prm(si);
   prm.setProblemDefinition(pdef);
   prm.setup();
+  BudgetedPrm::Seeds seeds;
+  if (budget.seed_grid_paths)
+    seeds = [&s, &g](const ob::State* goal) {
+      // G's shortest path to the goal, less its ends (the start cell's centre, the goal).
+      auto path = s.paths.path_to(g.cell_at(BudgetedPrm::xy(goal).x(), BudgetedPrm::xy(goal).y()));
+      if (path.size() <= 2) return std::vector<Eigen::Vector2d>{};
+      return std::vector<Eigen::Vector2d>(path.begin() + 1, path.end() - 1);
+    };
   const ob::PathPtr solution = prm.solve_on_budget(
-      budget, seed, *counter, ob::timedPlannerTerminationCondition(budget.safety_cap_s));
+      budget, seed, *counter, ob::timedPlannerTerminationCondition(budget.safety_cap_s), seeds);
   out.samples_drawn = counter->load();
+  out.out_of_reach = prm.out_of_reach();
+  out.roadmap_W = prm.roadmap();
   out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!solution) return out;
   auto& path = *solution->as<ompl::geometric::PathGeometric>();

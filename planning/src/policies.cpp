@@ -28,6 +28,20 @@ std::optional<double> frontier_heading_rad(const IrGrid& grid, Cell c) {
   return direction_rad(sum);
 }
 
+std::size_t cdos_argmax(std::span<const ScoredFrontier> scored, const Eigen::Vector2d& tie_anchor) {
+  std::size_t best = 0;
+  double best_dist = 0.0;
+  for (std::size_t k = 0; k < scored.size(); ++k) {
+    const double dist = (scored[k].p_W - tie_anchor).norm();
+    if (k == 0 || scored[k].loss > scored[best].loss + 1e-12 ||
+        (std::abs(scored[k].loss - scored[best].loss) <= 1e-12 && dist < best_dist)) {
+      best = k;
+      best_dist = dist;
+    }
+  }
+  return best;
+}
+
 std::optional<ExplorationGoal> NearestFrontierPolicy::choose(const ExplorationState& s) {
   if (!committed_ || !still_a_goal(s, *committed_)) {
     committed_.reset();
@@ -124,16 +138,7 @@ std::optional<ExplorationGoal> CdosPolicy::choose_fresh(const ExplorationState& 
     return baseline_.choose(s);  // the paper gives no rule: the baseline's
   const Eigen::Vector2d tie_anchor =
       literal_ || evidence.empty() ? p : strongest_evidence(evidence).p_W;
-  const ScoredFrontier* best = nullptr;
-  double best_dist = 0.0;
-  for (const auto& sf : scored) {
-    const double dist = (sf.p_W - tie_anchor).norm();
-    if (!best || sf.loss > best->loss + 1e-12 ||
-        (std::abs(sf.loss - best->loss) <= 1e-12 && dist < best_dist)) {
-      best = &sf;
-      best_dist = dist;
-    }
-  }
+  const ScoredFrontier* best = &scored[cdos_argmax(scored, tie_anchor)];
   if (!literal_ && best->loss <= 1e-12)  // curiosity is silent here: choose as the baseline does
     return baseline_.choose(s);
   ExplorationGoal goal;

@@ -10,6 +10,8 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 #include <thread>
 
 #include "exploration_room.hpp"
@@ -96,7 +98,7 @@ TEST(FrontierSampler, PrmCallsItRrtConnectDoesNot) {
     start->setXY(1.0, 1.0);
     start->setYaw(0.0);
     pdef->addStartState(start);
-    pdef->setGoal(std::make_shared<FrontierGoal>(si, c, 11));
+    pdef->setGoal(std::make_shared<FrontierGoal>(si, c));
     planner.setProblemDefinition(pdef);
     planner.setup();
     // Until the first exact solution, with a generous wall-clock cap: a fixed 1 s budget
@@ -125,6 +127,15 @@ std::size_t heaviest(const FrontierCandidates& c) {
   return static_cast<std::size_t>(std::max_element(c.weights.begin(), c.weights.end()) - c.weights.begin());
 }
 
+// A weak detection of `object` from the robot's pose, folded into O.
+void see_weakly(Room& r, const Eigen::Vector2d& object) {
+  CameraFrame frame;
+  frame.view = {r.pose, 4.0, {}};
+  const Eigen::Vector2d to = object - r.pose.position();
+  frame.detections = {{std::atan2(to.y(), to.x()), to.norm(), 1.0 / to.norm()}};
+  r.objects.integrate_frame(frame);
+}
+
 TEST(FrontierWeights, RapidAndCdosWeighTheFrontier) {
   Room r;
   const auto options = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
@@ -140,11 +151,7 @@ TEST(FrontierWeights, RapidAndCdosWeighTheFrontier) {
   EXPECT_EQ(same.weights, rapid.weights);
   // A weak detection at (3, 1.8): the curiosity weights peak level with it.
   const Eigen::Vector2d object{3.0, 1.8};
-  CameraFrame frame;
-  frame.view = {r.pose, 4.0, {}};
-  const Eigen::Vector2d to = object - r.pose.position();
-  frame.detections = {{std::atan2(to.y(), to.x()), to.norm(), 1.0 / to.norm()}};
-  r.objects.integrate_frame(frame);
+  see_weakly(r, object);
   const FrontierCandidates curious = cdos_candidates(r.state(), options.curiosity);
   EXPECT_EQ(curious.rule, "curiosity");
   const std::size_t best = heaviest(curious);
@@ -157,12 +164,81 @@ TEST(FrontierWeights, RapidAndCdosWeighTheFrontier) {
 TEST(FrontierWeights, PrmPlansFromTheRobotToAFrontier) {
   Room r;
   auto c = std::make_shared<FrontierCandidates>(rapid_candidates(r.state(), 2.0));
-  const FrontierPlan plan = plan_to_frontier(r.state(), c, FrontierPlanBudget{}, 3);
+  FrontierPlanBudget unseeded;
+  unseeded.seed_grid_paths = false;
+  for (const FrontierPlanBudget& budget : {FrontierPlanBudget{}, unseeded}) {
+    const FrontierPlan plan = plan_to_frontier(r.state(), c, budget, 3);
+    ASSERT_TRUE(plan.solved);
+    EXPECT_GT(plan.samples_drawn, 0u);  // the frontier sampler grew the roadmap
+    EXPECT_TRUE(plan.path_W.front().isApprox(r.pose.position()));
+    // The best-weighted frontier (straight ahead), not the first one PRM connected.
+    EXPECT_EQ(plan.goal, c->cells[heaviest(*c)]);
+    EXPECT_EQ(plan.path_W.size(), 2u);  // in the open, shortened to a straight line
+  }
+}
+
+TEST(FrontierCandidates, OrderIsHeaviestFirstTiesInCellOrder) {
+  auto c = std::make_shared<FrontierCandidates>();
+  c->geometry = {0.0, 0.0, 0.5, 20, 20};
+  c->cells = {{1, 1}, {2, 2}, {3, 3}, {4, 4}};
+  c->weights = {1.0, 3.0, 1.0, 3.0};
+  c->finalize();
+  EXPECT_EQ(c->order, (std::vector<std::size_t>{1, 3, 0, 2}));
+}
+
+// The tether as goal validity: a connected goal whose path the reach check refuses is
+// never the plan's goal; the plan takes the best-weighted goal within reach instead.
+TEST(FrontierWeights, AGoalOutOfTheTethersReachIsNeverChosen) {
+  Room r;
+  auto c = std::make_shared<FrontierCandidates>(rapid_candidates(r.state(), 2.0));
+  // "Out of reach": the frontier within 0.3 m of the robot's line of sight (y = 1).
+  const auto out_of_reach = [&](Cell cell) { return std::abs(r.geo.center(cell).y() - 1.0) < 0.3; };
+  std::vector<Cell> asked;
+  auto state = r.state();
+  state.within_reach = [&](Cell cell, const std::vector<Eigen::Vector2d>& path) {
+    EXPECT_TRUE(path.front().isApprox(r.pose.position()));
+    EXPECT_EQ(r.geo.cell_at(path.back().x(), path.back().y()), cell);
+    asked.push_back(cell);
+    return !out_of_reach(cell);
+  };
+  const FrontierPlan plan = plan_to_frontier(state, c, FrontierPlanBudget{}, 3);
   ASSERT_TRUE(plan.solved);
-  EXPECT_GT(plan.samples_drawn, 0u);
-  EXPECT_TRUE(plan.path_W.front().isApprox(r.pose.position()));
-  EXPECT_GE(c->find(plan.path_W.back().x(), plan.path_W.back().y()), 0);
-  EXPECT_EQ(plan.goal.i, 39);
+  EXPECT_FALSE(out_of_reach(plan.goal));
+  EXPECT_GT(plan.out_of_reach, 0u);
+  ASSERT_FALSE(asked.empty());
+  EXPECT_EQ(asked.back(), plan.goal);  // the chosen path was asked, and passed
+  // The best of the rest: no candidate within reach outweighs it.
+  const double w = c->weights[static_cast<std::size_t>(c->find(r.geo.center(plan.goal).x(), r.geo.center(plan.goal).y()))];
+  for (std::size_t k = 0; k < c->cells.size(); ++k)
+    if (!out_of_reach(c->cells[k])) {
+      EXPECT_LE(c->weights[k], w);
+    }
+}
+
+// The OMPL policies decide as the grid ones do, PRM only plans the way: with object
+// evidence cdos+ompl heads for the cell cdos heads for, and faces the same way.
+TEST(FrontierWeights, CdosOmplChoosesTheGoalCdosChooses) {
+  Room r;
+  const Eigen::Vector2d object{3.0, 1.8};
+  see_weakly(r, object);
+  auto options = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  options.seed = 5;
+  const auto grid = make_exploration_policy("cdos", options)->choose(r.state());
+  const auto ompl = make_exploration_policy("cdos+ompl", options)->choose(r.state());
+  ASSERT_TRUE(grid && ompl);
+  EXPECT_EQ(ompl->cell, grid->cell);
+  EXPECT_EQ(ompl->reason, "curiosity+ompl");
+  ASSERT_TRUE(ompl->heading_rad && grid->heading_rad);
+  EXPECT_NEAR(*ompl->heading_rad, *grid->heading_rad, 1e-9);
+  EXPECT_FALSE(ompl->path_W.empty());
+}
+
+TEST(FrontierSampler, PolicyForPlannerMapsTheMethods) {
+  EXPECT_EQ(policy_for_planner("cdos", "grid"), "cdos");
+  EXPECT_EQ(policy_for_planner("cdos", "ompl"), "cdos+ompl");
+  EXPECT_EQ(policy_for_planner("rapid", "ompl"), "rapid+ompl");
+  EXPECT_EQ(policy_for_planner("oracle", "ompl"), "oracle");
+  EXPECT_THROW((void)policy_for_planner("cdos", "rrt"), std::invalid_argument);
 }
 
 // PRM::solve grows the roadmap in one thread, checks for solutions in another and
@@ -199,8 +275,9 @@ TEST(FrontierWeights, PlansRepeatGivenTheSeedAlsoInParallelThreads) {
         EXPECT_EQ(p->samples_drawn, once[seed].samples_drawn) << seed;
         EXPECT_EQ(p->goal, once[seed].goal) << seed;
         EXPECT_EQ(p->path_W, once[seed].path_W) << seed;
+        EXPECT_EQ(p->roadmap_W, once[seed].roadmap_W) << seed;
       }
-      some_differ = some_differ || once[seed].path_W != once[0].path_W;
+      some_differ = some_differ || once[seed].roadmap_W != once[0].roadmap_W;
     }
     EXPECT_TRUE(some_differ);  // the seed matters
   }

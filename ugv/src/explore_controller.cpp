@@ -27,7 +27,8 @@ constexpr int kMaxUnwinds = 3;
 ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& start,
                                      ExploreOptions options)
     : geo_(geometry), options_(std::move(options)), follower_(options_.robot) {
-  if (!has_exploration_policy(options_.method))
+  const std::string policy_name = policy_for_planner(options_.method, options_.planner);
+  if (!has_exploration_policy(policy_name))
     throw std::invalid_argument("unknown exploration method: " + options_.method);
   const UgvSensorGeometry& s = options_.sensors;
   IrGrid::Options grid_options;
@@ -45,7 +46,7 @@ ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& 
   policy_options.curiosity.closest_approach = options_.cdos_closest_approach;
   policy_options.seed = options_.seed;
   view_distance_m_ = policy_options.view_distance_m;
-  policy_ = make_exploration_policy(options_.method, policy_options);
+  policy_ = make_exploration_policy(policy_name, policy_options);
 
   // The robot stands on free ground it cannot see with its forward sensors.
   grid_->mark_free_disk(start.position(), options_.robot.clearance_m + geo_.resolution_m);
@@ -173,21 +174,28 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
       int rejected_now = 0;
       std::optional<Eigen::Vector2d> oracle;
       if (policy_->needs_oracle()) oracle = options_.oracle_object_W;
-      // The policy's choice, unless its tether would be too long: then that goal is
-      // never chosen again, and the policy chooses among the rest.
+      // A goal whose tether would be too long is never chosen again: the OMPL policies
+      // ask before they choose (goal validity), the others are checked after.
+      const auto reach = [&](Cell cell, const std::vector<Eigen::Vector2d>& path) {
+        if (within_reach(path)) return true;
+        ++reach_rejections_;
+        ++rejected_now;
+        tracker_->blacklist(cell, kReachMark);
+        return false;
+      };
+      // The policy's choice, unless its tether would be too long: then the policy
+      // chooses among the rest.
       const auto choose = [&](const FrontierSets& first) -> std::optional<ExplorationGoal> {
         FrontierSets current = first;
         for (int k = 0; k < kMaxReachRejections; ++k) {
-          const ExplorationState state{*grid_,    *objects_, *tracker_,    current,
-                                       *planner_, pose,      v_W,          s.ir_fov_rad,
-                                       s.ir_range_m, oracle};
+          ExplorationState state{*grid_,    *objects_, *tracker_,    current,
+                                 *planner_, pose,      v_W,          s.ir_fov_rad,
+                                 s.ir_range_m, oracle};
+          if (tether_) state.within_reach = reach;
           auto g = policy_->choose(state);
           if (!g || !tether_) return g;
-          if (within_reach(g->path_W.empty() ? planner_->path_to(g->cell) : g->path_W))
-            return g;
-          ++reach_rejections_;
-          ++rejected_now;
-          tracker_->blacklist(g->cell, kReachMark);
+          if (reach(g->cell, g->path_W.empty() ? planner_->path_to(g->cell) : g->path_W)) return g;
+          ++refused_choices_;
           policy_->goal_done();
           current = tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m);
         }

@@ -55,6 +55,12 @@ struct ExplorationState {
   /// The object's true position: set by the simulator for policies that ask for it
   /// (needs_oracle()), and only for them.
   std::optional<Eigen::Vector2d> oracle_object_W;
+  /// The tether's reach (empty: no tether): whether the robot may drive `path_W` (from
+  /// where it is) to the goal `cell`. Policies that plan their own paths (the OMPL
+  /// frontier policies) ask it of a goal before they choose it, as goal validity; the
+  /// caller may remember a refusal (the explore controller blacklists the cell until
+  /// the tether is unwound). The others leave the check to the caller.
+  std::function<bool(Cell cell, const std::vector<Eigen::Vector2d>& path_W)> within_reach{};
 };
 
 struct PolicyOptions {
@@ -106,6 +112,12 @@ void register_exploration_policy(std::string name, ExplorationPolicyFactory fact
 /// user input check has_exploration_policy first and raise an InputError).
 [[nodiscard]] std::unique_ptr<ExplorationPolicy> make_exploration_policy(
     std::string_view name, const PolicyOptions& options);
+
+/// The policy that runs `method` with `planner`: "grid" (the Dijkstra field over G) is
+/// `method` itself; "ompl" is `method` + "+ompl" where that policy exists (cdos, rapid:
+/// the OMPL frontier sampler), `method` otherwise (the oracle, nearest, ...).
+/// @throws std::invalid_argument for a planner other than "grid" or "ompl".
+[[nodiscard]] std::string policy_for_planner(std::string_view method, std::string_view planner);
 
 /// A goal from which the camera sees `target_W`: the reachable cell within
 /// `view_distance_m` of it (with a line of sight through non-occupied cells of G) of

@@ -3,6 +3,7 @@
 // and docs/object_search.md for the behaviour of each).
 
 #include <optional>
+#include <span>
 #include <string>
 
 #include "ferret/planning/exploration_policy.hpp"
@@ -12,6 +13,11 @@ namespace ferret {
 /// The direction from a frontier cell towards the unknown cells around it (mean of
 /// the unit vectors to unknown cells within 3 cells); none if there are none.
 [[nodiscard]] std::optional<double> frontier_heading_rad(const IrGrid& grid, Cell c);
+
+/// The cdos goal among scored candidates (@pre non-empty): the largest loss L(C);
+/// losses within 1e-12 are equal and the one nearest `tie_anchor` wins (the
+/// confidence floor makes the loss flat far from the evidence).
+[[nodiscard]] std::size_t cdos_argmax(std::span<const ScoredFrontier> scored, const Eigen::Vector2d& tie_anchor);
 
 /// Classic frontier: the reachable F_g cell of least path distance, facing the
 /// unknown. Commits to its goal while it stays a reachable, non-blacklisted frontier.

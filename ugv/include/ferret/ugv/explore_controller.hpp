@@ -40,6 +40,10 @@ struct UgvSensorGeometry {
 
 struct ExploreOptions {
   std::string method = "cdos";
+  /// How goals are chosen and reached: "grid" (the Dijkstra field over G) or "ompl"
+  /// (cdos and rapid run as cdos+ompl and rapid+ompl: PRM with the CDOS frontier
+  /// sampler; other methods are unchanged). docs/planning.md compares the two.
+  std::string planner = "grid";
   UgvSensorGeometry sensors;
   RobotOptions robot;
   MissionConfig mission;
@@ -54,7 +58,9 @@ struct ExploreOptions {
   /// The taut tether the robot may use on the floor, L - l_0 (m); none: no tether
   /// (the paper's experiment). With it, a goal whose taut tether (the tether of the
   /// path driven so far, then the path to the goal, wrapped round the corners of G's
-  /// occupied cells) would exceed the budget less `tether_margin_m` is never chosen.
+  /// occupied cells) would exceed the budget less `tether_margin_m` is never chosen:
+  /// the OMPL planner asks it of every goal it connects (goal validity), the grid
+  /// planner's goal is checked after the policy chose it.
   std::optional<double> tether_budget_m;
   double tether_margin_m = 0.3;
 };
@@ -113,6 +119,9 @@ class ExploreController {
   [[nodiscard]] std::optional<std::pair<Eigen::Vector2d, double>> tether_anchor() const;
   /// Goals refused because their tether would be too long.
   [[nodiscard]] int reach_rejections() const { return reach_rejections_; }
+  /// Of those, the goals a policy chose and the controller then refused (the grid
+  /// policies; the OMPL ones ask first and never choose such a goal).
+  [[nodiscard]] int refused_choices() const { return refused_choices_; }
   /// The driven path backwards from the robot until the tether lies straight from the
   /// entry (no wrap points), or until it is no longer than `enough_m`. Empty when the
   /// tether is straight already (or there is no tether model).
@@ -155,6 +164,7 @@ class ExploreController {
   std::unique_ptr<TautTether> tether_;
   double corners_refreshed_s_ = -1e9;
   int reach_rejections_ = 0;
+  int refused_choices_ = 0;
   bool unwinding_ = false;  ///< retracing the driven path to unwind the tether
   int unwinds_ = 0;
 };

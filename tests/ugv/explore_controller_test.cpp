@@ -1,0 +1,82 @@
+#include "ferret/ugv/explore_controller.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "ferret/sim/exploration_run.hpp"
+#include "ferret/sim/sim_ugv_base.hpp"
+#include "support/test_maps.hpp"
+
+namespace ferret {
+namespace {
+
+const Pose2 kEntry{0.5, 1.0, 0.0};
+const Eigen::Vector2d kBehindPartition{3.2, 0.8};  // out of sight from the entry
+
+struct Search {
+  int reach_rejections = 0, refused_choices = 0, decisions = 0;
+  std::vector<Pose2> trajectory;
+};
+
+// The search on the small hidden space with a tether of `budget_m` on the floor,
+// until it has explored what the tether reaches (or `time_s` ran out).
+Search search(const std::string& planner, double budget_m, double time_s = 120.0) {
+  const auto truth = test::small_hidden_space();
+  ExplorationSettings settings;
+  HiddenSpaceSim sim(truth, kBehindPartition, settings.sensors, 5);
+  SimUgvOptions base_options;
+  base_options.battery_endurance_s = std::numeric_limits<double>::infinity();
+  SimUgvBase base(sim, kEntry, base_options);
+  ExploreOptions options = explore_options(settings, 5, kBehindPartition);
+  options.planner = planner;
+  options.tether_budget_m = budget_m;
+  ExploreController controller(truth.geometry, kEntry, options);
+  Search run;
+  for (long step = 0; step * controller.tick_s() < time_s; ++step) {
+    const Pose2 pose = base.odometry();
+    run.trajectory.push_back(pose);
+    controller.observe_scan(base.ir_scan());
+    if (controller.frame_due(step)) (void)controller.observe_frame(base.camera_frame(step * controller.tick_s()));
+    const auto command = controller.decide(step, pose);
+    if (command.explored) break;
+    base.command_velocity(command.velocity.v_mps, command.velocity.w_radps);
+    base.step(controller.tick_s());
+  }
+  run.reach_rejections = controller.reach_rejections();
+  run.refused_choices = controller.refused_choices();
+  run.decisions = controller.decisions();
+  return run;
+}
+
+// The tether as the OMPL planner's goal validity: with 2 m of tether on the floor the
+// frontiers round the partition are out of reach. The grid policy chooses them and the
+// controller refuses them afterwards; PRM asks first and never chooses one.
+TEST(ExploreController, TheOmplPlannerNeverChoosesAGoalOutOfTheTethersReach) {
+  const Search grid = search("grid", 2.0);
+  EXPECT_GT(grid.refused_choices, 0);  // the setting does put goals out of reach
+  const Search ompl = search("ompl", 2.0);
+  EXPECT_GT(ompl.decisions, 0);
+  EXPECT_GT(ompl.reach_rejections, 0);  // PRM met such goals...
+  EXPECT_EQ(ompl.refused_choices, 0);   // ...and chose none of them
+}
+
+TEST(ExploreController, TheOmplPlannerRepeatsGivenTheSeed) {
+  const Search a = search("ompl", 2.0, 20.0), b = search("ompl", 2.0, 20.0);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (std::size_t k = 0; k < a.trajectory.size(); ++k) {
+    EXPECT_EQ(a.trajectory[k].x_m, b.trajectory[k].x_m) << k;
+    EXPECT_EQ(a.trajectory[k].y_m, b.trajectory[k].y_m) << k;
+  }
+}
+
+TEST(ExploreController, AnUnknownPlannerIsRefused) {
+  ExploreOptions options;
+  options.planner = "rrt";
+  EXPECT_THROW(ExploreController(test::small_hidden_space().geometry, kEntry, options), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ferret
