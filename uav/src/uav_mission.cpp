@@ -237,14 +237,25 @@ bool UavMission::follow(const FlightState& s) {
     ++path_next_;
   const Eigen::Vector3d& target = path_[path_next_];
   const bool last = path_next_ + 1 == path_.size();
-  if (last && (target - s.p_W).norm() <= options_.waypoint_tolerance_m && s.v_W.norm() < 0.3) return true;
+  // At the end the setpoint and heading are still commanded: a heading that changed
+  // (a refined opening) is turned to even when the position is already reached.
+  const bool arrived = last && (target - s.p_W).norm() <= options_.waypoint_tolerance_m && s.v_W.norm() < 0.3;
   // Face the way it flies (the marker camera looks ahead); the final heading when given.
   double yaw = s.yaw_rad;
   const Eigen::Vector3d d = target - s.p_W;
   if (d.head<2>().norm() > 0.5) yaw = yaw_of(d);
-  if (last && path_yaw_rad_ && d.head<2>().norm() < 1.0) yaw = *path_yaw_rad_;
+  const bool final_heading = last && path_yaw_rad_ && d.head<2>().norm() < 1.0;
+  if (final_heading) yaw = *path_yaw_rad_;
+  // Turn on the spot at the start of a segment: the planner checked the segment with
+  // the UAV facing along it, and its shape is not round.
+  const Eigen::Vector3d& hold = path_[path_next_ > 0 ? path_next_ - 1 : 0];
+  if (!final_heading && (s.p_W - hold).norm() < 0.3 &&
+      std::abs(std::remainder(yaw - s.yaw_rad, 2 * std::numbers::pi)) > 0.15) {
+    hw_.flight.command_position(hold, yaw, path_speed_mps_);
+    return false;
+  }
   hw_.flight.command_position(target, yaw, path_speed_mps_);
-  return false;
+  return arrived;
 }
 
 bool UavMission::battery_calls_home(const FlightState& s) const {
