@@ -43,6 +43,7 @@ namespace fs = std::filesystem;
 struct Options {
   std::string world, robot_uav, robot_ugv, mission, out, method = "cdos";
   std::string no_landing_zone = "hover";
+  std::string planner = "grid";
   std::uint64_t seed = 1;
   bool quiet = false;
 };
@@ -206,6 +207,7 @@ std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition
 void run(const Options& o) {
   if (o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
     throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
+  if (o.planner != "grid" && o.planner != "ompl") throw InputError("--planner", "", "grid or ompl", o.planner);
   if (!has_exploration_policy(o.method))
     throw InputError("--method", "", one_of(exploration_policy_names()), o.method);
   if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
@@ -222,6 +224,7 @@ void run(const Options& o) {
   MissionRunSettings settings = mission_settings_for(uav, ugv, mission, *world.spec);
   settings.ugv.exploration.method = o.method;
   settings.uav.no_landing_zone = o.no_landing_zone;
+  settings.ugv.ugv.explore.planner = o.planner;
   const WorldSpec& spec = *world.spec;
 
   TransitionLog log;
@@ -309,6 +312,8 @@ const CommandRegistration kMission{
       sub->add_option("--mission", o->mission, "Mission YAML (default: the built-in defaults)");
       add_seed_option(sub, o->seed, "mission");
       sub->add_option("--method", o->method, "The miniUGV's search: cdos, rapid, nearest, ...");
+      sub->add_option("--planner", o->planner,
+                      "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM)");
       sub->add_option("--no-landing-zone", o->no_landing_zone,
                       "No safe landing zone by an opening: hover (lower from a hover) or skip");
       sub->add_option("-o,--out", o->out,

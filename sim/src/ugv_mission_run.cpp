@@ -27,6 +27,7 @@ UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
 
   UgvMissionOptions options = settings.ugv;
   options.explore = explore_options(ex, seed, object_W.value_or(far_W));
+  options.explore.planner = settings.ugv.explore.planner;  // grid or the OMPL frontier planner
   if (!object_W) options.explore.oracle_object_W.reset();
   mission_ = std::make_unique<MiniUgvMission>(*base_, clock, geo, options, &log);
 }

@@ -47,12 +47,13 @@ struct MissionRunOut {
 };
 
 MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::uint64_t seed = 1,
-        const std::string& no_landing_zone = "hover") {
+        const std::string& no_landing_zone = "hover", const std::string& planner = "grid") {
   const RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), mission);
   const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
   MissionRunOut r{{}, load_planning_world(world_path)};
   MissionRunSettings s = mission_settings_for(uav, ugv, mission, *r.world.spec);
   s.uav.no_landing_zone = no_landing_zone;
+  s.ugv.ugv.explore.planner = planner;
   r.result = run_mission(r.world, uav, s, seed);
   return r;
 }
@@ -100,6 +101,14 @@ TEST(MissionRun, FindsBothSpacesRetrievesTheObjectAndReportsTheEmptyOne) {
   EXPECT_EQ(r.objects_dropped, 1);
   ASSERT_EQ(r.deployments.size(), 2u);
   EXPECT_GT(r.battery_left, 0.0);
+}
+
+TEST(MissionRun, TheOmplFrontierPlannerRunsTheMissionToo) {
+  const MissionRunResult r = run(data_path("worlds/two_sites.yaml"), {}, 2, "hover", "ompl").result;
+  expect_safe(r, {});
+  EXPECT_EQ(r.visits.size(), 2u);
+  EXPECT_EQ(r.objects_dropped, 1);
+  for (const auto& d : r.deployments) EXPECT_GT(d.result.decisions, 0) << d.hidden_space;
 }
 
 TEST(MissionRun, TheSameSeedGivesTheSameMission) {

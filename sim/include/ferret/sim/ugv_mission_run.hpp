@@ -22,7 +22,7 @@ struct UgvMissionRunSettings {
   /// Method, sensors, robot, mission (ExplorationSettings::time_limit_s is not used:
   /// the mission's explore_timeout_s bounds the search).
   ExplorationSettings exploration;
-  UgvMissionOptions ugv;  ///< its `explore` is filled from `exploration`
+  UgvMissionOptions ugv;  ///< its `explore` is filled from `exploration`, but for its `planner`
   SimUgvOptions base;     ///< its `robot` is filled from `exploration`
   double retract_time_s = 10.0;  ///< the winch lifting the robot out of the hidden space
   double time_limit_s = 3600.0;  ///< the simulation's own bound (a mission that never ends)
