@@ -311,13 +311,13 @@ const CommandRegistration kMission{
       sub->add_option("--robot-ugv", o->robot_ugv, "The miniUGV's URDF (default: the shipped miniugv)");
       sub->add_option("--mission", o->mission, "Mission YAML (default: the built-in defaults)");
       add_seed_option(sub, o->seed, "mission");
-      sub->add_option("--method", o->method, "The miniUGV's search: cdos, rapid, nearest, ...");
+      sub->add_option("--method", o->method, "The miniUGV's search: cdos, rapid, nearest, ... (default: cdos)");
       sub->add_option("--planner", o->planner,
-                      "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM)");
+                      "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM) (default: grid)");
       sub->add_option("--no-landing-zone", o->no_landing_zone,
-                      "No safe landing zone by an opening: hover (lower from a hover) or skip");
+                      "No safe landing zone by an opening: hover (lower from a hover) or skip (default: hover)");
       sub->add_option("-o,--out", o->out,
-                      "Directory for report.json, aerial.png, tether.png, spaces/*/, map.bt, mission.mcap");
+                      "Directory for report.json, aerial.png, tether.png, spaces/*/, map.bt, mission.mcap (default: none, summary only)");
       sub->add_flag("-q,--quiet", o->quiet, "Print the summary only");
       sub->callback([o] { run(*o); });
     }};
