@@ -4,8 +4,8 @@
 // it in the drop zone and searches on.
 //   ferret mission [--world W.yaml] [--robot-uav URDF] [--robot-ugv URDF]
 //                  [--mission M.yaml] [--seed N] [--out DIR]
-// Prints the transitions as they happen (simulated time), a progress line a simulated
-// minute, then a summary; --out writes report.json, the figures, map.bt and mission.mcap.
+// Prints the transitions as they happen (simulated time) and a progress line a
+// simulated minute on stderr, then a summary on stdout; --out writes report.json, the figures, map.bt and mission.mcap.
 
 #include <fmt/format.h>
 
@@ -231,17 +231,15 @@ void run(const Options& o) {
   double next_progress_s = 60.0;
   log.on_transition([&](const Transition& t) {
     if (o.quiet) return;
-    std::printf("%s\n", TransitionLog::format(t).c_str());
-    std::fflush(stdout);
+    std::fprintf(stderr, "%s\n", TransitionLog::format(t).c_str());
   });
   settings.on_sample = [&](double t_s, const MissionSim& m) {
     if (o.quiet || t_s < next_progress_s) return;
     next_progress_s += 60.0;
     const FlightState s = m.uav_truth();
-    std::printf("  [%6.0f s] uav %s at (%.1f, %.1f, %.1f), battery %.0f %%, l_t %.2f m, %zu/%zu waypoints\n", t_s,
+    std::fprintf(stderr, "  [%6.0f s] uav %s at (%.1f, %.1f, %.1f), battery %.0f %%, l_t %.2f m, %zu/%zu waypoints\n", t_s,
                 std::string(to_string(m.uav().state())).c_str(), s.p_W.x(), s.p_W.y(), s.p_W.z(),
                 100 * s.battery_fraction, m.released_m(), m.uav().pattern_done(), m.uav().pattern().size());
-    std::fflush(stdout);
   };
   const MissionRunResult r = run_mission(world, uav, settings, o.seed, &log);
 
