@@ -9,7 +9,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -172,35 +174,48 @@ void write_tether_png(const MissionRunResult& r, double total_length_m, const fs
   if (t.log.size() >= 2) sim::write_tether_sim_plot(t, 0.15, total_length_m, path);
 }
 
+// The log in time order (Foxglove plays a topic forwards): every message is queued
+// with its time, then written sorted (stable, so equal times keep their order).
 std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition>& transitions) {
   FoxgloveLog log;
-  for (const MissionSample& s : r.samples) {
-    Pose3 X_WB = Pose3::Identity();
-    X_WB.translation() = s.p_W;
-    X_WB.linear() = Eigen::AngleAxisd(s.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    log.transform(s.t_s, "world", "uav", X_WB);
-  }
-  std::vector<Eigen::Vector3d> flight;
-  for (const MissionSample& s : r.samples) flight.push_back(s.p_W);
-  if (!r.samples.empty()) log.line(r.samples.back().t_s, "/uav/path", "world", "flight", flight, RgbaColor{0.1, 0.35, 0.9, 1.0});
+  std::vector<std::pair<double, std::function<void()>>> queue;
+  const auto at = [&](double t_s, std::function<void()> write) { queue.emplace_back(t_s, std::move(write)); };
+  const auto yawed = [](const Eigen::Vector3d& p, double yaw_rad) {
+    Pose3 X = Pose3::Identity();
+    X.translation() = p;
+    X.linear() = Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return X;
+  };
+  for (const MissionSample& s : r.samples)
+    at(s.t_s, [&log, &s, yawed] { log.transform(s.t_s, "world", "uav", yawed(s.p_W, s.yaw_rad)); });
+  if (!r.samples.empty())
+    at(r.samples.back().t_s, [&] {
+      std::vector<Eigen::Vector3d> flight;
+      for (const MissionSample& s : r.samples) flight.push_back(s.p_W);
+      log.line(r.samples.back().t_s, "/uav/path", "world", "flight", flight, RgbaColor{0.1, 0.35, 0.9, 1.0});
+    });
   for (const UgvDeployment& d : r.deployments) {
     const double t0 = d.deployed_s;
     for (std::size_t k = 0; k < d.result.trajectory.size(); k += 2) {
+      const double t = t0 + 0.05 * static_cast<double>(k);
       const Pose2& p = d.result.trajectory[k];
-      Pose3 X = Pose3::Identity();
-      X.translation() = Eigen::Vector3d(p.x_m, p.y_m, 0.03);
-      X.linear() = Eigen::AngleAxisd(p.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      log.transform(t0 + 0.05 * static_cast<double>(k), "world", "ugv", X);
+      at(t, [&log, t, &p, yawed] { log.transform(t, "world", "ugv", yawed({p.x_m, p.y_m, 0.03}, p.yaw_rad)); });
     }
     if (d.result.grid && d.result.objects)
-      log_search_maps(log, t0 + d.result.time_s, *d.result.grid, *d.result.objects,
-                      "/maps/" + (d.hidden_space.empty() ? std::string("none") : d.hidden_space), "world");
+      at(t0 + d.result.time_s, [&log, &d, t0] {
+        log_search_maps(log, t0 + d.result.time_s, *d.result.grid, *d.result.objects,
+                        "/maps/" + (d.hidden_space.empty() ? std::string("none") : d.hidden_space), "world");
+      });
   }
   for (const HiddenSpaceVisit& v : r.visits)
-    log.marker(v.detected_s, "/detections", "world", "opening_" + std::to_string(v.marker_id), v.opening.p_WE, 0.3,
-               {1.0, 0.5, 0.0, 1.0}, "marker " + std::to_string(v.marker_id));
+    at(v.detected_s, [&log, &v] {
+      log.marker(v.detected_s, "/detections", "world", "opening_" + std::to_string(v.marker_id), v.opening.p_WE,
+                 0.3, {1.0, 0.5, 0.0, 1.0}, "marker " + std::to_string(v.marker_id));
+    });
   for (const Transition& t : transitions)
-    log.log(t.t_s, t.component, t.from + " -> " + t.to + " (" + t.reason + ")");
+    at(t.t_s, [&log, &t] { log.log(t.t_s, t.component, t.from + " -> " + t.to + " (" + t.reason + ")"); });
+  std::stable_sort(queue.begin(), queue.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [t_s, write] : queue) write();
   return log.finish();
 }
 

@@ -1,17 +1,19 @@
 #!/usr/bin/env node
 // An independent reader of the mission's MCAP log: @mcap/core (Foxglove's own
 // TypeScript library, npm) reads `ferret explore --retrieve --out DIR`'s mission.mcap
-// twice — streamed record by record with every CRC checked, and through the summary
+// (or, with MODE "mission", `ferret mission`'s on the two_sites world) twice — streamed record by record with every CRC checked, and through the summary
 // and chunk indexes as Foxglove opens a file — and the messages must decode as the
 // Foxglove types their schemas name. Exits 77 (ctest: skipped) without @mcap/core.
-//   node mission_mcap_reader.js FERRET_BINARY SOURCE_DIR NODE_MODULES_DIR
+//   node mission_mcap_reader.js FERRET_BINARY SOURCE_DIR NODE_MODULES_DIR [MODE]
 'use strict';
 const { execFileSync } = require('child_process');
 const fs = require('fs');
 const os = require('os');
 const path = require('path');
 
-const [ferret, source, modules] = process.argv.slice(2);
+const [ferret, source, modules, mode = 'explore'] = process.argv.slice(2);
+const whole = mode === 'mission';
+const frame = whole ? 'world' : 'map';
 let mcap;
 try {
   mcap = require(path.join(modules, '@mcap', 'core'));
@@ -30,8 +32,12 @@ function check(ok, what) {
 
 async function main() {
   const out = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'ferret-mcap-')), 'run');
-  execFileSync(ferret, ['explore', '--map', path.join(source, 'examples/maps/sparse.yaml'),
-    '--start', '1,4,0', '--object', '9,6', '--retrieve', '--seed', '1', '--out', out]);
+  if (whole)
+    execFileSync(ferret, ['mission', '--world', path.join(source, 'examples/worlds/two_sites.yaml'),
+      '--seed', '1', '-q', '--out', out]);
+  else
+    execFileSync(ferret, ['explore', '--map', path.join(source, 'examples/maps/sparse.yaml'),
+      '--start', '1,4,0', '--object', '9,6', '--retrieve', '--seed', '1', '--out', out]);
   const bytes = fs.readFileSync(path.join(out, 'mission.mcap'));
 
   // 1. Streamed, every record, CRCs validated.
@@ -53,9 +59,9 @@ async function main() {
       const msg = JSON.parse(Buffer.from(record.data).toString('utf8'));
       const schema = schemas.get(ch.schemaId).name;
       if (schema === 'foxglove.FrameTransform')
-        check(msg.parent_frame_id === 'map' && msg.child_frame_id === 'ugv' &&
+        check(msg.parent_frame_id === frame && (msg.child_frame_id === 'ugv' || (whole && msg.child_frame_id === 'uav')) &&
               Math.abs(Math.hypot(msg.rotation.x, msg.rotation.y, msg.rotation.z, msg.rotation.w) - 1) < 1e-9,
-              'a FrameTransform map -> ugv with a unit quaternion');
+              `a FrameTransform ${frame} -> robot with a unit quaternion`);
       if (schema === 'foxglove.Grid') {
         const cells = Buffer.from(msg.data, 'base64').length;
         check(cells % msg.column_count === 0 && cells === msg.row_stride * (cells / msg.column_count),
@@ -64,9 +70,9 @@ async function main() {
       }
       if (schema === 'foxglove.Log') check(typeof msg.message === 'string' && msg.level === 2, 'a log line');
       if (schema === 'foxglove.SceneUpdate')
-        check(msg.entities.length === 1 && msg.entities[0].frame_id === 'map' &&
+        check(msg.entities.length === 1 && msg.entities[0].frame_id === frame &&
               (msg.entities[0].lines.length + msg.entities[0].spheres.length) === 1,
-              'a scene entity in the map frame');
+              `a scene entity in the ${frame} frame`);
       const stamp = schema === 'foxglove.SceneUpdate' ? msg.entities[0].timestamp : msg.timestamp;
       check(Math.abs(Number(record.logTime) - (stamp.sec * 1e9 + stamp.nsec)) < 1000,
             `${ch.topic}: log time = the message's timestamp`);
@@ -75,7 +81,10 @@ async function main() {
   }
   check(stream.done(), 'the stream reader reached the end');
   check(sawFooter, 'a footer');
-  for (const topic of ['/tf', '/ugv/path', '/maps/G', '/maps/O', '/objects', '/log'])
+  const topics = whole ? ['/tf', '/uav/path', '/maps/shed_void/G', '/maps/shed_void/O', '/maps/kiln_void/G',
+                          '/detections', '/log']
+                       : ['/tf', '/ugv/path', '/maps/G', '/maps/O', '/objects', '/log'];
+  for (const topic of topics)
     check((counts.get(topic) || 0) > 0, `messages on ${topic}`);
   for (const s of schemas.values())
     check(s.name.startsWith('foxglove.') && s.encoding === 'jsonschema', `schema ${s.name}`);
@@ -96,7 +105,9 @@ async function main() {
   for await (const m of reader.readMessages({ topics: ['/log'] }))
     logs.push(JSON.parse(Buffer.from(m.data).toString('utf8')).message);
   check(logs.length > 0 && logs[logs.length - 1].includes('-> done'), 'the last transition ends in done');
-  check(logs.some((l) => l.includes('explore -> track')), 'explore -> track logged');
+  for (const step of whole ? ['search -> approach', 'lower -> ugv_ops', 'explore -> track', 'deliver -> drop']
+                           : ['explore -> track'])
+    check(logs.some((l) => l.includes(step)), `${step} logged`);
 
   console.log(`${streamed} messages on ${counts.size} topics, ${reader.chunkIndexes.length} chunks; ` +
               `${failures} failures`);
