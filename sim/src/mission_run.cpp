@@ -282,7 +282,8 @@ class SimUgvLink final : public UgvLink {
     last_uav_W_ = p_W;
     if (sim_) return;
     const int k = nearest_space(p_W);
-    if (k < 0) return;
+    if (k < 0 || k == touchdown_space_) return;  // called every UAV tick: once a space
+    touchdown_space_ = k;
     const HiddenSpace& h = spec_.hidden_spaces[static_cast<std::size_t>(k)];
     const Eigen::Vector2d e = h.p_WE.head<2>() + 0.1 * Eigen::Vector2d(std::cos(h.entry_yaw_rad), std::sin(h.entry_yaw_rad));
     if (const auto rest = sensors_.resting_pose(e, h.entry_yaw_rad, h.floor_z_m + 0.3))
@@ -338,6 +339,7 @@ class SimUgvLink final : public UgvLink {
   bool holding_ = false;
   bool reeling_in_ = false;
   ImuReading touchdown_;
+  int touchdown_space_ = -1;  ///< the hidden space touchdown_ was read for
   Eigen::Vector3d last_uav_W_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> released_at_;
 };

@@ -278,22 +278,32 @@ void UavMission::resume_search(const std::string& reason) {
   enter(UavMissionState::kSearch, reason);
 }
 
-void UavMission::look_for_markers(const FlightState& s) {
-  (void)s;
-  if (clock_.now_s() < next_frame_s_) return;
+const OpeningInMarker* UavMission::opening_of(int marker_id) const {
+  const auto o = std::find_if(options_.openings.begin(), options_.openings.end(),
+                              [&](const OpeningInMarker& x) { return x.marker_id == marker_id; });
+  return o == options_.openings.end() ? nullptr : &*o;
+}
+
+std::optional<UavMission::MarkerFrame> UavMission::marker_frame_due() {
+  if (clock_.now_s() < next_frame_s_) return std::nullopt;
   next_frame_s_ = clock_.now_s() + options_.frame_period_s;
   const CameraShot<GrayImage> shot = hw_.cameras.marker_frame();
   ++frames_;
-  for (const MarkerDetection& d : detector_->detect(shot.image, marker_camera_)) {
-    const auto known = std::find_if(options_.openings.begin(), options_.openings.end(),
-                                     [&](const OpeningInMarker& o) { return o.marker_id == d.id; });
-    if (known == options_.openings.end()) continue;
+  return MarkerFrame{shot.X_WC, detector_->detect(shot.image, marker_camera_)};
+}
+
+void UavMission::look_for_markers() {
+  const auto frame = marker_frame_due();
+  if (!frame) return;
+  for (const MarkerDetection& d : frame->detections) {
+    const OpeningInMarker* known = opening_of(d.id);
+    if (!known) continue;
     if (std::any_of(visits_.begin(), visits_.end(), [&](const HiddenSpaceVisit& v) { return v.marker_id == d.id; }))
       continue;
     if (++sightings_[d.id] < options_.confirm_detections) continue;
     HiddenSpaceVisit visit;
     visit.marker_id = d.id;
-    visit.opening = locate_opening(d, shot.X_WC, *known);
+    visit.opening = locate_opening(d, frame->X_WC, *known);
     visit.marker_distance_m = d.X_CM.translation().norm();
     visit.detected_s = clock_.now_s();
     visit.pattern_index = pattern_next_;
@@ -311,19 +321,16 @@ void UavMission::look_for_markers(const FlightState& s) {
 
 void UavMission::refine_opening() {
   // Nearer frames of the same marker give a better pose: keep the nearest one's estimate.
-  if (clock_.now_s() < next_frame_s_) return;
-  next_frame_s_ = clock_.now_s() + options_.frame_period_s;
-  const CameraShot<GrayImage> shot = hw_.cameras.marker_frame();
-  ++frames_;
+  const auto frame = marker_frame_due();
+  if (!frame) return;
   HiddenSpaceVisit& v = current();
-  const auto known = std::find_if(options_.openings.begin(), options_.openings.end(),
-                                  [&](const OpeningInMarker& o) { return o.marker_id == v.marker_id; });
-  for (const MarkerDetection& d : detector_->detect(shot.image, marker_camera_)) {
-    if (d.id != v.marker_id || known == options_.openings.end()) continue;
+  const OpeningInMarker* known = opening_of(v.marker_id);
+  for (const MarkerDetection& d : frame->detections) {
+    if (d.id != v.marker_id || !known) continue;
     const double distance_m = d.X_CM.translation().norm();
     if (distance_m >= v.marker_distance_m) continue;
     v.marker_distance_m = distance_m;
-    v.opening = locate_opening(d, shot.X_WC, *known);
+    v.opening = locate_opening(d, frame->X_WC, *known);
   }
 }
 
@@ -396,7 +403,7 @@ void UavMission::tick() {
 
     case UavMissionState::kSearch: {
       if (battery_calls_home(s)) return go_home("the battery covers the way home only");
-      look_for_markers(s);
+      look_for_markers();
       if (state_ != UavMissionState::kSearch) return;
       if (pattern_next_ >= pattern_.size()) return go_home("search pattern flown");
       if (path_.empty() && !fly_to(pattern_[pattern_next_], options_.search_speed_mps, false)) {

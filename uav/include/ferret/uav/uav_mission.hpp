@@ -193,7 +193,15 @@ class UavMission {
               std::optional<double> yaw_rad = std::nullopt);
   /// Follows the current path; true when at its end.
   bool follow(const FlightState& s);
-  void look_for_markers(const FlightState& s);
+  struct MarkerFrame {
+    Pose3 X_WC;
+    std::vector<MarkerDetection> detections;
+  };
+  /// A marker frame's detections when one is due (every frame_period_s).
+  [[nodiscard]] std::optional<MarkerFrame> marker_frame_due();
+  /// The opening relation of one of the team's markers, or null.
+  [[nodiscard]] const OpeningInMarker* opening_of(int marker_id) const;
+  void look_for_markers();
   void refine_opening();
   bool battery_calls_home(const FlightState& s) const;
   void go_home(const std::string& reason);
