@@ -8,7 +8,7 @@ UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
                              const std::optional<Eigen::Vector2d>& object_W,
                              const UgvMissionRunSettings& settings, std::uint64_t seed,
                              const Clock& clock, TransitionLog& log)
-    : truth_(truth), object_W_(object_W) {
+    : object_W_(object_W) {
   const ExplorationSettings& ex = settings.exploration;
   check_episode(truth, start, ex.method);
   const GridGeometry& geo = truth.geometry;

@@ -57,7 +57,8 @@ struct UgvMissionRunResult {
 /// object); the controller inside sees only the simulated base.
 class UgvMissionSim {
  public:
-  /// `truth` and `clock` must outlive the simulation. Throws as run_ugv_mission.
+  /// `truth` (the simulator keeps a reference) and `clock` must outlive the simulation.
+  /// Throws as run_ugv_mission.
   UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
                 const std::optional<Eigen::Vector2d>& object_W, const UgvMissionRunSettings& settings,
                 std::uint64_t seed, const Clock& clock, TransitionLog& log);
@@ -77,7 +78,6 @@ class UgvMissionSim {
   [[nodiscard]] UgvMissionRunResult result(const TransitionLog& log) const;
 
  private:
-  const OccupancyMap2D& truth_;
   std::optional<Eigen::Vector2d> object_W_;
   double object_radius_m_ = 0.0;
   bool record_ = false;
