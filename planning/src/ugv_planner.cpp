@@ -256,32 +256,16 @@ UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether
 }
 
 UgvPlan UgvPlanner::plan_return(const UgvPlanRequest& request) {
-  constexpr double kStraightBend = 0.1;  // |in - out| = 2 sin(bend / 2): bends under ~6 degrees
   const auto t0 = std::chrono::steady_clock::now();
   const double max_taut = request.tether.total_length_m - request.tether.entry_offset_m;
   TautTether tether(corners_, space_.p_WE);
   for (const Eigen::Vector2d& p : request.driven) tether.move_to(p);
   tether.move_to(request.start.position());
   // Retrace: the wrap points in reverse, each pushed off its corner into free space by
-  // the robot's half diagonal plus a margin, along the bisector of the tether's bend.
+  // the robot's half diagonal plus a margin.
   const double offset = 0.5 * ugv_.body_size_m.head<2>().norm() + 2.0 * map_->resolution_m();
   std::vector<Waypoint> nodes{waypoint(request.start)};
-  const auto line = tether.polyline();
-  const auto wraps = tether.wrap_points();  // line[k] is wraps[k - 1]
-  for (std::size_t k = line.size() - 2; k >= 1; --k) {
-    const Eigen::Vector2d in = (line[k] - line[k + 1]).normalized(), out = (line[k - 1] - line[k]).normalized();
-    Eigen::Vector2d away = in - out;  // points from the corner to the outside of the bend
-    // A nearly straight bend (the staircase corners of a slanted edge lie in a line, and
-    // the tether touches several): the bisector's direction is rounding noise and
-    // pointed into the obstacle. The side the tether turns to there is exact: it turns
-    // counter-clockwise (side +1, towards the robot) round an obstacle on its left.
-    if (away.norm() < kStraightBend) {
-      const Eigen::Vector2d to_robot = -(in + out).normalized();
-      away = wraps[k - 1].side * Eigen::Vector2d(to_robot.y(), -to_robot.x());
-    }
-    const Eigen::Vector2d p = line[k] + offset * away.normalized();
-    nodes.push_back(waypoint({p.x(), p.y(), 0.0}));
-  }
+  for (const Eigen::Vector2d& p : way_back_along_tether(tether, offset)) nodes.push_back(waypoint({p.x(), p.y(), 0.0}));
   nodes.push_back(waypoint(request.goal));
   bool ok = true;
   for (std::size_t k = 1; k < nodes.size() && ok; ++k) {

@@ -38,6 +38,17 @@ TEST(FeedForwardPid, FeedForwardPlusProportionalByHand) {
   EXPECT_NEAR(pid.step(moving(4.0, 0.2)), 0.21, 1e-9);
 }
 
+TEST(FeedForwardPid, TheSlackMarginRaisesTheReferenceUpToItsCap) {
+  FeedForwardPid pid(gains(0.5, 0.0, 0.0), tether());
+  // Required 4 m, slack 0, reference 0.005 + margin 0.2: 0.2 + 0.5 * 0.205.
+  TetherObservation obs = moving(4.0, 0.2);
+  obs.slack_margin_m = 0.2;
+  EXPECT_NEAR(pid.step(obs), 0.3025, 1e-9);
+  pid.reset();
+  obs.slack_margin_m = 10.0;  // capped at max_slack_margin_m (0.5): 0.2 + 0.5 * 0.505
+  EXPECT_NEAR(pid.step(obs), 0.4525, 1e-9);
+}
+
 TEST(FeedForwardPid, IntegralAndDerivativeTermsByHand) {
   FeedForwardPid pid(gains(2.0, 1.0, 0.1), tether());
   EXPECT_NEAR(pid.step(moving(4.0, 0.0)), 2.0 * 0.005, 1e-9);  // no derivative on the first step

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "ferret/tether_model/tether_controller.hpp"
@@ -88,12 +89,38 @@ TEST(SlackObserver, SnagsAreTheGuardsAndTheBiasIsCapped) {
   EXPECT_EQ(obs.bias_m(), 0.0);
 }
 
+TEST(SlackObserver, APullTheModelCannotExplainIsKeptAsAnOffsetAndForgottenSlowly) {
+  SlackObserver obs = make_observer();
+  // The model says 70 cm of slack on 8 m, the winch feels 5 N: k = 187.5 N/m, so the
+  // line is stretched 26.7 mm and the model is short by 0.7267 m.
+  const double k = 1500.0 / 8.0, stretch = 5.0 / k;
+  EXPECT_NEAR(obs.estimate_m(8.0, 7.3, 0.5 + 5.0), -stretch, 1e-12);
+  EXPECT_NEAR(obs.model_offset_m(), 0.7 + stretch, 1e-12);
+  // The pull relieved: the line is not 70 cm slack but about taut (the offset less one
+  // cycle's 0.4 mm of decay, and the bias a millimetre at most).
+  const double next = obs.estimate_m(8.0, 7.3, 0.5);
+  EXPECT_NEAR(obs.model_offset_m(), 0.7 + stretch - 0.02 * 0.02, 1e-12);
+  EXPECT_NEAR(next, 0.7 - obs.model_offset_m(), 2e-3);
+  // 40 s without a pull (2 cm/s): forgotten, the geometry again.
+  for (int i = 0; i < 2000; ++i) (void)obs.estimate_m(8.0, 7.3, 0.5);
+  EXPECT_EQ(obs.model_offset_m(), 0.0);
+  EXPECT_NEAR(obs.estimate_m(8.0, 7.3, 0.5), 0.7, 2e-3);
+  (void)obs.estimate_m(8.0, 7.3, 0.5 + 5.0);
+  obs.reset();
+  EXPECT_EQ(obs.model_offset_m(), 0.0);
+}
+
 TEST(SlackObserver, RejectsBadOptions) {
   SlackObserver::Options o;
   EXPECT_THROW(SlackObserver(SlackEstimator{}, o, 0.0, 0.02), std::invalid_argument);
   EXPECT_THROW(SlackObserver(SlackEstimator{}, o, 0.05, 0.0), std::invalid_argument);
   o.tension_noise_n = 0.0;
   EXPECT_THROW(SlackObserver(SlackEstimator{}, o, 0.05, 0.02), std::invalid_argument);
+  o = {};
+  for (const double bad : {-0.01, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    o.model_offset_decay_mps = bad;
+    EXPECT_THROW(SlackObserver(SlackEstimator{}, o, 0.05, 0.02), std::invalid_argument) << bad;
+  }
 }
 
 }  // namespace

@@ -38,6 +38,30 @@ TEST(TautTetherMpc, HoldsStillWhenTheSlackIsAtItsReference) {
   EXPECT_NEAR(command, 0.0, 1e-9);
 }
 
+TEST(TautTetherMpc, HoldsTheSlackMarginTheMiniUgvAsksForUpToItsCap) {
+  TautTetherMpc mpc(raw_options(), straight_tether());
+  const auto& ctl = mpc.options().control;
+  const double ref = ctl.slack_reference_m;
+  // 4 m required; the miniUGV says its tether may be 0.3 m longer than it reports.
+  TetherObservation obs = at_rest(3.0, 4.0 + ref + 0.3);
+  obs.slack_margin_m = 0.3;
+  EXPECT_NEAR(mpc.step(obs), 0.0, 1e-9);  // at reference + margin: hold
+  mpc.reset();
+  obs.released_m = 4.0 + ref;  // at the bare reference: pay out the margin
+  EXPECT_GT(mpc.step(obs), 0.0);
+  // A larger doubt is honoured only up to max_slack_margin_m; NaN or negative as none.
+  mpc.reset();
+  obs.slack_margin_m = 10.0;
+  obs.released_m = 4.0 + ref + ctl.max_slack_margin_m;
+  EXPECT_NEAR(mpc.step(obs), 0.0, 1e-9);
+  for (const double bad : {std::nan(""), -1.0}) {
+    mpc.reset();
+    obs.slack_margin_m = bad;
+    obs.released_m = 4.0 + ref;
+    EXPECT_NEAR(mpc.step(obs), 0.0, 1e-9) << bad;
+  }
+}
+
 TEST(TautTetherMpc, ReelsInSlackAndPaysOutAStretch) {
   TautTetherMpc mpc(raw_options(), straight_tether());
   EXPECT_LT(mpc.step(at_rest(3.0, 4.1)), 0.0);  // 10 cm slack

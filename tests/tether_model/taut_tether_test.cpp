@@ -105,6 +105,36 @@ TEST(TautTether, WindsAndUnwindsAroundALoop) {
   EXPECT_NEAR(t.length_m(), 0.0, 1e-12);
 }
 
+TEST(TautTether, TheWayBackPassesEachWrapPointOutsideItsCornerAndOnlyShortensTheTether) {
+  // Wound once round the block from (5, 1): four wrap points, then the way back.
+  TautTether t(block_world(), V{5, 1});
+  for (const V& p : {V{9, 1}, V{9, 9}, V{1, 9}, V{1, 1}, V{5, 0.5}}) t.move_to(p);
+  ASSERT_EQ(t.wrap_points().size(), 4u);
+  const double offset = 0.3;
+  const auto way = way_back_along_tether(t, offset);
+  ASSERT_EQ(way.size(), 4u);
+  // In reverse (the corner nearest the robot's end first), each `offset` from its corner
+  // along the bisector, so outside the block: the corners (4,4), (4,6), (6,6), (6,4)
+  // were wrapped in the order (6,4), (6,6), (4,6), (4,4).
+  const std::vector<V> corners{{4, 4}, {4, 6}, {6, 6}, {6, 4}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_NEAR((way[k] - corners[k]).norm(), offset, 1e-9) << k;
+    const V d = way[k] - V{5, 5};
+    EXPECT_GT(std::max(std::abs(d.x()), std::abs(d.y())), 1.0 + 0.2) << "inside the block: " << k;
+  }
+  // Driving it, the tether never gets longer and ends straight at the entry.
+  double before = t.length_m();
+  for (const V& p : way) {
+    t.move_to(p);
+    EXPECT_LE(t.length_m(), before + 1e-9);
+    before = t.length_m();
+  }
+  t.move_to(t.entry());
+  EXPECT_TRUE(t.wrap_points().empty());
+  // A straight tether has no way back to follow.
+  EXPECT_TRUE(way_back_along_tether(t, offset).empty());
+}
+
 TEST(TautTether, GrazingAnEdgeWrapsOnlyWhenPushedIntoTheObstacle) {
   // The tether from (2,4) to (8,4) lies along the block's bottom edge y = 4.
   TautTether t(block_world(), V{2, 4}, V{8, 4});

@@ -38,7 +38,7 @@ double FeedForwardPid::step(const TetherObservation& obs) {
   const double required = model_->required_length_m(now.p_WG);
   const double feedforward = options_.feedforward_gain * required_length_rate_mps(*model_, now);
   const double slack = estimator_.slack_observer.estimate_m(obs.released_m, required, obs.winch_tension_n);
-  const double error = c.slack_reference_m - slack;  // > 0: too taut, pay out
+  const double error = c.slack_reference_m + c.margin_m(obs) - slack;  // > 0: too taut, pay out
   const double derivative = has_last_ ? (error - last_error_m_) / dt : 0.0;
   last_error_m_ = error;
   has_last_ = true;

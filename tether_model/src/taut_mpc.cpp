@@ -155,6 +155,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     }
   }
 
+  const double margin = ctl.margin_m(obs);
   const double l0 = obs.released_m, v0 = obs.spool_speed_mps;
   const Eigen::VectorXd free_l = free_l_from_l_ * l0 + free_l_from_v_ * v0;
   last_free_l_ = free_l;
@@ -162,7 +163,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(n_);
   for (int k = 0; k < N; ++k) {
     const double w = options_.weight_slack * (k == N - 1 ? options_.weight_terminal : 1.0);
-    const double offset = free_l[k] - required_[k] - ctl.slack_reference_m;
+    const double offset = free_l[k] - required_[k] - ctl.slack_reference_m - margin;
     g += 2.0 * w * offset * Phi_l_.row(k).transpose();
     g[k] -= 2.0 * std::max(options_.weight_feedforward, 1e-6) * required_rate_[k];
   }
@@ -184,7 +185,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     lo[row_slack_lo_ + k] = required_[k] - free_l[k];
     hi[row_slack_lo_ + k] = inf;
     lo[row_slack_hi_ + k] = -inf;
-    hi[row_slack_hi_ + k] = required_[k] + ctl.max_slack_m - free_l[k];
+    hi[row_slack_hi_ + k] = required_[k] + ctl.max_slack_m + margin - free_l[k];
     lo[row_box_ + k] = -vmax;
     hi[row_box_ + k] = vmax;
   }

@@ -181,4 +181,25 @@ void TautTether::move_to(const Eigen::Vector2d& p_target) {
   p_WR_ = p_target;
 }
 
+std::vector<Eigen::Vector2d> way_back_along_tether(const TautTether& tether, double offset_m) {
+  constexpr double kStraightBend = 0.1;  // |in - out| = 2 sin(bend / 2): bends under ~6 degrees
+  const auto line = tether.polyline();  // entry, wraps, robot: line[k] is wraps[k - 1]
+  const auto& wraps = tether.wrap_points();
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t k = line.size() - 2; k >= 1; --k) {
+    const Eigen::Vector2d in = (line[k] - line[k + 1]).normalized(), out_dir = (line[k - 1] - line[k]).normalized();
+    Eigen::Vector2d away = in - out_dir;  // from the corner to the outside of the bend
+    // A nearly straight bend (the staircase corners of a slanted edge lie in a line, and
+    // the tether touches several): the bisector's direction is rounding noise and may
+    // point into the obstacle. The side the tether turns to there is exact: it turns
+    // counter-clockwise (side +1, towards the robot) round an obstacle on its left.
+    if (away.norm() < kStraightBend) {
+      const Eigen::Vector2d to_robot = -(in + out_dir).normalized();
+      away = wraps[k - 1].side * Eigen::Vector2d(to_robot.y(), -to_robot.x());
+    }
+    out.push_back(line[k] + offset_m * away.normalized());
+  }
+  return out;
+}
+
 }  // namespace ferret

@@ -31,8 +31,10 @@ SlackObserver::SlackObserver(const SlackEstimator& estimator, const Options& opt
     : estimator_(estimator), options_(options) {
   if (!(pose_filter_gain > 0.0 && pose_filter_gain <= 1.0) || !(control_period_s > 0.0) ||
       !(options.pose_noise_m >= 0.0) || !(options.tension_noise_n > 0.0) ||
-      !(options.ugv_speed_noise_mps >= 0.0) || !(options.max_bias_sigmas > 0.0))
+      !(options.ugv_speed_noise_mps >= 0.0) || !(options.max_bias_sigmas > 0.0) ||
+      !(options.model_offset_decay_mps >= 0.0) || !std::isfinite(options.model_offset_decay_mps))
     throw std::invalid_argument("SlackObserver: bad options");
+  control_period_s_ = control_period_s;
   decay_ = 1.0 - pose_filter_gain;
   const double velocity_m = options.ugv_speed_noise_mps * control_period_s;
   process_m2_ = std::pow(pose_filter_gain * options.pose_noise_m, 2) + velocity_m * velocity_m;
@@ -47,6 +49,7 @@ double SlackObserver::max_bias_m() const {
 void SlackObserver::reset() {
   bias_m_ = 0.0;
   variance_m2_ = steady_m2_;
+  offset_m_ = 0.0;
 }
 
 double SlackObserver::estimate_m(double released_m, double required_m, double winch_tension_n) {
@@ -73,9 +76,15 @@ double SlackObserver::estimate_m(double released_m, double required_m, double wi
     bias_m_ += gain * (pull - k * mean_plus);
     variance_m2_ = std::max(variance_m2_ - gain * k * cov, 1e-12);
     bias_m_ = std::clamp(bias_m_, -max_bias_m(), max_bias_m());
+    offset_m_ = std::max(0.0, offset_m_ - options_.model_offset_decay_mps * control_period_s_);
+  } else {
+    // Taut: the line is as long as it is stretched, x = pull / k past l_t, so the model
+    // (with its bias) is short by g + x; the part the bias cannot hold is the offset.
+    const double stretch_m = pull / estimator_.tension.stiffness_npm(released_m);
+    offset_m_ = std::max(offset_m_, geometric + stretch_m - bias_m_);
   }
   // The guard still decides a snag: above it the measured stretch wins.
-  return estimator_.estimate_m(released_m, required_m + bias_m_, winch_tension_n);
+  return estimator_.estimate_m(released_m, required_m + bias_m_ + offset_m_, winch_tension_n);
 }
 
 UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {

@@ -110,6 +110,14 @@ class TautTether {
   void update_fixed_length();
 };
 
+/// The way back along a taut tether: its wrap points from the robot's end to the
+/// entry's, each pushed `offset_m` off its corner to the outside of the tether's bend
+/// (a robot there clears the corner). Driving robot -> these -> entry keeps the path in
+/// the tether's homotopy class, so the tether only shortens on the way; retracing the
+/// driven path would do the same over the whole history.
+[[nodiscard]] std::vector<Eigen::Vector2d> way_back_along_tether(const TautTether& tether,
+                                                                 double offset_m);
+
 /// The released tether l_0 + taut length must not exceed L (paper sect. III-A:
 /// l_t in [l_0, L] during hidden-space operations).
 [[nodiscard]] inline bool tether_length_ok(double taut_length_m, const TetherParams& tether) {

@@ -5,6 +5,7 @@
 // miniUGV's pose, desired velocity and desired acceleration as received over the
 // link (with its age). Both output a spool velocity command (positive pays out).
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -43,6 +44,10 @@ struct TetherObservation {
   UgvMotion ugv;                 ///< last message from the miniUGV
   double ugv_age_s = 0.0;        ///< how old that message is (link latency)
   UgvMotionPreview ugv_preview;  ///< the miniUGV's planned motion after the message, if sent
+  /// Slack asked for beyond the reference: how much longer the real tether may be than
+  /// the required-length model says (the miniUGV's bound of its tether less its
+  /// estimate, where its map has not seen every corner the line can wrap).
+  double slack_margin_m = 0.0;
 };
 
 /// Slack the controllers act on: geometric slack l_t - l_req from the (latency-
@@ -76,6 +81,11 @@ class SlackObserver {
     double tension_noise_n = 0.2;      ///< assumed std of the current-based tension
     double ugv_speed_noise_mps = 0.02; ///< assumed miniUGV velocity error (process noise)
     double max_bias_sigmas = 4.0;      ///< cap of |b| in steady-state standard deviations
+    /// A pull above the guard that the pose error cannot explain is the required-length
+    /// model falling short (a corner the miniUGV's map has not seen): the shortfall is
+    /// kept as a model offset, so the winch does not reel the line taut again, and
+    /// forgotten at this rate (m/s) while the line is not pulling (0: never).
+    double model_offset_decay_mps = 0.02;
   };
 
   SlackObserver(const SlackEstimator& estimator, const Options& options, double pose_filter_gain,
@@ -84,6 +94,8 @@ class SlackObserver {
   [[nodiscard]] double estimate_m(double released_m, double required_m, double winch_tension_n);
   void reset();
   [[nodiscard]] double bias_m() const { return bias_m_; }
+  /// How much longer than the model the tether was found to be (>= 0).
+  [[nodiscard]] double model_offset_m() const { return offset_m_; }
   [[nodiscard]] double bias_variance_m2() const { return variance_m2_; }
   /// Largest |b| the observer accepts as pose error (larger: not pose noise).
   [[nodiscard]] double max_bias_m() const;
@@ -95,6 +107,8 @@ class SlackObserver {
   double process_m2_ = 0.0;    ///< variance b gains a cycle
   double steady_m2_ = 0.0;     ///< variance of b without tension information
   double bias_m_ = 0.0, variance_m2_ = 0.0;
+  double offset_m_ = 0.0;
+  double control_period_s_ = 0.02;
 };
 
 /// Smooths the miniUGV's reported position with its own desired motion: each message
@@ -138,7 +152,14 @@ struct TautControlOptions {
   WinchLimits limits;
   SlackEstimator slack_estimator;
   double slack_reference_m = 0.0;  ///< slack aimed for: taut (tuned, docs/tether.md)
-  double max_slack_m = 0.15;       ///< s_max: slack kept in [0, s_max]
+  double max_slack_m = 0.15;       ///< s_max: slack kept in [0, s_max] (plus the margin)
+  /// The most of an observation's slack_margin_m honoured: slack beyond this on the
+  /// floor is a loop that can snag, so a larger doubt is left to the tension guard.
+  double max_slack_margin_m = 0.5;
+  /// The slack margin of an observation as honoured (0 for NaN or negative).
+  [[nodiscard]] double margin_m(const TetherObservation& obs) const {
+    return obs.slack_margin_m > 0.0 ? std::min(obs.slack_margin_m, max_slack_margin_m) : 0.0;
+  }
   double control_period_s = 0.02;  ///< 50 Hz
   double ugv_max_speed_mps = 2.0;  ///< caps the miniUGV prediction
   double pose_filter_gain = 0.05;  ///< UgvPositionFilter gain a cycle (1: raw positions)
