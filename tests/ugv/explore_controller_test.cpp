@@ -2,12 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
+#include "ferret/tether_model/taut_tether.hpp"
 #include "support/test_maps.hpp"
 
 namespace ferret {
@@ -70,6 +73,40 @@ TEST(ExploreController, TheOmplPlannerRepeatsGivenTheSeed) {
     EXPECT_EQ(a.trajectory[k].x_m, b.trajectory[k].x_m) << k;
     EXPECT_EQ(a.trajectory[k].y_m, b.trajectory[k].y_m) << k;
   }
+}
+
+// A path round a pillar the IR never saw (G stays unknown): the real tether wraps the
+// pillar; the estimate (G's obstacles only) lies straight and falls short of it; the
+// bound the reach check uses (unknown space too) does not.
+TEST(ExploreController, TheReachBoundCoversATetherRoundAnObstacleTheIrNeverSaw) {
+  const GridGeometry geo{0.0, 0.0, 0.05, 200, 200};
+  ExploreOptions options;
+  options.tether_budget_m = 100.0;
+  const Pose2 entry{2.0, 5.0, 0.0};
+  ExploreController controller(geo, entry, options);
+  // The pillar [4.8, 5.2]^2 as the truth has it (its convex corners).
+  std::vector<TetherCorner> pillar;
+  const std::array<std::pair<Eigen::Vector2d, std::uint8_t>, 4> corners{
+      {{{4.8, 4.8}, 1u << 0}, {{5.2, 4.8}, 1u << 1}, {{5.2, 5.2}, 1u << 2}, {{4.8, 5.2}, 1u << 3}}};
+  for (const auto& [p, q] : corners) pillar.push_back({p, q});
+  TautTether truth(TetherCorners::from_list(pillar), entry.position());
+  // Below the pillar, up its right side, and over it: 5 cm steps, 0.1 s apart.
+  const std::vector<Eigen::Vector2d> legs{{5.0, 3.5}, {8.0, 5.0}, {5.0, 6.5}};
+  Eigen::Vector2d p = entry.position();
+  double t = 0.0;
+  for (const auto& to : legs)
+    while ((to - p).norm() > 1e-9) {
+      const Eigen::Vector2d d = to - p;
+      p += d.norm() > 0.05 ? Eigen::Vector2d(0.05 * d.normalized()) : d;
+      t += 0.1;
+      controller.follow_tether({p.x(), p.y(), 0.0}, t);
+      truth.move_to(p);
+    }
+  ASSERT_FALSE(truth.wrap_points().empty());
+  // By hand: (2,5) -> (4.8,4.8) -> (5.2,4.8) -> (5.2,5.2) -> (5,6.5).
+  EXPECT_NEAR(truth.length_m(), std::hypot(2.8, 0.2) + 0.8 + std::hypot(0.2, 1.3), 1e-9);
+  EXPECT_NEAR(controller.tether_length_m(), (p - entry.position()).norm(), 1e-9);  // straight
+  EXPECT_GE(controller.reach_length_m(), truth.length_m());
 }
 
 TEST(ExploreController, AnUnknownPlannerIsRefused) {

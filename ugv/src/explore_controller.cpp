@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ferret/core/grid_morphology.hpp"
 #include "ferret/mapping/frontier.hpp"
 #include "ferret/planning/curiosity.hpp"
 #include "ferret/planning/exploration_policy.hpp"
@@ -18,6 +19,8 @@ constexpr double kWideEscape_m = 4.0;
 constexpr double kFullDecision_s = 1.0;
 constexpr double kCornerRefresh_s = 2.0;
 constexpr double kDrivenStep_m = 0.05;
+/// Unknown space narrower than this cannot hide an obstacle the tether wraps (m).
+constexpr double kHiddenObstacleWidth_m = 0.125;
 constexpr int kMaxReachRejections = 32;  ///< per decision: then the search is over
 constexpr std::uint8_t kReachMark = 2;   ///< blacklist kind of goals out of the tether's reach
 constexpr int kMaxUnwinds = 3;
@@ -58,8 +61,13 @@ ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& 
   progress_pose_ = start;
   entry_W_ = start.position();
   driven_W_.push_back(entry_W_);
+  swept_.assign(static_cast<std::size_t>(geo_.width) * geo_.height, 0);
+  mark_swept(entry_W_);
   if (options_.tether_budget_m)
+  {
     tether_ = std::make_unique<TautTether>(TetherCorners::from_list({}), entry_W_);
+    reach_tether_ = std::make_unique<TautTether>(*tether_);
+  }
 }
 
 ExploreController::~ExploreController() = default;
@@ -74,23 +82,65 @@ std::optional<Cell> ExploreController::observe_frame(const CameraFrame& frame) {
 void ExploreController::follow_tether(const Pose2& pose, double t_s) {
   if (!tether_) return;
   const Eigen::Vector2d p = pose.position();
-  if ((p - driven_W_.back()).norm() >= kDrivenStep_m) driven_W_.push_back(p);
+  if ((p - driven_W_.back()).norm() >= kDrivenStep_m) {
+    driven_W_.push_back(p);
+    mark_swept(p);
+  }
   if (t_s - corners_refreshed_s_ >= kCornerRefresh_s) {
     // G has grown: replay the driven path over its corners now, so corners seen only
     // after the robot passed them still wrap the tether.
     corners_refreshed_s_ = t_s;
-    auto corners = TetherCorners::from_grid(
-        geo_, [this](Cell c) { return grid_->label(c) == GridLabel::kOccupied; });
-    auto replay = std::make_unique<TautTether>(std::move(corners), entry_W_);
-    for (const auto& q : driven_W_) replay->move_to(q);
-    replay->move_to(p);
-    tether_ = std::move(replay);
+    const auto replay = [&](std::shared_ptr<const TetherCorners> corners) {
+      auto t = std::make_unique<TautTether>(std::move(corners), entry_W_);
+      for (const auto& q : driven_W_) t->move_to(q);
+      t->move_to(p);
+      return t;
+    };
+    // The estimate wraps the obstacles G has seen. The bound also wraps unknown space
+    // wide enough to hide one: the real line can wrap an obstacle the IR never saw, so
+    // the estimate can fall short of it, the bound hardly ever. Neither wraps a cell the
+    // robot drove over (a later noisy hit there is no obstacle, and a driven path through
+    // an obstacle would tangle the replay).
+    const auto occupied = [this](std::size_t i) {
+      return grid_->label_at(i) == GridLabel::kOccupied && !swept_[i];
+    };
+    tether_ = replay(TetherCorners::from_grid(geo_, [&](Cell c) { return occupied(geo_.index(c)); }));
+    const std::vector<std::uint8_t> hidden = unknown_that_can_hide_obstacles();
+    reach_tether_ = replay(TetherCorners::from_grid(geo_, [&](Cell c) {
+      const std::size_t i = geo_.index(c);
+      return occupied(i) || hidden[i] != 0;
+    }));
   } else {
     tether_->move_to(p);
+    reach_tether_->move_to(p);
   }
 }
 
+std::vector<std::uint8_t> ExploreController::unknown_that_can_hide_obstacles() const {
+  // Unknown cells the robot has not driven over, opened by a square of
+  // kHiddenObstacleWidth_m: the specks and thin strips between IR rays cannot hide an
+  // obstacle the tether could wrap, and wrapping them made the bound wind round holes in
+  // free space (tens of metres after an unwind).
+  std::vector<std::uint8_t> unknown(swept_.size());
+  for (std::size_t i = 0; i < unknown.size(); ++i)
+    unknown[i] = grid_->label_at(i) == GridLabel::kUnknown && !swept_[i];
+  const int r = std::max(1, static_cast<int>(std::lround(0.5 * kHiddenObstacleWidth_m / geo_.resolution_m)));
+  return open_square(unknown, geo_.width, geo_.height, r);
+}
+
+void ExploreController::mark_swept(const Eigen::Vector2d& p_W) {
+  // The driven points lie kDrivenStep_m apart: a disc of that radius covers the path.
+  const double r = std::max(kDrivenStep_m, 1.5 * geo_.resolution_m);
+  const Cell lo = geo_.cell_at(p_W.x() - r, p_W.y() - r), hi = geo_.cell_at(p_W.x() + r, p_W.y() + r);
+  for (int j = std::max(0, lo.j); j <= std::min(geo_.height - 1, hi.j); ++j)
+    for (int i = std::max(0, lo.i); i <= std::min(geo_.width - 1, hi.i); ++i)
+      if ((geo_.center({i, j}) - p_W).norm() <= r) swept_[geo_.index({i, j})] = 1;
+}
+
 double ExploreController::tether_length_m() const { return tether_ ? tether_->length_m() : 0.0; }
+double ExploreController::reach_length_m() const {
+  return reach_tether_ ? reach_tether_->length_m() : 0.0;
+}
 
 std::optional<std::pair<Eigen::Vector2d, double>> ExploreController::tether_anchor() const {
   if (!tether_) return std::nullopt;
@@ -99,22 +149,27 @@ std::optional<std::pair<Eigen::Vector2d, double>> ExploreController::tether_anch
 }
 
 bool ExploreController::within_reach(const std::vector<Eigen::Vector2d>& path_W) const {
-  if (!tether_) return true;
-  TautTether t = *tether_;
+  if (!reach_tether_) return true;
+  TautTether t = *reach_tether_;
   for (const auto& p : path_W) t.move_to(p);
   return t.length_m() + options_.tether_margin_m <= *options_.tether_budget_m;
 }
 
 std::vector<Eigen::Vector2d> ExploreController::retrace_path(double enough_m) const {
   std::vector<Eigen::Vector2d> path;
-  if (!tether_ || tether_->wrap_points().empty()) return path;
-  TautTether t = *tether_;
+  if (!reach_tether_ || reach_tether_->wrap_points().empty()) return path;
+  TautTether t = *reach_tether_;
   for (std::size_t k = driven_W_.size() - 1;; --k) {
     path.push_back(driven_W_[k]);
     t.move_to(driven_W_[k]);
     if (k == 0 || t.wrap_points().empty() || t.length_m() <= enough_m) break;
   }
   return path;
+}
+
+std::vector<Eigen::Vector2d> ExploreController::way_home_along_tether(double offset_m) const {
+  if (!tether_) return {};
+  return way_back_along_tether(*tether_, offset_m);
 }
 
 void ExploreController::drop_goal(bool blacklist) {

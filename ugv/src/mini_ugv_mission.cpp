@@ -17,6 +17,8 @@ constexpr double kServoDistanceTolerance_m = 0.03;
 constexpr double kBatteryCheckPeriod_s = 1.0;
 constexpr double kReplanPeriod_s = 1.0;
 constexpr double kReturnStuck_s = 3.0;
+constexpr double kWayHomeNodeSpacing_m = 0.3;  ///< wrap points closer than this share a node
+constexpr double kWayHomeSnap_m = 0.3;         ///< how far from a wrap point a node may move
 
 }  // namespace
 
@@ -148,13 +150,47 @@ void MiniUgvMission::retracted() {
 }
 
 std::vector<Eigen::Vector2d> MiniUgvMission::path_home(const Pose2& pose, int widen) {
-  const Cell robot = geo_.cell_at(pose.x_m, pose.y_m);
-  const Cell entry = geo_.cell_at(entry_W_.x(), entry_W_.y());
-  home_planner_->compute(explore_->grid(), robot, GridPathPlanner::Traversal::kKnownFree,
-                         options_.explore.robot.escape_radius_m * (1 + widen));
-  if (!home_planner_->reachable(entry)) return {};
-  auto path = home_planner_->path_to(entry);
-  if (!path.empty()) path.back() = entry_W_;  // the entry itself, not its cell's centre
+  const double escape_m = options_.explore.robot.escape_radius_m * (1 + widen);
+  // Home along the tether: through its wrap points (pushed off their corners by the
+  // clearance and a cell), each leg G's shortest known-free way. The shortest way home
+  // by G alone can pass an obstacle on the other side and wind the tether round it.
+  std::vector<Eigen::Vector2d> nodes =
+      explore_->way_home_along_tether(options_.explore.robot.clearance_m + 2.0 * geo_.resolution_m);
+  nodes.push_back(entry_W_);
+  Cell from = geo_.cell_at(pose.x_m, pose.y_m);
+  std::vector<Eigen::Vector2d> path{geo_.center(from)};  // as path_to: the follower skips it
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const bool last = k + 1 == nodes.size();
+    // Wrap points of a slanted wall lie a cell apart: one node in a stretch will do.
+    if (!last && (nodes[k] - path.back()).norm() < kWayHomeNodeSpacing_m) continue;
+    home_planner_->compute(explore_->grid(), from, GridPathPlanner::Traversal::kKnownFree, escape_m);
+    // The node itself, or the nearest cell G can reach near it: a wrap point's offset
+    // may lie in a wall's clearance band, and the entry's own cell may never have been
+    // seen by the IR (the robot starts on it); within entry_tolerance_m is home.
+    std::optional<Cell> goal;
+    const Cell c = geo_.cell_at(nodes[k].x(), nodes[k].y());
+    // (Half the tolerance for the entry: the follower stops within 0.1 m of its goal.)
+    const double snap_m = last ? 0.5 * options_.entry_tolerance_m : kWayHomeSnap_m;
+    const int r = static_cast<int>(std::ceil(snap_m / geo_.resolution_m));
+    double best = std::numeric_limits<double>::infinity();
+    for (int dj = -r; dj <= r; ++dj)
+      for (int di = -r; di <= r; ++di) {
+        const Cell q{c.i + di, c.j + dj};
+        if (!home_planner_->reachable(q)) continue;
+        const double d = (geo_.center(q) - nodes[k]).norm();
+        if (d <= snap_m + 0.5 * geo_.resolution_m && d < best) best = d, goal = q;
+      }
+    if (!goal) {
+      if (last) return {};  // the entry is out of G's reach from here
+      continue;
+    }
+    const auto leg = home_planner_->path_to(*goal);
+    if (!leg.empty()) path.insert(path.end(), leg.begin() + 1, leg.end());
+    from = *goal;
+  }
+  if (path.size() < 2) return {};
+  // The entry itself, not its cell's centre, when its cell was reached.
+  if (from == geo_.cell_at(entry_W_.x(), entry_W_.y())) path.back() = entry_W_;
   return path;
 }
 
@@ -171,15 +207,8 @@ bool MiniUgvMission::battery_calls_return(const Pose2& pose) {
   double way_m = home_planner_->reachable(entry)
                      ? static_cast<double>(home_planner_->distance_m(entry))
                      : (pose.position() - entry_W_).norm();
-  // The return retraces a wound tether first (begin_return): price that way instead.
-  if (const auto retrace = explore_->retrace_path(); !retrace.empty()) {
-    way_m = (retrace.back() - entry_W_).norm();  // then straight, as the tether lies
-    Eigen::Vector2d prev = pose.position();
-    for (const auto& p : retrace) {
-      way_m += (p - prev).norm();
-      prev = p;
-    }
-  }
+  // The return follows the tether (path_home): at least the tether's length.
+  if (explore_->tether_budget_m()) way_m = std::max(way_m, explore_->reach_length_m());
   const double return_s = way_m / (0.5 * options_.explore.robot.max_velocity_mps);
   const double needed = return_s / options_.battery_endurance_s + options_.battery_reserve_fraction;
   return base_.status().battery_fraction <= needed;
@@ -192,18 +221,9 @@ void MiniUgvMission::begin_return(UgvMissionOutcome outcome, const std::string& 
   return_replans_ = 0;
   progress_W_ = pose.position();
   progress_since_s_ = clock_.now_s();
-  // Back along the tether: retrace the driven path until the tether lies straight from
-  // the entry (going round an obstacle the other way would wrap it), then the shortest
-  // known-free way from there.
-  auto path = explore_->retrace_path();
-  if (!path.empty()) {
-    const Eigen::Vector2d from = path.back();
-    auto rest = path_home(Pose2{from.x(), from.y(), 0.0}, 0);
-    path.insert(path.end(), rest.begin(), rest.end());
-  } else {
-    path = path_home(pose, 0);
-  }
+  auto path = path_home(pose, 0);
   double length_m = (pose.position() - entry_W_).norm();
+  const std::size_t corners = path.size();
   if (!path.empty()) {
     length_m = 0.0;
     Eigen::Vector2d prev = pose.position();
@@ -213,8 +233,12 @@ void MiniUgvMission::begin_return(UgvMissionOutcome outcome, const std::string& 
     }
     follower_.set_path(std::move(path), std::nullopt);
   }
+  // Four times the drive at full speed, and a half turn on the spot at every corner
+  // (a way home along the tether turns at each wrap point).
   state_timeout_s_ = std::max(options_.return_timeout_min_s,
-                              4.0 * length_m / options_.explore.robot.max_velocity_mps);
+                              4.0 * length_m / options_.explore.robot.max_velocity_mps +
+                                  static_cast<double>(corners) * std::numbers::pi /
+                                      options_.explore.robot.max_yaw_rate_radps);
   next_replan_s_ = clock_.now_s() + kReplanPeriod_s;
 }
 
@@ -228,10 +252,17 @@ VelocityCommand MiniUgvMission::guarded(const Pose2& pose, VelocityCommand c) co
       (!geo_.contains(to) || explore_->grid().label(to) != GridLabel::kFree))
     c.v_mps = 0.0;
   // Nor further out on a tether at its budget (turning and backing up stay allowed).
+  // The servo's last metres are priced by the estimate and at most the reach margin of
+  // the bound's doubt: the bound wraps every unknown patch the robot drove round, and
+  // stopping short of a confirmed object for that (metres, once it circled one) would
+  // end the mission for an obstacle that is most likely not there.
   const auto budget = explore_->tether_budget_m();
-  if (c.v_mps > 0 && budget &&
-      explore_->tether_length_m() + 0.5 * options_.explore.tether_margin_m >= *budget)
-    c.v_mps = 0.0;
+  if (c.v_mps > 0 && budget) {
+    const double estimate = explore_->tether_length_m();
+    const double doubt = std::max(0.0, explore_->reach_length_m() - estimate);
+    const double margin = options_.explore.tether_margin_m;
+    if (estimate + std::min(doubt, margin) + 0.5 * margin >= *budget) c.v_mps = 0.0;
+  }
   return c;
 }
 

@@ -58,7 +58,8 @@ struct ExploreOptions {
   /// The taut tether the robot may use on the floor, L - l_0 (m); none: no tether
   /// (the paper's experiment). With it, a goal whose taut tether (the tether of the
   /// path driven so far, then the path to the goal, wrapped round the corners of G's
-  /// occupied cells) would exceed the budget less `tether_margin_m` is never chosen:
+  /// occupied cells and of the unknown ones the robot has not driven over: a bound of
+  /// the real line) would exceed the budget less `tether_margin_m` is never chosen:
   /// the OMPL planner asks it of every goal it connects (goal validity), the grid
   /// planner's goal is checked after the policy chose it.
   std::optional<double> tether_budget_m;
@@ -111,8 +112,12 @@ class ExploreController {
   void follow_tether(const Pose2& pose, double t_s);
   /// The tether budget, if there is one.
   [[nodiscard]] std::optional<double> tether_budget_m() const { return options_.tether_budget_m; }
-  /// The taut tether's length now (0 without a tether budget).
+  /// The taut tether's length now, as the obstacles in G wrap it (0 without a tether
+  /// budget): the best estimate, which the winch is told.
   [[nodiscard]] double tether_length_m() const;
+  /// The taut tether's length with unknown space wrapping it too (but where the robot
+  /// drove): an upper bound of the real line, which the reach check holds to the budget.
+  [[nodiscard]] double reach_length_m() const;
   /// The tether's last fixed point (its last wrap point, or the entry) and the taut
   /// length from the entry to it: what the robot reports over the link so that the
   /// winch prices its motion between reports. None without a tether model.
@@ -123,17 +128,30 @@ class ExploreController {
   /// policies; the OMPL ones ask first and never choose such a goal).
   [[nodiscard]] int refused_choices() const { return refused_choices_; }
   /// The driven path backwards from the robot until the tether lies straight from the
-  /// entry (no wrap points), or until it is no longer than `enough_m`. Empty when the
-  /// tether is straight already (or there is no tether model).
+  /// entry (no wrap points), or until it is no longer than `enough_m`, both by the bound
+  /// of reach_length_m() (straight by G's obstacles alone, the real line can still wrap
+  /// one the IR never saw). Empty when the tether is straight already (or there is no
+  /// tether model).
   [[nodiscard]] std::vector<Eigen::Vector2d> retrace_path(double enough_m = 0.0) const;
+  /// The way home along the tether as estimated (G's obstacles): its wrap points from
+  /// the robot's end back, each pushed `offset_m` off its corner (then the entry, not
+  /// included). Empty when the tether is straight (or there is no tether model). (The
+  /// bound's wrap points include corners of unknown patches, whose offsets often fall
+  /// in a wall's clearance band, and returns along them stalled.)
+  [[nodiscard]] std::vector<Eigen::Vector2d> way_home_along_tether(double offset_m) const;
+  [[nodiscard]] const Eigen::Vector2d& entry_W() const { return entry_W_; }
   /// Times the robot retraced its path to unwind a tether wound round obstacles.
   [[nodiscard]] int unwinds() const { return unwinds_; }
   /// Whether the taut tether of the path driven so far, continued along `path_W`,
-  /// stays within the budget (always, without one).
+  /// stays within the budget (always, without one), by the bound of reach_length_m().
   [[nodiscard]] bool within_reach(const std::vector<Eigen::Vector2d>& path_W) const;
 
  private:
   void drop_goal(bool blacklist);
+  /// Per cell of G: unknown space wide enough to hide an obstacle (the bound's).
+  [[nodiscard]] std::vector<std::uint8_t> unknown_that_can_hide_obstacles() const;
+  /// Marks the cells round a driven point: unknown there does not block the tether.
+  void mark_swept(const Eigen::Vector2d& p_W);
 
   GridGeometry geo_;
   ExploreOptions options_;
@@ -161,7 +179,9 @@ class ExploreController {
   // of G's occupied cells when they are refreshed, followed tick by tick in between.
   Eigen::Vector2d entry_W_ = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> driven_W_;
-  std::unique_ptr<TautTether> tether_;
+  std::vector<std::uint8_t> swept_;  ///< per cell of G: the robot drove over it
+  std::unique_ptr<TautTether> tether_;        ///< the estimate (G's obstacles)
+  std::unique_ptr<TautTether> reach_tether_;  ///< the bound (and unknown space)
   double corners_refreshed_s_ = -1e9;
   int reach_rejections_ = 0;
   int refused_choices_ = 0;

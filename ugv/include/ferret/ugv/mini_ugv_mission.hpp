@@ -63,7 +63,7 @@ struct UgvMissionOptions {
   double grasp_timeout_s = 15.0;       ///< per attempt
   double explore_timeout_s = 600.0;
   double entry_tolerance_m = 0.2;      ///< "at the entry"
-  double return_timeout_min_s = 30.0;  ///< and 4x the planned path's time at full speed
+  double return_timeout_min_s = 30.0;  ///< and 4x the planned path's time at full speed, plus a half turn a corner
   double retract_timeout_s = 120.0;
   /// Driving time of a full battery at full speed, s (the real one: about 18 min); the
   /// return estimate divides the way back by half the top speed.
@@ -114,7 +114,8 @@ class MiniUgvMission {
   [[nodiscard]] bool battery_calls_return(const Pose2& pose);
   [[nodiscard]] VelocityCommand servo(const Pose2& pose, const CameraFrame* frame);
   [[nodiscard]] VelocityCommand guarded(const Pose2& pose, VelocityCommand c) const;
-  /// The known-free path to the entry; `widen` > 0 waives the clearance further out.
+  /// The known-free way to the entry along the tether (through its wrap points);
+  /// `widen` > 0 waives the clearance further out.
   [[nodiscard]] std::vector<Eigen::Vector2d> path_home(const Pose2& pose, int widen);
 
   UgvBase& base_;
