@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -158,10 +159,23 @@ void write_aerial_png(const octomap::OcTree& tree, const WorldSpec& spec, const 
 }
 
 // The tether over the whole mission as the tether simulation's plot draws it.
-void write_tether_png(const MissionRunResult& r, double total_length_m, const fs::path& path) {
+void write_tether_png(const MissionRunResult& r, const UavMissionOptions& uav, double total_length_m,
+                      const fs::path& path) {
   sim::TetherSimResult t;
   t.scenario = "mission";
-  t.controller = "mpc";
+  t.plot_title = "The mission's tether";
+  t.controller = uav.winch_controller;
+  const auto& ctl = uav.winch_control;
+  const double band_m = ctl.max_slack_m + ctl.max_slack_margin_m;
+  t.band_label = fmt::format("allowed [0, s_max {:g} mm + the miniUGV's doubt, at most {:g} mm]",
+                             1e3 * ctl.max_slack_m, 1e3 * band_m);
+  // The metrics over the samples (every 0.5 s) while a miniUGV worked on the floor; the
+  // tension figures are the simulation's own, from every winch step.
+  double sum2 = 0.0;
+  int n = 0;
+  auto& m = t.metrics;
+  m.min_slack_m = std::numeric_limits<double>::infinity();
+  m.max_slack_m = -std::numeric_limits<double>::infinity();
   for (const MissionSample& s : r.samples) {
     sim::TetherSimSample row;
     row.t_s = s.t_s;
@@ -170,8 +184,19 @@ void write_tether_png(const MissionRunResult& r, double total_length_m, const fs
     row.slack_m = row.released_m - row.required_m;
     row.winch_tension_n = row.ugv_tension_n = s.tension_n;
     t.log.push_back(row);
+    if (s.required_m > 0) {
+      sum2 += row.slack_m * row.slack_m;
+      ++n;
+      m.min_slack_m = std::min(m.min_slack_m, row.slack_m);
+      m.max_slack_m = std::max(m.max_slack_m, row.slack_m);
+    }
+    if (s.released_m >= total_length_m - 1e-3) m.limit_active_s += 0.5;
   }
-  if (t.log.size() >= 2) sim::write_tether_sim_plot(t, 0.15, total_length_m, path);
+  if (n == 0) m.min_slack_m = m.max_slack_m = 0.0;
+  m.slack_rms_m = n > 0 ? std::sqrt(sum2 / n) : 0.0;
+  m.max_tension_n = r.max_tension_n;
+  m.over_tension_events = r.over_tension_events;
+  if (t.log.size() >= 2) sim::write_tether_sim_plot(t, band_m, total_length_m, path);
 }
 
 // The log in time order (Foxglove plays a topic forwards): every message is queued
@@ -288,7 +313,7 @@ void run(const Options& o) {
   files.write_text("report.json", report_json(o, world_path, r).dump(1) + "\n");
   files.write("aerial.png", [&](const fs::path& p) { write_aerial_png(*world.tree, spec, r, p); });
   files.write("tether.png", [&](const fs::path& p) {
-    write_tether_png(r, mission.tether.total_length_m, p);
+    write_tether_png(r, settings.uav, mission.tether.total_length_m, p);
   });
   for (const UgvDeployment& d : r.deployments) {
     if (d.hidden_space.empty() || !d.result.grid) continue;

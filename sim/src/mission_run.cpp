@@ -260,6 +260,8 @@ class SimUgvLink final : public UgvLink {
     if (const auto a = m.explore_controller().tether_anchor()) {
       r.tether_anchor_W = a->first;
       r.tether_to_anchor_m = a->second;
+      r.tether_uncertainty_m =
+          std::max(0.0, m.explore_controller().reach_length_m() - m.explore_controller().tether_length_m());
     } else {
       r.tether_anchor_W = entry_W_;
     }

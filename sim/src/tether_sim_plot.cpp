@@ -26,9 +26,16 @@ struct Panel {
   }
 };
 
+double nice_step(double range) {
+  const double raw = range / 6.0, mag = std::pow(10.0, std::floor(std::log10(std::max(raw, 1e-9))));
+  for (const double f : {1.0, 2.0, 5.0, 10.0})
+    if (raw <= f * mag) return f * mag;
+  return 10.0 * mag;
+}
+
 void draw_axes(cv::Mat& img, const Panel& p, const std::string& y_label, double y_step) {
   const cv::Scalar grid(225, 225, 225), text(40, 40, 40);
-  const double t_step = (p.t1 - p.t0) > 60 ? 10.0 : 5.0;
+  const double t_step = nice_step(0.5 * (p.t1 - p.t0));  // about a dozen ticks
   for (double t = std::ceil(p.t0 / t_step) * t_step; t <= p.t1; t += t_step) {
     cv::line(img, p.to_px(t, p.y0), p.to_px(t, p.y1), grid, 1);
     cv::putText(img, fmt::format("{:.0f}", t), p.to_px(t, p.y0) + cv::Point(-8, 18),
@@ -44,13 +51,6 @@ void draw_axes(cv::Mat& img, const Panel& p, const std::string& y_label, double 
   cv::rectangle(img, p.area, cv::Scalar(90, 90, 90), 1);
   cv::putText(img, y_label, cv::Point(p.area.x, p.area.y - 8), cv::FONT_HERSHEY_SIMPLEX, 0.5, text,
               1, cv::LINE_AA);
-}
-
-double nice_step(double range) {
-  const double raw = range / 6.0, mag = std::pow(10.0, std::floor(std::log10(std::max(raw, 1e-9))));
-  for (const double f : {1.0, 2.0, 5.0, 10.0})
-    if (raw <= f * mag) return f * mag;
-  return 10.0 * mag;
 }
 
 // A row of legend entries (a line, a filled box, or a shaded box) right-aligned above a panel.
@@ -137,7 +137,8 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
                              kLimit}};
   std::vector<Key> bottom_keys{
       {"slack", kReleased},
-      {fmt::format("allowed [0, s_max = {:g} mm]", 1e3 * max_slack_m), kBand, true}};
+      {r.band_label.empty() ? fmt::format("allowed [0, s_max = {:g} mm]", 1e3 * max_slack_m) : r.band_label,
+       kBand, true}};
   if (std::any_of(r.log.begin(), r.log.end(), [](const auto& s) { return s.snagged; })) {
     top_keys.push_back({"snagged", kSnag, true});
     bottom_keys.push_back({"snagged", kSnag, true});
@@ -157,8 +158,9 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
   const auto& m = r.metrics;
   // Two lines: what ran, then how it went.
   cv::putText(img,
-              fmt::format("tether-sim {} trajectory, {}: slack RMS {:.2f} mm, peak {:.1f} N",
-                          r.scenario, r.controller == "mpc" ? "MPC" : r.controller,
+              fmt::format("{}, {}: slack RMS {:.2f} mm, peak {:.1f} N",
+                          r.plot_title.empty() ? fmt::format("tether-sim {} trajectory", r.scenario) : r.plot_title,
+                          r.controller == "mpc" ? "MPC" : r.controller,
                           1e3 * m.slack_rms_m, m.max_tension_n),
               cv::Point(20, 26), cv::FONT_HERSHEY_SIMPLEX, 0.62, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);

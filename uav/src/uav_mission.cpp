@@ -486,8 +486,11 @@ void UavMission::tick() {
       if (!guard_) guard_ = std::make_unique<tether::TouchdownGuard>(options_.touchdown);
       if (!current().landed) hw_.flight.command_position(release_W_, current().opening.entry_yaw_rad, 0.5);
       const UgvReport r = hw_.ugv.report();
-      const double l0 = options_.tether.entry_offset_m;
-      if (w.released_m >= l0 - 0.02) {
+      // The miniUGV starts with the winch's slack reference paid out beyond l_0: a
+      // metre of line is stiff (1.5 kN/m), so a line ending exactly taut at the entry
+      // pulls tens of newtons the moment the robot moves.
+      const double l0 = options_.tether.entry_offset_m + options_.winch_control.slack_reference_m;
+      if (w.released_m >= l0 - 0.01) {
         winch_idle();
         guard_.reset();
         winch_ctl_->reset();
@@ -518,6 +521,7 @@ void UavMission::tick() {
       obs.winch_tension_n = w.tension_n;
       obs.ugv.p_WG = r.p_WG;
       obs.ugv.v_WG = r.v_WG;
+      obs.slack_margin_m = r.tether_uncertainty_m;
       hw_.winch.command_velocity_mps(winch_ctl_->step(obs));
       if (r.done || r.wants_retraction) {
         current().ugv_outcome = r.outcome.empty() ? "at the entry" : r.outcome;

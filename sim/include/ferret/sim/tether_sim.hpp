@@ -167,6 +167,9 @@ struct TetherSimMetrics {
 struct TetherSimResult {
   std::string scenario;
   std::string controller;
+  /// The plot's first words (empty: "tether-sim SCENARIO trajectory") and the name of
+  /// its slack band (empty: "allowed [0, s_max = ... mm]").
+  std::string plot_title, band_label;
   std::vector<TetherSimSample> log;  ///< one row a control cycle
   TetherSimMetrics metrics;
 };

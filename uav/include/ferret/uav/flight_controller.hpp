@@ -66,6 +66,8 @@ struct UgvReport {
   /// length from the entry to it, so the winch prices its motion between reports.
   Eigen::Vector2d tether_anchor_W = Eigen::Vector2d::Zero();
   double tether_to_anchor_m = 0.0;
+  /// How much longer its tether may be than that (its bound less its estimate, m).
+  double tether_uncertainty_m = 0.0;
   double roll_rad = 0.0;           ///< its IMU attitude (the touchdown check)
   double pitch_rad = 0.0;
   double battery_fraction = 1.0;
