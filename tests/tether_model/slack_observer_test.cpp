@@ -97,11 +97,11 @@ TEST(SlackObserver, APullTheModelCannotExplainIsKeptAsAnOffsetAndForgottenSlowly
   EXPECT_NEAR(obs.estimate_m(8.0, 7.3, 0.5 + 5.0), -stretch, 1e-12);
   EXPECT_NEAR(obs.model_offset_m(), 0.7 + stretch, 1e-12);
   // The pull relieved: the line is not 70 cm slack but about taut (the offset less one
-  // cycle's 0.4 mm of decay, and the bias a millimetre at most).
+  // cycle's 2 mm of decay at 0.1 m/s, and the bias a millimetre at most).
   const double next = obs.estimate_m(8.0, 7.3, 0.5);
-  EXPECT_NEAR(obs.model_offset_m(), 0.7 + stretch - 0.02 * 0.02, 1e-12);
+  EXPECT_NEAR(obs.model_offset_m(), 0.7 + stretch - 0.1 * 0.02, 1e-12);
   EXPECT_NEAR(next, 0.7 - obs.model_offset_m(), 2e-3);
-  // 40 s without a pull (2 cm/s): forgotten, the geometry again.
+  // 40 s without a pull: forgotten, the geometry again.
   for (int i = 0; i < 2000; ++i) (void)obs.estimate_m(8.0, 7.3, 0.5);
   EXPECT_EQ(obs.model_offset_m(), 0.0);
   EXPECT_NEAR(obs.estimate_m(8.0, 7.3, 0.5), 0.7, 2e-3);

@@ -85,7 +85,7 @@ class SlackObserver {
     /// model falling short (a corner the miniUGV's map has not seen): the shortfall is
     /// kept as a model offset, so the winch does not reel the line taut again, and
     /// forgotten at this rate (m/s) while the line is not pulling (0: never).
-    double model_offset_decay_mps = 0.02;
+    double model_offset_decay_mps = 0.1;
   };
 
   SlackObserver(const SlackEstimator& estimator, const Options& options, double pose_filter_gain,
