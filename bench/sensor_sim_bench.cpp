@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "ferret/mapping/world_spec.hpp"
+#include "ferret/perception/colour.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 
 namespace {
@@ -41,6 +42,41 @@ void BM_CameraFrame1280x720(benchmark::State& state) {
   state.counters["px"] = model.width_px * model.height_px;
 }
 BENCHMARK(BM_CameraFrame1280x720)->Unit(benchmark::kMillisecond);
+
+// The grey frame the marker detectors read: rendered grey, against grey from the colour
+// frame (what the mission did before render_gray).
+void BM_GrayFrame1280x720(benchmark::State& state) {
+  const Setup& s = setup();
+  const CameraSensor& cam = s.uav.marker_camera();
+  const CameraModel model = camera_model(cam, s.uav.source);
+  const Pose3 X_WC = optical_pose(s.X_WB, cam);
+  std::uint64_t seed = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(s.sim.render_gray(model, X_WC, {}, ++seed).data.data());
+}
+BENCHMARK(BM_GrayFrame1280x720)->Unit(benchmark::kMillisecond);
+
+void BM_GrayFromColourFrame1280x720(benchmark::State& state) {
+  const Setup& s = setup();
+  const CameraSensor& cam = s.uav.marker_camera();
+  const CameraModel model = camera_model(cam, s.uav.source);
+  const Pose3 X_WC = optical_pose(s.X_WB, cam);
+  std::uint64_t seed = 0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(to_gray(s.sim.render_camera(model, X_WC, {}, ++seed)).data.data());
+}
+BENCHMARK(BM_GrayFromColourFrame1280x720)->Unit(benchmark::kMillisecond);
+
+// What the aerial search sees most of the time: 4 m up over the site, the ruins, the
+// rubble and the ground ahead, no marker.
+void BM_GrayFrameSearchView(benchmark::State& state) {
+  const Setup& s = setup();
+  const CameraSensor& cam = s.uav.marker_camera();
+  const CameraModel model = camera_model(cam, s.uav.source);
+  const Pose3 X_WC = optical_pose(pose_from_xyz_rpy({-25.0, 8.0, 4.0}, 0, 0, 0), cam);
+  std::uint64_t seed = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(s.sim.render_gray(model, X_WC, {}, ++seed).data.data());
+}
+BENCHMARK(BM_GrayFrameSearchView)->Unit(benchmark::kMillisecond);
 
 void BM_CameraFrameNoBlurNoNoise(benchmark::State& state) {
   const Setup& s = setup();

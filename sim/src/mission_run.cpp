@@ -134,7 +134,7 @@ class SimUavCameras final : public UavCameras {
         marker_model_(std::move(marker_model)), depth_model_(std::move(depth_model)), seed_(seed) {}
   CameraShot<GrayImage> marker_frame() override {
     const Pose3 X_WC = optical_pose(body_pose(flight_.state()), marker_);
-    return {to_gray(world_.render_camera(marker_model_, X_WC, CameraFrameOptions{}, seed_ + 2 * frame_++)), X_WC};
+    return {world_.render_gray(marker_model_, X_WC, CameraFrameOptions{}, seed_ + 2 * frame_++), X_WC};
   }
   CameraShot<DepthImageMm> depth_frame() override {
     const Pose3 X_WC = optical_pose(body_pose(flight_.state()), depth_);

@@ -103,11 +103,11 @@ float marker_pixel(const internal::MarkerPrim& m, const internal::RayTable& rays
   return sum / 9.0f;
 }
 
-/// Separable Gaussian blur of an interleaved RGB buffer in fixed point: weights in
-/// 1/256 (sum exactly 256, so a pass's sum fits 16 bits), each pass rounded back to
-/// 8 bits, borders replicated. Integer arithmetic gives the same bytes on every
-/// machine; 16-bit lanes keep it fast on one core.
-void gaussian_blur(std::vector<std::uint8_t>& rgb, int w, int h, double sigma_px) {
+/// Separable Gaussian blur of an interleaved buffer of `channels` bytes a pixel in fixed
+/// point: weights in 1/256 (sum exactly 256, so a pass's sum fits 16 bits), each pass
+/// rounded back to 8 bits, borders replicated. Integer arithmetic gives the same bytes
+/// on every machine; 16-bit lanes keep it fast on one core.
+void gaussian_blur(std::vector<std::uint8_t>& img, int w, int h, int channels, double sigma_px) {
   const int r = std::max(1, static_cast<int>(std::ceil(3.0 * sigma_px)));
   std::vector<double> wd(2 * r + 1);
   double sum = 0;
@@ -117,32 +117,29 @@ void gaussian_blur(std::vector<std::uint8_t>& rgb, int w, int h, double sigma_px
   for (int k = 0; k <= 2 * r; ++k)
     total += wk[k] = static_cast<std::uint16_t>(std::lround(256 * wd[k] / sum));
   wk[r] = static_cast<std::uint16_t>(wk[r] + 256 - total);  // the weights sum to 256
-  const std::size_t stride = static_cast<std::size_t>(w) * 3;
-  std::vector<std::uint16_t> acc(stride);
-  const auto finish = [&](std::uint8_t* dst) {
-    for (std::size_t i = 0; i < stride; ++i)
-      dst[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
-  };
+  const std::size_t c = static_cast<std::size_t>(channels);
+  const std::size_t stride = static_cast<std::size_t>(w) * c;
+  // Rows are independent in each pass (several threads; the same bytes for any number).
   // Horizontal, row by row, from a copy padded with the border pixels.
-  std::vector<std::uint8_t> padded(stride + 6 * static_cast<std::size_t>(r));
-  for (int y = 0; y < h; ++y) {
-    std::uint8_t* row = rgb.data() + static_cast<std::size_t>(y) * stride;
+  internal::for_each_interleaved(h, [&](int y) {
+    std::vector<std::uint16_t> acc(stride, 0);
+    std::vector<std::uint8_t> padded(stride + 2 * c * static_cast<std::size_t>(r));
+    std::uint8_t* row = img.data() + static_cast<std::size_t>(y) * stride;
     for (int x = -r; x < w + r; ++x)
-      for (int c = 0; c < 3; ++c)
-        padded[3 * static_cast<std::size_t>(x + r) + c] = row[3 * std::clamp(x, 0, w - 1) + c];
-    std::fill(acc.begin(), acc.end(), 0);
+      for (std::size_t ch = 0; ch < c; ++ch)
+        padded[c * static_cast<std::size_t>(x + r) + ch] = row[c * static_cast<std::size_t>(std::clamp(x, 0, w - 1)) + ch];
     for (int k = 0; k <= 2 * r; ++k) {
-      const std::uint8_t* p = padded.data() + 3 * static_cast<std::size_t>(k);
+      const std::uint8_t* p = padded.data() + c * static_cast<std::size_t>(k);
       const std::uint16_t wt = wk[k];
       for (std::size_t i = 0; i < stride; ++i)
         acc[i] = static_cast<std::uint16_t>(acc[i] + wt * p[i]);
     }
-    finish(row);
-  }
+    for (std::size_t i = 0; i < stride; ++i) row[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
+  });
   // Vertical, from a copy of the horizontally blurred frame.
-  const std::vector<std::uint8_t> src = rgb;
-  for (int y = 0; y < h; ++y) {
-    std::fill(acc.begin(), acc.end(), 0);
+  const std::vector<std::uint8_t> src = img;
+  internal::for_each_interleaved(h, [&](int y) {
+    std::vector<std::uint16_t> acc(stride, 0);
     for (int k = -r; k <= r; ++k) {
       const std::uint8_t* p =
           src.data() + static_cast<std::size_t>(std::clamp(y + k, 0, h - 1)) * stride;
@@ -150,8 +147,23 @@ void gaussian_blur(std::vector<std::uint8_t>& rgb, int w, int h, double sigma_px
       for (std::size_t i = 0; i < stride; ++i)
         acc[i] = static_cast<std::uint16_t>(acc[i] + wt * p[i]);
     }
-    finish(rgb.data() + static_cast<std::size_t>(y) * stride);
-  }
+    std::uint8_t* row = img.data() + static_cast<std::size_t>(y) * stride;
+    for (std::size_t i = 0; i < stride; ++i) row[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
+  });
+}
+
+/// The per-pixel noise in 1/16 grey levels for one frame's sigma: integer additions in
+/// the pixel loops.
+std::vector<std::int32_t> noise_q4(double sigma) {
+  const auto& table = normal_table();
+  std::vector<std::int32_t> q(table.size());
+  for (std::size_t k = 0; k < table.size(); ++k)
+    q[k] = static_cast<std::int32_t>(std::lround(16.0 * sigma * table[k]));
+  return q;
+}
+
+std::uint8_t noisy(std::uint8_t v, std::int32_t noise_q4) {
+  return static_cast<std::uint8_t>(std::clamp((16 * v + noise_q4 + 8) >> 4, 0, 255));  // round half up
 }
 
 }  // namespace
@@ -204,23 +216,25 @@ SensorSimulator::SensorSimulator(const WorldSpec& world)
 SensorSimulator::~SensorSimulator() = default;
 SensorSimulator::SensorSimulator(SensorSimulator&&) noexcept = default;
 SensorSimulator& SensorSimulator::operator=(SensorSimulator&&) noexcept = default;
-RgbImage SensorSimulator::render_camera(const CameraModel& camera, const Pose3& X_WC,
-                                        const CameraFrameOptions& options,
-                                        std::uint64_t seed) const {
-  camera.check();
-  const auto rays = scene_->rays(camera);
-  thread_local CastBuffers cast;  // reused: a frame's buffers are megabytes
-  scene_->cast_frame(*rays, X_WC, true, cast);
-  const int w = camera.width_px, h = camera.height_px;
+namespace {
+
+// The shaded frame, `C` bytes a pixel: RGB (3) or its BT.601 luminance (1), before
+// blur and noise.
+template <int C>
+std::vector<std::uint8_t> shade_frame(const internal::Scene& scene, const internal::RayTable& rays,
+                                      const CastBuffers& cast, const Pose3& X_WC,
+                                      const CameraFrameOptions& options) {
+  const int w = rays.width, h = rays.height;
   const Eigen::Matrix3d R = X_WC.linear();
   const Eigen::Vector3d o = X_WC.translation();
-  std::vector<std::uint8_t> frame(static_cast<std::size_t>(w) * h * 3);
+  std::vector<std::uint8_t> frame(static_cast<std::size_t>(w) * h * C);
   const double scale = 255.0 * options.exposure_gain;
-  // Neighbouring pixels mostly see the same flat face: its colour is computed once.
-  std::int32_t last_code = -2;
-  std::array<std::uint8_t, 3> last{};
-  for (int v = 0; v < h; ++v) {
-    std::uint8_t* row = frame.data() + static_cast<std::size_t>(v) * w * 3;
+  // Rows are shaded independently (on several threads); along a row, neighbouring
+  // pixels mostly see the same flat face: its colour is computed once.
+  internal::for_each_interleaved(h, [&](int v) {
+    std::int32_t last_code = -2;
+    std::array<std::uint8_t, C> last{};
+    std::uint8_t* row = frame.data() + static_cast<std::size_t>(v) * w * C;
     for (int u = 0; u < w; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * w + u;
       const std::int32_t code = cast.code[i];
@@ -232,55 +246,87 @@ RgbImage SensorSimulator::render_camera(const CameraModel& camera, const Pose3& 
         Rgb c = kSky;
         double shade = 1.0;
         if (code >= 0) {
-          const Eigen::Vector3d d = internal::ray_direction(R, *rays, i);
+          const Eigen::Vector3d d = internal::ray_direction(R, rays, i);
           const Eigen::Vector3d p = o + static_cast<double>(cast.t[i]) * d;
-          shade = lambert(scene_->normal(code, p, d));
+          shade = lambert(scene.normal(code, p, d));
           switch (kind) {
             case PrimKind::kGround:
               c = albedo(Material::kGround, options.draw_objects);
               break;
             case PrimKind::kBox:
-              c = albedo(scene_->boxes[internal::code_index(code)].material, options.draw_objects);
+              c = albedo(scene.boxes[internal::code_index(code)].material, options.draw_objects);
               break;
             case PrimKind::kCylinder:
               c = albedo(Material::kCylinder, options.draw_objects);
               break;
             case PrimKind::kMarker: {
-              const float r =
-                  marker_pixel(scene_->markers[internal::code_index(code)], *rays, R, o, u, v);
+              const float r = marker_pixel(scene.markers[internal::code_index(code)], rays, R, o, u, v);
               c = {r, r, r};
               break;
             }
           }
         }
-        last = {to_u8(c.r * shade * scale), to_u8(c.g * shade * scale), to_u8(c.b * shade * scale)};
+        if constexpr (C == 3) {
+          last = {to_u8(c.r * shade * scale), to_u8(c.g * shade * scale), to_u8(c.b * shade * scale)};
+        } else {
+          last = {to_u8((0.299 * c.r + 0.587 * c.g + 0.114 * c.b) * shade * scale)};
+        }
         last_code = flat ? code : -2;
       }
-      row[3 * u] = last[0];
-      row[3 * u + 1] = last[1];
-      row[3 * u + 2] = last[2];
+      for (int ch = 0; ch < C; ++ch) row[C * u + ch] = last[ch];
     }
-  }
-  if (options.blur_sigma_px > 0) gaussian_blur(frame, w, h, options.blur_sigma_px);
+  });
+  return frame;
+}
+
+}  // namespace
+
+RgbImage SensorSimulator::render_camera(const CameraModel& camera, const Pose3& X_WC,
+                                        const CameraFrameOptions& options,
+                                        std::uint64_t seed) const {
+  camera.check();
+  const auto rays = scene_->rays(camera);
+  thread_local CastBuffers cast;  // reused: a frame's buffers are megabytes
+  scene_->cast_frame(*rays, X_WC, true, cast);
+  const int w = camera.width_px, h = camera.height_px;
+  std::vector<std::uint8_t> frame = shade_frame<3>(*scene_, *rays, cast, X_WC, options);
+  if (options.blur_sigma_px > 0) gaussian_blur(frame, w, h, 3, options.blur_sigma_px);
   RgbImage out(w, h);
   if (!(options.noise_sigma > 0)) {
     out.data = std::move(frame);
     return out;
   }
   Rng rng(derive_seed(seed, {kCameraStream}));
-  // The noise in 1/16 grey levels, per frame: integer additions in the pixel loop.
-  const auto& table = normal_table();
-  std::vector<std::int32_t> noise_q4(table.size());
-  for (std::size_t k = 0; k < table.size(); ++k)
-    noise_q4[k] = static_cast<std::int32_t>(std::lround(16.0 * options.noise_sigma * table[k]));
+  const std::vector<std::int32_t> noise = noise_q4(options.noise_sigma);
   std::uint8_t* dst = out.data.data();
   const std::uint8_t* src = frame.data();
   for (std::size_t k = 0; k < frame.size(); k += 3) {
     const std::uint64_t bits = rng.next_u64();  // one draw a pixel: 16 bits a channel
-    for (int ch = 0; ch < 3; ++ch) {
-      const std::int32_t q = 16 * src[k + ch] + noise_q4[(bits >> (16 * ch)) & 0xffff] + 8;
-      dst[k + ch] = static_cast<std::uint8_t>(std::clamp(q >> 4, 0, 255));  // round half up
-    }
+    for (int ch = 0; ch < 3; ++ch) dst[k + ch] = noisy(src[k + ch], noise[(bits >> (16 * ch)) & 0xffff]);
+  }
+  return out;
+}
+
+GrayImage SensorSimulator::render_gray(const CameraModel& camera, const Pose3& X_WC,
+                                       const CameraFrameOptions& options, std::uint64_t seed) const {
+  camera.check();
+  const auto rays = scene_->rays(camera);
+  thread_local CastBuffers cast;
+  scene_->cast_frame(*rays, X_WC, true, cast);
+  const int w = camera.width_px, h = camera.height_px;
+  GrayImage out(w, h);
+  out.data = shade_frame<1>(*scene_, *rays, cast, X_WC, options);
+  if (options.blur_sigma_px > 0) gaussian_blur(out.data, w, h, 1, options.blur_sigma_px);
+  if (!(options.noise_sigma > 0)) return out;
+  // The luminance of three independent channels' noise: sigma * |(0.299, 0.587, 0.114)|.
+  constexpr double kLumaNoise = 0.66780;
+  Rng rng(derive_seed(seed, {kCameraStream}));
+  const std::vector<std::int32_t> noise = noise_q4(kLumaNoise * options.noise_sigma);
+  std::uint8_t* px = out.data.data();
+  const std::size_t n = out.data.size();
+  for (std::size_t k = 0; k < n; k += 4) {
+    const std::uint64_t bits = rng.next_u64();  // one draw four pixels: 16 bits each
+    for (std::size_t q = 0; q < 4 && k + q < n; ++q) px[k + q] = noisy(px[k + q], noise[(bits >> (16 * q)) & 0xffff]);
   }
   return out;
 }

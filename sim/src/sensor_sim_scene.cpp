@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <system_error>
+#include <thread>
 
 namespace ferret::internal {
 namespace {
@@ -256,6 +258,28 @@ std::shared_ptr<const RayTable> Scene::rays(const CameraModel& camera) const {
   return table;
 }
 
+void for_each_interleaved(int n, const std::function<void(int)>& body) {
+  static const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));
+  const int t_count = std::min(threads, n);
+  if (t_count <= 1) {
+    for (int k = 0; k < n; ++k) body(k);
+    return;
+  }
+  const auto run = [&](int first) {
+    for (int k = first; k < n; k += t_count) body(k);
+  };
+  std::vector<std::thread> workers;
+  workers.reserve(static_cast<std::size_t>(t_count - 1));
+  try {
+    for (int t = 1; t < t_count; ++t) workers.emplace_back(run, t);
+  } catch (const std::system_error&) {
+    // No thread to be had: this one does the rest of the items too.
+    for (int t = static_cast<int>(workers.size()) + 1; t < t_count; ++t) run(t);
+  }
+  run(0);
+  for (auto& w : workers) w.join();
+}
+
 void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_markers,
                        CastBuffers& out) const {
   const int w = rays.width, h = rays.height;
@@ -327,7 +351,7 @@ void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_marker
   bin(solids, solid_bins);
   bin(marks, mark_bins);
 
-  for (int ty = 0; ty < rays.tiles_y; ++ty)
+  for_each_interleaved(rays.tiles_y, [&](int ty) {
     for (int tx = 0; tx < rays.tiles_x; ++tx) {
       const std::size_t k = static_cast<std::size_t>(ty) * rays.tiles_x + tx;
       const auto& sb = solid_bins[k];
@@ -369,6 +393,7 @@ void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_marker
           out.code[i] = code;
         }
     }
+  });
 }
 
 double Scene::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, std::int32_t* code) const {

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -82,6 +83,12 @@ struct RayTable {
 
 /// What a frame cast leaves per pixel: the ray parameter (= z in C, rays have z = 1)
 /// and the hit code.
+/// Runs body(k) for k in [0, n), spread over up to `hardware_concurrency` (at most 4)
+/// threads, item k on thread k mod T: each item's work must be independent of the
+/// others' (a frame's tile rows, its pixel rows), so the result is the same bytes for
+/// any number of threads.
+void for_each_interleaved(int n, const std::function<void(int)>& body);
+
 struct CastBuffers {
   std::vector<float> t;
   std::vector<std::int32_t> code;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "ferret/core/error.hpp"
+#include "ferret/perception/colour.hpp"
 #include "ferret/perception/object_appearance.hpp"
 
 namespace ferret {
@@ -233,6 +234,38 @@ TEST(SensorSim, SameSeedSameBytesOtherSeedOtherBytes) {
   EXPECT_NE(sim.render_camera(kCam, X_WC, co, 5).data, sim.render_camera(kCam, X_WC, co, 6).data);
   EXPECT_EQ(sim.render_depth(kCam, X_WC, dopt, 5).data, sim.render_depth(kCam, X_WC, dopt, 5).data);
   EXPECT_NE(sim.render_depth(kCam, X_WC, dopt, 5).data, sim.render_depth(kCam, X_WC, dopt, 6).data);
+}
+
+// The grey camera is the colour camera's luminance: equal but for the one rounding
+// without blur and noise, equal on average with them, and its noise the luminance of
+// three channels' noise (0.668 sigma), not sigma.
+TEST(SensorSim, TheGreyFrameIsTheColourFramesLuminance) {
+  const SensorSimulator sim(world(hidden_space("{id: 3, size_m: 0.2, placement: wall}")));
+  const Pose3 X_WC = look_at({4.0, 0.5, 1.0}, {2.6, 0, 0.3});
+  const GrayImage exact = sim.render_gray(kCam, X_WC, clean_camera(), 1);
+  const GrayImage from_colour = to_gray(sim.render_camera(kCam, X_WC, clean_camera(), 1));
+  ASSERT_EQ(exact.data.size(), from_colour.data.size());
+  int off_by_more_than_one = 0;
+  for (std::size_t i = 0; i < exact.data.size(); ++i)
+    off_by_more_than_one += std::abs(int(exact.data[i]) - int(from_colour.data[i])) > 1;
+  EXPECT_EQ(off_by_more_than_one, 0);
+  CameraFrameOptions noisy = clean_camera();
+  noisy.noise_sigma = 6.0;
+  const GrayImage n = sim.render_gray(kCam, X_WC, noisy, 7);
+  double sum = 0, sum2 = 0;
+  int count = 0;
+  for (std::size_t i = 0; i < n.data.size(); ++i) {
+    if (exact.data[i] < 20 || exact.data[i] > 235) continue;  // clear of the clamp at 0 and 255
+    const double d = double(n.data[i]) - double(exact.data[i]);
+    sum += d, sum2 += d * d, ++count;
+  }
+  ASSERT_GT(count, 10000);
+  EXPECT_NEAR(sum / count, 0.0, 0.05);
+  EXPECT_NEAR(std::sqrt(sum2 / count), 0.668 * 6.0, 0.1);
+  // Blur and noise: the same bytes for a seed, other bytes for another.
+  const CameraFrameOptions co;
+  EXPECT_EQ(sim.render_gray(kCam, X_WC, co, 5).data, sim.render_gray(kCam, X_WC, co, 5).data);
+  EXPECT_NE(sim.render_gray(kCam, X_WC, co, 5).data, sim.render_gray(kCam, X_WC, co, 6).data);
 }
 
 TEST(SensorSim, VisibleMarkerCornersAreTheProjectionsOfTheMarkersCorners) {

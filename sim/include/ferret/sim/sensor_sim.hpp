@@ -118,6 +118,13 @@ class SensorSimulator {
   /// An RGB frame. Sky (outside the world's bounds) is a light grey-blue.
   [[nodiscard]] RgbImage render_camera(const CameraModel& camera, const Pose3& X_WC,
                                        const CameraFrameOptions& options, std::uint64_t seed) const;
+  /// The same scene as a grey camera sees it (what the marker detectors read): the
+  /// BT.601 luminance of render_camera's colours, blurred alike, with the noise the
+  /// luminance of its per-channel noise has (sigma * 0.668). A third of the colour
+  /// frame's work; not byte-equal to to_gray(render_camera(...)) (rounded once, not
+  /// per channel, and its own noise draws), the same frame statistically.
+  [[nodiscard]] GrayImage render_gray(const CameraModel& camera, const Pose3& X_WC,
+                                      const CameraFrameOptions& options, std::uint64_t seed) const;
   /// A depth frame: millimetres along the optical axis, 0 = no return.
   [[nodiscard]] DepthImageMm render_depth(const CameraModel& camera, const Pose3& X_WC,
                                           const DepthFrameOptions& options,
