@@ -34,6 +34,7 @@
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/search_robot.hpp"
 #include "ferret/sim/tether_sim.hpp"
+#include "ferret/sim/time_series_plot.hpp"
 #include "ferret/sim/ugv_mission_log.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
@@ -199,6 +200,28 @@ void write_tether_png(const MissionRunResult& r, const UavMissionOptions& uav, d
   if (t.log.size() >= 2) sim::write_tether_sim_plot(t, band_m, total_length_m, path);
 }
 
+// Both batteries over the mission: the UAV's with the reserve it keeps over the way home,
+// the miniUGV's while it works in a hidden space (a gap while it is aboard).
+void write_battery_png(const MissionRunResult& r, const UavMissionOptions& uav, const fs::path& path) {
+  sim::TimeSeriesPlot plot;
+  plot.title = fmt::format("Batteries: the UAV's {:.0f} % left at the end", 100.0 * r.battery_left);
+  plot.subtitle = fmt::format("UAV endurance {:.0f} s, reserve {:.0f} % over the way home; {} miniUGV deployment(s)",
+                              uav.flight_endurance_s, 100.0 * uav.battery_reserve_fraction, r.deployments.size());
+  plot.y_label = "battery [%]";
+  plot.y_min = 0.0;
+  plot.y_max = 100.0;
+  plot.levels.push_back({100.0 * uav.battery_reserve_fraction, "UAV reserve"});
+  sim::TimeSeries a{"UAV", {200, 90, 20}, {}, {}}, g{"miniUGV (while deployed)", {20, 140, 60}, {}, {}};
+  for (const MissionSample& s : r.samples) {
+    a.t_s.push_back(s.t_s);
+    a.y.push_back(100.0 * s.battery);
+    g.t_s.push_back(s.t_s);
+    g.y.push_back(s.required_m > 0 ? 100.0 * s.ugv_battery : std::numeric_limits<double>::quiet_NaN());
+  }
+  plot.series = {a, g};
+  if (!r.samples.empty()) sim::write_time_series_plot(plot, path);
+}
+
 // The log in time order (Foxglove plays a topic forwards): every message is queued
 // with its time, then written sorted (stable, so equal times keep their order).
 std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition>& transitions) {
@@ -312,6 +335,7 @@ void run(const Options& o) {
   OutputSet files(fs::path(o.out), OutputKind::kDirectory);
   files.write_text("report.json", report_json(o, world_path, r).dump(1) + "\n");
   files.write("aerial.png", [&](const fs::path& p) { write_aerial_png(*world.tree, spec, r, p); });
+  files.write("battery.png", [&](const fs::path& p) { write_battery_png(r, settings.uav, p); });
   files.write("tether.png", [&](const fs::path& p) {
     write_tether_png(r, settings.uav, mission.tether.total_length_m, p);
   });
@@ -334,7 +358,7 @@ void run(const Options& o) {
   files.write("map.bt", [&](const fs::path& p) { save_octree(*world.tree, p); });
   files.write_text("mission.mcap", mission_mcap(r, r.transitions));
   files.commit();
-  std::printf("wrote: %s (report.json, aerial.png, tether.png, spaces/*/G.png O.png G_O.png, map.bt, mission.mcap)\n",
+  std::printf("wrote: %s (report.json, aerial.png, tether.png, battery.png, spaces/*/G.png O.png G_O.png, map.bt, mission.mcap)\n",
               o.out.c_str());
 }
 
@@ -355,7 +379,7 @@ const CommandRegistration kMission{
       sub->add_option("--no-landing-zone", o->no_landing_zone,
                       "No safe landing zone by an opening: hover (lower from a hover) or skip (default: hover)");
       sub->add_option("-o,--out", o->out,
-                      "Directory for report.json, aerial.png, tether.png, spaces/*/, map.bt, mission.mcap (default: none, summary only)");
+                      "Directory for report.json, aerial.png, tether.png, battery.png, spaces/*/, map.bt, mission.mcap (default: none, summary only)");
       sub->add_flag("-q,--quiet", o->quiet, "Print the summary only");
       sub->callback([o] { run(*o); });
     }};

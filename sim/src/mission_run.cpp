@@ -233,6 +233,9 @@ class SimUgvLink final : public UgvLink {
   void abort(const std::string& reason) override {
     if (sim_ && !sim_->mission().done()) sim_->mission().stop(reason);
   }
+  void recall(const std::string& reason) override {
+    if (sim_) sim_->mission().recall(reason);
+  }
   [[nodiscard]] UgvReport report() const override {
     UgvReport r;
     if (lonely_ && !sim_) {

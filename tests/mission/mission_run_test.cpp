@@ -47,13 +47,15 @@ struct MissionRunOut {
 };
 
 MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::uint64_t seed = 1,
-        const std::string& no_landing_zone = "hover", const std::string& planner = "grid") {
+        const std::string& no_landing_zone = "hover", const std::string& planner = "grid",
+        double flight_endurance_s = 0.0) {
   const RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), mission);
   const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
   MissionRunOut r{{}, load_planning_world(world_path)};
   MissionRunSettings s = mission_settings_for(uav, ugv, mission, *r.world.spec);
   s.uav.no_landing_zone = no_landing_zone;
   s.ugv.ugv.explore.planner = planner;
+  if (flight_endurance_s > 0) s.uav.flight_endurance_s = flight_endurance_s;
   r.result = run_mission(r.world, uav, s, seed);
   return r;
 }
@@ -189,6 +191,21 @@ TEST(MissionRun, UnsafeGroundByAnOpeningHoversOrSkips) {
   ASSERT_TRUE(kiln);
   EXPECT_EQ(kiln->state, "skipped");
   EXPECT_LT(kiln->deployed_s, 0.0);
+}
+
+TEST(MissionRun, HoveringOnALowBatteryRecallsTheMiniUgvInTime) {
+  // A 220 s battery: the kiln (a hover release: no landing zone by its opening) comes up
+  // when hovering through the miniUGV's whole search would eat the reserve. The UAV calls
+  // it back while the battery covers its return, the lift and the way home.
+  const MissionRunResult r = run(data_path("worlds/two_sites.yaml"), {}, 1, "hover", "grid", 220.0).result;
+  expect_safe(r, {});
+  EXPECT_EQ(r.outcome, UavMissionOutcome::kFlightBudget);
+  const HiddenSpaceVisit* kiln = visit_of(r, 9);
+  ASSERT_TRUE(kiln);
+  EXPECT_FALSE(kiln->landed);
+  EXPECT_EQ(kiln->ugv_outcome, "recalled");
+  EXPECT_EQ(kiln->state, "serviced");
+  EXPECT_GE(r.battery_left, 0.10);  // home with the reserve
 }
 
 TEST(MissionRun, AnObjectBeyondTheTethersReachIsNeverReached) {

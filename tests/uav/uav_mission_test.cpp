@@ -87,6 +87,7 @@ class FakeUgv final : public UgvLink {
   void retracted() override {}
   void release_object() override {}
   void abort(const std::string&) override {}
+  void recall(const std::string&) override {}
   [[nodiscard]] UgvReport report() const override { return {}; }
 };
 

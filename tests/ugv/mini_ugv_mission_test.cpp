@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
 
+#include "ferret/core/clock.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
@@ -180,6 +182,34 @@ TEST(UgvMission, AnObjectBeyondTheTethersReachIsNeverDrivenTo) {
   EXPECT_EQ(free.outcome, UgvMissionOutcome::kObjectRetrieved) << to_string(free.outcome);
   EXPECT_GT(free.max_tether_m, 2.5);
   EXPECT_NEAR(free.max_tether_m, longest_true_tether(map, free, kEntry), 0.3);
+}
+
+TEST(UgvMission, ARecallEndsTheSearchWithTheWayHomeAndIsLiftedOutAsRecalled) {
+  const auto map = test::small_hidden_space();
+  SimClock clock;
+  TransitionLog log;
+  UgvMissionSim sim(map, kEntry, kBehindPartition, settings(), 5, clock, log);
+  sim.start();
+  double t = 0.0;
+  const auto run_until = [&](const std::function<bool()>& done, double limit_s) {
+    for (; t < limit_s && !done(); t += sim.tick_s()) {
+      clock.set(t);
+      sim.step(sim.tick_s());
+    }
+  };
+  run_until([] { return false; }, 3.0);  // 3 s into the search
+  ASSERT_EQ(sim.mission().state(), UgvMissionState::kExplore);
+  sim.mission().recall("the UAV's flight budget");
+  EXPECT_EQ(sim.mission().state(), UgvMissionState::kReturn);
+  EXPECT_EQ(sim.mission().return_outcome(), UgvMissionOutcome::kRecalled);
+  EXPECT_NE(log.all().back().reason.find("recalled: the UAV's flight budget"), std::string::npos);
+  run_until([&] { return sim.mission().wants_retraction(); }, 60.0);
+  ASSERT_TRUE(sim.mission().wants_retraction());
+  EXPECT_LE((sim.base().true_pose().position() - kEntry.position()).norm(), 0.2 + 1e-9);
+  sim.mission().recall("again");  // waiting at the entry: nothing changes
+  EXPECT_TRUE(sim.mission().wants_retraction());
+  sim.mission().retracted();
+  EXPECT_EQ(sim.mission().outcome(), UgvMissionOutcome::kRecalled);
 }
 
 TEST(UgvMission, SameSeedSameMission) {

@@ -74,6 +74,7 @@ void UavMissionOptions::validate(const std::string& source) const {
   if (hover_standoff_m >= tether.entry_offset_m)
     throw InputError(source, "uav.hover_standoff_m", "less than tether.entry_offset_m (l_0)");
   positive(retract_speed_mps, "uav.retract_speed_mps", "m/s", 10.0);
+  positive(ugv_return_speed_mps, "uav.ugv_return_speed_mps", "m/s", 10.0);
   for (int i = 0; i < 2; ++i) check_number(drop_zone_W[i], NumberRange::closed(-1e5, 1e5, "m"), source, "uav.drop_zone_m");
   positive(drop_altitude_m, "uav.drop_altitude_m", "m", 500.0);
   check_number(drop_time_s, NumberRange::non_negative(600.0, "s"), source, "uav.drop_time_s");
@@ -258,8 +259,8 @@ bool UavMission::follow(const FlightState& s) {
   return arrived;
 }
 
-bool UavMission::battery_calls_home(const FlightState& s) const {
-  const double home_s = (s.p_W - home_W_).norm() / options_.cruise_speed_mps + 30.0;
+bool UavMission::battery_calls_home(const FlightState& s, double before_s) const {
+  const double home_s = before_s + (s.p_W - home_W_).norm() / options_.cruise_speed_mps + 30.0;
   return s.battery_fraction < home_s / options_.flight_endurance_s + options_.battery_reserve_fraction;
 }
 
@@ -494,6 +495,7 @@ void UavMission::tick() {
         winch_idle();
         guard_.reset();
         winch_ctl_->reset();
+        recalled_ = false;
         hw_.ugv.deploy(current().opening.p_WE, current().opening.entry_yaw_rad);
         current().deployed_s = now;
         return enter(UavMissionState::kUgvOps, "miniUGV at the entry (l_t " + std::to_string(w.released_m).substr(0, 4) + " m)");
@@ -531,6 +533,23 @@ void UavMission::tick() {
         hw_.ugv.abort("the UAV's time for the hidden space ran out");
         current().ugv_outcome = "aborted";
         return enter(UavMissionState::kRetract, "hidden-space time ran out");
+      }
+      // Hovering burns the flight budget while the miniUGV works: call it back while
+      // the battery still covers its way back along the tether, the reel-in, the climb
+      // and the way home; below what the reel-in and the way home need, drag it out.
+      if (!current().landed) {
+        const double tether_m = r.tether_to_anchor_m + (r.p_WG - r.tether_anchor_W).norm();
+        const double lift_s = w.released_m / options_.retract_speed_mps + 10.0;
+        if (battery_calls_home(s, lift_s)) {
+          hw_.ugv.abort("the UAV's battery covers only the lift and the way home");
+          current().ugv_outcome = "aborted";
+          current().note = "flight budget while hovering";
+          return enter(UavMissionState::kRetract, "the battery covers only the lift and the way home");
+        }
+        if (!recalled_ && battery_calls_home(s, lift_s + tether_m / options_.ugv_return_speed_mps)) {
+          recalled_ = true;
+          hw_.ugv.recall("the UAV's flight budget");  // the miniUGV logs its own return
+        }
       }
       return;
     }

@@ -48,6 +48,7 @@ std::string_view to_string(UgvMissionOutcome outcome) {
     case UgvMissionOutcome::kReturnFailed: return "return_failed";
     case UgvMissionOutcome::kRetractTimeout: return "retract_timeout";
     case UgvMissionOutcome::kAborted: return "aborted";
+    case UgvMissionOutcome::kRecalled: return "recalled";
   }
   return "?";
 }
@@ -134,6 +135,23 @@ void MiniUgvMission::start() {
 void MiniUgvMission::stop(const std::string& reason) {
   if (state_ == UgvMissionState::kDone) return;
   finish(UgvMissionOutcome::kAborted, reason);
+}
+
+void MiniUgvMission::recall(const std::string& reason) {
+  switch (state_) {
+    case UgvMissionState::kExplore:
+    case UgvMissionState::kTrack:
+    case UgvMissionState::kTurn:
+    case UgvMissionState::kGrasp:
+      base_.set_epm(false);  // nothing held yet (a contact would have started the return)
+      begin_return(UgvMissionOutcome::kRecalled, "recalled: " + reason);
+      return;
+    case UgvMissionState::kIdle:
+    case UgvMissionState::kReturn:
+    case UgvMissionState::kAwaitRetract:
+    case UgvMissionState::kDone:
+      return;
+  }
 }
 
 void MiniUgvMission::retracted() {

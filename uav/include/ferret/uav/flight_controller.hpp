@@ -85,6 +85,8 @@ class UgvLink {
   virtual void release_object() = 0;
   /// End its mission (it stops where it is).
   virtual void abort(const std::string& reason) = 0;
+  /// Call it back: it gives up its search and returns to the entry to be lifted out.
+  virtual void recall(const std::string& reason) = 0;
   [[nodiscard]] virtual UgvReport report() const = 0;
 };
 

@@ -105,6 +105,9 @@ struct UavMissionOptions {
     return o;
   }
   double retract_speed_mps = 0.4;
+  /// How fast the UAV counts on the miniUGV coming back along its tether when it
+  /// recalls it (hovering on a low battery): half its tethered speed, for the turns.
+  double ugv_return_speed_mps = 0.2;
   Eigen::Vector2d drop_zone_W = Eigen::Vector2d::Zero();
   double drop_altitude_m = 3.0;
   double drop_time_s = 3.0;       ///< the EPM off and the object falling clear
@@ -203,7 +206,9 @@ class UavMission {
   [[nodiscard]] const OpeningInMarker* opening_of(int marker_id) const;
   void look_for_markers();
   void refine_opening();
-  bool battery_calls_home(const FlightState& s) const;
+  /// Whether the battery left covers no more than `before_s` of hovering (the miniUGV's
+  /// return, the reel-in), the way home at cruise speed, 30 s and the reserve.
+  bool battery_calls_home(const FlightState& s, double before_s = 0.0) const;
   void go_home(const std::string& reason);
   void start_survey_view();
   void choose_release(const std::string& why_no_zone);
@@ -217,6 +222,7 @@ class UavMission {
   FlightPlanner planner_;
   CameraModel marker_camera_, depth_camera_;
   UavMissionOptions options_;
+  bool recalled_ = false;  ///< the miniUGV in this hidden space was called back
   TransitionLog* log_;
   std::unique_ptr<MarkerDetector> detector_;
   LandingZoneDetector landing_;

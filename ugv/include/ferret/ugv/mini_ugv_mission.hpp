@@ -41,6 +41,7 @@ enum class UgvMissionOutcome {
   kReturnFailed,     ///< no way back to the entry within the return's timeout
   kRetractTimeout,   ///< at the entry, but nobody lifted it out
   kAborted,          ///< stop() (the UAV or the operator)
+  kRecalled,         ///< recall(): the UAV called it back before the search ended
 };
 [[nodiscard]] std::string_view to_string(UgvMissionOutcome outcome);
 
@@ -91,6 +92,10 @@ class MiniUgvMission {
   void tick();
   /// Stops the wheels and ends the mission as aborted (the EPM keeps what it holds).
   void stop(const std::string& reason);
+  /// The UAV calls it back (its flight budget, say): a search, servo, turn or grasp
+  /// under way gives up and returns to the entry, to be lifted out as `recalled`;
+  /// a robot already on its way back or waiting is not affected.
+  void recall(const std::string& reason);
   /// The winch has lifted the robot out: await_retract -> done.
   void retracted();
 
