@@ -38,27 +38,7 @@ void put_record(std::string& s, std::uint8_t op, std::string_view content) {
   s.append(content);
 }
 
-const std::array<std::uint32_t, 256>& crc_table() {
-  static const auto table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t n = 0; n < 256; ++n) {
-      std::uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[n] = c;
-    }
-    return t;
-  }();
-  return table;
-}
-
 }  // namespace
-
-std::uint32_t crc32(std::string_view bytes, std::uint32_t crc) {
-  const auto& t = crc_table();
-  crc = ~crc;
-  for (const char ch : bytes) crc = t[(crc ^ static_cast<std::uint8_t>(ch)) & 0xff] ^ (crc >> 8);
-  return ~crc;
-}
 
 McapWriter::McapWriter(std::string profile, std::string library, std::size_t chunk_bytes)
     : chunk_bytes_(std::max<std::size_t>(chunk_bytes, 1)) {

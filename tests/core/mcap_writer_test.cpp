@@ -38,12 +38,6 @@ std::vector<Record> records(const std::string& s, std::size_t from, std::size_t 
   return out;
 }
 
-TEST(Crc32, MatchesTheStandardCheckValueAndContinues) {
-  EXPECT_EQ(crc32("123456789"), 0xCBF43926u);  // the CRC-32/IEEE check value
-  EXPECT_EQ(crc32(""), 0u);
-  EXPECT_EQ(crc32("6789", crc32("12345")), crc32("123456789"));
-}
-
 TEST(McapWriter, WritesChunksIndexesSummaryAndCrcsAReaderCanFollow) {
   McapWriter w("", "test", 64);  // small chunks: several of them
   const auto schema = w.add_schema("foo.Bar", "jsonschema", "{}");

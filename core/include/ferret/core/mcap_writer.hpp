@@ -13,10 +13,9 @@
 #include <string_view>
 #include <vector>
 
-namespace ferret {
+#include "ferret/core/crc32.hpp"  // every MCAP record group carries a CRC-32
 
-/// CRC-32 (IEEE 802.3, reflected, as zlib and MCAP use), continued from `crc`.
-[[nodiscard]] std::uint32_t crc32(std::string_view bytes, std::uint32_t crc = 0);
+namespace ferret {
 
 class McapWriter {
  public:
