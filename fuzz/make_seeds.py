@@ -280,6 +280,43 @@ def dynamixel_seeds():
     put(t, "truncated.bin", status[:-3])
 
 
+def link_frame(msg_type, sender, sequence, payload):
+    """A robot link frame (docs/link.md), written independently of the C++ codec."""
+    head = b"FL" + bytes([1, msg_type, sender]) + struct.pack("<IH", sequence, len(payload))
+    return head + payload + struct.pack("<I", zlib.crc32(head + payload))
+
+
+def link_telemetry(plan):
+    payload = struct.pack("<ddddffffBBBfdddfff", 12.5, 1.25, -0.5, 0.75, 0.4, -0.1, 0.05, 0.0,
+                          1, 0, 0x05, 0.8, 0.5, 0.25, 3.5, 0.2, 0.01, -0.02)
+    payload += bytes([len(plan)]) + b"".join(struct.pack("<fffff", *s) for s in plan)
+    return link_frame(1, 2, 41, payload)
+
+
+def link_request(request_id, kind, reason):
+    reason = reason.encode()
+    payload = struct.pack("<IBdddd", request_id, kind, 4.0, -2.5, 0.3, 1.5) + bytes([len(reason)]) + reason
+    return link_frame(2, 1, request_id, payload)
+
+
+def link_seeds():
+    t = "link_decode"
+    reset(t)
+    put(t, "telemetry.bin", link_telemetry([]))
+    plan = [(0.05 * (i + 1), 1.25 + 0.02 * i, -0.5, 0.4, -0.1) for i in range(10)]
+    put(t, "telemetry_full_plan.bin", link_telemetry(plan))
+    put(t, "request_start_search.bin", link_request(1, 1, "marker 7 at the opening"))
+    put(t, "request_recall_utf8.bin", link_request(2, 2, "batterie faible \u2013 retour"))
+    put(t, "request_abort_no_reason.bin", link_request(3, 5, ""))
+    put(t, "ack.bin", link_frame(3, 2, 5, struct.pack("<I", 3)))
+    put(t, "heartbeat.bin", link_frame(4, 1, 100, struct.pack("<d", 20.0)))
+    bad = bytearray(link_frame(4, 1, 101, struct.pack("<d", 20.2)))
+    bad[-1] ^= 0xFF
+    put(t, "heartbeat_bad_crc.bin", bytes(bad))
+    put(t, "version_2.bin", b"FL\x02" + link_frame(4, 1, 1, struct.pack("<d", 1.0))[3:])
+    put(t, "truncated.bin", link_telemetry([])[:40])
+
+
 # ---------------------------------------------------------------- cameras and images
 
 ROS_CAMERA_INFO = """image_width: 640
@@ -447,6 +484,7 @@ def main():
     plan_seeds()
     tether_seeds()
     dynamixel_seeds()
+    link_seeds()
     camera_info_seeds()
     image_seeds()
     if args.ferret:
