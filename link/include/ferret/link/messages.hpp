@@ -5,6 +5,7 @@
 // the wire format is in codec.hpp. The enums mirror the miniUGV mission's states and
 // outcomes without including ugv/: the two robots meet only here.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
