@@ -82,6 +82,27 @@ void png_read_from_vector(png_structp png, png_bytep out, png_size_t n) {
 
 enum class PngWant { kGray8, kRgb8, kGray16 };
 
+// libpng 1.6.39 allocates an ancillary chunk (zTXt, iCCP, ...) at the length its header
+// claims before it reads a byte, whatever png_set_chunk_malloc_max says: "zTXt" read as a
+// length is 2 GB (found by fuzz/image_fuzz.cpp). The whole file is in memory, so every
+// chunk up to IEND is checked to fit in what is left of it first.
+void check_chunk_lengths(const std::vector<std::uint8_t>& bytes, const std::string& source) {
+  std::size_t at = 8;  // after the signature
+  while (at + 8 <= bytes.size()) {
+    const std::uint64_t length = (std::uint64_t{bytes[at]} << 24) |
+                                 (std::uint64_t{bytes[at + 1]} << 16) |
+                                 (std::uint64_t{bytes[at + 2]} << 8) | bytes[at + 3];
+    const std::string type(reinterpret_cast<const char*>(bytes.data() + at + 4), 4);
+    const std::uint64_t left = bytes.size() - at - 8;
+    if (length + 4 > left)  // data and CRC
+      throw InputError(source, "PNG data", "chunks that fit in the file",
+                       fmt::format("a chunk of type {:?} claiming {} bytes where {} are left",
+                                   type, length, left >= 4 ? left - 4 : 0));
+    if (type == "IEND") return;
+    at += 12 + length;
+  }
+}
+
 // Decodes into `channels` x `bits` samples; returns width, height in out params.
 template <typename T, int C>
 Image<T, C> decode_png(const std::vector<std::uint8_t>& bytes, const std::string& source,
@@ -95,6 +116,7 @@ Image<T, C> decode_png(const std::vector<std::uint8_t>& bytes, const std::string
     };
     check_size(be32(16), be32(20), source);
   }
+  check_chunk_lengths(bytes, source);
   PngReader reader{&bytes, 8, {}};
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &reader, png_error_to_reader,
                                            png_ignore_warning);

@@ -4,6 +4,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "ferret/core/crc32.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/perception/colour.hpp"
 #include "ferret/perception/image.hpp"
@@ -66,6 +67,39 @@ TEST(ImageCodec, GreyPngAndJpegDecode) {
   ASSERT_EQ(b.width_px, 24);
   ASSERT_EQ(b.height_px, 16);
   for (int x = 0; x < 24; x += 5) EXPECT_NEAR(b.at(x, 8), x * 10, 6) << x;
+}
+
+// A PNG with one more chunk after IHDR: `type`, the given length field, `body` and its CRC.
+std::vector<std::uint8_t> with_chunk_after_ihdr(const std::vector<std::uint8_t>& png, const char* type,
+                                                std::uint32_t length, const std::string& body) {
+  std::string chunk(type, 4);
+  chunk += body;
+  const std::uint32_t crc = crc32(chunk);
+  std::vector<std::uint8_t> out(png.begin(), png.begin() + 33);  // signature 8 + IHDR 25
+  for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(length >> s));
+  for (const char c : chunk) out.push_back(static_cast<std::uint8_t>(c));
+  for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(crc >> s));
+  for (std::size_t i = 33; i < png.size(); ++i) out.push_back(png[i]);
+  return out;
+}
+
+TEST(ImageCodec, AMetadataChunkIsReadOnlyUpToEightMegabytes) {
+  RgbImage rgb(3, 2);
+  rgb.at(2, 1, 1) = 200;
+  const auto png = encode_png(rgb);
+  // Metadata of an ordinary size is no obstacle.
+  const auto texted = with_chunk_after_ihdr(png, "tEXt", 13, std::string("Comment\0hello", 13));
+  EXPECT_EQ(decode_rgb_image(texted, "c.png").data, rgb.data);
+  // A zTXt chunk whose length field claims 2 GB (the fuzzer's "zTXt" read as a length)
+  // is refused before libpng allocates it, naming the chunk.
+  const auto huge = with_chunk_after_ihdr(png, "zTXt", 0x7a545874u, "x");
+  try {
+    (void)decode_rgb_image(huge, "c.png");
+    FAIL() << "a 2 GB chunk was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "PNG data");
+    EXPECT_NE(std::string(e.what()).find("\"zTXt\" claiming 2052348020 bytes"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ImageCodec, DepthMustBeSixteenBitGrey) {
