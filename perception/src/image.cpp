@@ -96,8 +96,8 @@ void check_chunk_lengths(const std::vector<std::uint8_t>& bytes, const std::stri
     const std::uint64_t left = bytes.size() - at - 8;
     if (length + 4 > left)  // data and CRC
       throw InputError(source, "PNG data", "chunks that fit in the file",
-                       fmt::format("a chunk of type {:?} claiming {} bytes where {} are left",
-                                   type, length, left >= 4 ? left - 4 : 0));
+                       fmt::format("a chunk of type '{}' claiming {} bytes where {} are left",
+                                   printable(type), length, left >= 4 ? left - 4 : 0));
     if (type == "IEND") return;
     at += 12 + length;
   }
