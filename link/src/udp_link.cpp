@@ -16,70 +16,18 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/link/link_session.hpp"
+#include "socket_util.hpp"
 
 namespace ferret::link {
-namespace {
-
-constexpr std::string_view kAddressForm = "an IPv4 address:port such as 127.0.0.1:47810";
-
-sockaddr_in to_sockaddr(const UdpAddress& a) {
-  sockaddr_in s{};
-  s.sin_family = AF_INET;
-  s.sin_port = htons(a.port);
-  std::memcpy(&s.sin_addr.s_addr, a.ip.data(), 4);  // the bytes in network order
-  return s;
-}
-
-UdpAddress from_sockaddr(const sockaddr_in& s) {
-  UdpAddress a;
-  std::memcpy(a.ip.data(), &s.sin_addr.s_addr, 4);
-  a.port = ntohs(s.sin_port);
-  return a;
-}
-
-std::string errno_text(int err) { return std::strerror(err); }
-
-}  // namespace
-
-std::string UdpAddress::to_string() const {
-  return fmt::format("{}.{}.{}.{}:{}", ip[0], ip[1], ip[2], ip[3], port);
-}
-
-UdpAddress parse_udp_address(std::string_view text, const std::string& source,
-                             const std::string& field, bool allow_any_port) {
-  const auto bad = [&](std::string_view expected) {
-    return InputError(source, field, std::string(expected), std::string(text));
-  };
-  const std::size_t colon = text.rfind(':');
-  if (colon == std::string_view::npos) throw bad(kAddressForm);
-  const std::string host(text.substr(0, colon));
-  const std::string_view port_text = text.substr(colon + 1);
-  UdpAddress a;
-  if (host == "localhost") {
-    a.ip = {127, 0, 0, 1};
-  } else {
-    in_addr addr{};
-    // inet_pton takes only the four dotted decimals: no "127.1", no octal, no names.
-    if (inet_pton(AF_INET, host.c_str(), &addr) != 1) throw bad(kAddressForm);
-    std::memcpy(a.ip.data(), &addr.s_addr, 4);
-  }
-  const std::uint32_t lowest = allow_any_port ? 0 : 1;
-  const std::string port_range = fmt::format("a port in {}..65535 after the address", lowest);
-  std::uint32_t port = 0;
-  const auto [end, ec] =
-      std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
-  if (port_text.empty() || ec != std::errc() || end != port_text.data() + port_text.size() ||
-      port > 65535 || port < lowest)
-    throw bad(port_range);
-  a.port = static_cast<std::uint16_t>(port);
-  return a;
-}
+using internal::errno_text;
+using internal::from_sockaddr;
+using internal::to_sockaddr;
 
 UdpLink::UdpLink(const UdpLinkOptions& options)
-    : local_(parse_udp_address(options.bind, "udp link", "bind", /*allow_any_port=*/true)),
+    : local_(parse_ipv4_address(options.bind, "udp link", "bind", /*allow_any_port=*/true)),
       buffer_(options.max_datagram_bytes + 1),  // one more: a datagram that fills it is too long
       max_datagram_bytes_(options.max_datagram_bytes) {
-  if (!options.peer.empty()) peer_ = parse_udp_address(options.peer, "udp link", "peer");
+  if (!options.peer.empty()) peer_ = parse_ipv4_address(options.peer, "udp link", "peer");
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd_ < 0)
     throw std::runtime_error("udp link: a socket for " + local_.to_string() + ": " +
@@ -134,7 +82,7 @@ bool UdpLink::send(std::span<const std::uint8_t> datagram) {
   return send_to(*peer_, datagram);
 }
 
-bool UdpLink::send_to(const UdpAddress& to, std::span<const std::uint8_t> datagram) {
+bool UdpLink::send_to(const Ipv4Address& to, std::span<const std::uint8_t> datagram) {
   const sockaddr_in addr = to_sockaddr(to);
   const ssize_t n = ::sendto(fd_, datagram.data(), datagram.size(), MSG_NOSIGNAL,
                              reinterpret_cast<const sockaddr*>(&addr), sizeof addr);

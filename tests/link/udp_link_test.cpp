@@ -24,21 +24,21 @@ UdpLinkOptions at(const std::string& bind, const std::string& peer = {}) {
   return o;
 }
 
-TEST(LinkUdpAddress, ParsesDottedQuadsAndLocalhost) {
-  const UdpAddress a = parse_udp_address("192.168.1.20:47811", "--peer");
+TEST(LinkIpv4Address, ParsesDottedQuadsAndLocalhost) {
+  const Ipv4Address a = parse_ipv4_address("192.168.1.20:47811", "--peer");
   EXPECT_EQ(a.ip, (std::array<std::uint8_t, 4>{192, 168, 1, 20}));
   EXPECT_EQ(a.port, 47811);
   EXPECT_EQ(a.to_string(), "192.168.1.20:47811");
-  EXPECT_EQ(parse_udp_address("localhost:9", "--peer").to_string(), "127.0.0.1:9");
-  EXPECT_EQ(parse_udp_address("0.0.0.0:0", "--bind", {}, /*allow_any_port=*/true).port, 0);
+  EXPECT_EQ(parse_ipv4_address("localhost:9", "--peer").to_string(), "127.0.0.1:9");
+  EXPECT_EQ(parse_ipv4_address("0.0.0.0:0", "--bind", {}, /*allow_any_port=*/true).port, 0);
 }
 
-TEST(LinkUdpAddress, BadTextIsInputErrorNamingTheAddress) {
+TEST(LinkIpv4Address, BadTextIsInputErrorNamingTheAddress) {
   for (const char* bad :
        {"127.0.0.1:70000", "nonsense", "127.0.0.1", "127.0.0.1:", "127.1:80", "1.2.3.4.5:80",
         "256.0.0.1:80", "127.0.0.1:80x", "127.0.0.1:-1", ":80", "127.0.0.1:0", "host.example:80"}) {
     try {
-      (void)parse_udp_address(bad, "--peer");
+      (void)parse_ipv4_address(bad, "--peer");
       ADD_FAILURE() << bad << " was accepted";
     } catch (const InputError& e) {
       EXPECT_EQ(e.source(), "--peer");
@@ -47,7 +47,7 @@ TEST(LinkUdpAddress, BadTextIsInputErrorNamingTheAddress) {
     }
   }
   try {
-    (void)parse_udp_address("127.0.0.1:70000", "udp link", "peer");
+    (void)parse_ipv4_address("127.0.0.1:70000", "udp link", "peer");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_STREQ(

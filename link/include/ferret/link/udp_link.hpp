@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ferret/link/ip_address.hpp"
+
 namespace ferret::link {
 
 class LinkSession;
@@ -19,21 +21,6 @@ class LinkSession;
 /// Where the UAV and the miniUGV listen unless told otherwise (docs/link.md).
 inline constexpr std::string_view kDefaultUavAddress = "127.0.0.1:47810";
 inline constexpr std::string_view kDefaultUgvAddress = "127.0.0.1:47811";
-
-struct UdpAddress {
-  std::array<std::uint8_t, 4> ip{127, 0, 0, 1};
-  std::uint16_t port = 0;
-  /// "127.0.0.1:47810".
-  [[nodiscard]] std::string to_string() const;
-  bool operator==(const UdpAddress&) const = default;
-};
-
-/// Parses "a.b.c.d:port" (dotted decimal) or "localhost:port". A port of 0 (any free
-/// port) is allowed only where `allow_any_port` says so (binding, not sending).
-/// @throws InputError(source, field, "an IPv4 address:port ...", text)
-[[nodiscard]] UdpAddress parse_udp_address(std::string_view text, const std::string& source,
-                                           const std::string& field = {},
-                                           bool allow_any_port = false);
 
 struct UdpLinkOptions {
   std::string bind = "127.0.0.1:0";  ///< the local address:port; port 0 takes any free port
@@ -45,7 +32,7 @@ struct UdpLinkOptions {
 
 struct ReceivedDatagram {
   std::vector<std::uint8_t> bytes;
-  UdpAddress from;
+  Ipv4Address from;
 };
 
 class UdpLink {
@@ -61,15 +48,15 @@ class UdpLink {
   UdpLink& operator=(const UdpLink&) = delete;
 
   /// The address bound (with the port the system chose for port 0).
-  [[nodiscard]] const UdpAddress& local_address() const { return local_; }
-  [[nodiscard]] const std::optional<UdpAddress>& peer() const { return peer_; }
+  [[nodiscard]] const Ipv4Address& local_address() const { return local_; }
+  [[nodiscard]] const std::optional<Ipv4Address>& peer() const { return peer_; }
 
   /// Sends to the peer. False when the datagram could not be sent (the socket's buffer
   /// is full, the network is down): the link is lossy anyway, and a robot must not stop
   /// on a WiFi glitch. The reason is in last_send_error().
   /// @throws std::logic_error when no peer was configured
   bool send(std::span<const std::uint8_t> datagram);
-  bool send_to(const UdpAddress& to, std::span<const std::uint8_t> datagram);
+  bool send_to(const Ipv4Address& to, std::span<const std::uint8_t> datagram);
   /// The next datagram, waiting at most timeout_ms for one (0: only what is there).
   [[nodiscard]] std::optional<ReceivedDatagram> receive(int timeout_ms);
 
@@ -79,8 +66,8 @@ class UdpLink {
 
  private:
   int fd_ = -1;
-  UdpAddress local_;
-  std::optional<UdpAddress> peer_;
+  Ipv4Address local_;
+  std::optional<Ipv4Address> peer_;
   std::vector<std::uint8_t> buffer_;
   std::size_t max_datagram_bytes_;
   std::string last_send_error_;
