@@ -6,8 +6,7 @@ namespace ferret {
 
 UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
                              const std::optional<Eigen::Vector2d>& object_W,
-                             const UgvMissionRunSettings& settings, std::uint64_t seed,
-                             const Clock& clock, TransitionLog& log)
+                             const UgvMissionRunSettings& settings, std::uint64_t seed)
     : object_W_(object_W) {
   const ExplorationSettings& ex = settings.exploration;
   check_episode(truth, start, ex.method);
@@ -24,18 +23,42 @@ UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
   SimUgvOptions base_options = settings.base;
   base_options.robot = ex.robot;
   base_ = std::make_unique<SimUgvBase>(*sim_, start, base_options);
+}
 
+UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
+                             const std::optional<Eigen::Vector2d>& object_W,
+                             const UgvMissionRunSettings& settings, std::uint64_t seed,
+                             const Clock& clock, TransitionLog& log)
+    : UgvMissionSim(truth, start, object_W, settings, seed) {
+  mission_ = std::make_unique<MiniUgvMission>(*base_, clock, ugv_mission_map(truth.geometry, start, settings),
+                                              ugv_mission_options(settings, seed, object_W, truth.geometry), &log);
+}
+
+GridGeometry ugv_mission_map(const GridGeometry& truth, const Pose2& start, const UgvMissionRunSettings& settings) {
+  return settings.map_window_m ? GridGeometry::centred_on(start.position(), settings.map_window_m->x(),
+                                                          settings.map_window_m->y(), truth.resolution_m)
+                               : truth;
+}
+
+UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std::uint64_t seed,
+                                      const std::optional<Eigen::Vector2d>& object_W, const GridGeometry& truth) {
+  // An empty hidden space: the object far outside the map (the oracle's option only).
+  const Eigen::Vector2d far_W(truth.origin_x_m - 1e6, truth.origin_y_m - 1e6);
   UgvMissionOptions options = settings.ugv;
-  options.explore = explore_options(ex, seed, object_W.value_or(far_W));
+  options.explore = explore_options(settings.exploration, seed, object_W.value_or(far_W));
   options.explore.planner = settings.ugv.explore.planner;  // grid or the OMPL frontier planner
   if (!object_W) options.explore.oracle_object_W.reset();
-  mission_ = std::make_unique<MiniUgvMission>(*base_, clock, geo, options, &log);
+  return options;
 }
 
 UgvMissionSim::~UgvMissionSim() = default;
 
 void UgvMissionSim::step(double dt_s) {
   if (record_) trajectory_.push_back(base_->true_pose());
+  if (!mission_) {
+    base_->step(dt_s);
+    return;
+  }
   mission_->tick();
   base_->step(dt_s);
   if (const double l = mission_->explore_controller().tether_length_m(); l > max_tether_m_) {
@@ -46,6 +69,13 @@ void UgvMissionSim::step(double dt_s) {
 
 UgvMissionRunResult UgvMissionSim::result(const TransitionLog& log) const {
   UgvMissionRunResult result;
+  if (!mission_) {  // the base alone: what the truth knows
+    result.path_m = base_->distance_driven_m();
+    result.battery_left = base_->status().battery_fraction;
+    result.object_held = base_->object_held();
+    result.trajectory = trajectory_;
+    return result;
+  }
   result.outcome = mission_->outcome();
   result.final_state = mission_->state();
   result.path_m = base_->distance_driven_m();

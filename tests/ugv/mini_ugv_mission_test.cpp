@@ -40,6 +40,26 @@ double distance_to_entry(const UgvMissionRunResult& r) {
   return (r.trajectory.back().position() - kEntry.position()).norm();
 }
 
+TEST(UgvMission, AMapWindowIsCentredOnTheEntryNotTakenFromTheTruth) {
+  const auto map = test::small_hidden_space();
+  UgvMissionRunSettings s = settings();
+  EXPECT_EQ(ugv_mission_map(map.geometry, kEntry, s).width, map.geometry.width);  // the given map
+  s.map_window_m = Eigen::Vector2d(3.0, 2.0);
+  const GridGeometry g = ugv_mission_map(map.geometry, kEntry, s);
+  EXPECT_DOUBLE_EQ(g.resolution_m, map.geometry.resolution_m);
+  EXPECT_NEAR(g.width_m(), 3.0, g.resolution_m);
+  EXPECT_NEAR(g.height_m(), 2.0, g.resolution_m);
+  const Eigen::Vector2d middle(g.origin_x_m + 0.5 * g.width_m(), g.origin_y_m + 0.5 * g.height_m());
+  EXPECT_LT((middle - kEntry.position()).norm(), 1.5 * g.resolution_m);
+  // The window does not move with the truth: a map shifted by 1 m gives the same one.
+  GridGeometry shifted = map.geometry;
+  shifted.origin_x_m += 1.0;
+  EXPECT_DOUBLE_EQ(ugv_mission_map(shifted, kEntry, s).origin_x_m, g.origin_x_m);
+  // And the mission runs in it: the object found and brought back.
+  const auto r = run_ugv_mission(map, kEntry, Eigen::Vector2d(1.6, 1.0), s, 2);
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kObjectRetrieved) << to_string(r.outcome);
+}
+
 TEST(UgvMission, FindsGraspsAndBringsTheObjectBackToTheEntry) {
   const auto map = test::small_hidden_space();
   const auto r = run_ugv_mission(map, kEntry, kBehindPartition, settings(), 5);

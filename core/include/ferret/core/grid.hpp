@@ -4,6 +4,7 @@
 // with index = j * width + i (j = 0 is the bottom row, as in map_server's origin).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -40,6 +41,19 @@ struct GridGeometry {
   }
   [[nodiscard]] double width_m() const { return width * resolution_m; }
   [[nodiscard]] double height_m() const { return height * resolution_m; }
+
+  /// A window of size_x_m x size_y_m centred on `center_W`, its cell edges on multiples
+  /// of the resolution (so two windows of one resolution share their cells).
+  [[nodiscard]] static GridGeometry centred_on(const Eigen::Vector2d& center_W, double size_x_m,
+                                               double size_y_m, double resolution_m) {
+    GridGeometry g;
+    g.resolution_m = resolution_m;
+    g.width = std::max(1, static_cast<int>(std::ceil(size_x_m / resolution_m)));
+    g.height = std::max(1, static_cast<int>(std::ceil(size_y_m / resolution_m)));
+    g.origin_x_m = std::floor((center_W.x() - 0.5 * g.width * resolution_m) / resolution_m) * resolution_m;
+    g.origin_y_m = std::floor((center_W.y() - 0.5 * g.height * resolution_m) / resolution_m) * resolution_m;
+    return g;
+  }
 };
 
 }  // namespace ferret

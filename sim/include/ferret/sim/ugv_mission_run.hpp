@@ -25,6 +25,10 @@ struct UgvMissionRunSettings {
   UgvMissionOptions ugv;  ///< its `explore` is filled from `exploration`, but for its `planner`
   SimUgvOptions base;     ///< its `robot` is filled from `exploration`
   double retract_time_s = 10.0;  ///< the winch lifting the robot out of the hidden space
+  /// The controller's maps: a window of this size (x, y, m) centred on the start, as a
+  /// robot that knows nothing of the space is configured; none: the truth map's own
+  /// extent (the paper's experiment, where the map is given).
+  std::optional<Eigen::Vector2d> map_window_m;
   double time_limit_s = 3600.0;  ///< the simulation's own bound (a mission that never ends)
   /// Called after every tick with the time, the controller and the simulated robot (a
   /// recorder's hook: UgvMissionRecorder writes the MCAP log from it).
@@ -62,18 +66,26 @@ class UgvMissionSim {
   UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
                 const std::optional<Eigen::Vector2d>& object_W, const UgvMissionRunSettings& settings,
                 std::uint64_t seed, const Clock& clock, TransitionLog& log);
+  /// The simulated base alone: its controller runs elsewhere (a robot process) and
+  /// drives it through its UgvBase.
+  UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
+                const std::optional<Eigen::Vector2d>& object_W, const UgvMissionRunSettings& settings,
+                std::uint64_t seed);
   ~UgvMissionSim();
   UgvMissionSim(const UgvMissionSim&) = delete;
   UgvMissionSim& operator=(const UgvMissionSim&) = delete;
 
   void start() { mission_->start(); }
-  /// The controller's tick at the clock's time, then the robot moves by `dt_s`.
+  /// The controller's tick at the clock's time (when it has one), then the robot moves
+  /// by `dt_s`.
   void step(double dt_s);
+  [[nodiscard]] bool has_controller() const { return mission_ != nullptr; }
   /// The control period (the IR rate).
   [[nodiscard]] double tick_s() const { return tick_s_; }
   [[nodiscard]] MiniUgvMission& mission() { return *mission_; }
   [[nodiscard]] const MiniUgvMission& mission() const { return *mission_; }
   [[nodiscard]] const SimUgvBase& base() const { return *base_; }
+  [[nodiscard]] SimUgvBase& base() { return *base_; }
   /// The result so far (outcome kNone while running); `log` fills transitions.
   [[nodiscard]] UgvMissionRunResult result(const TransitionLog& log) const;
 
@@ -89,6 +101,15 @@ class UgvMissionSim {
   double max_tether_m_ = 0.0;
   UgvMissionState max_tether_state_ = UgvMissionState::kIdle;
 };
+
+/// The controller's map for a mission from `start`: the settings' window, or the truth's extent.
+[[nodiscard]] GridGeometry ugv_mission_map(const GridGeometry& truth, const Pose2& start,
+                                           const UgvMissionRunSettings& settings);
+/// The controller's options for a deployment with `seed` (the search's own, derived
+/// from it); `truth` only places the oracle's object of an empty space out of reach.
+[[nodiscard]] UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std::uint64_t seed,
+                                                    const std::optional<Eigen::Vector2d>& object_W,
+                                                    const GridGeometry& truth);
 
 /// @param object_W the object, or none (an empty hidden space)
 /// @param log      receives the transitions as they happen (may be null)

@@ -20,6 +20,9 @@ struct FlightState {
   Eigen::Vector3d v_W = Eigen::Vector3d::Zero();
   bool on_ground = true;            ///< landed, motors idle
   double battery_fraction = 1.0;    ///< 1 full, 0 empty
+  /// The pilot has taken over with the remote (DJI: the RC's mode switch out of P/F):
+  /// the mission stops commanding the vehicle.
+  bool rc_override = false;
 };
 
 class FlightController {
