@@ -1,0 +1,61 @@
+#include "ferret/sim/sim_flight_adapter.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "ferret/core/transition_log.hpp"
+#include "ferret/uav/flight_adapter_service.hpp"
+#include "mission_world.hpp"
+
+namespace ferret {
+
+struct SimFlightAdapter::Impl {
+  Impl(const PlanningWorld& world, const RobotDescription& uav_robot, const MissionRunSettings& settings,
+       std::uint64_t seed)
+      : mission_world(world, uav_robot, settings, seed, log),
+        service(mission_world.flight(), mission_world.cameras(), "sim",
+                FlightAdapterService::Hooks{
+                    [this](const Eigen::Vector3d& v_W, double yaw_rate_radps) {
+                      mission_world.flight().command_velocity(v_W, yaw_rate_radps);
+                    },
+                    [this](const std::string& op, const std::string& request) { return extension(op, request); }}) {}
+
+  std::optional<link::StreamMessage> extension(const std::string& op, const std::string& request) {
+    using nlohmann::json;
+    if (op != "sim_advance") return std::nullopt;
+    const json r = json::parse(request, nullptr, false);
+    const double seconds = r.is_object() && r.contains("seconds") && r["seconds"].is_number()
+                               ? r["seconds"].get<double>()
+                               : -1.0;
+    if (!(seconds >= 0.0 && seconds <= 3600.0))
+      return link::StreamMessage{
+          json{{"ok", false}, {"op", op}, {"error", "'seconds': expected a number in [0, 3600]"}}.dump(), {}};
+    const long steps = std::lround(seconds / internal::kDt);
+    for (long k = 0; k < steps; ++k) {
+      ++step;
+      mission_world.clock().set(static_cast<double>(step) * internal::kDt);
+      mission_world.flight().step(internal::kDt);
+    }
+    return link::StreamMessage{json{{"ok", true}, {"t_s", mission_world.clock().now_s()}}.dump(), {}};
+  }
+
+  TransitionLog log;
+  internal::MissionWorld mission_world;
+  FlightAdapterService service;
+  long step = 0;
+};
+
+SimFlightAdapter::SimFlightAdapter(const PlanningWorld& world, const RobotDescription& uav_robot,
+                                   const MissionRunSettings& settings, std::uint64_t seed)
+    : impl_(std::make_unique<Impl>(world, uav_robot, settings, seed)) {}
+SimFlightAdapter::~SimFlightAdapter() = default;
+
+link::StreamMessage SimFlightAdapter::handle(const link::StreamMessage& request) {
+  return impl_->service.handle(request);
+}
+void SimFlightAdapter::serve(link::MessageStream& stream, const std::function<bool()>& keep_going) {
+  impl_->service.serve(stream, keep_going);
+}
+double SimFlightAdapter::now_s() const { return impl_->mission_world.clock().now_s(); }
+
+}  // namespace ferret
