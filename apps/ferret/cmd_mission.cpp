@@ -59,6 +59,7 @@ nlohmann::json report_json(const Options& o, const fs::path& world, const Missio
   j["schema"] = "ferret.mission_report/1";
   j["world"] = world.string();
   j["seed"] = o.seed;
+  j["backends"] = r.backends;
   j["outcome"] = to_string(r.outcome);
   j["time_s"] = r.time_s;
   j["summary"] = {{"hidden_spaces_in_world", r.hidden_spaces_in_world},
@@ -304,6 +305,12 @@ void run(const Options& o) {
                 std::string(to_string(m.uav().state())).c_str(), s.p_W.x(), s.p_W.y(), s.p_W.z(),
                 100 * s.battery_fraction, m.released_m(), m.uav().pattern_done(), m.uav().pattern().size());
   };
+  if (!o.quiet) {
+    std::string line = "backends:";
+    for (const auto& [name, backend] : mission_backends()) line += " " + name + " " + backend + ",";
+    line.pop_back();
+    std::fprintf(stderr, "%s\n", line.c_str());
+  }
   const MissionRunResult r = run_mission(world, uav, settings, o.seed, &log);
 
   int retrieved = 0;

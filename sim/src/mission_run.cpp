@@ -27,6 +27,7 @@ using internal::SimHiddenSpaces;
 class InProcessUgvLink final : public UgvLink {
  public:
   explicit InProcessUgvLink(SimHiddenSpaces& spaces) : spaces_(spaces) {}
+  [[nodiscard]] static const char* kind() { return "in-process"; }
 
   void deploy(const Eigen::Vector3d& p_WE, double /*entry_yaw_rad*/) override {
     spaces_.put_down(p_WE, true);
@@ -161,7 +162,16 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
   result.first_pass_waypoints = mission.first_pass_waypoints();
   result.frames = mission.frames_processed();
   result.transitions = transitions.all();
+  result.backends = {{"flight", sim.flight().backend()},
+                     {"cameras", "sim"},  // rendered frames (SimUavCameras)
+                     {"winch", "sim"},    // tether::SimulatedWinch
+                     {"ugv_base", "sim"}, // SimUgvBase in each hidden space
+                     {"link", link.kind()}};
   return result;
+}
+
+std::map<std::string, std::string> mission_backends() {
+  return {{"flight", "sim"}, {"cameras", "sim"}, {"winch", "sim"}, {"ugv_base", "sim"}, {"link", "in-process"}};
 }
 
 }  // namespace ferret

@@ -83,6 +83,10 @@ TEST(MissionRun, FindsBothSpacesRetrievesTheObjectAndReportsTheEmptyOne) {
   const MissionRunOut run_ = run(data_path("worlds/two_sites.yaml"));
   const MissionRunResult& r = run_.result;
   expect_safe(r, {});
+  // Every interface simulated, as announced before the run; the link in the process.
+  EXPECT_EQ(r.backends, mission_backends());
+  EXPECT_EQ(r.backends.at("flight"), "sim");
+  EXPECT_EQ(r.backends.at("link"), "in-process");
   EXPECT_EQ(r.outcome, UavMissionOutcome::kSearchComplete);
   ASSERT_EQ(r.visits.size(), 2u);
   const HiddenSpaceVisit* shed = visit_of(r, 5);

@@ -60,6 +60,9 @@ struct MissionSample {
 };
 
 struct MissionRunResult {
+  /// What drove each interface ("flight", "cameras", "winch", "ugv_base": sim or hw;
+  /// "link": in-process), read from the objects the run used.
+  std::map<std::string, std::string> backends;
   UavMissionOutcome outcome = UavMissionOutcome::kNone;
   double time_s = 0.0;
   std::vector<HiddenSpaceVisit> visits;
@@ -109,6 +112,11 @@ class MissionSim {
 /// start at the edge so that the forward camera sees markers near it).
 [[nodiscard]] MissionRunSettings mission_settings_for(const RobotDescription& uav, const RobotDescription& ugv,
                                                       const MissionConfig& mission, const WorldSpec& world);
+
+/// What run_mission drives each interface with, before it runs (a log's first line):
+/// every interface simulated, the miniUGV's link inside the process. The result's
+/// `backends` say the same from the objects themselves.
+[[nodiscard]] std::map<std::string, std::string> mission_backends();
 
 /// Runs the mission. `uav_robot` is the UAV's description (its marker and depth
 /// cameras, its shape); throws InputError for a world without a world YAML's hidden
