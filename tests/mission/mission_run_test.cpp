@@ -136,6 +136,22 @@ TEST(MissionRun, TheOmplFrontierPlannerRunsTheMissionToo) {
   for (const auto& d : r.deployments) EXPECT_GT(d.result.decisions, 0) << d.hidden_space;
 }
 
+TEST(MissionRun, NoFlightToTheDropZoneEndsAsDeliveryFailedNotAsTheFlightBudget) {
+  // The small world's bounds end 1 m up: the UAV hovers over the cellar's opening and
+  // the miniUGV brings the object out, but no flight with it hanging below fits under
+  // that ceiling. The UAV lands at home with it, on a nearly full battery.
+  const MissionRunOut run_ = run(data_path("worlds/small.yaml"));
+  const MissionRunResult& r = run_.result;
+  expect_safe(r, {});
+  EXPECT_EQ(r.outcome, UavMissionOutcome::kDeliveryFailed) << to_string(r.outcome);
+  ASSERT_EQ(r.visits.size(), 1u);
+  EXPECT_TRUE(r.visits[0].object_retrieved);
+  EXPECT_FALSE(r.visits[0].object_dropped);
+  EXPECT_EQ(r.objects_dropped, 0);
+  EXPECT_NE(r.visits[0].note.find("no flight to the drop zone"), std::string::npos) << r.visits[0].note;
+  EXPECT_GT(r.battery_left, 0.5);  // not the budget
+}
+
 TEST(MissionRun, TheSameSeedGivesTheSameMission) {
   // OMPL is seeded once per process, so the same mission is flown by two processes.
   const fs::path w = world_variant("seed", "", "");

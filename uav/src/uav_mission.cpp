@@ -38,6 +38,7 @@ std::string_view to_string(UavMissionOutcome outcome) {
     case UavMissionOutcome::kFlightBudget: return "flight_budget";
     case UavMissionOutcome::kTakeoffFailed: return "takeoff_failed";
     case UavMissionOutcome::kRetractFailed: return "retract_failed";
+    case UavMissionOutcome::kDeliveryFailed: return "delivery_failed";
     case UavMissionOutcome::kAborted: return "aborted";
   }
   return "?";
@@ -591,7 +592,10 @@ void UavMission::tick() {
       return;
 
     case UavMissionState::kDeliver:
-      if (in_state_s > options_.deliver_timeout_s) return go_home("delivery timed out");
+      if (in_state_s > options_.deliver_timeout_s) {
+        current().note = "delivery timed out";
+        return go_home(current().note);
+      }
       if (follow(s) && settled(true)) {
         hw_.ugv.release_object();
         return enter(UavMissionState::kDrop, "over the drop zone: EPM off");
@@ -620,6 +624,11 @@ void UavMission::tick() {
 
     case UavMissionState::kLandHome:
       if (s.on_ground) {
+        // Home with the object still below: the delivery failed, whatever the battery
+        // and the pattern say (it was not the flight budget that ended the search).
+        if (carrying_)
+          return finish(UavMissionOutcome::kDeliveryFailed, "landed at home with the object: " +
+                                                                 (current_ >= 0 ? current().note : std::string("no delivery")));
         const bool early = pattern_next_ < pattern_.size();
         return finish(early ? UavMissionOutcome::kFlightBudget : UavMissionOutcome::kSearchComplete,
                       early ? "landed at home, pattern not finished" : "landed at home");

@@ -56,6 +56,7 @@ enum class UavMissionOutcome {
   kFlightBudget,    ///< the battery only covered the way home: returned early, landed
   kTakeoffFailed,   ///< never reached the search altitude
   kRetractFailed,   ///< the miniUGV could not be reeled in (the UAV stays landed)
+  kDeliveryFailed,  ///< no flight (or none in time) to the drop zone with the object: landed at home with it
   kAborted,         ///< stop()
 };
 [[nodiscard]] std::string_view to_string(UavMissionOutcome outcome);
@@ -137,7 +138,7 @@ struct HiddenSpaceVisit {
   double detected_s = 0.0;
   std::size_t pattern_index = 0;   ///< the pattern waypoint the UAV was flying to then
   std::string state = "detected";  ///< detected, skipped, serviced
-  std::string note;                ///< why skipped
+  std::string note;                ///< why skipped, or why the object was not delivered
   bool landed = false;             ///< landed beside it (false: hovered)
   std::optional<LandingZone> landing_zone;
   double deployed_s = -1.0;
