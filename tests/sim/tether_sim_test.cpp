@@ -333,6 +333,40 @@ TEST(TetherSim, ASnagLoadsTheWinchSideOnlyAndReleases) {
   EXPECT_DOUBLE_EQ(after.winch_tension_n, after.ugv_tension_n);
 }
 
+// The same snag with the spool held: the line is pinned at (2, 0) from t = 1 s, the
+// miniUGV at x = 3 - 0.125 = 2.875 m, the tether (l_0 = 1 m, straight to the corner,
+// on to the robot) needs 3.875 m of the 4 m released: 0.125 m slack, shared by length,
+// 3 / 3.875 of it on the winch's 3 m side. While pinned the robot drives on to x =
+// 2.625 m, the total slack grows to 0.375 m, but what the winch can take in stays
+// 0.125 * 3 / 3.875 = 96.8 mm: the rest lies beyond the pin.
+TEST(TetherSim, ReachableSlackStopsAtThePinnedCorner) {
+  TetherScenario scn = straight_out(3.0, 2.5, 4.0);
+  scn.wrap_points = {{{2.0, 0.0}, 0}};
+  scn.snags = {{0, 1.0, 2.0}};
+  auto options = TetherSimOptions::for_tether(15.0, 1.0);
+  ConstantSpool hold(0.0);
+  const auto r = run_tether_sim(scn, options, hold);
+  int pinned = 0;
+  double last_pinned_slack = 0.0;
+  for (const auto& s : r.log) {
+    if (s.snagged) {
+      ++pinned;
+      EXPECT_NEAR(s.reachable_slack_m, 0.125 * 3.0 / 3.875, 1e-3) << "t = " << s.t_s;
+      last_pinned_slack = s.slack_m;
+    } else {
+      EXPECT_EQ(s.reachable_slack_m, s.slack_m) << "t = " << s.t_s;
+    }
+  }
+  EXPECT_NEAR(pinned, 100, 1);  // 2 s at 50 Hz
+  EXPECT_NEAR(last_pinned_slack, 0.375, 2e-3);
+  // After the pin the robot drives on with the spool held: all of that slack counts.
+  EXPECT_LT(r.metrics.reachable_slack_rms_m, r.metrics.slack_rms_m - 1e-3);
+  // Without the snag the two figures are one.
+  scn.snags.clear();
+  const auto free = run_tether_sim(scn, options, hold);
+  EXPECT_EQ(free.metrics.reachable_slack_rms_m, free.metrics.slack_rms_m);
+}
+
 TEST(TetherSim, DeterministicForASeed) {
   const auto scn = default_tether_scenario();
   auto options = TetherSimOptions::for_tether(15.0, 1.0);
