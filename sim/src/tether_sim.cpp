@@ -494,7 +494,9 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   if (const auto r = root.optional_child("mpc")) {
     r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "use_preview",
                    "weight_slack", "weight_command_rate", "weight_feedforward", "weight_terminal",
-                   "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic"});
+                   "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic",
+                   "ugv_velocity_error_mps", "ugv_velocity_error_time_s",
+                   "ugv_velocity_error_window_s", "ugv_velocity_error_prior_log_odds"});
     auto& m = c.mpc;
     m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
     if (r->has("horizon") && r->get<double>("horizon") != m.horizon)
@@ -514,6 +516,12 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
         r->get_in_range_or("weight_stretch_linear", 0.0, 1e8, m.stretch_linear_weight);
     m.soft_quadratic_weight =
         r->get_in_range_or("weight_soft_quadratic", 1e-6, 1e8, m.soft_quadratic_weight);
+    auto& e = m.ugv_velocity_error;
+    e.sigma_mps = r->get_in_range_or("ugv_velocity_error_mps", 0.0, 10.0, e.sigma_mps);
+    e.time_s = r->get_in_range_or("ugv_velocity_error_time_s", 1e-3, 100.0, e.time_s);
+    e.window_s = r->get_in_range_or("ugv_velocity_error_window_s", 1e-3, 100.0, e.window_s);
+    e.prior_log_odds =
+        r->get_in_range_or("ugv_velocity_error_prior_log_odds", 0.0, 100.0, e.prior_log_odds);
   }
   if (const auto r = root.optional_child("baseline")) {
     r->allow_only({"kp_per_s", "ki_per_s2", "kd", "feedforward_gain", "use_preview"});

@@ -96,6 +96,17 @@ TEST(TetherSimCli, ConfigFileSetsGainsAndABadOneExitsTwo) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.err, HasSubstr("mpc.weight_slack"));
   EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+  // The velocity-error filter's keys: NaN or negative exit 2 naming the field.
+  for (const std::string key : {"ugv_velocity_error_mps", "ugv_velocity_error_window_s"}) {
+    for (const std::string value : {".nan", "-1"}) {
+      std::ofstream(dir / "filter.yaml") << "mpc: {" << key << ": " << value << "}\n";
+      const auto r = run_cli("tether-sim --sim-config '" + (dir / "filter.yaml") + "' --out '" +
+                             (dir / "f") + "'");
+      EXPECT_EQ(r.exit_code, 2) << key << " " << value;
+      EXPECT_THAT(r.err, HasSubstr("mpc." + key));
+      EXPECT_FALSE(std::filesystem::exists(dir / "f"));
+    }
+  }
 }
 
 TEST(TetherSimCli, BadOptionsExitTwo) {
