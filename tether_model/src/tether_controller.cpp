@@ -217,6 +217,9 @@ std::unique_ptr<TetherController> make_tether_controller(
   if (name == "mpc") {
     TautTetherMpc::Options o;
     o.control = options;
+    // The velocity-error filter as the common options have it (off by default): the
+    // mission's winch has not been re-measured with it (docs/tether.md).
+    o.ugv_velocity_error = options.ugv_velocity_error;
     return std::make_unique<TautTetherMpc>(o, std::move(model));
   }
   if (name == "baseline") {

@@ -227,6 +227,7 @@ struct TetherStateEstimator {
 };
 
 /// Named factory: "mpc" or "baseline". Throws std::invalid_argument for another name.
+/// The MPC gets options.ugv_velocity_error (default off), not TautTetherMpc's default.
 [[nodiscard]] std::unique_ptr<TetherController> make_tether_controller(
     std::string_view name, const TautControlOptions& options,
     std::shared_ptr<const RequiredLengthModel> model);
