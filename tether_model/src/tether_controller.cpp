@@ -135,20 +135,21 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
   }
   const double dt = t_msg_s - t_s_;
   // Predict with the previous desired motion, then correct with the measurement.
-  Eigen::Vector2d displacement;
+  Eigen::Vector2d plain;
   if (lag_s_ > 0.0) {
     // v' = (v_d - v) / lag with v_d held: exact over dt.
     const double decay = std::exp(-dt / lag_s_);
-    displacement =
-        estimate_.v_WG * dt + (velocity_ - estimate_.v_WG) * lag_s_ * (1.0 - decay);
+    plain = estimate_.p_WG + estimate_.v_WG * dt +
+            (velocity_ - estimate_.v_WG) * lag_s_ * (1.0 - decay);
     velocity_ = estimate_.v_WG + (velocity_ - estimate_.v_WG) * decay;
   } else {
-    displacement = estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
+    plain = estimate_.p_WG + estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
   }
+  const Eigen::Vector2d displacement = plain - estimate_.p_WG;  // the model's motion
   // The fixed-gain estimate, predicted with the velocity error as far as it is
-  // believed (w e of the previous message; zero without the error filter: the filter
-  // as it always was).
-  const Eigen::Vector2d predicted = estimate_.p_WG + displacement + weight_ * error_ * dt;
+  // believed (w e of the previous message; without the error filter w = 0 and this
+  // is the filter as it always was, to the bit).
+  const Eigen::Vector2d predicted = plain + weight_ * error_ * dt;
   if (kalman) {
     // Position and velocity error e per axis (both axes share the covariance P):
     // e' = -e / T + noise, p' = v_model + e, exact over dt. Its own position state, so
