@@ -256,6 +256,11 @@ def tether_seeds():
         "sim: {link_latency_s: 0.1, pose_noise_m: 0.02, ugv_slip_noise_mps: 0.05}\n")
     put("tether_config", "out_of_range.yaml", "mpc: {horizon: 100000}\ncontrol: {max_slack_m: -1}\n")
     put("tether_config", "unknown_section.yaml", "winch: {radius_m: 0.1}\n")
+    put("tether_config", "velocity_error.yaml",
+        "mpc: {ugv_velocity_error_mps: 0.15, ugv_velocity_error_time_s: 0.5, "
+        "ugv_velocity_error_window_s: 0.5, ugv_velocity_error_prior_log_odds: 4}\n")
+    put("tether_config", "velocity_error_bad.yaml",
+        "mpc: {ugv_velocity_error_mps: .nan, ugv_velocity_error_window_s: -1}\n")
 
 
 def dynamixel_seeds():

@@ -75,8 +75,8 @@ void run(const Options& o) {
   const auto& c = options.control;
   std::printf("scenario: %s\ncontroller: %s\nseed: %llu\nduration_s: %.2f\n", r.scenario.c_str(),
               r.controller.c_str(), static_cast<unsigned long long>(o.seed), m.duration_s);
-  std::printf("slack_rms_m: %.5f\nmax_slack_m: %.5f\nmin_slack_m: %.5f\n", m.slack_rms_m,
-              m.max_slack_m, m.min_slack_m);
+  std::printf("slack_rms_m: %.5f\nreachable_slack_rms_m: %.5f\nmax_slack_m: %.5f\nmin_slack_m: %.5f\n",
+              m.slack_rms_m, m.reachable_slack_rms_m, m.max_slack_m, m.min_slack_m);
   std::printf(
       "over_tension_events: %d\nover_tension_time_s: %.3f\nmax_tension_n: %.2f (limit %.1f)\n",
       m.over_tension_events, m.over_tension_time_s, m.max_tension_n,
@@ -104,6 +104,7 @@ void run(const Options& o) {
   j["total_length_m"] = c.limits.total_length_m;
   j["entry_offset_m"] = options.entry_offset_m;
   j["metrics"] = {{"slack_rms_m", m.slack_rms_m},
+                  {"reachable_slack_rms_m", m.reachable_slack_rms_m},
                   {"max_slack_m", m.max_slack_m},
                   {"min_slack_m", m.min_slack_m},
                   {"over_tension_events", m.over_tension_events},

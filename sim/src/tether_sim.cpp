@@ -494,7 +494,9 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   if (const auto r = root.optional_child("mpc")) {
     r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "use_preview",
                    "weight_slack", "weight_command_rate", "weight_feedforward", "weight_terminal",
-                   "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic"});
+                   "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic",
+                   "ugv_velocity_error_mps", "ugv_velocity_error_time_s",
+                   "ugv_velocity_error_window_s", "ugv_velocity_error_prior_log_odds"});
     auto& m = c.mpc;
     m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
     if (r->has("horizon") && r->get<double>("horizon") != m.horizon)
@@ -514,6 +516,12 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
         r->get_in_range_or("weight_stretch_linear", 0.0, 1e8, m.stretch_linear_weight);
     m.soft_quadratic_weight =
         r->get_in_range_or("weight_soft_quadratic", 1e-6, 1e8, m.soft_quadratic_weight);
+    auto& e = m.ugv_velocity_error;
+    e.sigma_mps = r->get_in_range_or("ugv_velocity_error_mps", 0.0, 10.0, e.sigma_mps);
+    e.time_s = r->get_in_range_or("ugv_velocity_error_time_s", 1e-3, 100.0, e.time_s);
+    e.window_s = r->get_in_range_or("ugv_velocity_error_window_s", 1e-3, 100.0, e.window_s);
+    e.prior_log_odds =
+        r->get_in_range_or("ugv_velocity_error_prior_log_odds", 0.0, 100.0, e.prior_log_odds);
   }
   if (const auto r = root.optional_child("baseline")) {
     r->allow_only({"kp_per_s", "ki_per_s2", "kd", "feedforward_gain", "use_preview"});
@@ -559,6 +567,8 @@ class TetherState {
 
   struct Forces {
     double required_m = 0.0, ugv_n = 0.0, winch_n = 0.0;
+    /// Slack on the winch's side of a pinned corner (the whole slack when nothing pins).
+    double reachable_slack_m = 0.0;
     bool snagged = false;
   };
 
@@ -591,10 +601,11 @@ class TetherState {
       f.snagged = true;
       const double beyond_geom = beyond_geometry_->required_length_m(p_WG);
       f.ugv_n = tension.tension_n(beyond_material_m_, beyond_material_m_ - beyond_geom);
-      f.winch_n = tension.tension_n(released_m - beyond_material_m_,
-                                    (released_m - beyond_material_m_) - winch_side_m_);
+      f.reachable_slack_m = (released_m - beyond_material_m_) - winch_side_m_;
+      f.winch_n = tension.tension_n(released_m - beyond_material_m_, f.reachable_slack_m);
     } else {
-      f.ugv_n = f.winch_n = tension.tension_n(released_m, released_m - f.required_m);
+      f.reachable_slack_m = released_m - f.required_m;
+      f.ugv_n = f.winch_n = tension.tension_n(released_m, f.reachable_slack_m);
     }
     return f;
   }
@@ -654,7 +665,7 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
   const double dt = opt.control.control_period_s / substeps;
   double t = scn.start_s();
   bool over = false;
-  double sum_sq = 0.0;
+  double sum_sq = 0.0, reachable_sum_sq = 0.0;
   std::vector<double> step_times_us;
   m.min_slack_m = std::numeric_limits<double>::infinity();
   m.max_slack_m = -std::numeric_limits<double>::infinity();
@@ -700,6 +711,7 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
     row.released_m = winch.released_m();
     row.required_m = forces.required_m;
     row.slack_m = row.released_m - row.required_m;
+    row.reachable_slack_m = forces.reachable_slack_m;  // = slack_m unless a corner pins the line
     row.ugv_tension_n = forces.ugv_n;
     row.winch_tension_n = forces.winch_n;
     row.command_mps = command;
@@ -707,6 +719,7 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
     row.snagged = forces.snagged;
     result.log.push_back(row);
     sum_sq += row.slack_m * row.slack_m;
+    reachable_sum_sq += row.reachable_slack_m * row.reachable_slack_m;
     m.min_slack_m = std::min(m.min_slack_m, row.slack_m);
     m.max_slack_m = std::max(m.max_slack_m, row.slack_m);
     if (row.released_m > L + 1e-3) ++m.released_over_limit;
@@ -726,6 +739,7 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
     }
   }
   m.slack_rms_m = std::sqrt(sum_sq / static_cast<double>(result.log.size()));
+  m.reachable_slack_rms_m = std::sqrt(reachable_sum_sq / static_cast<double>(result.log.size()));
   m.duration_s = scn.end_s() - scn.start_s();
   m.control_cycles = static_cast<int>(result.log.size());
   std::sort(step_times_us.begin(), step_times_us.end());
@@ -737,11 +751,12 @@ TetherSimResult run_tether_sim(const TetherScenario& scn, const TetherSimOptions
 void write_tether_sim_csv(const TetherSimResult& result, const std::filesystem::path& path) {
   std::string text =
       "t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,"
-      "snagged\n";
+      "snagged,reachable_slack_m\n";
   for (const auto& r : result.log)
-    text += fmt::format("{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.5f},{:.5f},{}\n", r.t_s,
-                        r.released_m, r.required_m, r.slack_m, r.ugv_tension_n, r.winch_tension_n,
-                        r.command_mps, r.speed_mps, r.snagged ? 1 : 0);
+    text += fmt::format("{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.5f},{:.5f},{},{:.5f}\n",
+                        r.t_s, r.released_m, r.required_m, r.slack_m, r.ugv_tension_n,
+                        r.winch_tension_n, r.command_mps, r.speed_mps, r.snagged ? 1 : 0,
+                        r.reachable_slack_m);
   write_text_atomically(path, text);
 }
 

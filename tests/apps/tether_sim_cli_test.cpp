@@ -19,6 +19,7 @@ TEST(TetherSimCli, DefaultTrajectoryWithTheMpcPrintsFiguresAndWritesPlotCsvAndJs
   EXPECT_THAT(r.out, HasSubstr("scenario: default"));
   EXPECT_THAT(r.out, HasSubstr("controller: mpc"));
   EXPECT_THAT(r.out, HasSubstr("slack_rms_m: "));
+  EXPECT_THAT(r.out, HasSubstr("reachable_slack_rms_m: "));
   EXPECT_THAT(r.out, HasSubstr("max_slack_m: "));
   EXPECT_THAT(r.out, HasSubstr("over_tension_events: 0"));
   EXPECT_THAT(r.out, HasSubstr("tether_limit_active_s: "));
@@ -32,10 +33,12 @@ TEST(TetherSimCli, DefaultTrajectoryWithTheMpcPrintsFiguresAndWritesPlotCsvAndJs
   std::getline(csv, header);
   EXPECT_EQ(header,
             "t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,"
-            "snagged");
+            "snagged,reachable_slack_m");
   const auto j = nlohmann::json::parse(std::ifstream(dir / "tether_mpc.json"));
   EXPECT_EQ(j["metrics"]["over_tension_events"], 0);
   EXPECT_EQ(j["metrics"]["cycles_above_L"], 0);
+  // No snag on the default trajectory: the winch reaches all of the slack.
+  EXPECT_EQ(j["metrics"]["reachable_slack_rms_m"], j["metrics"]["slack_rms_m"]);
   EXPECT_EQ(j["total_length_m"], 15.0);
   EXPECT_EQ(dir.count(), 3u);
 }
@@ -93,6 +96,17 @@ TEST(TetherSimCli, ConfigFileSetsGainsAndABadOneExitsTwo) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.err, HasSubstr("mpc.weight_slack"));
   EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+  // The velocity-error filter's keys: NaN or negative exit 2 naming the field.
+  for (const std::string key : {"ugv_velocity_error_mps", "ugv_velocity_error_window_s"}) {
+    for (const std::string value : {".nan", "-1"}) {
+      std::ofstream(dir / "filter.yaml") << "mpc: {" << key << ": " << value << "}\n";
+      const auto r = run_cli("tether-sim --sim-config '" + (dir / "filter.yaml") + "' --out '" +
+                             (dir / "f") + "'");
+      EXPECT_EQ(r.exit_code, 2) << key << " " << value;
+      EXPECT_THAT(r.err, HasSubstr("mpc." + key));
+      EXPECT_FALSE(std::filesystem::exists(dir / "f"));
+    }
+  }
 }
 
 TEST(TetherSimCli, BadOptionsExitTwo) {

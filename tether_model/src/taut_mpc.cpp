@@ -8,11 +8,20 @@
 #include <stdexcept>
 
 namespace ferret::tether {
+namespace {
+
+TautControlOptions with_velocity_error(TautControlOptions control,
+                                       const UgvVelocityErrorOptions& error) {
+  control.ugv_velocity_error = error;
+  return control;
+}
+
+}  // namespace
 
 TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLengthModel> model)
     : options_(options),
       model_(std::move(model)),
-      estimator_(options.control) {
+      estimator_(with_velocity_error(options.control, options.ugv_velocity_error)) {
   if (!model_) throw std::invalid_argument("TautTetherMpc: no required-length model");
   if (options_.horizon < 2) throw std::invalid_argument("TautTetherMpc: horizon must be >= 2");
   if (!(options_.prediction_dt_s > 0.0) || !(options_.control.control_period_s > 0.0))
@@ -123,9 +132,17 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   const double ta = options_.acceleration_time_s;
   const bool preview = options_.use_preview && !obs.ugv_preview.empty();
   const UgvMotion at_message = estimator_.pose_filter.update(obs.t_s - obs.ugv_age_s, obs.ugv);
-  const UgvMotion now =
-      preview ? planned_motion(at_message, obs.ugv_preview, obs.ugv_age_s)
-              : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
+  // The plan says nothing of the robot's velocity error; the filter's estimate (zero
+  // unless estimated and past its gate) is added to it.
+  const Eigen::Vector2d velocity_error = estimator_.pose_filter.velocity_error_mps();
+  const auto planned = [&](double dt_s) {
+    UgvMotion m = planned_motion(at_message, obs.ugv_preview, dt_s);
+    m.p_WG += velocity_error * dt_s;
+    m.v_WG += velocity_error;
+    return m;
+  };
+  const UgvMotion now = preview ? planned(obs.ugv_age_s)
+                                : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
   const double required_now = model_->required_length_m(now.p_WG);
   // The observer's correction of the geometric slack (the pose error the tension
   // reveals, or a snag's measured stretch) shifts every prediction: the tether
@@ -135,7 +152,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   const double bias = (obs.released_m - required_now) - slack;
   for (int k = 0; k < N; ++k) {
     const UgvMotion future =
-        preview ? planned_motion(at_message, obs.ugv_preview, obs.ugv_age_s + (k + 1) * dt)
+        preview ? planned(obs.ugv_age_s + (k + 1) * dt)
                 : now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps,
                                    std::max(0.0, ta - obs.ugv_age_s));
     required_[k] = model_->required_length_m(future.p_WG) + bias;

@@ -87,11 +87,47 @@ double SlackObserver::estimate_m(double released_m, double required_m, double wi
   return estimator_.estimate_m(released_m, required_m + bias_m_ + offset_m_, winch_tension_n);
 }
 
+UgvPositionFilter::UgvPositionFilter(double gain, double velocity_lag_s,
+                                     const UgvVelocityErrorOptions& velocity_error,
+                                     double pose_noise_m, double period_s)
+    : gain_(gain), lag_s_(velocity_lag_s), error_options_(velocity_error) {
+  if (error_options_.sigma_mps > 0.0) {
+    if (!std::isfinite(error_options_.sigma_mps) || !(error_options_.time_s > 0.0) ||
+        !(pose_noise_m >= 0.0) || !(period_s > 0.0) || !(gain > 0.0) ||
+        !(error_options_.window_s > 0.0) || !std::isfinite(error_options_.prior_log_odds))
+      throw std::invalid_argument("UgvPositionFilter: bad velocity-error options");
+    // The random-walk position noise whose steady-state Kalman gain is `gain` (a
+    // cycle of period_s): P- = g r / (1 - g) = P+ + q with P+ = g r. Noise-free
+    // positions are taken as 0.1 mm (the filter needs some measurement noise).
+    const double g = std::min(gain, 0.999);
+    r_m2_ = std::pow(std::max(pose_noise_m, 1e-4), 2);
+    q_p_m2_per_s_ = g * g * r_m2_ / (1.0 - g) / period_s;
+    P0_ << g * r_m2_, 0.0, 0.0, error_options_.sigma_mps * error_options_.sigma_mps;
+  }
+  reset();
+}
+
+void UgvPositionFilter::reset() {
+  initialised_ = false;
+  error_.setZero();
+  P_ = P0_;
+  log_odds_ = 0.0;
+  weight_ = 0.0;
+}
+
 UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
+  const bool kalman = error_options_.sigma_mps > 0.0;
   if (!initialised_ || gain_ >= 1.0 || t_msg_s < t_s_) {
     // A raw position still gets the lag model's velocity when it has one.
     const bool keep_velocity = initialised_ && lag_s_ > 0.0 && t_msg_s >= t_s_;
     if (!keep_velocity) velocity_ = measured.v_WG;
+    if (!initialised_ || t_msg_s < t_s_) {
+      error_.setZero();
+      P_ = P0_;
+      log_odds_ = 0.0;
+      weight_ = 0.0;
+    }
+    kalman_p_WG_ = obedient_p_WG_ = measured.p_WG;
     initialised_ = true;
     t_s_ = t_msg_s;
     estimate_ = measured;
@@ -99,15 +135,55 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
   }
   const double dt = t_msg_s - t_s_;
   // Predict with the previous desired motion, then correct with the measurement.
-  Eigen::Vector2d predicted;
+  Eigen::Vector2d plain;
   if (lag_s_ > 0.0) {
     // v' = (v_d - v) / lag with v_d held: exact over dt.
     const double decay = std::exp(-dt / lag_s_);
-    predicted = estimate_.p_WG + estimate_.v_WG * dt +
-                (velocity_ - estimate_.v_WG) * lag_s_ * (1.0 - decay);
+    plain = estimate_.p_WG + estimate_.v_WG * dt +
+            (velocity_ - estimate_.v_WG) * lag_s_ * (1.0 - decay);
     velocity_ = estimate_.v_WG + (velocity_ - estimate_.v_WG) * decay;
   } else {
-    predicted = estimate_.p_WG + estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
+    plain = estimate_.p_WG + estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
+  }
+  const Eigen::Vector2d displacement = plain - estimate_.p_WG;  // the model's motion
+  // The fixed-gain estimate, predicted with the velocity error as far as it is
+  // believed (w e of the previous message; without the error filter w = 0 and this
+  // is the filter as it always was, to the bit).
+  const Eigen::Vector2d predicted = plain + weight_ * error_ * dt;
+  if (kalman) {
+    // Position and velocity error e per axis (both axes share the covariance P):
+    // e' = -e / T + noise, p' = v_model + e, exact over dt. Its own position state, so
+    // that the fixed-gain estimate above stays as smooth as without it.
+    const double T = error_options_.time_s, phi = std::exp(-dt / T), c = T * (1.0 - phi);
+    const Eigen::Vector2d kf_predicted = kalman_p_WG_ + displacement + error_ * c;
+    error_ *= phi;
+    Eigen::Matrix2d F;
+    F << 1.0, c, 0.0, phi;
+    Eigen::Matrix2d Q = Eigen::Matrix2d::Zero();
+    Q(0, 0) = q_p_m2_per_s_ * dt;
+    Q(1, 1) = error_options_.sigma_mps * error_options_.sigma_mps * (1.0 - phi * phi);
+    P_ = F * P_ * F.transpose() + Q;
+    const double S = P_(0, 0) + r_m2_;
+    const Eigen::Vector2d K = P_.col(0) / S;
+    const Eigen::Vector2d innovation = measured.p_WG - kf_predicted;
+    // Log-likelihood ratio of this message, Kalman filter against the fixed-gain
+    // filter of an obedient robot (its own state, without the error; steady-state
+    // innovation variance r / (1 - g)), per axis capped.
+    const double S_fixed = r_m2_ / (1.0 - std::min(gain_, 0.999));
+    const Eigen::Vector2d obedient_predicted = obedient_p_WG_ + displacement;
+    const Eigen::Vector2d fixed_innovation = measured.p_WG - obedient_predicted;
+    obedient_p_WG_ = obedient_predicted + gain_ * fixed_innovation;
+    double llr = 0.0;
+    for (int i = 0; i < 2; ++i)
+      llr += -0.5 * std::min(innovation[i] * innovation[i] / S, 25.0) - 0.5 * std::log(S) +
+             0.5 * std::min(fixed_innovation[i] * fixed_innovation[i] / S_fixed, 25.0) +
+             0.5 * std::log(S_fixed);
+    log_odds_ = std::exp(-dt / error_options_.window_s) * log_odds_ + llr;
+    weight_ = 1.0 / (1.0 + std::exp(error_options_.prior_log_odds - log_odds_));
+    kalman_p_WG_ = kf_predicted + K[0] * innovation;
+    error_ += K[1] * innovation;
+    const Eigen::Matrix2d P = P_ - K * P_.row(0);
+    P_ = 0.5 * (P + P.transpose());
   }
   estimate_ = measured;
   estimate_.p_WG = predicted + gain_ * (measured.p_WG - predicted);
@@ -116,21 +192,23 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
 }
 
 UgvMotion UgvPositionFilter::output() const {
-  if (!(lag_s_ > 0.0)) return estimate_;
   UgvMotion out = estimate_;
-  out.v_WG = velocity_;
-  out.a_WG = (estimate_.v_WG - velocity_) / lag_s_;
+  if (lag_s_ > 0.0) {
+    out.v_WG = velocity_;
+    out.a_WG = (estimate_.v_WG - velocity_) / lag_s_;
+  }
+  if (weight_ > 0.0) out.v_WG += weight_ * error_;
   return out;
 }
 
 TetherStateEstimator::TetherStateEstimator(const TautControlOptions& options)
-    : pose_filter(options.pose_filter_gain, options.ugv_velocity_lag_s),
+    : pose_filter(options.pose_filter_gain, options.ugv_velocity_lag_s, options.ugv_velocity_error,
+                  options.slack_observer.pose_noise_m, options.control_period_s),
       slack_observer(options.slack_estimator, options.slack_observer, options.pose_filter_gain,
-                     options.control_period_s),
-      fresh_filter_(pose_filter) {}
+                     options.control_period_s) {}
 
 void TetherStateEstimator::reset() {
-  pose_filter = fresh_filter_;
+  pose_filter.reset();
   slack_observer.reset();
 }
 
@@ -140,6 +218,9 @@ std::unique_ptr<TetherController> make_tether_controller(
   if (name == "mpc") {
     TautTetherMpc::Options o;
     o.control = options;
+    // The velocity-error filter as the common options have it (off by default): the
+    // mission's winch has not been re-measured with it (docs/tether.md).
+    o.ugv_velocity_error = options.ugv_velocity_error;
     return std::make_unique<TautTetherMpc>(o, std::move(model));
   }
   if (name == "baseline") {

@@ -145,10 +145,16 @@ struct TetherSimSample {
   double command_mps = 0.0;
   double speed_mps = 0.0;
   bool snagged = false;
+  /// The slack a winch can act on: while a snag pins the line at a corner, only the
+  /// winch's side of the pin (its material less its taut length to the pin); the
+  /// slack beyond the pin is out of any winch's reach. Otherwise slack_m.
+  double reachable_slack_m = 0.0;
 };
 
 struct TetherSimMetrics {
   double slack_rms_m = 0.0;
+  /// RMS of TetherSimSample::reachable_slack_m over all control cycles.
+  double reachable_slack_rms_m = 0.0;
   double max_slack_m = 0.0;
   double min_slack_m = 0.0;
   double max_tension_n = 0.0;
@@ -182,7 +188,8 @@ struct TetherSimResult {
                                              tether::TetherController& controller);
 
 /// CSV:
-/// t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,snagged.
+/// t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,snagged,
+/// reachable_slack_m.
 void write_tether_sim_csv(const TetherSimResult& result, const std::filesystem::path& path);
 /// PNG plot: l_t and the required length (top), slack with the [0, s_max] band and
 /// snag intervals (bottom). Written atomically.

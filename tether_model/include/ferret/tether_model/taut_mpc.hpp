@@ -26,6 +26,11 @@ class TautTetherMpc final : public TetherController {
     /// (TetherObservation::ugv_preview); false: from the desired velocity and
     /// acceleration alone, as the paper's interface has it.
     bool use_preview = true;
+    /// The miniUGV's velocity error, estimated from its reported positions and added to
+    /// the velocity the MPC predicts with (over the latency and the horizon; with a
+    /// preview, to the planned velocity): the MPC's own pose filter replaces
+    /// control.ugv_velocity_error with this. sigma_mps 0 turns it off.
+    UgvVelocityErrorOptions ugv_velocity_error{0.15, 0.5, 0.5, 6.0};
     double weight_slack = 100.0;         ///< on (slack - reference)^2 per step, 1/m^2
     double weight_command_rate = 2.0;    ///< on (delta command)^2, (s/m)^2
     double weight_feedforward = 0.05;    ///< on (command - required-length rate)^2

@@ -111,6 +111,20 @@ class SlackObserver {
   double control_period_s_ = 0.02;
 };
 
+/// The miniUGV's velocity error: how far its actual velocity is from what its desired
+/// motion (and the lag model) says, estimated from its reported positions. Off with
+/// `sigma_mps` 0.
+struct UgvVelocityErrorOptions {
+  /// Standard deviation of the error per axis (Gauss-Markov prior); 0: not estimated.
+  double sigma_mps = 0.0;
+  double time_s = 0.5;  ///< its correlation time
+  /// Memory of the likelihood comparison between the two filters (exponential, s).
+  double window_s = 0.5;
+  /// Log-odds against the velocity-error filter before any evidence (> 0: the
+  /// obedient filter is kept on a tie).
+  double prior_log_odds = 2.0;
+};
+
 /// Smooths the miniUGV's reported position with its own desired motion: each message
 /// is first predicted from the previous estimate with the desired velocity and
 /// acceleration, then corrected towards the measurement by `gain` (1: no filtering).
@@ -118,23 +132,53 @@ class SlackObserver {
 /// With `velocity_lag_s` > 0 the robot's velocity loop is modelled as a first-order
 /// lag: the filter keeps the robot's estimated actual velocity, predicts with it, and
 /// reports it with the acceleration of the lag, (v_desired - v) / lag.
+///
+/// With a velocity error (UgvVelocityErrorOptions::sigma_mps > 0) a second filter runs
+/// beside it: a two-state Kalman filter per axis, position and velocity error e
+/// (actual velocity = the model's + e, e a Gauss-Markov process), on reported
+/// positions of standard deviation `pose_noise_m`, its position process noise the one
+/// whose steady-state gain alone would be `gain`. Each message scores both filters by
+/// the likelihood of its innovation (the normalised square capped at 25 per axis, so
+/// one outlier does not decide), with exponential forgetting over `window_s`; the
+/// output is the mixture by the posterior weight w of the second filter: position
+/// (1 - w) p_fixed + w p_kalman, velocity the model's + w e. An obedient robot's
+/// innovations favour the smoother fixed-gain filter (w ~ 0: as without the option);
+/// a robot that does not do what it says leaves the fixed-gain filter lagging, its
+/// innovations biased, and w goes to 1.
 class UgvPositionFilter {
  public:
-  explicit UgvPositionFilter(double gain = 1.0, double velocity_lag_s = 0.0)
-      : gain_(gain), lag_s_(velocity_lag_s) {}
+  explicit UgvPositionFilter(double gain = 1.0, double velocity_lag_s = 0.0,
+                             const UgvVelocityErrorOptions& velocity_error = {},
+                             double pose_noise_m = 0.01, double period_s = 0.02);
   /// @param t_msg_s time the message was sent (its pose's time stamp)
-  /// @return the motion with the filtered position (and, with a lag, velocity and acceleration)
+  /// @return the motion with the filtered position (and, with a lag, velocity and
+  /// acceleration; with a velocity error, the mixture above)
   UgvMotion update(double t_msg_s, const UgvMotion& measured);
-  void reset() { initialised_ = false; }
+  void reset();
+  /// The velocity error as output: w e (zero without the error filter).
+  [[nodiscard]] Eigen::Vector2d velocity_error_mps() const { return weight_ * error_; }
+  /// The Kalman filter's velocity error and its variance (per axis).
+  [[nodiscard]] const Eigen::Vector2d& raw_velocity_error_mps() const { return error_; }
+  [[nodiscard]] double velocity_error_variance() const { return P_(1, 1); }
+  /// Posterior weight of the velocity-error filter (0 without it).
+  [[nodiscard]] double velocity_error_weight() const { return weight_; }
 
  private:
   [[nodiscard]] UgvMotion output() const;
   double gain_;
   double lag_s_;
+  UgvVelocityErrorOptions error_options_;
+  double r_m2_ = 1e-4, q_p_m2_per_s_ = 0.0;
   bool initialised_ = false;
   double t_s_ = 0.0;
   UgvMotion estimate_;  ///< filtered position; the desired velocity and acceleration
   Eigen::Vector2d velocity_ = Eigen::Vector2d::Zero();  ///< estimated actual velocity (lag > 0)
+  Eigen::Vector2d error_ = Eigen::Vector2d::Zero();     ///< velocity error (sigma > 0)
+  Eigen::Vector2d kalman_p_WG_ = Eigen::Vector2d::Zero();    ///< the Kalman filter's position
+  Eigen::Vector2d obedient_p_WG_ = Eigen::Vector2d::Zero();  ///< the obedient filter's
+  Eigen::Matrix2d P_ = Eigen::Matrix2d::Zero(), P0_ = Eigen::Matrix2d::Zero();
+  double log_odds_ = 0.0;  ///< evidence for the Kalman filter (without the prior)
+  double weight_ = 0.0;
 };
 
 class TetherController {
@@ -167,6 +211,9 @@ struct TautControlOptions {
   /// The miniUGV's velocity-loop time constant as the filter models it (0: it
   /// follows its desired motion exactly).
   double ugv_velocity_lag_s = 0.0;
+  /// The pose filter's velocity-error state (default off: both controllers as
+  /// published; the MPC turns it on with TautTetherMpc::Options::ugv_velocity_error).
+  UgvVelocityErrorOptions ugv_velocity_error;
 };
 
 /// What both controllers estimate from an observation: the miniUGV's filtered motion
@@ -177,12 +224,10 @@ struct TetherStateEstimator {
 
   UgvPositionFilter pose_filter;
   SlackObserver slack_observer;
-
- private:
-  UgvPositionFilter fresh_filter_;
 };
 
 /// Named factory: "mpc" or "baseline". Throws std::invalid_argument for another name.
+/// The MPC gets options.ugv_velocity_error (default off), not TautTetherMpc's default.
 [[nodiscard]] std::unique_ptr<TetherController> make_tether_controller(
     std::string_view name, const TautControlOptions& options,
     std::shared_ptr<const RequiredLengthModel> model);
