@@ -36,13 +36,14 @@ def reset(target):
     shutil.rmtree(CORPUS / target, ignore_errors=True)
 
 
-def crc16(data):
-    """Dynamixel Protocol 2.0 CRC (CRC-16/BUYPASS), written independently of the C++."""
-    crc = 0
+def crc16(data, poly=0x8005, init=0):
+    """A non-reflected CRC-16, written independently of the C++: Dynamixel Protocol 2.0's
+    (CRC-16/BUYPASS, the defaults) or the miniUGV MCU's (CCITT-FALSE: 0x1021, 0xFFFF)."""
+    crc = init
     for byte in data:
         crc ^= byte << 8
         for _ in range(8):
-            crc = ((crc << 1) ^ 0x8005) if crc & 0x8000 else crc << 1
+            crc = ((crc << 1) ^ poly) if crc & 0x8000 else crc << 1
             crc &= 0xFFFF
     return crc
 
@@ -317,20 +318,9 @@ def link_seeds():
     put(t, "truncated.bin", link_telemetry([])[:40])
 
 
-def crc16_ccitt(data):
-    """CRC-16/CCITT-FALSE of the miniUGV MCU protocol, written independently of the C++."""
-    crc = 0xFFFF
-    for byte in data:
-        crc ^= byte << 8
-        for _ in range(8):
-            crc = ((crc << 1) ^ 0x1021) if crc & 0x8000 else crc << 1
-            crc &= 0xFFFF
-    return crc
-
-
 def mcu_frame(msg_type, seq, payload, version=1):
     body = bytes([version, msg_type, seq, len(payload)]) + payload
-    return b"\xa5\x5a" + body + struct.pack("<H", crc16_ccitt(body))
+    return b"\xa5\x5a" + body + struct.pack("<H", crc16(body, 0x1021, 0xFFFF))
 
 
 def mcu_state(ir_mm, t_ms=1000, ticks=(10, -10), flags=0, faults=0):
