@@ -16,7 +16,7 @@ constexpr double kPi = std::numbers::pi;
 DiffDriveParams params() { return {0.02, 360.0, 0.1, 0.1, 10.0}; }
 double metres(int ticks) { return ticks * 2.0 * kPi * 0.02 / 360.0; }
 
-TEST(DiffDriveOdometry, StraightTurnStraightMatchesTheHandComputedPose) {
+TEST(UgvDiffDriveOdometry, StraightTurnStraightMatchesTheHandComputedPose) {
   DiffDriveOdometry odo(params(), {1.0, 2.0, 0.0});
   odo.update(0, 0, 0);  // baseline
   odo.update(1000, 1000, 2000);  // straight: 0.3491 m along x
@@ -33,7 +33,7 @@ TEST(DiffDriveOdometry, StraightTurnStraightMatchesTheHandComputedPose) {
   EXPECT_NEAR(odo.pose().yaw_rad, turn, 1e-12);
 }
 
-TEST(DiffDriveOdometry, AnArcEndsOnItsCircle) {
+TEST(UgvDiffDriveOdometry, AnArcEndsOnItsCircle) {
   // Left 300, right 600 counts in one step: ds = metres(450), dtheta = metres(300) / 0.1,
   // radius ds / dtheta = 0.15 m; from the origin facing x, the arc ends at
   // (R sin dtheta, R (1 - cos dtheta)).
@@ -46,7 +46,7 @@ TEST(DiffDriveOdometry, AnArcEndsOnItsCircle) {
   EXPECT_NEAR(odo.pose().yaw_rad, dtheta, 1e-12);
 }
 
-TEST(DiffDriveOdometry, CountersThatWrapStillGiveTheSmallStep) {
+TEST(UgvDiffDriveOdometry, CountersThatWrapStillGiveTheSmallStep) {
   DiffDriveOdometry odo(params(), {});
   const std::int32_t near_max = std::numeric_limits<std::int32_t>::max() - 5;
   odo.update(near_max, near_max, 4294967290u);  // the clock wraps too
@@ -57,7 +57,7 @@ TEST(DiffDriveOdometry, CountersThatWrapStillGiveTheSmallStep) {
   EXPECT_EQ(odo.rebaselines(), 0u);
 }
 
-TEST(DiffDriveOdometry, ARestartOrAGlitchIsANewBaselineNotAJump) {
+TEST(UgvDiffDriveOdometry, ARestartOrAGlitchIsANewBaselineNotAJump) {
   DiffDriveOdometry odo(params(), {});
   odo.update(0, 0, 1000);
   odo.update(100, 100, 1100);
@@ -71,7 +71,7 @@ TEST(DiffDriveOdometry, ARestartOrAGlitchIsANewBaselineNotAJump) {
   EXPECT_EQ(odo.rebaselines(), 2u);
 }
 
-TEST(DiffDriveOdometry, SpeedIsAveragedOverTheWindowOfMcuTime) {
+TEST(UgvDiffDriveOdometry, SpeedIsAveragedOverTheWindowOfMcuTime) {
   DiffDriveOdometry odo(params(), {});
   odo.update(0, 0, 0);
   // 20 ms steps of 10 counts: metres(10) / 0.02 s.

@@ -195,6 +195,27 @@ TEST(HwUgvBase, CommandsReachTheMcuAsWheelSpeeds) {
   EXPECT_EQ(base.wheel_command(100.0, 0.0).left_mmps, expected);
 }
 
+TEST(HwUgvBase, AWheelPastItsLimitSlowsBothWheelsAndKeepsTheCurvature) {
+  test::FakeUgvMcu fake;
+  HwUgvConfig c = config_for(fake.port());
+  c.odometry.track_width_m = 0.4;  // wide enough that full speed and yaw rate pass the limit
+  const HwUgvBase base(c, miniugv());
+  const double v_max =
+      std::min(miniugv().limits.max_velocity_mps, miniugv().wheel_speed_limit_mps.value_or(1e9));
+  const double w_max = miniugv().limits.max_yaw_rate_radps;
+  const double wheel_limit_mmps = 1000 * miniugv().wheel_speed_limit_mps.value_or(v_max);
+  ASSERT_GT(1000 * (v_max + w_max * 0.2), wheel_limit_mmps) << "the arc would not clip";
+  const mcu::DriveCommand arc = base.wheel_command(v_max, w_max);
+  // The outer wheel at its limit, not beyond it and not far below it.
+  EXPECT_NEAR(arc.right_mmps, wheel_limit_mmps, 0.5);
+  EXPECT_LT(arc.left_mmps, arc.right_mmps);
+  // w / v = ((right - left) / b) / ((right + left) / 2): the controller's curvature.
+  const double v = 0.5 * (arc.right_mmps + arc.left_mmps);
+  const double w = (arc.right_mmps - arc.left_mmps) / 0.4;
+  EXPECT_NEAR(w / v, w_max / v_max, 0.01 * w_max / v_max);
+  EXPECT_LT(v, 1000 * v_max);  // it slowed down rather than turning less
+}
+
 TEST(HwUgvBase, OdometryFromScriptedEncoderCountsMatchesTheHandComputedPose) {
   test::FakeUgvMcu fake(scripted());
   HwUgvBase base(config_for(fake.port()), miniugv(), ObjectSearchParams{}, Pose2{0.5, -0.25, 0.0});

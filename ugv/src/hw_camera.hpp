@@ -32,9 +32,8 @@ class HwCamera {
   /// What is wrong, for diagnosis(); empty when healthy.
   [[nodiscard]] std::string problem() const;
 
-  struct Impl;
-
  private:
+  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

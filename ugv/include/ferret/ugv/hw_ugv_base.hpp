@@ -125,9 +125,8 @@ class HwUgvBase final : public UgvBase {
   /// The wheel set-points in mm/s the last command gives (after the limits), left/right.
   [[nodiscard]] mcu::DriveCommand wheel_command(double v_mps, double w_radps) const;
 
-  struct Impl;
-
  private:
+  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
