@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "ferret/core/yaml_config.hpp"
-#include "yaml_emit.hpp"
+#include "ferret/core/yaml_emit.hpp"
 
 namespace ferret {
 namespace {
