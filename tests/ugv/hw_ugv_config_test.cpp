@@ -121,8 +121,10 @@ TEST(HwUgvConfig, TheEpmChoiceIsChecked) {
                   .epm.active_low);
 }
 
-TEST(HwUgvConfig, AnotherBackendIsNotThisParsersToRead) {
-  EXPECT_EQ(refusal(std::string(kMinimal) + "backend: sim\n").first, "ugv.base.backend");
+TEST(HwUgvConfig, TheBackendKeyIsCheckedButNotChosenHere) {
+  EXPECT_EQ(refusal(std::string(kMinimal) + "backend: simulator\n").first, "ugv.base.backend");
+  EXPECT_EQ(parse(std::string(kMinimal) + "backend: sim\n").serial.port,
+            parse(kMinimal).serial.port);
 }
 
 TEST(HwUgvConfig, CheckNamesTheFieldOfAConfigBuiltInCode) {

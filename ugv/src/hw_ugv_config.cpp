@@ -4,9 +4,11 @@
 
 #include <cmath>
 
+#include "ferret/core/backend.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/number.hpp"
 #include "ferret/core/yaml_config.hpp"
+#include "ferret/core/yaml_emit.hpp"
 
 namespace ferret::ugv {
 namespace {
@@ -76,10 +78,7 @@ HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& s
   c.source = source;
   const yaml::MapReader root(node, source, path);
   root.allow_only({"backend", "serial", "link", "camera", "epm", "odometry"});
-  if (root.given_empty("backend") ||
-      (root.has("backend") && root.get<std::string>("backend") != "hw"))
-    root.fail("backend", "hw (this is the hardware backend's configuration)",
-              root.has("backend") ? root.get<std::string>("backend") : "a key without a value");
+  (void)read_backend(root);  // checked here too; which one runs is ugv_base_config's choice
 
   // Required sections are asked for by name, so a missing one says which.
   const yaml::MapReader serial = root.child("serial");
@@ -150,6 +149,39 @@ HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& s
   }
   c.check();
   return c;
+}
+
+void emit_hw_ugv_config(YAML::Emitter& e, const HwUgvConfig& c) {
+  using internal::emit_key_number;
+  e << YAML::Key << "serial" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "port" << YAML::Value << c.serial.port;
+  e << YAML::Key << "baud" << YAML::Value << c.serial.baud << YAML::EndMap;
+  internal::emit_key_number_map(e, "link",
+                                {{"connect_timeout_s", c.link.connect_timeout_s},
+                                 {"telemetry_timeout_s", c.link.telemetry_timeout_s},
+                                 {"command_rate_hz", c.link.command_rate_hz},
+                                 {"command_timeout_s", c.link.command_timeout_s},
+                                 {"epm_retry_s", c.link.epm_retry_s}});
+  e << YAML::Key << "camera" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "device" << YAML::Value << c.camera.device;
+  emit_key_number(e, "first_frame_timeout_s", c.camera.first_frame_timeout_s);
+  emit_key_number(e, "frame_timeout_s", c.camera.frame_timeout_s);
+  e << YAML::EndMap;
+  e << YAML::Key << "epm" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "via" << YAML::Value << to_string(c.epm.via);
+  if (c.epm.via == HwUgvConfig::Epm::Via::kGpio) {
+    e << YAML::Key << "chip" << YAML::Value << c.epm.chip;
+    e << YAML::Key << "line" << YAML::Value << c.epm.line;
+    e << YAML::Key << "active_low" << YAML::Value << c.epm.active_low;
+  }
+  e << YAML::EndMap;
+  const DiffDriveParams& o = c.odometry;
+  internal::emit_key_number_map(e, "odometry",
+                                {{"wheel_radius_m", o.wheel_radius_m},
+                                 {"ticks_per_rev", o.ticks_per_rev},
+                                 {"track_width_m", o.track_width_m},
+                                 {"speed_window_s", o.speed_window_s},
+                                 {"max_plausible_wheel_speed_mps", o.max_plausible_wheel_speed_mps}});
 }
 
 }  // namespace ferret::ugv

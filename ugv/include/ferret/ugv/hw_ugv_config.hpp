@@ -101,11 +101,16 @@ struct HwUgvConfig {
 
 /// Reads the `ugv.base` mapping of a mission YAML (`node`, found at `path`, for field
 /// names in errors), with every default above for a key left out. `backend`, when given,
-/// must be `hw`. Throws InputError naming the file and the field for an unknown key, a
+/// must be `sim` or `hw`; which backend runs is ugv_base_config_from_yaml's choice
+/// (ugv_base_factory.hpp). Throws InputError naming the file and the field for an unknown key, a
 /// missing port or camera, a number out of range (NaN, negative radius ...) or a key
 /// without a value.
 [[nodiscard]] HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node,
                                                   const std::string& source,
                                                   const std::string& path = "ugv.base");
+
+/// Emits every field of `config` as the keys of a mapping already begun (`serial`, `link`,
+/// `camera`, `epm`, `odometry`), so that hw_ugv_config_from_yaml reads it back.
+void emit_hw_ugv_config(YAML::Emitter& e, const HwUgvConfig& config);
 
 }  // namespace ferret::ugv
