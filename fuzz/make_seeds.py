@@ -116,6 +116,17 @@ def mission_seeds():
     put(t, "unknown_key.yaml", "tether: {total_length_m: 15, entry_offset_m: 1, spool: 2}\n")
     put(t, "wrong_types.yaml", "ugv_limits: [1, 2]\nuav_limits: {max_velocity_mps: fast}\n")
     put(t, "anchors.yaml", "a: &x {lambda1: 0.1}\nobject_search: *x\n")
+    put(t, "backends_hw.yaml",
+        "ugv:\n  base:\n    backend: hw\n    serial: {port: /dev/ttyAMA0, baud: 115200}\n"
+        "    camera: {device: /dev/video0}\n    epm: {via: gpio, chip: gpiochip0, line: 17}\n"
+        "    odometry: {wheel_radius_m: 0.02, ticks_per_rev: 360, track_width_m: 0.105}\n"
+        "uav:\n  winch:\n    backend: hw\n    serial: {port: /dev/ttyUSB0, baud: 57600, id: 1}\n"
+        "    spool: {radius_m: 0.09, payout_direction: -1, max_speed_mps: 0.6}\n"
+        "  flight_controller: {backend: hw, address: 192.168.1.20:14550}\n")
+    put(t, "backends_sim.yaml", "ugv: {base: {backend: sim}}\nuav: {winch: {backend: sim}, "
+        "flight_controller: {backend: sim}}\n")
+    put(t, "backends_bad.yaml", "ugv: {base: {backend: real, serial: {port: ''}}}\n"
+        "uav: {flight_controller: {backend: hw, address: 'host:99999'}, winch: }\n")
 
 
 def world_seeds():
