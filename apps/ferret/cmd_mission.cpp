@@ -30,6 +30,7 @@
 #include "ferret/mapping/world_octree.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/planning_world.hpp"
+#include "ferret/sim/robot_backends.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/search_robot.hpp"
@@ -276,6 +277,8 @@ void run(const Options& o) {
   if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
   const fs::path world_path = o.world.empty() ? data_path("worlds/default.yaml") : fs::path(o.world);
   const MissionConfig mission = load_mission_or_defaults(o.mission);
+  const RobotBackends backends = o.mission.empty() ? RobotBackends{} : load_robot_backends(o.mission);
+  require_all_sim(backends, o.mission, "ferret mission runs both robots in its own simulator");
   const RobotDescription uav = load_robot_description(resolve_robot(o.robot_uav, "m100.urdf"), mission);
   const RobotDescription ugv = load_robot_description(resolve_robot(o.robot_ugv, "miniugv.urdf"), mission);
   const PlanningWorld world = load_planning_world(world_path);
@@ -290,6 +293,7 @@ void run(const Options& o) {
   settings.ugv.ugv.explore.planner = o.planner;
   const WorldSpec& spec = *world.spec;
 
+  if (!o.quiet) std::fprintf(stderr, "backends: %s\n", backends.summary().c_str());
   TransitionLog log;
   double next_progress_s = 60.0;
   log.on_transition([&](const Transition& t) {
