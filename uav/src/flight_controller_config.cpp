@@ -13,18 +13,23 @@ constexpr const char* kAddress =
 
 /// A host name or address (letters, digits, '.', '-', '_') and a decimal port in [1, 65535].
 void check_address(const yaml::MapReader& r, const std::string& text) {
+  const std::string got = yaml::internal::describe(r.node()["address"]);
   const auto colon = text.rfind(':');
-  if (colon == std::string::npos || colon == 0) r.fail("address", kAddress, text);
+  if (colon == std::string::npos || colon == 0) r.fail("address", kAddress, got);
   const std::string host = text.substr(0, colon);
   const bool host_ok = std::all_of(host.begin(), host.end(), [](char ch) {
     return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
            ch == '.' || ch == '-' || ch == '_';
   });
-  if (!host_ok) r.fail("address", kAddress, text);
+  const std::string port = text.substr(colon + 1);
+  const bool port_digits = !port.empty() && std::all_of(port.begin(), port.end(), [](char ch) {
+    return ch >= '0' && ch <= '9';
+  });  // parse_integer would forgive the spaces around it
+  if (!host_ok || !port_digits) r.fail("address", kAddress, got);
   try {
-    (void)parse_integer(text.substr(colon + 1), 1, 65535, r.source(), r.field_path("address"));
+    (void)parse_integer(port, 1, 65535, r.source(), r.field_path("address"));
   } catch (const InputError&) {
-    r.fail("address", kAddress, text);  // the whole address, not just its port, in the message
+    r.fail("address", kAddress, got);  // the whole address, not just its port, in the message
   }
 }
 
