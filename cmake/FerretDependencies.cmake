@@ -12,7 +12,7 @@ pkg_check_modules(URDFDOM REQUIRED IMPORTED_TARGET urdfdom)
 # libxml2 (Debian libxml2-dev): the strict, iterative XML check a URDF passes before
 # TinyXML's recursive parser sees it (urdf/src/xml_check.cpp).
 pkg_check_modules(LIBXML2 REQUIRED IMPORTED_TARGET libxml-2.0)
-find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs calib3d aruco)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs calib3d aruco videoio)
 # AprilTag 3 (Debian libapriltag-dev): the UAV's marker detector (uav/), the simulator's tag bitmaps.
 find_package(apriltag REQUIRED)     # target: apriltag::apriltag
 find_package(JPEG REQUIRED)           # camera frames: libjpeg's messages go into ferret's errors
@@ -29,3 +29,5 @@ endif()
 find_package(ompl REQUIRED)          # variables only: OMPL_INCLUDE_DIRS, OMPL_LIBRARIES
 find_package(fcl REQUIRED)           # target: fcl
 pkg_check_modules(SERIALPORT REQUIRED IMPORTED_TARGET libserialport)
+# libgpiod 1.6 (Debian libgpiod-dev): the miniUGV's EPM on a GPIO line of its Pi (ugv/).
+pkg_check_modules(GPIOD REQUIRED IMPORTED_TARGET libgpiod)

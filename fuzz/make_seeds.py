@@ -36,13 +36,14 @@ def reset(target):
     shutil.rmtree(CORPUS / target, ignore_errors=True)
 
 
-def crc16(data):
-    """Dynamixel Protocol 2.0 CRC (CRC-16/BUYPASS), written independently of the C++."""
-    crc = 0
+def crc16(data, poly=0x8005, init=0):
+    """A non-reflected CRC-16, written independently of the C++: Dynamixel Protocol 2.0's
+    (CRC-16/BUYPASS, the defaults) or the miniUGV MCU's (CCITT-FALSE: 0x1021, 0xFFFF)."""
+    crc = init
     for byte in data:
         crc ^= byte << 8
         for _ in range(8):
-            crc = ((crc << 1) ^ 0x8005) if crc & 0x8000 else crc << 1
+            crc = ((crc << 1) ^ poly) if crc & 0x8000 else crc << 1
             crc &= 0xFFFF
     return crc
 
@@ -115,6 +116,17 @@ def mission_seeds():
     put(t, "unknown_key.yaml", "tether: {total_length_m: 15, entry_offset_m: 1, spool: 2}\n")
     put(t, "wrong_types.yaml", "ugv_limits: [1, 2]\nuav_limits: {max_velocity_mps: fast}\n")
     put(t, "anchors.yaml", "a: &x {lambda1: 0.1}\nobject_search: *x\n")
+    put(t, "backends_hw.yaml",
+        "ugv:\n  base:\n    backend: hw\n    serial: {port: /dev/ttyAMA0, baud: 115200}\n"
+        "    camera: {device: /dev/video0}\n    epm: {via: gpio, chip: gpiochip0, line: 17}\n"
+        "    odometry: {wheel_radius_m: 0.02, ticks_per_rev: 360, track_width_m: 0.105}\n"
+        "uav:\n  winch:\n    backend: hw\n    serial: {port: /dev/ttyUSB0, baud: 57600, id: 1}\n"
+        "    spool: {radius_m: 0.09, payout_direction: -1, max_speed_mps: 0.6}\n"
+        "  flight_controller: {backend: hw, address: 192.168.1.20:14550}\n")
+    put(t, "backends_sim.yaml", "ugv: {base: {backend: sim}}\nuav: {winch: {backend: sim}, "
+        "flight_controller: {backend: sim}}\n")
+    put(t, "backends_bad.yaml", "ugv: {base: {backend: real, serial: {port: ''}}}\n"
+        "uav: {flight_controller: {backend: hw, address: 'host:99999'}, winch: }\n")
 
 
 def world_seeds():
@@ -322,6 +334,42 @@ def link_seeds():
     put(t, "truncated.bin", link_telemetry([])[:40])
 
 
+def mcu_frame(msg_type, seq, payload, version=1):
+    body = bytes([version, msg_type, seq, len(payload)]) + payload
+    return b"\xa5\x5a" + body + struct.pack("<H", crc16(body, 0x1021, 0xFFFF))
+
+
+def mcu_state(ir_mm, t_ms=1000, ticks=(10, -10), flags=0, faults=0):
+    return struct.pack("<IiihhhHBBHBB", t_ms, ticks[0], ticks[1], 150, -200, 9000, 7400, 64,
+                       flags, faults, 1, len(ir_mm)) + struct.pack("<%dH" % len(ir_mm), *ir_mm)
+
+
+def ugv_mcu_seeds():
+    # The first byte of each seed picks the harness's chunk size (1 + byte % 32).
+    t = "ugv_mcu"
+    reset(t)
+    drive = mcu_frame(0x01, 7, struct.pack("<hh", 250, -150))
+    state = mcu_frame(0x81, 200, mcu_state([500, 0xFFFF, 1234], flags=3, faults=0x10))
+    info = mcu_frame(0x82, 1, bytes([1, 4, 3]) + struct.pack("<H", 300) + bytes([50]))
+    put(t, "drive.bin", b"\x00" + drive)
+    put(t, "epm_on.bin", b"\x03" + mcu_frame(0x02, 1, b"\x01"))
+    put(t, "hello.bin", b"\x07" + mcu_frame(0x03, 0, b""))
+    put(t, "info.bin", b"\x01" + info)
+    put(t, "state.bin", b"\x1f" + state)
+    put(t, "state_16_ir.bin", b"\x05" + mcu_frame(0x81, 9, mcu_state([100 * k for k in range(16)])))
+    put(t, "noise_then_frames.bin", b"\x02\x00\x13\xa5\x77\x5a" + state + drive + info)
+    put(t, "false_sync.bin", b"\x00\xa5\x5a\x01\x01\x00\x03" + drive)
+    bad = bytearray(state)
+    bad[20] ^= 0x40
+    put(t, "bad_crc.bin", b"\x04" + bytes(bad) + drive)
+    put(t, "bad_length.bin", b"\x00\xa5\x5a\x01\x81\x00\xff" + drive)
+    put(t, "version2.bin", b"\x06" + mcu_frame(0x81, 1, b"\x01\x02", version=2) + drive)
+    put(t, "state_wrong_count.bin", b"\x00" + mcu_frame(0x81, 3, mcu_state([1, 2, 3])[:-2]))
+    put(t, "epm_bad_value.bin", b"\x00" + mcu_frame(0x02, 2, b"\x02"))
+    put(t, "unknown_type.bin", b"\x00" + mcu_frame(0x44, 2, b"\x00\x01"))
+    put(t, "truncated.bin", b"\x00" + state[:-3])
+
+
 # ---------------------------------------------------------------- cameras and images
 
 ROS_CAMERA_INFO = """image_width: 640
@@ -490,6 +538,7 @@ def main():
     tether_seeds()
     dynamixel_seeds()
     link_seeds()
+    ugv_mcu_seeds()
     camera_info_seeds()
     image_seeds()
     if args.ferret:

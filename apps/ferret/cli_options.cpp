@@ -9,6 +9,7 @@
 #include "ferret/core/output_set.hpp"
 #include "ferret/perception/camera_info.hpp"
 #include "ferret/planning/planning_world.hpp"
+#include "ferret/sim/robot_backends.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {
@@ -148,7 +149,12 @@ CameraModel resolve_camera(const std::string& camera_yaml, const std::string& ro
 }
 
 MissionConfig load_mission_or_defaults(const std::string& path) {
-  return path.empty() ? MissionConfig{} : load_mission_config(path);
+  if (path.empty()) return {};
+  MissionConfig mission = load_mission_config(path);
+  // The backend sections too, although this command may not build a robot: a typo there
+  // is reported by the first command that reads the file, not by the robot at start-up.
+  (void)load_robot_backends(path);
+  return mission;
 }
 
 std::string one_of(const std::vector<std::string>& choices) {

@@ -93,7 +93,8 @@ CLI::Option* add_camera_option(CLI::App* cmd, std::string& camera_yaml, std::str
 [[nodiscard]] CameraModel resolve_camera(const std::string& camera_yaml, const std::string& robot,
                                          std::string_view role, const MissionConfig& mission = {});
 
-/// The mission YAML, or the built-in defaults when `path` is empty.
+/// The mission YAML, or the built-in defaults when `path` is empty. Its backend sections
+/// (`ugv`, `uav`: load_robot_backends) are checked as well.
 [[nodiscard]] MissionConfig load_mission_or_defaults(const std::string& path);
 
 /// "one of a, b, c": the expectation of an option with a fixed set of values.

@@ -1,7 +1,8 @@
 // `ferret config --dump`: the effective configuration, i.e. what the robot's URDF and
-// the mission YAML give once defaults are filled in (its cameras' models included),
-// printed as YAML. `ferret config --camera-info SENSOR -o FILE`: a URDF camera as a ROS
-// camera_info file, to start a calibration from.
+// the mission YAML give once defaults are filled in (its cameras' models included, and
+// the backend each hardware interface runs on), printed as YAML. `ferret config
+// --camera-info SENSOR -o FILE`: a URDF camera as a ROS camera_info file, to start a
+// calibration from.
 
 #include <filesystem>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include "ferret/perception/camera_info.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/camera_summary.hpp"
+#include "ferret/sim/robot_backends.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -52,12 +54,12 @@ void run(const Options& o) {
     out_file = check_output_target(o.out, OutputKind::kFile, "--out");
   std::string mission_source = "(built-in defaults)";
   MissionConfig mission;
-  if (!o.mission.empty()) {
-    mission = load_mission_config(o.mission);
-    mission_source = o.mission;
-  } else if (fs::is_regular_file("config/mission.yaml")) {
-    mission = load_mission_config("config/mission.yaml");
-    mission_source = "config/mission.yaml";
+  RobotBackends backends;
+  if (!o.mission.empty()) mission_source = o.mission;
+  else if (fs::is_regular_file("config/mission.yaml")) mission_source = "config/mission.yaml";
+  if (mission_source != "(built-in defaults)") {
+    mission = load_mission_config(mission_source);
+    backends = load_robot_backends(mission_source);
   }
   const RobotDescription robot =
       load_robot_description(resolve_robot(o.robot, "miniugv.urdf"), mission);
@@ -88,6 +90,8 @@ void run(const Options& o) {
   text += "mission:\n" +
           indent("source: \"" + mission_source + "\"\n" + mission_config_to_yaml(mission) +
                  "provenance:\n" + indent(mission_provenance_to_yaml(mission)));
+  text += "# backends: which implementation each hardware interface runs on (sim or hw)\n";
+  text += "backends:\n" + indent(robot_backends_to_yaml(backends));
   if (to_stdout) {
     std::cout << text;
   } else {

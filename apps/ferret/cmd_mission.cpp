@@ -30,6 +30,7 @@
 #include "ferret/mapping/world_octree.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/planning_world.hpp"
+#include "ferret/sim/robot_backends.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/search_robot.hpp"
@@ -277,6 +278,8 @@ void run(const Options& o) {
   if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
   const fs::path world_path = o.world.empty() ? data_path("worlds/default.yaml") : fs::path(o.world);
   const MissionConfig mission = load_mission_or_defaults(o.mission);
+  const RobotBackends backends = o.mission.empty() ? RobotBackends{} : load_robot_backends(o.mission);
+  require_all_sim(backends, o.mission, "ferret mission runs both robots in its own simulator");
   const RobotDescription uav = load_robot_description(resolve_robot(o.robot_uav, "m100.urdf"), mission);
   const RobotDescription ugv = load_robot_description(resolve_robot(o.robot_ugv, "miniugv.urdf"), mission);
   const PlanningWorld world = load_planning_world(world_path);
@@ -291,6 +294,14 @@ void run(const Options& o) {
   settings.ugv.ugv.explore.planner = o.planner;
   const WorldSpec& spec = *world.spec;
 
+  // What the mission YAML asked for (all sim here), and what the run itself uses
+  // besides: the rendered cameras and the miniUGV's link inside this process.
+  if (!o.quiet) {
+    std::string line = "backends: " + backends.summary();
+    for (const auto& [name, backend] : mission_backends())
+      if (name == "uav.cameras" || name == "link") line += ", " + name + ": " + backend;
+    std::fprintf(stderr, "%s\n", line.c_str());
+  }
   TransitionLog log;
   double next_progress_s = 60.0;
   log.on_transition([&](const Transition& t) {
@@ -305,12 +316,6 @@ void run(const Options& o) {
                 std::string(to_string(m.uav().state())).c_str(), s.p_W.x(), s.p_W.y(), s.p_W.z(),
                 100 * s.battery_fraction, m.released_m(), m.uav().pattern_done(), m.uav().pattern().size());
   };
-  if (!o.quiet) {
-    std::string line = "backends:";
-    for (const auto& [name, backend] : mission_backends()) line += " " + name + " " + backend + ",";
-    line.pop_back();
-    std::fprintf(stderr, "%s\n", line.c_str());
-  }
   const MissionRunResult r = run_mission(world, uav, settings, o.seed, &log);
 
   int retrieved = 0;

@@ -44,8 +44,7 @@ void run(const Options& o) {
     throw InputError("--latency", "", "seconds in [0, 1]",
                      std::to_string(*o.latency_s));
   // All input is read and checked before anything is written.
-  const MissionConfig mission =
-      o.mission.empty() ? MissionConfig{} : load_mission_config(o.mission);
+  const MissionConfig mission = load_mission_or_defaults(o.mission);
   const sim::TetherScenario scenario = o.trajectory.empty()
                                            ? sim::default_tether_scenario()
                                            : sim::load_tether_scenario(o.trajectory);

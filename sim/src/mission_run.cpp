@@ -162,16 +162,20 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
   result.first_pass_waypoints = mission.first_pass_waypoints();
   result.frames = mission.frames_processed();
   result.transitions = transitions.all();
-  result.backends = {{"flight", sim.flight().backend()},
-                     {"cameras", "sim"},  // rendered frames (SimUavCameras)
-                     {"winch", "sim"},    // tether::SimulatedWinch
-                     {"ugv_base", "sim"}, // SimUgvBase in each hidden space
+  result.backends = {{"uav.flight_controller", sim.flight().backend()},
+                     {"uav.cameras", "sim"},  // rendered frames (SimUavCameras)
+                     {"uav.winch", "sim"},    // tether::SimulatedWinch
+                     {"ugv.base", "sim"},     // SimUgvBase in each hidden space
                      {"link", link.kind()}};
   return result;
 }
 
 std::map<std::string, std::string> mission_backends() {
-  return {{"flight", "sim"}, {"cameras", "sim"}, {"winch", "sim"}, {"ugv_base", "sim"}, {"link", "in-process"}};
+  return {{"uav.flight_controller", "sim"},
+          {"uav.cameras", "sim"},
+          {"uav.winch", "sim"},
+          {"ugv.base", "sim"},
+          {"link", "in-process"}};
 }
 
 }  // namespace ferret

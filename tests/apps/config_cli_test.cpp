@@ -320,5 +320,73 @@ TEST(ConfigCli, MissionKeyThatIsAListIsBadInput) {
   EXPECT_EQ(dir.count(), 4u);  // the inputs alone
 }
 
+TEST(ConfigCli, EveryInterfaceSaysItsBackendSimByDefault) {
+  TempDir dir;
+  write_text(dir / "mission.yaml", "tether: {total_length_m: 12}\n");
+  const auto r = run_cli("config --dump --mission '" + dir / "mission.yaml" + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out,
+                       "backends:\n  ugv:\n    base:\n      backend: sim\n  uav:\n    winch:\n"
+                       "      backend: sim\n    flight_controller:\n      backend: sim\n"))
+      << r.out;
+}
+
+TEST(ConfigCli, AHwFileDumpsEachDeviceWithItsDefaultsFilledIn) {
+  TempDir dir;
+  write_text(dir / "robot.yaml",
+             "ugv:\n  base: {backend: hw, serial: {port: /dev/ttyAMA0}, camera: {device: '0'}}\n"
+             "uav:\n  flight_controller: {backend: hw, address: 'fc.local:14550'}\n");
+  const auto r = run_cli("config --dump --mission '" + dir / "robot.yaml" + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string base = section(r.out, "base:");
+  EXPECT_TRUE(contains(base, "backend: hw\n")) << base;
+  EXPECT_TRUE(contains(base, "port: /dev/ttyAMA0\n")) << base;
+  EXPECT_TRUE(contains(base, "baud: 115200\n")) << base;  // the default, printed
+  EXPECT_TRUE(contains(base, "track_width_m: 0.105\n")) << base;
+  EXPECT_TRUE(contains(section(r.out, "winch:"), "backend: sim\n")) << r.out;
+  EXPECT_TRUE(contains(section(r.out, "flight_controller:"), "address: fc.local:14550\n"))
+      << r.out;
+}
+
+TEST(ConfigCli, BadBackendsExitTwoNamingFileAndField) {
+  TempDir dir;
+  struct Case {
+    std::string name, text, field;
+  };
+  const Case cases[] = {
+      {"unknown.yaml", "ugv: {base: {backend: real}}\n", "ugv.base.backend: expected one of sim, hw"},
+      {"no_port.yaml", "uav: {winch: {backend: hw}}\n", "uav.winch.serial: expected a mapping"},
+      {"nan.yaml",
+       "ugv: {base: {backend: hw, serial: {port: /dev/ttyAMA0}, camera: {device: '0'}, "
+       "odometry: {wheel_radius_m: .nan}}}\n",
+       "ugv.base.odometry.wheel_radius_m: expected a number"},
+      {"type.yaml", "uav: {winch: {backend: hw, serial: {port: /dev/ttyUSB0, baud: [1]}}}\n",
+       "uav.winch.serial.baud: expected an integer"},
+      {"address.yaml", "uav: {flight_controller: {backend: hw}}\n",
+       "uav.flight_controller.address: expected"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string mission = dir / c.name;
+    write_text(mission, c.text);
+    expect_bad_input(run_cli("config --dump --mission '" + mission + "'"), mission, c.field);
+  }
+  // A command that builds no robot checks the sections too, and writes nothing.
+  const std::string unknown = dir / "unknown.yaml";
+  const std::string out = dir / "tether";
+  expect_bad_input(run_cli("tether-sim --mission '" + unknown + "' -o '" + out + "'"), unknown,
+                   "ugv.base.backend: expected one of sim, hw (got 'real')");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(ConfigCli, TheSimulatedMissionRefusesARealRobotAndSaysWhatItRuns) {
+  TempDir dir;
+  write_text(dir / "robot.yaml", "uav: {winch: {backend: hw, serial: {port: /dev/ttyUSB0}}}\n");
+  const std::string mission = dir / "robot.yaml";
+  expect_bad_input(run_cli("mission --mission '" + mission + "'"), mission,
+                   "uav.winch.backend: expected sim (ferret mission runs both robots in its own "
+                   "simulator)");
+}
+
 }  // namespace
 }  // namespace ferret::test

@@ -85,7 +85,7 @@ TEST(MissionRun, FindsBothSpacesRetrievesTheObjectAndReportsTheEmptyOne) {
   expect_safe(r, {});
   // Every interface simulated, as announced before the run; the link in the process.
   EXPECT_EQ(r.backends, mission_backends());
-  EXPECT_EQ(r.backends.at("flight"), "sim");
+  EXPECT_EQ(r.backends.at("uav.flight_controller"), "sim");
   EXPECT_EQ(r.backends.at("link"), "in-process");
   EXPECT_EQ(r.outcome, UavMissionOutcome::kSearchComplete);
   ASSERT_EQ(r.visits.size(), 2u);

@@ -4,9 +4,7 @@
 // control table (torque lock on EEPROM fields, velocity mode integrating the
 // position), with switches to stay silent or corrupt a reply, for the driver tests.
 
-#include <fcntl.h>
 #include <poll.h>
-#include <stdlib.h>
 #include <unistd.h>
 
 #include <array>
@@ -22,6 +20,7 @@
 #include <vector>
 
 #include "ferret/tether_model/dynamixel_protocol.hpp"
+#include "support/pty_pair.hpp"
 
 namespace ferret::test {
 
@@ -29,13 +28,8 @@ namespace dxl = ferret::tether::dxl;
 
 class FakeDynamixel {
  public:
-  explicit FakeDynamixel(std::uint16_t model_number = 311, std::uint8_t id = 1) : id_(id) {
-    master_ = ::posix_openpt(O_RDWR | O_NOCTTY);
-    if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0)
-      throw std::runtime_error("no pty");
-    slave_name_ = ::ptsname(master_);
-    // Keep the slave open so the master never sees a hang-up between driver sessions.
-    keep_open_ = ::open(slave_name_.c_str(), O_RDWR | O_NOCTTY);
+  explicit FakeDynamixel(std::uint16_t model_number = 311, std::uint8_t id = 1)
+      : id_(id), master_(pty_.master()) {
     table_.fill(0);
     table_[0] = static_cast<std::uint8_t>(model_number & 0xFF);
     table_[1] = static_cast<std::uint8_t>(model_number >> 8);
@@ -47,13 +41,11 @@ class FakeDynamixel {
   ~FakeDynamixel() {
     stop_ = true;
     thread_.join();
-    ::close(keep_open_);
-    ::close(master_);
   }
   FakeDynamixel(const FakeDynamixel&) = delete;
   FakeDynamixel& operator=(const FakeDynamixel&) = delete;
 
-  [[nodiscard]] const std::string& port() const { return slave_name_; }
+  [[nodiscard]] const std::string& port() const { return pty_.slave_name(); }
   /// Ignore the next n requests (the driver sees timeouts).
   void drop_next(int n) { drop_ = n; }
   /// Flip a CRC bit in the next n replies.
@@ -166,8 +158,8 @@ class FakeDynamixel {
   }
 
   std::uint8_t id_;
-  int master_ = -1, keep_open_ = -1;
-  std::string slave_name_;
+  PtyPair pty_;
+  int master_ = -1;
   std::array<std::uint8_t, 256> table_{};
   double position_ticks_ = 0.0;
   std::mutex mutex_;

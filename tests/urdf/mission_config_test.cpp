@@ -85,6 +85,17 @@ TEST(MissionConfig, UnknownKeys) {
   EXPECT_EQ(e.field(), "ugv_limits.max_speed_mps");
 }
 
+TEST(MissionConfig, TheBackendSectionsAreAllowedButATypoOfThemIsNot) {
+  // `ugv` and `uav` belong to the backends' reader (sim/robot_backends.hpp); this layer
+  // lets them through and still refuses a misspelt section.
+  EXPECT_EQ(parse("ugv: {base: {backend: hw}}\nuav: {winch: {}}\ntether: {total_length_m: 9}\n")
+                .tether.total_length_m,
+            9.0);
+  const auto e = parse_error("ugvs:\n  base: {backend: hw}\n");
+  EXPECT_EQ(e.field(), "ugvs");
+  EXPECT_NE(e.expected().find("ugv, uav"), std::string::npos) << e.expected();
+}
+
 TEST(MissionConfig, OutOfRangeValues) {
   EXPECT_EQ(parse_error("object_search: {lambda2: 1.5}\n").field(), "object_search.lambda2");
   EXPECT_EQ(parse_error("object_search: {lambda1: -0.1}\n").field(), "object_search.lambda1");

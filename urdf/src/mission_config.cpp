@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "ferret/core/yaml_config.hpp"
-#include "yaml_emit.hpp"
+#include "ferret/core/yaml_emit.hpp"
 
 namespace ferret {
 namespace {
@@ -88,7 +88,10 @@ MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string
   MissionConfig c;
   if (!node.IsDefined() || node.IsNull()) return c;  // an empty file means all defaults
   const yaml::MapReader root(node, source);
-  root.allow_only({"curiosity", "object_search", "tether", "ugv_limits", "uav_limits", "roles"});
+  // `ugv` and `uav` choose and configure the robots' hardware backends: the modules that
+  // build them read those sections (sim/robot_backends.hpp), this layer knows none of them.
+  root.allow_only(
+      {"curiosity", "object_search", "tether", "ugv_limits", "uav_limits", "roles", "ugv", "uav"});
   c.source = source;
   for (const char* section : {"curiosity", "object_search", "tether", "ugv_limits", "uav_limits"})
     if (const auto r = root.optional_child(section)) note(*r, section, c.given);

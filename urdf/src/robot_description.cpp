@@ -9,7 +9,7 @@
 
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
-#include "yaml_emit.hpp"
+#include "ferret/core/yaml_emit.hpp"
 
 namespace ferret {
 

@@ -60,8 +60,9 @@ struct MissionSample {
 };
 
 struct MissionRunResult {
-  /// What drove each interface ("flight", "cameras", "winch", "ugv_base": sim or hw;
-  /// "link": in-process), read from the objects the run used.
+  /// What drove each interface (the mission YAML's names, "uav.flight_controller",
+  /// "uav.winch", "ugv.base", and "uav.cameras": sim or hw; "link": in-process), read
+  /// from the objects the run used.
   std::map<std::string, std::string> backends;
   UavMissionOutcome outcome = UavMissionOutcome::kNone;
   double time_s = 0.0;

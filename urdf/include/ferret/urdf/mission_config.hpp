@@ -67,7 +67,9 @@ struct MissionConfig {
 };
 
 /// Reads a mission YAML (sections: curiosity, object_search, tether, ugv_limits,
-/// uav_limits, roles; every key optional, unknown keys rejected). Throws InputError naming
+/// uav_limits, roles; every key optional, unknown keys rejected). The sections `ugv` and
+/// `uav` (the robots' hardware backends) are allowed and left to
+/// load_robot_backends (sim/robot_backends.hpp). Throws InputError naming
 /// the file and field for a wrong type, a value out of range or an unknown key.
 [[nodiscard]] MissionConfig load_mission_config(const std::filesystem::path& path);
 /// The same from a parsed node; `source` names it in errors.

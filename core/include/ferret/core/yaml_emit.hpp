@@ -8,6 +8,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <string>
+#include <utility>
 
 namespace ferret::internal {
 
@@ -22,6 +23,14 @@ inline void emit_number(YAML::Emitter& e, double v) { e << yaml_number(v); }
 
 inline void emit_key_number(YAML::Emitter& e, const char* key, double v) {
   e << YAML::Key << key << YAML::Value << yaml_number(v);
+}
+
+/// A block mapping of numbers under `key`, in the order given.
+inline void emit_key_number_map(YAML::Emitter& e, const char* key,
+                                std::initializer_list<std::pair<const char*, double>> entries) {
+  e << YAML::Key << key << YAML::Value << YAML::BeginMap;
+  for (const auto& [name, v] : entries) emit_key_number(e, name, v);
+  e << YAML::EndMap;
 }
 
 /// A flow list of numbers: [x, y, z].

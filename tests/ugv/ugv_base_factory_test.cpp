@@ -1,0 +1,63 @@
+// The miniUGV base's factory: `ugv.base` of a mission YAML picks the simulator's base
+// (built by the simulator's own factory) or HwUgvBase on the MCU's serial port.
+#include "ferret/ugv/ugv_base_factory.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "fake_ugv_mcu.hpp"
+#include "ferret/core/yaml_config.hpp"
+#include "ferret/ugv/hw_ugv_base.hpp"
+
+namespace ferret::ugv {
+namespace {
+
+const RobotDescription& miniugv() {
+  static const RobotDescription robot = load_robot("miniugv");
+  return robot;
+}
+
+UgvBaseConfig parse(const std::string& text) {
+  return ugv_base_config_from_yaml(yaml::load_string(text, "m.yaml"), "m.yaml");
+}
+
+TEST(UgvBaseFactory, SimIsBuiltByTheSimulatorsFactoryWithTheContext) {
+  const UgvBaseConfig c = ugv_base_config_from_yaml(YAML::Node(), "m.yaml");
+  EXPECT_EQ(c.backend, Backend::kSim);
+  const Pose2 start{1.0, 2.0, 0.5};
+  bool called = false;
+  const UgvBaseFactory sim = [&](const UgvBaseConfig&, const UgvBaseContext& context) {
+    called = true;
+    EXPECT_EQ(context.X_WG_start.x_m, 1.0);
+    return std::unique_ptr<UgvBase>();
+  };
+  (void)make_ugv_base(c, {miniugv(), {}, start}, sim);
+  EXPECT_TRUE(called);
+  EXPECT_THROW((void)make_ugv_base(c, {miniugv(), {}, start}), std::invalid_argument);
+}
+
+TEST(UgvBaseFactory, HwBringsUpTheRealBaseOnTheFilesPort) {
+  test::FakeUgvMcu fake;
+  const UgvBaseConfig c = parse("backend: hw\nserial: {port: " + fake.port() +
+                                "}\ncamera: {device: none}\nlink: {connect_timeout_s: 5}\n");
+  ASSERT_TRUE(c.hw);
+  bool sim_called = false;
+  const auto base = make_ugv_base(c, {miniugv(), {}, Pose2{0.5, 0.0, 0.0}},
+                                  [&](const UgvBaseConfig&, const UgvBaseContext&) {
+                                    sim_called = true;
+                                    return std::unique_ptr<UgvBase>();
+                                  });
+  ASSERT_NE(dynamic_cast<HwUgvBase*>(base.get()), nullptr);
+  EXPECT_FALSE(sim_called);
+  EXPECT_EQ(base->backend(), "hw");
+  EXPECT_DOUBLE_EQ(base->odometry().x_m, 0.5);  // the context's start pose
+}
+
+TEST(UgvBaseFactory, TheBackendKeyAloneIsNotHardwareSettings) {
+  EXPECT_FALSE(parse("backend: sim\n").hw);
+  EXPECT_THROW((void)parse("backend: hw\n"), InputError);  // hw needs its port and camera
+}
+
+}  // namespace
+}  // namespace ferret::ugv
