@@ -335,7 +335,7 @@ TEST(ConfigCli, AHwFileDumpsEachDeviceWithItsDefaultsFilledIn) {
   TempDir dir;
   write_text(dir / "robot.yaml",
              "ugv:\n  base: {backend: hw, serial: {port: /dev/ttyAMA0}, camera: {device: '0'}}\n"
-             "uav:\n  flight_controller: {backend: hw, address: 'fc.local:14550'}\n");
+             "uav:\n  flight_controller: {backend: hw, address: '127.0.0.1:47820'}\n");
   const auto r = run_cli("config --dump --mission '" + dir / "robot.yaml" + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string base = section(r.out, "base:");
@@ -344,7 +344,7 @@ TEST(ConfigCli, AHwFileDumpsEachDeviceWithItsDefaultsFilledIn) {
   EXPECT_TRUE(contains(base, "baud: 115200\n")) << base;  // the default, printed
   EXPECT_TRUE(contains(base, "track_width_m: 0.105\n")) << base;
   EXPECT_TRUE(contains(section(r.out, "winch:"), "backend: sim\n")) << r.out;
-  EXPECT_TRUE(contains(section(r.out, "flight_controller:"), "address: fc.local:14550\n"))
+  EXPECT_TRUE(contains(section(r.out, "flight_controller:"), "address: 127.0.0.1:47820\n"))
       << r.out;
 }
 

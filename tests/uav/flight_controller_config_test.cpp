@@ -1,4 +1,4 @@
-// The flight controller's section: sim by default, hw only with the adapter's HOST:PORT.
+// The flight controller's section: sim by default, hw only with the adapter's IPv4 address:port.
 #include "ferret/uav/flight_controller_config.hpp"
 
 #include <gtest/gtest.h>
@@ -15,15 +15,15 @@ FlightControllerConfig parse(const std::string& text) {
 
 TEST(FlightControllerConfig, SimByDefaultHwWithItsAddress) {
   EXPECT_EQ(flight_controller_config_from_yaml(YAML::Node(), "m.yaml").backend, Backend::kSim);
-  const FlightControllerConfig c = parse("backend: hw\naddress: m100-adapter.local:14550\n");
+  const FlightControllerConfig c = parse("backend: hw\naddress: 127.0.0.1:47820\n");
   EXPECT_EQ(c.backend, Backend::kHw);
-  EXPECT_EQ(c.address, "m100-adapter.local:14550");
+  EXPECT_EQ(c.address, "127.0.0.1:47820");
   EXPECT_TRUE(parse("backend: sim\n").address.empty());
 }
 
 TEST(FlightControllerConfig, AnAddressThatIsNotHostColonPortIsNamed) {
   for (const char* address : {"10.0.0.1", ":14550", "10.0.0.1:", "10.0.0.1:65536", "10.0.0.1:-1",
-                              "10.0.0.1:1e3", "host name:80", "10.0.0.1:80 "}) {
+                              "10.0.0.1:1e3", "host name:80", "10.0.0.1:80 ", "m100.local:47820", "10.0.0.1:0"}) {
     try {
       (void)parse("backend: hw\naddress: '" + std::string(address) + "'\n");
       ADD_FAILURE() << "accepted " << address;

@@ -1,39 +1,9 @@
 #include "ferret/uav/flight_controller_config.hpp"
 
-#include <algorithm>
-
-#include "ferret/core/number.hpp"
 #include "ferret/core/yaml_config.hpp"
+#include "ferret/link/ip_address.hpp"
 
 namespace ferret {
-namespace {
-
-constexpr const char* kAddress =
-    "HOST:PORT, the flight-controller adapter (e.g. 192.168.1.20:14550)";
-
-/// A host name or address (letters, digits, '.', '-', '_') and a decimal port in [1, 65535].
-void check_address(const yaml::MapReader& r, const std::string& text) {
-  const std::string got = yaml::internal::describe(r.node()["address"]);
-  const auto colon = text.rfind(':');
-  if (colon == std::string::npos || colon == 0) r.fail("address", kAddress, got);
-  const std::string host = text.substr(0, colon);
-  const bool host_ok = std::all_of(host.begin(), host.end(), [](char ch) {
-    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
-           ch == '.' || ch == '-' || ch == '_';
-  });
-  const std::string port = text.substr(colon + 1);
-  const bool port_digits = !port.empty() && std::all_of(port.begin(), port.end(), [](char ch) {
-    return ch >= '0' && ch <= '9';
-  });  // parse_integer would forgive the spaces around it
-  if (!host_ok || !port_digits) r.fail("address", kAddress, got);
-  try {
-    (void)parse_integer(port, 1, 65535, r.source(), r.field_path("address"));
-  } catch (const InputError&) {
-    r.fail("address", kAddress, got);  // the whole address, not just its port, in the message
-  }
-}
-
-}  // namespace
 
 FlightControllerConfig flight_controller_config_from_yaml(const YAML::Node& node,
                                                           const std::string& source) {
@@ -44,7 +14,9 @@ FlightControllerConfig flight_controller_config_from_yaml(const YAML::Node& node
   c.backend = read_backend(r);
   if (c.backend == Backend::kHw || has_device_settings(r)) {
     c.address = r.get<std::string>("address");
-    check_address(r, c.address);
+    // The robot link's address form: the adapter runs on the onboard computer, reached by
+    // its IPv4 address (or localhost), as docs/flight_adapter.md's client connects.
+    (void)link::parse_ipv4_address(c.address, r.source(), r.field_path("address"));
   }
   return c;
 }
