@@ -233,6 +233,12 @@ TEST(FlightAdapter, TheClientRefusesAnAdapterThatBreaksTheProtocol) {
             std::string::npos);
   EXPECT_NE(client_error(StreamMessage{"[1, 2]", {}}).find("not a JSON object"), std::string::npos);
   EXPECT_NE(client_error(std::nullopt, 300).find("did not answer within 300 ms"), std::string::npos);
+  // Fields of the wrong type are the adapter's error, named (not a JSON library's).
+  EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": 1, "adapter": 0})", {}}).find("'adapter'"),
+            std::string::npos);
+  EXPECT_NE(client_error(StreamMessage{R"({"ok": "yes", "protocol": 1})", {}}).find("'ok'"), std::string::npos);
+  EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": "1"})", {}}).find("'protocol'"),
+            std::string::npos);
   // An adapter whose hello is right but whose state is not: every field is checked.
   EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": 1, "p_W": [0, 0]})", {}}).find("'p_W'"),
             std::string::npos);

@@ -12,12 +12,27 @@ namespace {
 using link::StreamMessage;
 using nlohmann::json;
 
+// Optional fields of a given type: a field of another type is the adapter's error, not
+// the default (nlohmann's value() would throw its own type_error; found by the fuzzer).
+bool flag(const json& j, const char* key, const std::string& op) {
+  if (!j.contains(key)) return false;
+  if (!j[key].is_boolean())
+    throw FlightAdapterError(std::string("flight adapter: '") + key + "' in the reply to '" + op + "' is not a boolean");
+  return j[key].get<bool>();
+}
+std::string text(const json& j, const char* key, const std::string& fallback, const std::string& op) {
+  if (!j.contains(key)) return fallback;
+  if (!j[key].is_string())
+    throw FlightAdapterError(std::string("flight adapter: '") + key + "' in the reply to '" + op + "' is not a string");
+  return j[key].get<std::string>();
+}
+
 json parse_reply(const StreamMessage& m, const std::string& op) {
   json j = json::parse(m.header, nullptr, false);
   if (j.is_discarded() || !j.is_object())
     throw FlightAdapterError("flight adapter: the reply to '" + op + "' is not a JSON object");
-  if (!j.value("ok", false))
-    throw FlightAdapterError("flight adapter: '" + op + "' refused: " + j.value("error", std::string("no reason given")));
+  if (!flag(j, "ok", op))
+    throw FlightAdapterError("flight adapter: '" + op + "' refused: " + printable(text(j, "error", "no reason given", op)));
   return j;
 }
 
@@ -74,7 +89,7 @@ Image frame_image(const json& j, const StreamMessage& m, const std::string& op, 
     else
       return read_depth_png(path);
   }
-  if (j.value("encoding", std::string()) != encoding)
+  if (text(j, "encoding", "", op) != encoding)
     throw FlightAdapterError("flight adapter: the reply to '" + op + "' must be encoded " + encoding);
   const double w = number(j, "width", op), h = number(j, "height", op);
   if (!(w >= 1 && h >= 1 && w <= 16384 && h <= 16384 && w == std::floor(w) && h == std::floor(h)))
@@ -98,10 +113,11 @@ AdapterFlightController::AdapterFlightController(link::RpcChannel& channel, std:
     : channel_(channel), backend_(std::move(backend)) {
   const json hello{{"op", "hello"}, {"protocol", kFlightAdapterProtocol}, {"client", "ferret uav"}};
   const json r = parse_reply(channel_.call(hello.dump()), "hello");
-  if (r.value("protocol", -1) != kFlightAdapterProtocol)
-    throw FlightAdapterError("flight adapter speaks protocol " + std::to_string(r.value("protocol", -1)) +
+  const double protocol = number(r, "protocol", "hello");
+  if (protocol != kFlightAdapterProtocol)
+    throw FlightAdapterError("flight adapter speaks protocol " + json(protocol).dump() +
                       ", this client " + std::to_string(kFlightAdapterProtocol));
-  adapter_ = r.value("adapter", std::string("unnamed"));
+  adapter_ = printable(text(r, "adapter", "unnamed", "hello"));
 }
 
 FlightState AdapterFlightController::state() const {
@@ -110,9 +126,9 @@ FlightState AdapterFlightController::state() const {
   s.p_W = vec3(r, "p_W", "state");
   s.v_W = vec3(r, "v_W", "state");
   s.yaw_rad = number(r, "yaw_rad", "state");
-  s.on_ground = r.value("on_ground", false);
+  s.on_ground = flag(r, "on_ground", "state");
   s.battery_fraction = number(r, "battery", "state");
-  s.rc_override = r.value("rc_override", false);
+  s.rc_override = flag(r, "rc_override", "state");
   return s;
 }
 
