@@ -86,7 +86,7 @@ TEST(RobotBackends, TheDumpReadsBackToTheSameSettings) {
   // Device names that YAML would read as another type unless the dump quotes them.
   const std::string odd_names =
       "ugv: {base: {serial: {port: '~'}, camera: {device: 'null'}}}\n"
-      "uav: {winch: {serial: {port: 'true'}}, flight_controller: {address: '1e3:80'}}\n";
+      "uav: {winch: {serial: {port: 'true'}}, flight_controller: {address: '10.0.0.1:80'}}\n";
   EXPECT_EQ(parse(robot_backends_to_yaml(parse(odd_names))).ugv_base.hw->serial.port, "~");
   for (const std::string& text : {std::string(kAllHw), std::string(""), odd_names}) {
     const std::string dump = robot_backends_to_yaml(parse(text));
