@@ -1,4 +1,5 @@
-// Mission YAML (config/mission.yaml's format) -> MissionConfig and the robots' backends.
+// Mission YAML (config/mission.yaml's format) -> MissionConfig, the robots' backends and
+// the UAV mission's keys.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -6,24 +7,43 @@
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/sim/robot_backends.hpp"
+#include "ferret/uav/uav_mission_config.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "fuzz_support.hpp"
+
+namespace {
+std::string uav_mission_dump(const ferret::UavMissionOptions& o) {
+  YAML::Emitter e;
+  e << YAML::BeginMap;
+  ferret::emit_uav_mission_options(e, o, true);
+  e << YAML::EndMap;
+  return e.c_str();
+}
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = ferret::fuzz::ScratchDir::instance().write("mission.yaml", data, size);
   std::optional<ferret::RobotBackends> backends;
+  ferret::UavMissionOptions uav;
   try {
     const ferret::MissionConfig config = ferret::load_mission_config(path);
     // What `ferret config --dump` does next with a config that loaded.
     (void)ferret::mission_config_to_yaml(config);
     backends = ferret::load_robot_backends(path);
+    uav.tether = config.tether;
+    (void)ferret::load_uav_mission_options(path, uav);
   } catch (const ferret::InputError&) {
     return 0;
   }
-  // The dump reads back to itself (outside the catch: a refusal here is a bug).
+  // The dumps read back to themselves (outside the catch: a refusal here is a bug).
   const std::string dump = ferret::robot_backends_to_yaml(*backends);
   const auto again =
       ferret::robot_backends_from_yaml(ferret::yaml::load_string(dump, "dump"), "dump");
   if (ferret::robot_backends_to_yaml(again) != dump) __builtin_trap();
+  const std::string uav_dump = uav_mission_dump(uav);
+  ferret::UavMissionOptions uav_again;
+  uav_again.tether = uav.tether;
+  (void)ferret::read_uav_mission_options(ferret::yaml::load_string(uav_dump, "dump"), "dump", uav_again);
+  if (uav_mission_dump(uav_again) != uav_dump) __builtin_trap();
   return 0;
 }

@@ -10,6 +10,7 @@
 #include "ferret/perception/camera_info.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/robot_backends.hpp"
+#include "ferret/uav/uav_mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {
@@ -151,9 +152,13 @@ CameraModel resolve_camera(const std::string& camera_yaml, const std::string& ro
 MissionConfig load_mission_or_defaults(const std::string& path) {
   if (path.empty()) return {};
   MissionConfig mission = load_mission_config(path);
-  // The backend sections too, although this command may not build a robot: a typo there
-  // is reported by the first command that reads the file, not by the robot at start-up.
+  // The backend sections and the UAV mission's keys too, although this command may not
+  // build a robot or fly: a typo there is reported by the first command that reads the
+  // file, not by the robot at start-up.
   (void)load_robot_backends(path);
+  UavMissionOptions uav;
+  uav.tether = mission.tether;
+  (void)load_uav_mission_options(path, uav);
   return mission;
 }
 

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -17,6 +18,7 @@
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/camera_summary.hpp"
 #include "ferret/sim/robot_backends.hpp"
+#include "ferret/uav/uav_mission_config.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -57,9 +59,13 @@ void run(const Options& o) {
   RobotBackends backends;
   if (!o.mission.empty()) mission_source = o.mission;
   else if (fs::is_regular_file("config/mission.yaml")) mission_source = "config/mission.yaml";
+  UavMissionOptions uav_mission;
+  std::set<std::string> uav_mission_given;
   if (mission_source != "(built-in defaults)") {
     mission = load_mission_config(mission_source);
     backends = load_robot_backends(mission_source);
+    uav_mission.tether = mission.tether;
+    uav_mission_given = load_uav_mission_options(mission_source, uav_mission);
   }
   const RobotDescription robot =
       load_robot_description(resolve_robot(o.robot, "miniugv.urdf"), mission);
@@ -92,6 +98,14 @@ void run(const Options& o) {
                  "provenance:\n" + indent(mission_provenance_to_yaml(mission)));
   text += "# backends: which implementation each hardware interface runs on (sim or hw)\n";
   text += "backends:\n" + indent(robot_backends_to_yaml(backends));
+  const bool search_area_given = uav_mission_given.count("search_area_m") > 0;
+  text += std::string("# the UAV mission's settings (the mission YAML's uav section takes these keys)") +
+          (search_area_given ? "" : "; the search area is the world's bounds less 1 m") + "\n";
+  YAML::Emitter uav_yaml;
+  uav_yaml << YAML::BeginMap;
+  emit_uav_mission_options(uav_yaml, uav_mission, search_area_given);
+  uav_yaml << YAML::EndMap;
+  text += "uav_mission:\n" + indent(std::string(uav_yaml.c_str()) + "\n");
   if (to_stdout) {
     std::cout << text;
   } else {

@@ -37,6 +37,7 @@
 #include "ferret/sim/tether_sim.hpp"
 #include "ferret/sim/time_series_plot.hpp"
 #include "ferret/sim/ugv_mission_log.hpp"
+#include "ferret/uav/uav_mission_config.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -47,7 +48,7 @@ namespace fs = std::filesystem;
 
 struct Options {
   std::string world, robot_uav, robot_ugv, mission, out, method = "cdos";
-  std::string no_landing_zone = "hover";
+  std::string no_landing_zone;  ///< empty: the mission YAML's uav.no_landing_zone (hover)
   std::string planner = "grid";
   std::uint64_t seed = 1;
   bool quiet = false;
@@ -270,7 +271,7 @@ std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition
 }
 
 void run(const Options& o) {
-  if (o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
+  if (!o.no_landing_zone.empty() && o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
     throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
   if (o.planner != "grid" && o.planner != "ompl") throw InputError("--planner", "", "grid or ompl", o.planner);
   if (!has_exploration_policy(o.method))
@@ -290,7 +291,10 @@ void run(const Options& o) {
 
   MissionRunSettings settings = mission_settings_for(uav, ugv, mission, *world.spec);
   settings.ugv.exploration.method = o.method;
-  settings.uav.no_landing_zone = o.no_landing_zone;
+  // The UAV mission's keys of the mission YAML over what the world set (the search area
+  // from its bounds); the command line's choice over both.
+  if (!o.mission.empty()) (void)load_uav_mission_options(o.mission, settings.uav);
+  if (!o.no_landing_zone.empty()) settings.uav.no_landing_zone = o.no_landing_zone;
   settings.ugv.ugv.explore.planner = o.planner;
   const WorldSpec& spec = *world.spec;
 
@@ -389,7 +393,7 @@ const CommandRegistration kMission{
       sub->add_option("--planner", o->planner,
                       "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM) (default: grid)");
       sub->add_option("--no-landing-zone", o->no_landing_zone,
-                      "No safe landing zone by an opening: hover (lower from a hover) or skip (default: hover)");
+                      "No safe landing zone by an opening: hover (lower from a hover) or skip (default: the mission YAML's uav.no_landing_zone, hover)");
       sub->add_option("-o,--out", o->out,
                       "Directory for report.json, aerial.png, tether.png, battery.png, spaces/*/, map.bt, mission.mcap (default: none, summary only)");
       sub->add_flag("-q,--quiet", o->quiet, "Print the summary only");

@@ -104,7 +104,7 @@ std::vector<MapReader> MapReader::child_list(std::string_view key) const {
   return out;
 }
 
-void MapReader::allow_only(std::initializer_list<std::string_view> allowed) const {
+void MapReader::allow_only(std::span<const std::string_view> allowed) const {
   std::vector<std::string> seen;
   for (const auto& entry : node_) {
     // YAML allows a list or a mapping as a key (`? [a, b]`); as<std::string> would

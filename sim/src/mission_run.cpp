@@ -118,6 +118,7 @@ MissionRunSettings mission_settings_for(const RobotDescription& uav, const Robot
   const double spool_mps = s.uav.winch_control.limits.max_speed_mps;
   s.ugv.exploration.robot.max_velocity_mps = std::min(s.ugv.exploration.robot.max_velocity_mps, 0.8 * spool_mps);
   s.uav.landing = LandingZoneDetector::Options::for_robot(uav, &mission);
+  s.uav.tether = mission.tether;  // (the world's run sets it again; validation needs it now)
   s.uav_max_speed_mps = uav.limits.max_velocity_mps;
   s.uav_max_accel_mps2 = uav.limits.max_acceleration_mps2;
   s.uav_max_yaw_rate_radps = uav.limits.max_yaw_rate_radps;

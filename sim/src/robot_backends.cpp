@@ -2,6 +2,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
+#include "ferret/uav/uav_mission_config.hpp"
 
 namespace ferret {
 
@@ -30,7 +31,8 @@ RobotBackends robot_backends_from_yaml(const YAML::Node& root, const std::string
     doc.fail("ugv", "a mapping with the miniUGV's backends (base)", "a key without a value");
   }
   if (const auto uav = doc.optional_child("uav")) {
-    uav->allow_only({"winch", "flight_controller"});
+    // The section also holds the UAV mission's keys (uav/uav_mission_config.hpp).
+    uav->allow_only(uav_section_keys());
     b.winch = tether::winch_config_from_yaml(uav->node()["winch"], source);
     b.flight_controller =
         flight_controller_config_from_yaml(uav->node()["flight_controller"], source);

@@ -128,6 +128,22 @@ TEST(ConfigCli, MissionFileFeedsTheLimits) {
   EXPECT_TRUE(contains(section(r.out, "motion_limits:"), "max_velocity_mps: 0.5\n")) << r.out;
 }
 
+TEST(ConfigCli, TheUavMissionSectionShowsTheFilesValuesAndTheDefaults) {
+  TempDir dir;
+  write_text(dir / "mission.yaml", "uav:\n  search_altitude_m: 6.5\n  release: hover\n");
+  const auto r = run_cli("config --dump --config '" + dir / "mission.yaml" + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string uav = section(r.out, "uav_mission:");
+  EXPECT_TRUE(contains(uav, "search_altitude_m: 6.5\n")) << r.out;
+  EXPECT_TRUE(contains(uav, "release: hover\n")) << r.out;
+  EXPECT_TRUE(contains(uav, "passes: 2\n")) << r.out;         // a default
+  EXPECT_FALSE(contains(uav, "search_area_m")) << r.out;     // the world's, not given
+  write_text(dir / "bad.yaml", "uav:\n  passes: 0\n");
+  const auto bad = run_cli("config --dump --config '" + dir / "bad.yaml" + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(contains(bad.err, "uav.passes")) << bad.err;
+}
+
 TEST(ConfigCli, OutputFileIsWrittenWholeOrNotAtAll) {
   TempDir dir;
   const auto ok = run_cli("config --dump -o '" + dir / "effective.yaml" + "'");

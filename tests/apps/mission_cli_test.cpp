@@ -39,6 +39,12 @@ TEST(MissionCli, ABadMissionFileExits2NamingTheField) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_THAT(r.err, HasSubstr("tether.total_length_m"));
   EXPECT_FALSE(fs::exists(out));
+  // The UAV mission's keys in the uav section are checked before anything runs.
+  std::ofstream(mission) << "uav:\n  release: parachute\n";
+  const auto u = run_cli("mission --mission " + mission.string() + " -o " + out.string());
+  EXPECT_EQ(u.exit_code, 2) << u.err;
+  EXPECT_THAT(u.err, HasSubstr("uav.release"));
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(MissionCli, AnUnknownChoiceExits2) {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "ferret/core/data_path.hpp"
+#include "ferret/uav/uav_mission_config.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -211,6 +212,32 @@ TEST(MissionRun, UnsafeGroundByAnOpeningHoversOrSkips) {
   ASSERT_TRUE(kiln);
   EXPECT_EQ(kiln->state, "skipped");
   EXPECT_LT(kiln->deployed_s, 0.0);
+}
+
+TEST(MissionRun, AHoverReleaseFromTheMissionYamlNeverLands) {
+  // uav.release: hover, as a team sets it for ground it knows is unsafe: no survey, no
+  // landing zone, the miniUGV lowered from a hover at both openings, the object still
+  // brought out and dropped.
+  const fs::path mission_yaml = fs::temp_directory_path() / "ferret_mission_hover_release.yaml";
+  std::ofstream(mission_yaml) << "uav:\n  release: hover\n";
+  const MissionConfig mission = load_mission_config(mission_yaml);
+  const RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), mission);
+  const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
+  const PlanningWorld world = load_planning_world(data_path("worlds/two_sites.yaml"));
+  MissionRunSettings s = mission_settings_for(uav, ugv, mission, *world.spec);
+  (void)load_uav_mission_options(mission_yaml, s.uav);
+  ASSERT_EQ(s.uav.release, "hover");
+  const MissionRunResult r = run_mission(world, uav, s, 1);
+  expect_safe(r, mission);
+  ASSERT_EQ(r.visits.size(), 2u);
+  for (const HiddenSpaceVisit& v : r.visits) {
+    EXPECT_EQ(v.state, "serviced") << v.marker_id << ": " << v.note;
+    EXPECT_FALSE(v.landed) << v.marker_id;
+    EXPECT_FALSE(v.landing_zone.has_value()) << v.marker_id;
+  }
+  EXPECT_EQ(r.objects_dropped, 1);
+  EXPECT_FALSE(std::any_of(r.transitions.begin(), r.transitions.end(),
+                           [](const Transition& t) { return t.to == "survey" && t.component == "uav"; }));
 }
 
 TEST(MissionRun, HoveringOnALowBatteryRecallsTheMiniUgvInTime) {

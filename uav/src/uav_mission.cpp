@@ -64,6 +64,7 @@ void UavMissionOptions::validate(const std::string& source) const {
   check_number(survey_standoff_m, NumberRange::non_negative(10.0, "m"), source, "uav.survey_standoff_m");
   if (survey_views < 1 || survey_views > 8)
     throw InputError(source, "uav.survey_views", "an integer in [1, 8]", std::to_string(survey_views));
+  if (release != "land" && release != "hover") throw InputError(source, "uav.release", "land or hover", release);
   if (no_landing_zone != "hover" && no_landing_zone != "skip")
     throw InputError(source, "uav.no_landing_zone", "hover or skip", no_landing_zone);
   positive(hover_standoff_m, "uav.hover_standoff_m", "m", 10.0);
@@ -74,6 +75,13 @@ void UavMissionOptions::validate(const std::string& source) const {
     throw InputError(source, "tether.entry_offset_m", "less than tether.total_length_m");
   if (hover_standoff_m >= tether.entry_offset_m)
     throw InputError(source, "uav.hover_standoff_m", "less than tether.entry_offset_m (l_0)");
+  if (const auto names = tether::tether_controller_names();
+      std::find(names.begin(), names.end(), winch_controller) == names.end())
+  {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : " or ") + n;
+    throw InputError(source, "uav.winch_controller", list, winch_controller);
+  }
   positive(retract_speed_mps, "uav.retract_speed_mps", "m/s", 10.0);
   positive(ugv_return_speed_mps, "uav.ugv_return_speed_mps", "m/s", 10.0);
   for (int i = 0; i < 2; ++i) check_number(drop_zone_W[i], NumberRange::closed(-1e5, 1e5, "m"), source, "uav.drop_zone_m");
@@ -361,6 +369,11 @@ void UavMission::choose_release(const std::string& why_no_zone) {
     v.note = why_no_zone;
     return resume_search("skipped marker " + std::to_string(v.marker_id) + ": " + why_no_zone);
   }
+  hover_over_opening(why_no_zone);
+}
+
+void UavMission::hover_over_opening(const std::string& why) {
+  HiddenSpaceVisit& v = current();
   // Hover where the winch is l_0 from the entry: out by hover_standoff, up by the rest.
   const OpeningEstimate& o = v.opening;
   const double out = o.entry_yaw_rad + std::numbers::pi;
@@ -368,13 +381,13 @@ void UavMission::choose_release(const std::string& why_no_zone) {
   release_W_ = {o.p_WE.x() + s * std::cos(out), o.p_WE.y() + s * std::sin(out),
                 o.p_WE.z() + std::sqrt(l0 * l0 - s * s) + options_.touchdown_height_m};
   v.landed = false;
-  v.note = why_no_zone + "; hovering";
+  v.note = why + "; hovering";
   if (!fly_to(release_W_, 1.0, false, o.entry_yaw_rad)) {
     v.state = "skipped";
-    v.note = why_no_zone + "; no flight to the hover point";
+    v.note = why + "; no flight to the hover point";
     return resume_search("skipped marker " + std::to_string(v.marker_id) + ": " + v.note);
   }
-  enter(UavMissionState::kLand, why_no_zone + ": hovering over the opening instead");
+  enter(UavMissionState::kLand, why + ": hovering over the opening");
 }
 
 void UavMission::tick() {
@@ -429,8 +442,12 @@ void UavMission::tick() {
       }
       // The survey frame is taken level and facing the opening, as planned for.
       if (follow(s) && settled(std::abs(std::remainder(s.yaw_rad - path_yaw_rad_.value_or(s.yaw_rad),
-                                                       2 * std::numbers::pi)) < 0.05))
+                                                       2 * std::numbers::pi)) < 0.05)) {
+        // Near the opening, facing it, with the nearest frames' estimate of it: a hover
+        // release needs no landing zone, so no survey.
+        if (options_.release == "hover") return hover_over_opening("uav.release is hover");
         enter(UavMissionState::kSurvey, "over the survey point");
+      }
       return;
 
     case UavMissionState::kSurvey: {

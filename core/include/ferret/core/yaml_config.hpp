@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -91,7 +92,11 @@ class MapReader {
 
   /// Throws InputError naming the first key not in `allowed`, or a key given
   /// twice: catches typos that would otherwise silently fall back to defaults.
-  void allow_only(std::initializer_list<std::string_view> allowed) const;
+  void allow_only(std::initializer_list<std::string_view> allowed) const {
+    allow_only(std::span<const std::string_view>(allowed.begin(), allowed.size()));
+  }
+  /// The same for a list built at run time (a section whose keys two modules read).
+  void allow_only(std::span<const std::string_view> allowed) const;
 
   /// Throws InputError for `key` with the given expectation.
   [[noreturn]] void fail(std::string_view key, const std::string& expected,

@@ -87,15 +87,18 @@ struct UavMissionOptions {
   double survey_height_m = 3.5;   ///< above the opening, for the depth frames
   double survey_standoff_m = 1.0; ///< out from the opening, horizontally
   int survey_views = 3;           ///< survey points tried (round the opening) before giving up
+  /// How the miniUGV goes down: "land" (beside the opening, on a safe zone the depth
+  /// frames show within l_0 of it; none: no_landing_zone decides) or "hover" (always from
+  /// a hover over the opening, no survey: for ground the team knows is unsafe).
+  std::string release = "land";
   /// No safe landing zone within reach: "hover" (lower from a hover over the opening's
   /// standoff point) or "skip" (leave the hidden space and search on).
   std::string no_landing_zone = "hover";
-  double hover_height_m = 1.5;    ///< above the opening's floor
   double hover_standoff_m = 0.6;  ///< out from the opening
   double touchdown_height_m = 0.25; ///< the winch above the ground when landed (Z_W)
   TetherParams tether;            ///< L and l_0
   tether::TouchdownGuard::Options touchdown;
-  std::string winch_controller = "mpc";
+  std::string winch_controller = "mpc";  ///< tether::tether_controller_names()
   /// The winch's control (its slack reference is raised to 10 cm by default: the
   /// miniUGV's tether model, from its own map's corners, differs from the real tether
   /// by a few centimetres, and a taut line has no room for that).
@@ -213,6 +216,7 @@ class UavMission {
   void go_home(const std::string& reason);
   void start_survey_view();
   void choose_release(const std::string& why_no_zone);
+  void hover_over_opening(const std::string& why);
   void resume_search(const std::string& reason);
   void winch_idle();
   [[nodiscard]] HiddenSpaceVisit& current() { return visits_.at(static_cast<std::size_t>(current_)); }

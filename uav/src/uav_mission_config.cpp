@@ -1,0 +1,123 @@
+#include "ferret/uav/uav_mission_config.hpp"
+
+#include <array>
+#include <utility>
+
+#include "ferret/core/yaml_config.hpp"
+#include "ferret/core/yaml_emit.hpp"
+
+namespace ferret {
+namespace {
+
+using Options = UavMissionOptions;
+
+// The keys by type, each once; uav_mission_keys() is their concatenation in the order
+// the dump prints them. Ranges are UavMissionOptions::validate's (one place).
+constexpr std::array<std::pair<std::string_view, double Options::*>, 25> kNumbers{{
+    {"search_altitude_m", &Options::search_altitude_m},
+    {"search_speed_mps", &Options::search_speed_mps},
+    {"cruise_speed_mps", &Options::cruise_speed_mps},
+    {"leg_spacing_m", &Options::leg_spacing_m},
+    {"frame_period_s", &Options::frame_period_s},
+    {"waypoint_tolerance_m", &Options::waypoint_tolerance_m},
+    {"survey_height_m", &Options::survey_height_m},
+    {"survey_standoff_m", &Options::survey_standoff_m},
+    {"hover_standoff_m", &Options::hover_standoff_m},
+    {"touchdown_height_m", &Options::touchdown_height_m},
+    {"retract_speed_mps", &Options::retract_speed_mps},
+    {"ugv_return_speed_mps", &Options::ugv_return_speed_mps},
+    {"drop_altitude_m", &Options::drop_altitude_m},
+    {"drop_time_s", &Options::drop_time_s},
+    {"flight_endurance_s", &Options::flight_endurance_s},
+    {"battery_reserve_fraction", &Options::battery_reserve_fraction},
+    {"takeoff_timeout_s", &Options::takeoff_timeout_s},
+    {"approach_timeout_s", &Options::approach_timeout_s},
+    {"survey_timeout_s", &Options::survey_timeout_s},
+    {"land_timeout_s", &Options::land_timeout_s},
+    {"lower_timeout_s", &Options::lower_timeout_s},
+    {"ugv_ops_timeout_s", &Options::ugv_ops_timeout_s},
+    {"retract_timeout_s", &Options::retract_timeout_s},
+    {"deliver_timeout_s", &Options::deliver_timeout_s},
+    {"return_timeout_s", &Options::return_timeout_s},
+}};
+constexpr std::array<std::pair<std::string_view, int Options::*>, 3> kIntegers{{
+    {"passes", &Options::passes},
+    {"confirm_detections", &Options::confirm_detections},
+    {"survey_views", &Options::survey_views},
+}};
+constexpr std::array<std::pair<std::string_view, std::string Options::*>, 3> kChoices{{
+    {"release", &Options::release},
+    {"no_landing_zone", &Options::no_landing_zone},
+    {"winch_controller", &Options::winch_controller},
+}};
+constexpr std::string_view kSearchArea = "search_area_m";
+constexpr std::array<std::string_view, 2> kBackendKeys{"winch", "flight_controller"};
+
+template <std::size_t N>
+constexpr auto all_keys(bool with_backends) {
+  std::array<std::string_view, N> out{};
+  std::size_t i = 0;
+  if (with_backends)
+    for (const auto k : kBackendKeys) out[i++] = k;
+  out[i++] = kSearchArea;
+  for (const auto& [k, m] : kNumbers) out[i++] = k;
+  for (const auto& [k, m] : kIntegers) out[i++] = k;
+  for (const auto& [k, m] : kChoices) out[i++] = k;
+  return out;
+}
+constexpr std::size_t kMissionKeyCount = 1 + kNumbers.size() + kIntegers.size() + kChoices.size();
+constexpr auto kMissionKeys = all_keys<kMissionKeyCount>(false);
+constexpr auto kSectionKeys = all_keys<kMissionKeyCount + kBackendKeys.size()>(true);
+
+}  // namespace
+
+std::span<const std::string_view> uav_mission_keys() { return kMissionKeys; }
+std::span<const std::string_view> uav_section_keys() { return kSectionKeys; }
+
+std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std::string& source,
+                                               UavMissionOptions& o) {
+  std::set<std::string> given;
+  if (!node.IsDefined() || node.IsNull()) return given;
+  const yaml::MapReader r(node, source, "uav");
+  r.allow_only(uav_section_keys());
+  const auto note = [&](std::string_view key) {
+    if (r.has(key)) given.insert(std::string(key));
+  };
+  if (r.has(kSearchArea)) {
+    const std::vector<double> a = r.get_list<double>(kSearchArea, 4);
+    o.search_area_m = {a[0], a[1], a[2], a[3]};
+    note(kSearchArea);
+  } else if (r.given_empty(kSearchArea)) {
+    r.fail(kSearchArea, "a list of 4 values", "a key without a value");
+  }
+  // get_or refuses `key:` without a value, and parses numbers finite (NaN, inf refused).
+  const auto read = [&](const auto& table) {
+    for (const auto& [key, member] : table) {
+      o.*member = r.get_or(key, o.*member);
+      note(key);
+    }
+  };
+  read(kNumbers);
+  read(kIntegers);
+  read(kChoices);
+  o.validate(source);
+  return given;
+}
+
+std::set<std::string> load_uav_mission_options(const std::filesystem::path& path, UavMissionOptions& o) {
+  const YAML::Node root = yaml::load_file(path);
+  // The document's shape is mission_config_from_yaml's to check; a section is a mapping.
+  if (!root.IsMap()) return {};
+  return read_uav_mission_options(root["uav"], path.string(), o);
+}
+
+void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& o, bool with_search_area) {
+  if (with_search_area)
+    internal::emit_key_numbers(e, kSearchArea.data(),
+                               std::array{o.search_area_m[0], o.search_area_m[1], o.search_area_m[2], o.search_area_m[3]});
+  for (const auto& [key, member] : kNumbers) internal::emit_key_number(e, key.data(), o.*member);
+  for (const auto& [key, member] : kIntegers) e << YAML::Key << key.data() << YAML::Value << o.*member;
+  for (const auto& [key, member] : kChoices) e << YAML::Key << key.data() << YAML::Value << o.*member;
+}
+
+}  // namespace ferret
