@@ -32,6 +32,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     backends = ferret::load_robot_backends(path);
     uav.tether = config.tether;
     (void)ferret::load_uav_mission_options(path, uav);
+    // A file without a uav section leaves the options unchecked; `ferret mission` checks
+    // them before it flies (l_0 = 0 is a tether the miniUGV's commands take, the UAV's
+    // hover release not: regression winch_at_the_entry_no_uav_section.yaml).
+    uav.validate(path.string());
   } catch (const ferret::InputError&) {
     return 0;
   }

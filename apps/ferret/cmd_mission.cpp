@@ -295,6 +295,9 @@ void run(const Options& o) {
   // from its bounds); the command line's choice over both.
   if (!o.mission.empty()) (void)load_uav_mission_options(o.mission, settings.uav);
   if (!o.no_landing_zone.empty()) settings.uav.no_landing_zone = o.no_landing_zone;
+  // Checked here too, so that a value the miniUGV's commands accept but the UAV's mission
+  // does not (l_0 = 0: no hover release) is named in the mission file.
+  settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
   settings.ugv.ugv.explore.planner = o.planner;
   const WorldSpec& spec = *world.spec;
 

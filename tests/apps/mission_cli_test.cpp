@@ -45,6 +45,13 @@ TEST(MissionCli, ABadMissionFileExits2NamingTheField) {
   EXPECT_EQ(u.exit_code, 2) << u.err;
   EXPECT_THAT(u.err, HasSubstr("uav.release"));
   EXPECT_FALSE(fs::exists(out));
+  // A tether the miniUGV's commands take but the UAV's mission cannot fly (the winch at
+  // the entry leaves no hover release), named in the file that set it.
+  std::ofstream(mission) << "tether: {total_length_m: 15, entry_offset_m: 0}\n";
+  const auto t = run_cli("mission --mission " + mission.string() + " -o " + out.string());
+  EXPECT_EQ(t.exit_code, 2) << t.err;
+  EXPECT_THAT(t.err, HasSubstr(mission.string() + ": tether.entry_offset_m"));
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(MissionCli, AnUnknownChoiceExits2) {

@@ -28,8 +28,8 @@ namespace ferret {
 /// the mission's. The one list both readers of the section check it against.
 [[nodiscard]] std::span<const std::string_view> uav_section_keys();
 
-/// Reads the mission's keys of the section `uav` (`node` may be undefined or null) over
-/// `options`, then validates the result. Keys that are not the mission's (the backends:
+/// Reads the mission's keys of the section `uav` over `options`, then validates the
+/// result. An undefined or null `node` (no section) changes and checks nothing. Keys that are not the mission's (the backends:
 /// winch, flight_controller) are left to their readers. Returns the keys the file set.
 /// Throws InputError naming the file and the field (`uav.KEY`) for a wrong type, a value
 /// out of range or an unknown choice.
