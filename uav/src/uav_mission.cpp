@@ -76,8 +76,7 @@ void UavMissionOptions::validate(const std::string& source) const {
   if (hover_standoff_m >= tether.entry_offset_m)
     throw InputError(source, "uav.hover_standoff_m", "less than tether.entry_offset_m (l_0)");
   if (const auto names = tether::tether_controller_names();
-      std::find(names.begin(), names.end(), winch_controller) == names.end())
-  {
+      std::find(names.begin(), names.end(), winch_controller) == names.end()) {
     std::string list;
     for (const std::string& n : names) list += (list.empty() ? "" : " or ") + n;
     throw InputError(source, "uav.winch_controller", list, winch_controller);
