@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
+#include <utility>
+#include <vector>
 #include <string>
 
 #include "ferret/core/data_path.hpp"
@@ -101,6 +104,9 @@ struct Rig {
   TransitionLog log;
   int plans = 0;
   bool plans_fail = false;
+  /// Every plan asked for, and the segments the planner does not pass straight.
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> calls;
+  std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&)> blocked;
 
   static CameraModel model(const char* name) {
     const RobotDescription m100 = load_robot_description(data_path("models/m100.urdf"), MissionConfig{});
@@ -112,7 +118,9 @@ struct Rig {
     FlightPlanner planner = [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                    bool) -> std::optional<std::vector<Eigen::Vector3d>> {
       ++plans;
+      calls.emplace_back(a, b);
       if (plans_fail) return std::nullopt;
+      if (blocked && blocked(a, b)) return std::vector<Eigen::Vector3d>{a, 0.5 * (a + b) + Eigen::Vector3d(0, 1, 0), b};
       return std::vector<Eigen::Vector3d>{a, b};
     };
     return std::make_unique<UavMission>(UavMission::Hardware{flight, cameras, winch, ugv}, clock, planner, marker,
@@ -198,6 +206,51 @@ TEST(UavMission, TheBatteryCallsTheReturnBeforeThePatternEnds) {
                               [](const Transition& x) { return x.to == "return_home"; });
   ASSERT_NE(t, rig.log.all().end());
   EXPECT_NE(t->reason.find("battery"), std::string::npos);
+}
+
+// The battery calls the UAV home in the middle of a leg, at search speed: the way home
+// is planned from where it stops, after a check of the braking line.
+TEST(UavMission, APathPlannedInFlightStartsWhereTheUavStops) {
+  for (const bool braking_line_clear : {true, false}) {
+    SCOPED_TRACE(braking_line_clear ? "braking line clear" : "braking line blocked");
+    Rig rig;
+    rig.flight.drain_per_s = 1.0 / 60.0;
+    UavMissionOptions o = small_area();
+    o.flight_endurance_s = 60.0;
+    auto m = rig.mission(o);
+    std::optional<FlightState> at_call;
+    std::size_t calls_before = 0;
+    Eigen::Vector3d corner = Eigen::Vector3d::Zero();
+    m->start();
+    for (int k = 0; k < 30000 && !m->done(); ++k) {
+      rig.clock.advance(0.02);
+      const FlightState before = rig.flight.state();
+      const std::size_t n = rig.calls.size();
+      if (!braking_line_clear && !rig.blocked)
+        rig.blocked = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (b - a).norm() < 3.0 && (b - a).norm() > 2.0; };
+      m->tick();
+      if (!at_call && m->state() == UavMissionState::kReturnHome) {
+        at_call = before;
+        calls_before = n;
+        // The leg it was on ends at the pattern's next waypoint.
+        corner = m->pattern()[m->pattern_done()];
+      }
+      rig.flight.step(0.02);
+    }
+    ASSERT_TRUE(at_call);
+    ASSERT_GT(at_call->v_W.norm(), 2.9);  // mid-leg at 3 m/s
+    // 3 m/s braking at 1.6 m/s^2: 9 / 3.2 = 2.8125 m on along the way it flew.
+    const Eigen::Vector3d stop = at_call->p_W + at_call->v_W.normalized() * 2.8125;
+    ASSERT_GE(rig.calls.size(), calls_before + 2);
+    EXPECT_LT((rig.calls[calls_before].first - at_call->p_W).norm(), 1e-9);
+    EXPECT_LT((rig.calls[calls_before].second - stop).norm(), 1e-6);
+    const Eigen::Vector3d start = rig.calls[calls_before + 1].first;
+    if (braking_line_clear)
+      EXPECT_LT((start - stop).norm(), 1e-6);
+    else
+      EXPECT_LT((start - corner).norm(), 1e-6) << start.transpose() << " vs corner " << corner.transpose();
+    EXPECT_EQ(m->outcome(), UavMissionOutcome::kFlightBudget);
+  }
 }
 
 TEST(UavMission, LegsWithoutAPlanAreSkippedAndTheMissionStillEnds) {

@@ -55,7 +55,8 @@ double FeedForwardPid::step(const TetherObservation& obs) {
   lo = std::max(lo, last_command_mps_ - amax * dt);
   if (lo > hi)
     lo = hi = std::clamp(0.0, last_command_mps_ - amax * dt, last_command_mps_ + amax * dt);
-  const double command = std::clamp(unsaturated, lo, hi);
+  const double command = c.reel_in_guard.limit(std::clamp(unsaturated, lo, hi), slack - c.margin_m(obs),
+                                               required_length_rate_mps(*model_, now), c.limits, lo, hi);
   // Conditional integration: stop integrating while the error pushes further into saturation.
   const bool saturated_up = unsaturated > hi && error > 0.0;
   const bool saturated_down = unsaturated < lo && error < 0.0;

@@ -221,6 +221,13 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     const double step = amax * ctl.control_period_s;
     command = std::clamp(0.0, last_command_mps_ - step, last_command_mps_ + step);
   }
+  if (ctl.reel_in_guard.on()) {
+    const double step = amax * ctl.control_period_s;
+    const double hi = std::min({vmax, last_command_mps_ + step,
+                                std::sqrt(2.0 * amax * std::max(0.0, ctl.limits.total_length_m - l0))});
+    command = ctl.reel_in_guard.limit(command, slack - margin, required_length_rate_mps(*model_, now), ctl.limits,
+                                      last_command_mps_ - step, hi);
+  }
   last_command_mps_ = command;
   return command;
 }

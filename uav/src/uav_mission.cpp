@@ -58,6 +58,7 @@ void UavMissionOptions::validate(const std::string& source) const {
   if (passes < 1 || passes > 2) throw InputError(source, "uav.passes", "1 or 2", std::to_string(passes));
   positive(frame_period_s, "uav.frame_period_s", "s", 60.0);
   positive(waypoint_tolerance_m, "uav.waypoint_tolerance_m", "m", 10.0);
+  positive(braking_accel_mps2, "uav.braking_accel_mps2", "m/s^2", 50.0);
   if (confirm_detections < 1 || confirm_detections > 100)
     throw InputError(source, "uav.confirm_detections", "an integer in [1, 100]", std::to_string(confirm_detections));
   positive(survey_height_m, "uav.survey_height_m", "m", 10.0);
@@ -222,7 +223,21 @@ void UavMission::stop(const std::string& reason) {
 bool UavMission::fly_to(const Eigen::Vector3d& goal, double speed_mps, bool carrying,
                         std::optional<double> yaw_rad) {
   const FlightState s = hw_.flight.state();
-  auto path = planner_(s.p_W, goal, carrying);
+  // A new path starts where the UAV comes to a stop, not where it is: the planner checks
+  // the way from its start, and a UAV at 3 m/s still covers two metres braking along the
+  // way it was flying (which went round what lay ahead). The braking line is checked too;
+  // when it is not clear, the new path starts at the old one's next corner, reached
+  // along a segment that was checked.
+  Eigen::Vector3d from = s.p_W;
+  if (const double v = s.v_W.norm(); v > 0.3) {
+    const Eigen::Vector3d stop = s.p_W + s.v_W * (v / (2.0 * options_.braking_accel_mps2));
+    const auto brake = planner_(s.p_W, stop, carrying);
+    if (brake && brake->size() == 2)
+      from = stop;
+    else if (!path_.empty())
+      from = path_[std::min(path_next_, path_.size() - 1)];
+  }
+  auto path = planner_(from, goal, carrying);
   if (!path || path->empty()) {
     ++plans_failed_;
     path_.clear();

@@ -13,13 +13,14 @@ using Options = UavMissionOptions;
 
 // The keys by type, each once; uav_mission_keys() is their concatenation in the order
 // the dump prints them. Ranges are UavMissionOptions::validate's (one place).
-constexpr std::array<std::pair<std::string_view, double Options::*>, 25> kNumbers{{
+constexpr std::array<std::pair<std::string_view, double Options::*>, 26> kNumbers{{
     {"search_altitude_m", &Options::search_altitude_m},
     {"search_speed_mps", &Options::search_speed_mps},
     {"cruise_speed_mps", &Options::cruise_speed_mps},
     {"leg_spacing_m", &Options::leg_spacing_m},
     {"frame_period_s", &Options::frame_period_s},
     {"waypoint_tolerance_m", &Options::waypoint_tolerance_m},
+    {"braking_accel_mps2", &Options::braking_accel_mps2},
     {"survey_height_m", &Options::survey_height_m},
     {"survey_standoff_m", &Options::survey_standoff_m},
     {"hover_standoff_m", &Options::hover_standoff_m},

@@ -78,6 +78,9 @@ struct UavMissionOptions {
   int passes = 2;                ///< 1: legs along x; 2: then legs along y
   double frame_period_s = 0.5;   ///< marker frames while searching
   double waypoint_tolerance_m = 0.4;
+  /// The deceleration the flight controller stops with (0.8 of the M100 URDF's 2 m/s^2):
+  /// where a new path starts when one is planned in flight.
+  double braking_accel_mps2 = 1.6;
   /// The markers the team placed: where each one's opening lies in its frame.
   std::vector<OpeningInMarker> openings;
   MarkerDetectorOptions marker;
@@ -101,11 +104,13 @@ struct UavMissionOptions {
   std::string winch_controller = "mpc";  ///< tether::tether_controller_names()
   /// The winch's control (its slack reference is raised to 10 cm by default: the
   /// miniUGV's tether model, from its own map's corners, differs from the real tether
-  /// by a few centimetres, and a taut line has no room for that).
+  /// by a few centimetres, and a taut line has no room for that), and the reel-in guard
+  /// on for a miniUGV held to 0.8 of the spool's speed (the mission sets its real limits).
   tether::TautControlOptions winch_control = default_winch_control();
   [[nodiscard]] static tether::TautControlOptions default_winch_control() {
     tether::TautControlOptions o;
     o.slack_reference_m = 0.10;
+    o.reel_in_guard.ugv_speed_mps = 0.8 * o.limits.max_speed_mps;
     return o;
   }
   double retract_speed_mps = 0.4;
