@@ -351,14 +351,17 @@ void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_marker
   bin(solids, solid_bins);
   bin(marks, mark_bins);
 
+  // Row by row across a band of tiles (not tile by tile): the per-pixel tables and
+  // buffers are then read and written in order, which the cache prefetches; tile by
+  // tile touched 16 rows' worth of streams at once and waited on memory.
   for_each_interleaved(rays.tiles_y, [&](int ty) {
-    for (int tx = 0; tx < rays.tiles_x; ++tx) {
-      const std::size_t k = static_cast<std::size_t>(ty) * rays.tiles_x + tx;
-      const auto& sb = solid_bins[k];
-      const auto& mb = mark_bins[k];
-      const int u1 = std::min(w, (tx + 1) * RayTable::kTile);
-      const int v1 = std::min(h, (ty + 1) * RayTable::kTile);
-      for (int v = ty * RayTable::kTile; v < v1; ++v)
+    const int v1 = std::min(h, (ty + 1) * RayTable::kTile);
+    for (int v = ty * RayTable::kTile; v < v1; ++v)
+      for (int tx = 0; tx < rays.tiles_x; ++tx) {
+        const std::size_t k = static_cast<std::size_t>(ty) * rays.tiles_x + tx;
+        const auto& sb = solid_bins[k];
+        const auto& mb = mark_bins[k];
+        const int u1 = std::min(w, (tx + 1) * RayTable::kTile);
         for (int u = tx * RayTable::kTile; u < u1; ++u) {
           const std::size_t i = static_cast<std::size_t>(v) * w + u;
           const double x = rays.x[i], y = rays.y[i];
