@@ -7,24 +7,35 @@ namespace ferret {
 namespace {
 
 // Separable min (erode) or max (dilate) over the square; in-grid cells only (so the
-// outside counts as set for the min, unset for the max).
+// outside counts as set for the min, unset for the max). On 0/1 masks both are counts
+// over a sliding window: the min is set when every in-grid cell of it is, the max when
+// any is. O(1) a cell whatever r (a decision cycle opens the whole map).
 std::vector<std::uint8_t> filter(const std::vector<std::uint8_t>& in, int w, int h, int r, bool erode) {
   std::vector<std::uint8_t> rows(in.size()), out(in.size());
   const auto at = [w](int i, int j) { return static_cast<std::size_t>(j) * w + i; };
-  for (int j = 0; j < h; ++j)
+  const auto decide = [erode](int count, int cells) -> std::uint8_t {
+    return erode ? count == cells : count > 0;
+  };
+  std::vector<int> prefix(static_cast<std::size_t>(w) + 1);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) prefix[i + 1] = prefix[i] + in[at(i, j)];
     for (int i = 0; i < w; ++i) {
-      std::uint8_t v = erode ? 1 : 0;
-      for (int k = std::max(0, i - r); k <= std::min(w - 1, i + r); ++k)
-        v = erode ? (v & in[at(k, j)]) : (v | in[at(k, j)]);
-      rows[at(i, j)] = v;
+      const int lo = std::max(0, i - r), hi = std::min(w - 1, i + r);
+      rows[at(i, j)] = decide(prefix[hi + 1] - prefix[lo], hi - lo + 1);
     }
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      std::uint8_t v = erode ? 1 : 0;
-      for (int k = std::max(0, j - r); k <= std::min(h - 1, j + r); ++k)
-        v = erode ? (v & rows[at(i, k)]) : (v | rows[at(i, k)]);
-      out[at(i, j)] = v;
-    }
+  }
+  // Columns: a running sum of each column over rows [j - r, j + r].
+  std::vector<int> sum(static_cast<std::size_t>(w), 0);
+  for (int k = 0; k <= std::min(h - 1, r); ++k)
+    for (int i = 0; i < w; ++i) sum[i] += rows[at(i, k)];
+  for (int j = 0; j < h; ++j) {
+    const int lo = std::max(0, j - r), hi = std::min(h - 1, j + r);
+    for (int i = 0; i < w; ++i) out[at(i, j)] = decide(sum[i], hi - lo + 1);
+    if (j + r + 1 < h)
+      for (int i = 0; i < w; ++i) sum[i] += rows[at(i, j + r + 1)];
+    if (j - r >= 0)
+      for (int i = 0; i < w; ++i) sum[i] -= rows[at(i, j - r)];
+  }
   return out;
 }
 

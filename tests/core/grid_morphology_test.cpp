@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace ferret {
@@ -36,6 +38,47 @@ TEST(GridMorphology, TheBorderDoesNotShaveARegionOffAndRadiusZeroChangesNothing)
   set(expected, 0, 0, 1, 1);
   EXPECT_EQ(open_square(m, kW, kH, 1), expected);
   EXPECT_EQ(open_square(m, kW, kH, 0), m);
+}
+
+// The opening by its definition, cell by cell: a cell stays when some r-square of
+// in-grid cells (the outside counting as set) that holds it is all set.
+std::vector<std::uint8_t> open_by_definition(const std::vector<std::uint8_t>& m, int w, int h, int r) {
+  const auto set_at = [&](int i, int j) { return i < 0 || j < 0 || i >= w || j >= h || m[static_cast<std::size_t>(j) * w + i] != 0; };
+  std::vector<std::uint8_t> out(m.size(), 0);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      if (!set_at(i, j)) continue;
+      bool kept = false;
+      for (int cj = j - r; cj <= j + r && !kept; ++cj)
+        for (int ci = i - r; ci <= i + r && !kept; ++ci) {
+          if (ci < 0 || cj < 0 || ci >= w || cj >= h) continue;  // squares centred in the grid
+          bool full = true;
+          for (int y = cj - r; y <= cj + r && full; ++y)
+            for (int x = ci - r; x <= ci + r && full; ++x) full = set_at(x, y);
+          kept = full;
+        }
+      out[static_cast<std::size_t>(j) * w + i] = kept;
+    }
+  return out;
+}
+
+TEST(GridMorphology, RandomMasksOpenAsTheDefinitionSays) {
+  std::uint64_t state = 12345;
+  const auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<std::uint32_t>(state >> 33);
+  };
+  for (const auto& [w, h] : {std::pair{17, 9}, std::pair{5, 23}, std::pair{1, 1}, std::pair{30, 30}}) {
+    for (int trial = 0; trial < 6; ++trial) {
+      std::vector<std::uint8_t> m(static_cast<std::size_t>(w) * h);
+      const std::uint32_t density = 40 + 10 * static_cast<std::uint32_t>(trial);  // percent set
+      for (auto& c : m) c = static_cast<std::uint8_t>(next() % 100 < density ? 1 + next() % 3 : 0);
+      for (const int r : {0, 1, 2, 4, 40}) {
+        if (r > 4 && w * h > 300) continue;  // the definition is slow; 40 > either side already
+        EXPECT_EQ(open_square(m, w, h, r), open_by_definition(m, w, h, r)) << w << "x" << h << " r " << r << " trial " << trial;
+      }
+    }
+  }
 }
 
 }  // namespace
