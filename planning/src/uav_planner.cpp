@@ -14,6 +14,7 @@
 
 #include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/ompl_setup.hpp"
+#include "ompl_termination.hpp"
 
 namespace ob = ompl::base;
 
@@ -113,14 +114,21 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
   const auto t0 = std::chrono::steady_clock::now();
   seed_ompl_once(options_.seed);
   UavPlan out;
-  auto fail = [&](std::string why) {
+  auto fail = [&](std::string why, PlanFailure failure) {
     out.status = std::move(why);
+    out.failure = failure;
     out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
   };
-  for (const auto& [w, name] : {std::pair{start, "start"}, std::pair{goal, "goal"}}) {
-    if (!options_.geofence.contains(w.position())) return fail(std::string(name) + " outside the geofence");
-    if (checker_->in_collision(w.pose())) return fail(std::string(name) + " in collision");
+  for (const bool is_start : {true, false}) {
+    const Waypoint& w = is_start ? start : goal;
+    const std::string name = is_start ? "start" : "goal";
+    if (!options_.geofence.contains(w.position()))
+      return fail(name + " outside the geofence",
+                  is_start ? PlanFailure::kStartOutside : PlanFailure::kGoalOutside);
+    if (checker_->in_collision(w.pose()))
+      return fail(name + " in collision",
+                  is_start ? PlanFailure::kStartInvalid : PlanFailure::kGoalInvalid);
   }
   auto si = space_information();
   auto pdef = std::make_shared<ob::ProblemDefinition>(si);
@@ -133,8 +141,12 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
     planner->params().setParam("range", std::to_string(options_.range_m));
   planner->setProblemDefinition(pdef);
   planner->setup();
-  const ob::PlannerStatus status = planner->solve(ob::timedPlannerTerminationCondition(options_.time_limit_s));
-  if (status != ob::PlannerStatus::EXACT_SOLUTION) return fail("no path found within the time limit");
+  const ob::PlannerStatus status = planner->solve(internal::termination(options_.time_limit_s, options_.cancelled));
+  if (status != ob::PlannerStatus::EXACT_SOLUTION) {
+    if (options_.cancelled && options_.cancelled())
+      return fail("cancelled before a path was found", PlanFailure::kCancelled);
+    return fail("no path found within the time limit", PlanFailure::kTimeout);
+  }
   auto& path = *pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
   // Simplify on a count of rounds, not on time (PathSimplifier::simplify stops on a
   // clock, so a loaded machine would return another path for the same seed). Each
@@ -157,7 +169,7 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
   for (std::size_t k = 1; k < states.size(); ++k) {
     if (!options_.geofence.contains(states[k].position()) ||
         first_collision(*checker_, states[k - 1], states[k], options_.resolution, options_.final_check_fcl_only))
-      return fail("final path failed exact validation");
+      return fail("final path failed exact validation", PlanFailure::kNoPath);
   }
   out.solved = true;
   out.status = "solved";

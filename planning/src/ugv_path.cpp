@@ -69,8 +69,10 @@ HiddenSpaceFrame request_space(const PlanningWorld& world, const UgvPathRequest&
 
 }  // namespace
 
-UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& request) {
-  const UgvPathRequest& r = request;
+namespace {
+
+// The request's own fields: poses, path driven, time limit; and the tether it gives.
+TetherParams checked_tether(const UgvPathRequest& r) {
   check_pose(r.start, "start");
   check_pose(r.goal, "goal");
   for (const Eigen::Vector2d& p : r.driven)
@@ -86,13 +88,23 @@ UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& re
                        fmt::format("{}", *r.tether_budget_m));
     tether.total_length_m = tether.entry_offset_m + *r.tether_budget_m;
   }
-  const HiddenSpaceFrame space = request_space(world, r);
-  const LoadedPlanRobot model =
-      load_plan_robot(PlanRobot::kUgv, r.robot, r.mission, 0.0, kSource, "robot");
+  return tether;
+}
 
-  const auto map = [&] {
+}  // namespace
+
+HiddenSpaceFrame ugv_request_space(const PlanningWorld& world, const UgvPathRequest& request) {
+  return request_space(world, request);
+}
+
+UgvPathSetup prepare_ugv_path(const PlanningWorld& world, const UgvPathRequest& request,
+                              const HiddenSpaceFrame& space) {
+  UgvPathSetup setup;
+  setup.space = space;
+  setup.model = load_plan_robot(PlanRobot::kUgv, request.robot, request.mission, 0.0, kSource, "robot");
+  setup.map = [&] {
     try {
-      return ugv_collision_map(*world.tree, space, model.ugv);
+      return ugv_collision_map(*world.tree, space, setup.model.ugv);
     } catch (const InputError& e) {
       if (e.source() != "map") throw;
       throw InputError(kSource, "bounds", e.expected(),
@@ -100,15 +112,32 @@ UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& re
                                    space.hi_m.x(), space.hi_m.y()));
     }
   }();
+  setup.corners = tether_corners_from_map(*setup.map, space, setup.model.ugv);
+  return setup;
+}
+
+UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& request) {
+  (void)checked_tether(request);  // bad poses are named before the space is looked for
+  const HiddenSpaceFrame space = request_space(world, request);
+  return plan_ugv_path(world, request, prepare_ugv_path(world, request, space));
+}
+
+UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& request,
+                            const UgvPathSetup& setup) {
+  const UgvPathRequest& r = request;
+  const TetherParams tether = checked_tether(r);
+  const HiddenSpaceFrame& space = setup.space;
+  const LoadedPlanRobot& model = setup.model;
   UgvPlannerOptions opt;
   opt.shape = model.shape;
   opt.time_limit_s = r.time_limit_s;
   opt.seed = r.seed;
+  opt.cancelled = r.cancelled;
   // The robot's limits: a URDF's wheel joints cap the mission's speed.
   opt.max_velocity_mps = model.limits.max_velocity_mps;
   opt.max_yaw_rate_radps = model.limits.max_yaw_rate_radps;
   opt.max_acceleration_mps2 = model.limits.max_acceleration_mps2;
-  UgvPlanner planner(map, space, model.ugv, opt);
+  UgvPlanner planner(setup.map, space, model.ugv, opt, setup.corners);
   UgvPlanRequest req;
   req.start = r.start;
   req.goal = r.goal;
@@ -120,6 +149,7 @@ UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& re
   UgvPathResult out;
   out.solved = found.solved;
   out.status = found.status;
+  out.failure = found.failure;
   out.planning_time_s = found.planning_time_s;
   out.final_wraps = found.final_wraps;
   out.tether_budget_m = tether.total_length_m - tether.entry_offset_m;

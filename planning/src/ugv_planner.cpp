@@ -12,6 +12,7 @@
 
 #include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/tethered_rrt.hpp"
+#include "ompl_termination.hpp"
 
 namespace ob = ompl::base;
 
@@ -105,6 +106,14 @@ UgvPlanner::UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpac
   corners_ = tether_corners_from_map(*map_, space_, ugv_);
 }
 
+UgvPlanner::UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space,
+                       const UgvGeometry& ugv, const UgvPlannerOptions& options,
+                       std::shared_ptr<const TetherCorners> corners)
+    : map_(std::move(map)), space_(space), ugv_(ugv), options_(options), corners_(std::move(corners)) {
+  checker_ = std::make_unique<CollisionChecker>(map_, options_.shape ? *options_.shape : ugv_shape(ugv_));
+  if (!corners_) corners_ = tether_corners_from_map(*map_, space_, ugv_);
+}
+
 UgvPlanner::~UgvPlanner() = default;
 
 Waypoint UgvPlanner::waypoint(const Pose2& X_WG) const {
@@ -148,17 +157,28 @@ UgvPlan UgvPlanner::plan(const UgvPlanRequest& request) {
   const double max_taut = request.tether.total_length_m - request.tether.entry_offset_m;
   TautTether tether = tether_at_start(request);
   out.initial_wraps = tether.wrap_points();
-  auto fail = [&](std::string why) {
+  auto fail = [&](std::string why, PlanFailure failure) {
     out.status = std::move(why);
+    out.failure = failure;
     out.planning_time_s = seconds_since(t0);
     return out;
   };
-  if (tether.length_m() > max_taut) return fail("the tether at the start already exceeds L - l_0");
+  if (tether.length_m() > max_taut)
+    return fail("the tether at the start already exceeds L - l_0", PlanFailure::kTetherTooShort);
   const Waypoint start = waypoint(request.start), goal = waypoint(request.goal);
-  for (const auto& [w, name] : {std::pair{start, "start"}, std::pair{goal, "goal"}}) {
-    if (!in_plane_bounds(space_, w.x_m, w.y_m)) return fail(std::string(name) + " outside the hidden space");
-    if (checker_->in_collision(w.pose())) return fail(std::string(name) + " in collision");
+  for (const bool is_start : {true, false}) {
+    const Waypoint& w = is_start ? start : goal;
+    const std::string name = is_start ? "start" : "goal";
+    if (!in_plane_bounds(space_, w.x_m, w.y_m))
+      return fail(name + " outside the hidden space",
+                  is_start ? PlanFailure::kStartOutside : PlanFailure::kGoalOutside);
+    if (checker_->in_collision(w.pose()))
+      return fail(name + " in collision",
+                  is_start ? PlanFailure::kStartInvalid : PlanFailure::kGoalInvalid);
   }
+  // No tether of budget L - l_0 reaches farther than that from the entry.
+  if ((goal.position().head<2>() - space_.p_WE).norm() > max_taut)
+    return fail("the goal is farther from the entry than L - l_0", PlanFailure::kTetherTooShort);
 
   auto si = space_information();
   auto space = si->getStateSpace();
@@ -174,9 +194,13 @@ UgvPlan UgvPlanner::plan(const UgvPlanRequest& request) {
   rrt.setGoalBias(options_.goal_bias);
   rrt.setProblemDefinition(pdef);
   rrt.setup();
-  const ob::PlannerStatus status = rrt.solve(ob::timedPlannerTerminationCondition(options_.time_limit_s));
+  const ob::PlannerStatus status = rrt.solve(internal::termination(options_.time_limit_s, options_.cancelled));
   out.tree_size = rrt.treeSize();
-  if (status != ob::PlannerStatus::EXACT_SOLUTION) return fail("no tether-feasible path found within the time limit");
+  if (status != ob::PlannerStatus::EXACT_SOLUTION) {
+    if (options_.cancelled && options_.cancelled())
+      return fail("cancelled before a path was found", PlanFailure::kCancelled);
+    return fail("no tether-feasible path found within the time limit", PlanFailure::kTimeout);
+  }
   std::vector<Waypoint> nodes;
   for (const ob::State* st : pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->getStates()) {
     const auto* se2 = st->as<ob::SE2StateSpace::StateType>();
@@ -236,6 +260,7 @@ UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether
   TautTether t = tether0;
   if (replay_tether(t, dense, max_taut_m) >= 0) {
     out.status = "final path exceeds the tether length";
+    out.failure = PlanFailure::kNoPath;
     return out;
   }
   // Re-validate the executed poses at the resolution `ferret validate` uses
@@ -245,6 +270,7 @@ UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether
     if (first_collision(*checker_, dense[k - 1], dense[k], options_.resolution, options_.final_check_fcl_only) ||
         !in_plane_bounds(space_, dense[k].x_m, dense[k].y_m)) {
       out.status = "final path failed exact validation";
+      out.failure = PlanFailure::kNoPath;
       return out;
     }
   }

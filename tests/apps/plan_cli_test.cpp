@@ -108,7 +108,7 @@ TEST(PlanCli, NoPathExitsOneAndWritesNothing) {
   TempDir dir;
   const auto r =
       run_cli("plan ugv --world " + kDetour +
-              " --driven '1,6.5;10,6.5' --from 10,4.5,-1.57 --to 11,0.5,-1.57 --tether 11"
+              " --driven '1,6.5;10,6.5' --from 10,4.5,-1.57 --to 11,0.5,-1.57 --tether 11.66"
               " --time-limit 0.3 -o " +
               dir / "none.json");
   EXPECT_EQ(r.exit_code, 1);

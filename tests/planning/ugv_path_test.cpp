@@ -165,13 +165,31 @@ TEST(UgvPath, WithoutAHiddenSpaceOrAnEntryTheRequestIsAnInputError) {
 
 TEST(UgvPath, NoTetherFeasiblePathIsNotSolvedAndHasNoStates) {
   UgvPathRequest req = detour_request();
-  req.goal = {11.0, 0.5, -1.57};  // 14.8 m or 11.7 m of tether, the budget 11 m
-  req.tether_budget_m = 11.0;
+  // 14.8 m or 11.7 m of tether; 11.64 m in a straight line from the entry (-0.1, 4).
+  req.goal = {11.0, 0.5, -1.57};
+  req.tether_budget_m = 11.66;
   req.time_limit_s = 0.3;
   const UgvPathResult r = plan_ugv_path(detour(), req);
   EXPECT_FALSE(r.solved);
   EXPECT_NE(r.status.find("no tether-feasible path"), std::string::npos) << r.status;
+  EXPECT_EQ(r.failure, PlanFailure::kTimeout);
   EXPECT_TRUE(r.plan.states.empty());
+  req.tether_budget_m = 11.0;  // shorter than the straight line: no search at all
+  const UgvPathResult too_short = plan_ugv_path(detour(), req);
+  EXPECT_EQ(too_short.failure, PlanFailure::kTetherTooShort);
+  EXPECT_TRUE(too_short.plan.states.empty());
+}
+
+TEST(UgvPath, APreparedSetupPlansWhatTheOneCallPlans) {
+  const PlanningWorld world = detour();
+  const UgvPathRequest req = detour_request();
+  const UgvPathSetup setup = prepare_ugv_path(world, req, ugv_request_space(world, req));
+  UgvPathResult once = plan_ugv_path(world, req);
+  UgvPathResult twice = plan_ugv_path(world, req, setup);
+  ASSERT_TRUE(once.solved);
+  ASSERT_TRUE(twice.solved);
+  once.plan.planning_time_s = twice.plan.planning_time_s = 0.0;  // wall time differs
+  EXPECT_EQ(plan_to_json(once.plan), plan_to_json(twice.plan));
 }
 
 }  // namespace

@@ -120,17 +120,36 @@ TEST(UgvPlanner, ShortestPathInfeasibleForTheTether) {
     driven += (plan.states[k].position() - plan.states[k - 1].position()).norm();
   EXPECT_GT(driven, 15.0);  // far longer than the 3 m straight drive
 
-  // A goal further down, (11, 0.5), needs 14.83 m one way and 11.69 m the other:
-  // with 11 m neither fits (the start needs 10.77 m) and the planner reports no path.
+  // A goal further down, (11, 0.5), needs 14.83 m one way and 11.69 m the other, and
+  // lies 11.54 m from the entry (0, 4) in a straight line. With 11.6 m neither way fits
+  // (the start needs 10.77 m): the search runs out of time.
   req.goal = {11.0, 0.5, -1.57};
-  req.tether = {12.0, 1.0};
+  req.tether = {12.6, 1.0};
   UgvPlannerOptions quick = opt;
   quick.time_limit_s = 0.3;
   UgvPlanner limited(map, frame(), {}, quick);
   const UgvPlan none = limited.plan(req);
   EXPECT_FALSE(none.solved);
   EXPECT_EQ(none.status, "no tether-feasible path found within the time limit");
+  EXPECT_EQ(none.failure, PlanFailure::kTimeout);
   EXPECT_TRUE(none.states.empty());
+  // With 11 m even the straight line is too long: refused at once, without a search.
+  req.tether = {12.0, 1.0};
+  const UgvPlan short_tether = limited.plan(req);
+  EXPECT_FALSE(short_tether.solved);
+  EXPECT_EQ(short_tether.failure, PlanFailure::kTetherTooShort);
+  EXPECT_EQ(short_tether.tree_size, 0u);
+  EXPECT_TRUE(short_tether.states.empty());
+  // A cancel flag already raised stops the search before its time limit.
+  req.tether = {12.6, 1.0};
+  UgvPlannerOptions cancelled = quick;
+  cancelled.time_limit_s = 30.0;
+  cancelled.cancelled = [] { return true; };
+  UgvPlanner stopped(map, frame(), {}, cancelled);
+  const UgvPlan gone = stopped.plan(req);
+  EXPECT_FALSE(gone.solved);
+  EXPECT_EQ(gone.failure, PlanFailure::kCancelled);
+  EXPECT_LT(gone.planning_time_s, 5.0);  // not the 30 s limit (a bound, not a timing)
 }
 
 TEST(UgvPlanner, ReturnRetracesTheTether) {

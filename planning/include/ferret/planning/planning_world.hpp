@@ -12,6 +12,7 @@
 
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/planning/collision_map.hpp"
+#include "ferret/planning/plan_failure.hpp"
 #include "ferret/planning/plan_file.hpp"
 #include "ferret/planning/robot_shape.hpp"
 #include "ferret/planning/ugv_planner.hpp"
@@ -110,6 +111,7 @@ struct LoadedPlanRobot {
 struct PlanResult {
   bool solved = false;
   std::string status;  ///< "solved", or why not
+  PlanFailure failure = PlanFailure::kNone;  ///< why not, as a value
   PlanFile plan;
   double planning_time_s = 0.0;  ///< wall time (not in the plan file: runs would differ)
 };

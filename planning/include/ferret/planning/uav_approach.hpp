@@ -7,6 +7,8 @@
 // downstream programs alike. No OMPL or FCL types.
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -31,6 +33,8 @@ struct UavApproachRequest {
   MissionConfig mission;      ///< limits for built-in shapes, the URDF's otherwise
   double time_limit_s = 1.0;  ///< a cap on a search that finds nothing, (0, 3600]
   std::uint64_t seed = 1;     ///< seeds OMPL once per process (seed_ompl_once)
+  /// Polled during the search (cheap: an atomic load); true stops it.
+  std::function<bool()> cancelled;
 };
 
 /// Plans the UAV leg of `request` in `world`. Returns solved = false with the reason
@@ -41,5 +45,27 @@ struct UavApproachRequest {
 /// length out of range, a URDF of a ground robot; and the loaders' errors.
 [[nodiscard]] PlanResult plan_uav_approach(const PlanningWorld& world,
                                            const UavApproachRequest& request);
+
+/// What a UAV plan needs besides its poses: the robot (with the miniUGV hanging at the
+/// request's l_t), the geofence and the collision snapshot inside it. A program
+/// planning many legs in one world (the planner service) makes it once per geofence,
+/// unknown policy and l_t.
+struct UavApproachSetup {
+  LoadedPlanRobot model;
+  PlanRobot robot = PlanRobot::kUav;
+  double released_m = 0.0;
+  Aabb3 geofence;
+  std::shared_ptr<const CollisionMap> map;
+};
+
+/// The setup for `request` (its poses, planner, time limit and seed are not read).
+/// InputError as plan_uav_approach() for the fields it reads.
+[[nodiscard]] UavApproachSetup prepare_uav_approach(const PlanningWorld& world,
+                                                    const UavApproachRequest& request);
+/// plan_uav_approach() with a setup prepare_uav_approach() made in this world for the
+/// request's robot, l_t, geofence and unknown policy.
+[[nodiscard]] PlanResult plan_uav_approach(const PlanningWorld& world,
+                                           const UavApproachRequest& request,
+                                           const UavApproachSetup& setup);
 
 }  // namespace ferret

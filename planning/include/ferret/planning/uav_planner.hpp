@@ -7,12 +7,14 @@
 // pose with FCL alone at the resolution `ferret validate` uses.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/planning/motion_check.hpp"
+#include "ferret/planning/plan_failure.hpp"
 #include "ferret/planning/robot_shape.hpp"
 
 namespace ompl::base {
@@ -37,11 +39,14 @@ struct UavPlannerOptions {
   double max_velocity_mps = 5.0;       ///< for time stamps (MissionConfig::uav_limits)
   double max_yaw_rate_radps = 1.0;
   double max_acceleration_mps2 = 2.0;  ///< for time stamps: every segment rest to rest
+  /// Polled during the search: true stops it (a service's client went away, a drain).
+  std::function<bool()> cancelled;
 };
 
 struct UavPlan {
   bool solved = false;
   std::string status;
+  PlanFailure failure = PlanFailure::kNone;
   std::vector<Waypoint> states;
   double planning_time_s = 0.0;
 };

@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +43,8 @@ struct UgvPathRequest {
   MissionConfig mission;
   double time_limit_s = 1.0;  ///< (0, 3600]
   std::uint64_t seed = 1;
+  /// Polled during the search (cheap: an atomic load); true stops it.
+  std::function<bool()> cancelled;
 };
 
 struct UgvPathResult : PlanResult {
@@ -57,5 +61,30 @@ struct UgvPathResult : PlanResult {
 /// loaders' errors.
 [[nodiscard]] UgvPathResult plan_ugv_path(const PlanningWorld& world,
                                           const UgvPathRequest& request);
+
+/// What a miniUGV plan needs besides the request's poses, tether and limits: the hidden
+/// space, the robot and the collision snapshot with the tether's corners in it. Making
+/// it costs far more than a short plan (the distance field), so a program planning
+/// many times in one space (the planner service) makes it once.
+struct UgvPathSetup {
+  HiddenSpaceFrame space;
+  LoadedPlanRobot model;
+  std::shared_ptr<const CollisionMap> map;
+  std::shared_ptr<const TetherCorners> corners;
+};
+
+/// The hidden space `request` plans in: named, found from the start, or its explicit
+/// box, floor and entry. Cheap; InputError as plan_ugv_path().
+[[nodiscard]] HiddenSpaceFrame ugv_request_space(const PlanningWorld& world,
+                                                 const UgvPathRequest& request);
+/// The setup for `space` with the request's robot and mission (its poses are not read).
+[[nodiscard]] UgvPathSetup prepare_ugv_path(const PlanningWorld& world,
+                                            const UgvPathRequest& request,
+                                            const HiddenSpaceFrame& space);
+/// plan_ugv_path() with a setup prepare_ugv_path() made in this world for the request's
+/// space, robot and mission.
+[[nodiscard]] UgvPathResult plan_ugv_path(const PlanningWorld& world,
+                                          const UgvPathRequest& request,
+                                          const UgvPathSetup& setup);
 
 }  // namespace ferret

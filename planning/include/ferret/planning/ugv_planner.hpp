@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/planning/motion_check.hpp"
+#include "ferret/planning/plan_failure.hpp"
 #include "ferret/planning/robot_shape.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
 
@@ -47,6 +49,8 @@ struct UgvPlannerOptions {
   /// The collision shape (e.g. from the URDF, planning_world.hpp's plan_robot_shape);
   /// empty: ugv_shape() of the geometry.
   std::optional<RobotShape> shape;
+  /// Polled during the search: true stops it (a service's client went away, a drain).
+  std::function<bool()> cancelled;
 };
 
 struct UgvPlanRequest {
@@ -62,6 +66,7 @@ struct UgvPlanRequest {
 struct UgvPlan {
   bool solved = false;
   std::string status;              ///< "solved", or why not
+  PlanFailure failure = PlanFailure::kNone;
   std::vector<Waypoint> states;    ///< turn-drive-turn poses with times and tether lengths
   std::vector<WrapPoint> initial_wraps;  ///< the tether at the start
   std::vector<WrapPoint> final_wraps;    ///< the tether at the goal
@@ -73,6 +78,10 @@ class UgvPlanner {
  public:
   UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space, const UgvGeometry& ugv = {},
              const UgvPlannerOptions& options = {});
+  /// The same with the tether's corners already found in this map and space (they cost
+  /// more than a short plan: a service computes them once per map).
+  UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space, const UgvGeometry& ugv,
+             const UgvPlannerOptions& options, std::shared_ptr<const TetherCorners> corners);
   ~UgvPlanner();
 
   [[nodiscard]] UgvPlan plan(const UgvPlanRequest& request);
