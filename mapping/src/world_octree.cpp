@@ -360,18 +360,22 @@ std::unique_ptr<octomap::OcTree> load_octree(const fs::path& path) {
   const bool binary = has_ext(path, ".bt");
   if (!binary && !has_ext(path, ".ot"))
     throw InputError(path.string(), "", "an OctoMap file ending in .bt or .ot");
-  const std::string bytes = slurp(path);
-  const OctreeHeader h = parse_header(bytes, path.string(), binary);
+  return parse_octree(slurp(path), binary, path.string());
+}
+
+std::unique_ptr<octomap::OcTree> parse_octree(const std::string& bytes, bool binary,
+                                              const std::string& source) {
+  const OctreeHeader h = parse_header(bytes, source, binary);
   auto tree = std::make_unique<octomap::OcTree>(h.resolution_m);
   if (h.size == 0) {
     if (h.data_offset != bytes.size())
-      throw InputError(path.string(), "data", "no data for a tree of size 0",
+      throw InputError(source, "data", "no data for a tree of size 0",
                        fmt::format("{} bytes", bytes.size() - h.data_offset));
     return tree;
   }
-  const std::uint64_t nodes = validate_nodes(bytes, h.data_offset, path.string(), binary);
+  const std::uint64_t nodes = validate_nodes(bytes, h.data_offset, source, binary);
   if (nodes != h.size)
-    throw InputError(path.string(), "header.size",
+    throw InputError(source, "header.size",
                      fmt::format("the number of nodes in the data ({})", nodes),
                      std::to_string(h.size));
   std::istringstream in(bytes);
@@ -381,7 +385,7 @@ std::unique_ptr<octomap::OcTree> load_octree(const fs::path& path) {
   else
     tree->readData(in);
   if (tree->size() != h.size)
-    throw InputError(path.string(), "data", fmt::format("{} nodes", h.size),
+    throw InputError(source, "data", fmt::format("{} nodes", h.size),
                      std::to_string(tree->size()));
   return tree;
 }

@@ -39,6 +39,10 @@ struct WorldBuildOptions {
 /// garbage file throws InputError naming the file and the header field or the byte
 /// offset, and never crashes or hangs.
 [[nodiscard]] std::unique_ptr<octomap::OcTree> load_octree(const std::filesystem::path& path);
+/// The same for a file's bytes already in memory (a request body): `binary` for the
+/// .bt format, else .ot; errors name `source`.
+[[nodiscard]] std::unique_ptr<octomap::OcTree> parse_octree(const std::string& bytes, bool binary,
+                                                            const std::string& source);
 
 /// Writes a .bt (max-likelihood: each leaf occupied or free) or .ot (log-odds kept)
 /// file atomically, chosen by extension; any other extension is an InputError.
