@@ -29,5 +29,7 @@ endif()
 find_package(ompl REQUIRED)          # variables only: OMPL_INCLUDE_DIRS, OMPL_LIBRARIES
 find_package(fcl REQUIRED)           # target: fcl
 pkg_check_modules(SERIALPORT REQUIRED IMPORTED_TARGET libserialport)
+# The planner service (service/) and its tests: HTTP/JSON over cpp-httplib.
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET GLOBAL cpp-httplib)
 # libgpiod 1.6 (Debian libgpiod-dev): the miniUGV's EPM on a GPIO line of its Pi (ugv/).
 pkg_check_modules(GPIOD REQUIRED IMPORTED_TARGET libgpiod)

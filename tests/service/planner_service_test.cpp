@@ -1,0 +1,481 @@
+// The planner service over real HTTP on a loopback port: every route's happy path,
+// its error paths, auth, overload, a map replaced while a plan runs on it, and a
+// drain while busy. Plans are checked against collision ground truth (the library's
+// validator, FCL on the world's OctoMap), not against themselves.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "ferret/mapping/world_octree.hpp"
+#include "ferret/mapping/world_spec.hpp"
+#include "ferret/planning/plan_file.hpp"
+#include "ferret/planning/plan_validation.hpp"
+#include "ferret/planning/planning_world.hpp"
+#include "ferret/service/planner_service.hpp"
+#include "support/cli_runner.hpp"
+
+#include <httplib.h>  // after Eigen (see service/src/planner_service.cpp)
+
+namespace ferret {
+namespace {
+
+using json = nlohmann::json;
+using test::TempDir;
+const std::string kDetour = FERRET_SOURCE_DIR "/examples/scenarios/tether_detour.yaml";
+const std::string kDefault = FERRET_SOURCE_DIR "/examples/worlds/default.yaml";
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A service on a free loopback port, and a client for it.
+struct Served {
+  explicit Served(PlannerServiceOptions o = {}) : service([&] {
+    o.port = 0;
+    return o;
+  }()) {
+    port = service.start();
+  }
+  [[nodiscard]] httplib::Client client(double read_timeout_s = 30.0) const {
+    httplib::Client c("127.0.0.1", port);
+    c.set_read_timeout(std::chrono::milliseconds(static_cast<int>(read_timeout_s * 1000)));
+    return c;
+  }
+  PlannerService service;
+  int port = 0;
+};
+
+json body_of(const httplib::Result& r) {
+  EXPECT_TRUE(r) << "no response";
+  if (!r) return {};
+  return json::parse(r->body, nullptr, false);
+}
+
+std::string error_code(const httplib::Result& r) {
+  const json b = body_of(r);
+  return b.is_object() && b.contains("error") ? b["error"].value("code", "") : "";
+}
+
+std::string error_field(const httplib::Result& r) {
+  const json b = body_of(r);
+  return b.is_object() && b.contains("error") ? b["error"].value("field", "") : "";
+}
+
+void put_detour(httplib::Client& c, const std::string& name = "detour") {
+  const auto r = c.Put("/v1/maps/" + name, slurp(kDetour), "application/yaml");
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->status == 201 || r->status == 200) << r->body;
+}
+
+// The detour scenario's miniUGV request (tests/planning/ugv_path_test.cpp): round a
+// block whose near side the tether already wraps.
+json detour_request() {
+  return json{{"map", "detour"},
+              {"start", {10.0, 4.5, -1.57}},
+              {"goal", {10.0, 1.5, -1.57}},
+              {"driven", {{1.0, 6.5}, {10.0, 6.5}}},
+              {"tether_budget_m", 12.5},
+              {"deadline_s", 5.0},
+              {"seed", 3}};
+}
+
+// Ground truth: the plan the service returned, checked by the offline validator (FCL
+// against the world's OctoMap) in this process.
+void expect_collision_free(const json& plan, const std::string& world) {
+  const PlanningWorld w = load_planning_world(world);
+  ValidateRequest v;
+  const ValidationReport report = validate_plan(parse_plan(plan.dump(), "response"), w, v, "response");
+  EXPECT_TRUE(report.valid()) << (report.violations.empty() ? "" : report.violations[0].describe());
+}
+
+TEST(PlannerService, HealthReadinessAndMetricsAnswer) {
+  Served s;
+  auto c = s.client();
+  const auto h = c.Get("/healthz");
+  ASSERT_TRUE(h);
+  EXPECT_EQ(h->status, 200);
+  EXPECT_EQ(body_of(h)["status"], "ok");
+  const auto ready = c.Get("/readyz");
+  ASSERT_TRUE(ready);
+  EXPECT_EQ(ready->status, 200);
+  EXPECT_EQ(body_of(ready)["maps"], 0);
+  (void)c.Get("/v1/maps/none");
+  const auto m = c.Get("/metrics");
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->status, 200);
+  EXPECT_NE(m->get_header_value("Content-Type").find("text/plain"), std::string::npos);
+  // The 404 just asked for is counted under its route pattern, not its raw path.
+  EXPECT_NE(m->body.find("ferret_requests_total{route=\"/v1/maps/{name}\",code=\"404\"} 1"), std::string::npos)
+      << m->body;
+  EXPECT_NE(m->body.find("ferret_request_duration_seconds_bucket{route=\"/healthz\",le=\"+Inf\"} 1"),
+            std::string::npos);
+  EXPECT_NE(m->body.find("ferret_maps_loaded 0"), std::string::npos);
+  EXPECT_NE(m->body.find("process_resident_memory_bytes "), std::string::npos);
+  EXPECT_EQ(m->body.find("/v1/maps/none"), std::string::npos);
+}
+
+TEST(PlannerService, MapsArePutListedDescribedReplacedAndDeleted) {
+  Served s;
+  auto c = s.client();
+  const auto put = c.Put("/v1/maps/detour", slurp(kDetour), "application/yaml");
+  ASSERT_TRUE(put);
+  EXPECT_EQ(put->status, 201) << put->body;
+  const json meta = body_of(put);
+  EXPECT_EQ(meta["name"], "detour");
+  EXPECT_EQ(meta["format"], "world_yaml");
+  EXPECT_DOUBLE_EQ(meta["resolution_m"].get<double>(), 0.05);
+  ASSERT_EQ(meta["hidden_spaces"].size(), 1u);
+  EXPECT_EQ(meta["hidden_spaces"][0]["name"], "cellar");
+  EXPECT_EQ(c.Put("/v1/maps/detour", slurp(kDetour), "application/yaml")->status, 200);  // replaced
+
+  // An OctoMap .bt body of the same world.
+  TempDir dir;
+  save_octree(*build_world_octree(load_world(kDetour)), dir / "detour.bt");
+  const auto bt = c.Put("/v1/maps/detour_bt", slurp(dir / "detour.bt"), "application/octet-stream");
+  ASSERT_TRUE(bt);
+  EXPECT_EQ(bt->status, 201) << bt->body;
+  EXPECT_EQ(body_of(bt)["format"], "octomap_bt");
+  EXPECT_TRUE(body_of(bt)["hidden_spaces"].empty());  // an OctoMap names none
+
+  const json list = body_of(c.Get("/v1/maps"));
+  ASSERT_EQ(list["maps"].size(), 2u);
+  EXPECT_EQ(list["maps"][0]["name"], "detour");
+  EXPECT_EQ(list["maps"][1]["name"], "detour_bt");
+  EXPECT_EQ(body_of(c.Get("/v1/maps/detour_bt"))["nodes"], body_of(bt)["nodes"]);
+  EXPECT_EQ(c.Delete("/v1/maps/detour_bt")->status, 204);
+  EXPECT_EQ(c.Delete("/v1/maps/detour_bt")->status, 404);
+  EXPECT_EQ(c.Get("/v1/maps/detour_bt")->status, 404);
+  EXPECT_EQ(body_of(c.Get("/readyz"))["maps"], 1);
+}
+
+TEST(PlannerService, BadMapsAreRefusedNamingTheBodyAndKeepNothing) {
+  PlannerServiceOptions o;
+  o.max_maps = 2;
+  o.max_body_bytes = 64 * 1024;
+  Served s(o);
+  auto c = s.client();
+  // Not a map at all.
+  auto r = c.Put("/v1/maps/junk", std::string("\x89PNG\r\n\x1a\n\xff\xfe", 10), "application/octet-stream");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_code(r), "INVALID_MAP");
+  EXPECT_EQ(error_field(r), "body");
+  // A world YAML with a bad field: the field is named under body.
+  r = c.Put("/v1/maps/bad", "name: x\nresolution_m: -1\n", "application/yaml");
+  EXPECT_EQ(r->status, 400) << r->body;
+  EXPECT_EQ(error_code(r), "INVALID_MAP");
+  EXPECT_EQ(error_field(r), "body.resolution_m") << r->body;
+  // A truncated OctoMap file.
+  TempDir dir;
+  save_octree(*build_world_octree(load_world(kDetour)), dir / "d.bt");
+  const std::string bt = slurp(dir / "d.bt");
+  r = c.Put("/v1/maps/cut", bt.substr(0, bt.size() / 2), "application/octet-stream");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_code(r), "INVALID_MAP");
+  // A name that could be a path, and a body past the limit.
+  EXPECT_EQ(c.Put("/v1/maps/..%2Fetc", slurp(kDetour), "application/yaml")->status, 404);  // no such route
+  r = c.Put("/v1/maps/a%20b", slurp(kDetour), "application/yaml");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_field(r), "name");
+  r = c.Put("/v1/maps/big", std::string(65 * 1024, '#'), "application/yaml");
+  EXPECT_EQ(r->status, 413);
+  EXPECT_EQ(error_code(r), "PAYLOAD_TOO_LARGE");
+  EXPECT_EQ(body_of(c.Get("/v1/maps"))["maps"].size(), 0u);
+  // The map limit.
+  put_detour(c, "a");
+  put_detour(c, "b");
+  r = c.Put("/v1/maps/c", slurp(kDetour), "application/yaml");
+  EXPECT_EQ(r->status, 507);
+  EXPECT_EQ(error_code(r), "TOO_MANY_MAPS");
+  EXPECT_EQ(c.Put("/v1/maps/a", slurp(kDetour), "application/yaml")->status, 200);  // replacing is fine
+}
+
+TEST(PlannerService, AUgvPlanIsTetherFeasibleAndCollisionFree) {
+  Served s;
+  auto c = s.client();
+  put_detour(c);
+  const auto r = c.Post("/v1/plan/ugv", detour_request().dump(), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json b = body_of(r);
+  EXPECT_EQ(b["status"], "solved");
+  EXPECT_GT(b["planning_time_s"].get<double>(), 0.0);
+  const json& plan = b["plan"];
+  ASSERT_GE(plan["states"].size(), 2u);
+  EXPECT_DOUBLE_EQ(plan["states"].back()["x_m"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(plan["states"].back()["y_m"].get<double>(), 1.5);
+  for (const json& st : plan["states"]) EXPECT_LE(st["tether_length_m"].get<double>(), 12.5 + 1e-9);
+  EXPECT_LE(b["tether"]["length_at_goal_m"].get<double>(), 12.5);
+  expect_collision_free(plan, kDetour);
+  // The same request and seed: the same plan (the miniUGV planner is seeded per request).
+  const json again = body_of(c.Post("/v1/plan/ugv", detour_request().dump(), "application/json"));
+  EXPECT_EQ(again["plan"]["states"], plan["states"]);
+
+  // Back along the tether from the goal.
+  json back = detour_request();
+  back["start"] = {10.0, 4.5, -1.57};
+  back["goal"] = {1.0, 6.5, 3.14};
+  const auto ret = c.Post("/v1/plan/ugv/return", back.dump(), "application/json");
+  ASSERT_EQ(ret->status, 200) << ret->body;
+  expect_collision_free(body_of(ret)["plan"], kDetour);
+}
+
+TEST(PlannerService, UgvPlanFailuresCarryTheirCodes) {
+  Served s;
+  auto c = s.client();
+  put_detour(c);
+  const auto post = [&](const json& j) { return c.Post("/v1/plan/ugv", j.dump(), "application/json"); };
+  json j = detour_request();
+  j["start"] = {6.0, 4.0, 0.0};  // inside the block
+  auto r = post(j);
+  EXPECT_EQ(r->status, 422);
+  EXPECT_EQ(error_code(r), "START_OCCUPIED");
+  EXPECT_TRUE(body_of(r).contains("planning_time_s"));
+  j = detour_request();
+  j["goal"] = {6.0, 4.0, 0.0};
+  EXPECT_EQ(error_code(post(j)), "GOAL_OCCUPIED");
+  j = detour_request();
+  j["goal"] = {11.0, 0.5, -1.57};  // 11.64 m from the entry in a straight line
+  j["tether_budget_m"] = 11.0;
+  EXPECT_EQ(error_code(post(j)), "TETHER_TOO_SHORT");
+  j["tether_budget_m"] = 11.66;  // the line fits, no way round the block does
+  j["deadline_s"] = 0.3;
+  r = post(j);
+  EXPECT_EQ(r->status, 422);
+  EXPECT_EQ(error_code(r), "TIMEOUT");
+  EXPECT_LT(body_of(r)["planning_time_s"].get<double>(), 5.0);  // bounded by its deadline
+  j = detour_request();
+  j["map"] = "elsewhere";
+  r = post(j);
+  EXPECT_EQ(r->status, 404);
+  EXPECT_EQ(error_code(r), "UNKNOWN_MAP");
+}
+
+TEST(PlannerService, MalformedRequestsGet400NamingTheField) {
+  Served s;
+  auto c = s.client();
+  put_detour(c);
+  const auto post = [&](const std::string& body) { return c.Post("/v1/plan/ugv", body, "application/json"); };
+  auto r = post("{\"map\": \"detour\", ");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_field(r), "body");
+  EXPECT_EQ(error_field(post("[1, 2]")), "body");
+  json j = detour_request();
+  j["start"] = "10,4.5,0";
+  r = post(j.dump());
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_code(r), "INVALID_REQUEST");
+  EXPECT_EQ(error_field(r), "start");
+  j = detour_request();
+  j["start"] = {10.0, 4.5};
+  EXPECT_EQ(error_field(post(j.dump())), "start");
+  j = detour_request();
+  j["goal"] = {10.0, 1e300, 0.0};  // absurd
+  EXPECT_EQ(error_field(post(j.dump())), "goal[1]");
+  // JSON has no infinity: 1e999 is either a parse error or a number out of range.
+  const std::string inf_field = error_field(post(R"({"map":"detour","start":[10,4.5,0],"goal":[10,1.5,1e999]})"));
+  EXPECT_TRUE(inf_field == "body" || inf_field == "goal[2]") << inf_field;
+  j = detour_request();
+  j["deadline_s"] = 1e6;  // past the service's longest
+  EXPECT_EQ(error_field(post(j.dump())), "deadline_s");
+  j = detour_request();
+  j["seed"] = -1;
+  EXPECT_EQ(error_field(post(j.dump())), "seed");
+  j = detour_request();
+  j["tether_budget_m"] = 0;
+  EXPECT_EQ(error_field(post(j.dump())), "tether_budget_m");
+  j = detour_request();
+  j["hidden_space"] = "attic";  // the map has only 'cellar'
+  r = post(j.dump());
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_field(r), "hidden_space");
+  EXPECT_NE(r->body.find("cellar"), std::string::npos) << r->body;
+  j = detour_request();
+  j["tether"] = 3;  // a typo for tether_budget_m is not ignored
+  EXPECT_EQ(error_field(post(j.dump())), "tether");
+  j = detour_request();
+  j.erase("map");
+  EXPECT_EQ(error_field(post(j.dump())), "map");
+  // Routes that do not exist answer JSON too.
+  r = c.Get("/v2/plan");
+  EXPECT_EQ(r->status, 404);
+  EXPECT_EQ(error_code(r), "NOT_FOUND");
+}
+
+TEST(PlannerService, UavPlansAndValidationAgreeWithGroundTruth) {
+  Served s;
+  auto c = s.client(60.0);
+  const auto put = c.Put("/v1/maps/site", slurp(kDefault), "application/yaml");
+  ASSERT_EQ(put->status, 201) << put->body;
+  const json req{{"map", "site"}, {"start", {-20.0, -20.0, 3.0, 0.0}}, {"hidden_space", "house_void"},
+                 {"deadline_s", 20.0}};
+  const auto r = c.Post("/v1/plan/uav", req.dump(), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json plan = body_of(r)["plan"];
+  expect_collision_free(plan, kDefault);
+  // /v1/validate agrees, and finds the collision in a plan moved into the container.
+  const auto ok = c.Post("/v1/validate", json{{"map", "site"}, {"plan", plan}}.dump(), "application/json");
+  ASSERT_EQ(ok->status, 200) << ok->body;
+  EXPECT_EQ(body_of(ok)["verdict"], "valid") << ok->body;
+  json bad = plan;
+  for (json& st : bad["states"]) {
+    st["x_m"] = 5.0;  // the container at (5, 15), 2.59 m tall
+    st["y_m"] = 15.0;
+    st["z_m"] = 1.5;
+  }
+  const auto hit = c.Post("/v1/validate", json{{"map", "site"}, {"plan", bad}}.dump(), "application/json");
+  ASSERT_EQ(hit->status, 200) << hit->body;
+  EXPECT_EQ(body_of(hit)["verdict"], "invalid");
+  EXPECT_FALSE(body_of(hit)["violations"].empty());
+  // A UAV goal inside the container.
+  json inside = req;
+  inside.erase("hidden_space");
+  inside["goal"] = {5.0, 15.0, 1.5, 0.0};
+  EXPECT_EQ(error_code(c.Post("/v1/plan/uav", inside.dump(), "application/json")), "GOAL_OCCUPIED");
+  json both = req;
+  both["goal"] = {5.0, 10.0, 2.0, 0.0};
+  EXPECT_EQ(error_field(c.Post("/v1/plan/uav", both.dump(), "application/json")), "goal");
+  json broken{{"map", "site"}, {"plan", {{"format", "ferret-plan"}, {"states", 3}}}};
+  const auto v = c.Post("/v1/validate", broken.dump(), "application/json");
+  EXPECT_EQ(v->status, 400);
+  EXPECT_EQ(error_field(v).rfind("plan", 0), 0u) << v->body;
+}
+
+TEST(PlannerService, TheTokenGuardsEveryRouteButHealth) {
+  PlannerServiceOptions o;
+  o.token = "correct-horse-battery-staple";
+  Served s(o);
+  auto c = s.client();
+  EXPECT_EQ(c.Get("/healthz")->status, 200);
+  auto r = c.Get("/v1/maps");
+  EXPECT_EQ(r->status, 401);
+  EXPECT_EQ(error_code(r), "UNAUTHORIZED");
+  EXPECT_FALSE(r->get_header_value("WWW-Authenticate").empty());
+  EXPECT_EQ(c.Get("/metrics")->status, 401);
+  c.set_bearer_token_auth("correct-horse-battery-stapl");
+  EXPECT_EQ(c.Get("/v1/maps")->status, 401);
+  c.set_bearer_token_auth("correct-horse-battery-staplee");
+  EXPECT_EQ(c.Get("/v1/maps")->status, 401);
+  c.set_bearer_token_auth("correct-horse-battery-staple");
+  EXPECT_EQ(c.Get("/v1/maps")->status, 200);
+  EXPECT_EQ(c.Get("/readyz")->status, 200);
+}
+
+// A request that holds a worker for about `seconds`: a goal no way round the block
+// reaches, searched until its deadline.
+json slow_request(double seconds) {
+  json j = detour_request();
+  j["goal"] = {11.0, 0.5, -1.57};
+  j["tether_budget_m"] = 11.66;
+  j["deadline_s"] = seconds;
+  return j;
+}
+
+// Waits (up to 20 s) until the service reports `active` requests holding a worker and
+// `queued` waiting: the tests below sequence on the service's state, not on sleeps.
+void wait_for_load(const Served& s, int active, int queued) {
+  auto c = s.client();
+  const std::string a = "ferret_active_requests " + std::to_string(active) + "\n";
+  const std::string q = "ferret_queue_depth " + std::to_string(queued) + "\n";
+  for (int k = 0; k < 2000; ++k) {
+    const auto m = c.Get("/metrics");
+    if (m && m->body.find(a) != std::string::npos && m->body.find(q) != std::string::npos) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  FAIL() << "the service never had " << active << " active and " << queued << " queued";
+}
+
+TEST(PlannerService, PastTheQueueRequestsAreShedWith503) {
+  PlannerServiceOptions o;
+  o.workers = 1;
+  o.queue = 1;
+  Served s(o);
+  auto c = s.client();
+  put_detour(c);
+  auto busy = std::async(std::launch::async, [&] {
+    auto c1 = s.client();
+    return c1.Post("/v1/plan/ugv", slow_request(1.5).dump(), "application/json")->status;
+  });
+  wait_for_load(s, 1, 0);
+  auto queued = std::async(std::launch::async, [&] {
+    auto c2 = s.client();
+    return c2.Post("/v1/plan/ugv", detour_request().dump(), "application/json")->status;
+  });
+  wait_for_load(s, 1, 1);
+  const auto shed = c.Post("/v1/plan/ugv", detour_request().dump(), "application/json");
+  ASSERT_TRUE(shed);
+  EXPECT_EQ(shed->status, 503);
+  EXPECT_EQ(error_code(shed), "OVERLOADED");
+  EXPECT_EQ(shed->get_header_value("Retry-After"), "1");
+  EXPECT_EQ(busy.get(), 422);   // its own deadline
+  EXPECT_EQ(queued.get(), 200);  // waited, then planned
+  // A queued request whose deadline passes before a worker frees gives up.
+  auto busy2 = std::async(std::launch::async, [&] {
+    auto c1 = s.client();
+    return c1.Post("/v1/plan/ugv", slow_request(1.0).dump(), "application/json")->status;
+  });
+  wait_for_load(s, 1, 0);
+  json hurry = detour_request();
+  hurry["deadline_s"] = 0.2;
+  const auto late = c.Post("/v1/plan/ugv", hurry.dump(), "application/json");
+  EXPECT_EQ(error_code(late), "TIMEOUT");
+  EXPECT_EQ(busy2.get(), 422);
+}
+
+TEST(PlannerService, AMapReplacedOrDeletedWhilePlansRunOnItIsSafe) {
+  PlannerServiceOptions o;
+  o.workers = 2;
+  Served s(o);
+  auto c = s.client();
+  put_detour(c);
+  auto running = std::async(std::launch::async, [&] {
+    auto c1 = s.client();
+    return error_code(c1.Post("/v1/plan/ugv", slow_request(1.0).dump(), "application/json"));
+  });
+  wait_for_load(s, 1, 0);
+  // Replace the map under the running plan, then delete it.
+  const auto put = c.Put("/v1/maps/detour", slurp(kDetour), "application/yaml");
+  EXPECT_EQ(put->status, 200);
+  EXPECT_EQ(c.Delete("/v1/maps/detour")->status, 204);
+  EXPECT_EQ(running.get(), "TIMEOUT");  // finished on its snapshot
+  EXPECT_EQ(error_code(c.Post("/v1/plan/ugv", detour_request().dump(), "application/json")), "UNKNOWN_MAP");
+  put_detour(c);
+  EXPECT_EQ(c.Post("/v1/plan/ugv", detour_request().dump(), "application/json")->status, 200);
+}
+
+TEST(PlannerService, ADrainFinishesWorkInFlightAndTurnsNewWorkAway) {
+  auto s = std::make_unique<Served>();
+  auto c = s->client();
+  put_detour(c);
+  auto running = std::async(std::launch::async, [&] {
+    auto c1 = s->client();
+    const auto r = c1.Post("/v1/plan/ugv", slow_request(1.5).dump(), "application/json");
+    return r ? r->status : -1;
+  });
+  wait_for_load(*s, 1, 0);
+  auto drained = std::async(std::launch::async, [&] { s->service.drain(10.0); });
+  while (!s->service.draining()) std::this_thread::yield();
+  auto late = s->client();
+  const auto r = late.Post("/v1/plan/ugv", detour_request().dump(), "application/json");
+  ASSERT_TRUE(r);  // the listener stays open while work is in flight
+  EXPECT_EQ(r->status, 503);
+  EXPECT_EQ(error_code(r), "DRAINING");
+  EXPECT_EQ(late.Get("/readyz")->status, 503);
+  EXPECT_EQ(running.get(), 422);  // answered, by its deadline
+  drained.get();
+  EXPECT_FALSE(s->client().Get("/healthz"));  // stopped
+}
+
+}  // namespace
+}  // namespace ferret
