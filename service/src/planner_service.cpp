@@ -675,6 +675,9 @@ struct PlannerService::Impl {
     auto& s = server;
     s.set_payload_max_length(options.max_body_bytes);
     s.set_keep_alive_max_count(1000);
+    // Answers are small and clients wait for them: without TCP_NODELAY, Nagle's
+    // algorithm and the client's delayed ACK hold each answer's last segment ~40 ms.
+    s.set_tcp_nodelay(true);
     // A request's own wait for a worker is bounded by Admission; the HTTP threads must
     // outnumber workers + queue so that a request past the queue is answered 503 at
     // once instead of waiting unseen for a thread.

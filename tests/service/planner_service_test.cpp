@@ -50,6 +50,7 @@ struct Served {
   [[nodiscard]] httplib::Client client(double read_timeout_s = 30.0) const {
     httplib::Client c("127.0.0.1", port);
     c.set_read_timeout(std::chrono::milliseconds(static_cast<int>(read_timeout_s * 1000)));
+    c.set_tcp_nodelay(true);
     return c;
   }
   PlannerService service;

@@ -19,15 +19,15 @@ struct CliResult {
   std::string err;  ///< stderr
 };
 
-/// Runs `ferret <args>` through the shell (args are passed verbatim, so quote paths
+/// Runs `<program> <args>` through the shell (args are passed verbatim, so quote paths
 /// with spaces) from the source tree root.
-inline CliResult run_cli(const std::string& args) {
+inline CliResult run_program(const std::string& program, const std::string& args) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("ferret_cli_" + std::to_string(::getpid()) + "_" +
                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::create_directories(dir);
   const auto out_path = dir / "stdout", err_path = dir / "stderr";
-  const std::string cmd = std::string("cd '") + FERRET_SOURCE_DIR + "' && '" + FERRET_CLI + "' " + args +
+  const std::string cmd = std::string("cd '") + FERRET_SOURCE_DIR + "' && '" + program + "' " + args +
                           " >'" + out_path.string() + "' 2>'" + err_path.string() + "' </dev/null";
   const int status = std::system(cmd.c_str());
   CliResult r;
@@ -43,6 +43,9 @@ inline CliResult run_cli(const std::string& args) {
   std::filesystem::remove_all(dir);
   return r;
 }
+
+/// Runs `ferret <args>` (run_program with the built CLI).
+inline CliResult run_cli(const std::string& args) { return run_program(FERRET_CLI, args); }
 
 /// A fresh, empty temporary directory named after the current test; removed by the destructor.
 class TempDir {
