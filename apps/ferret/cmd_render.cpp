@@ -15,7 +15,6 @@
 #include "cli_options.hpp"
 #include "command.hpp"
 #include "ferret/core/error.hpp"
-#include "ferret/core/yaml_config.hpp"
 #include "ferret/mapping/map_render.hpp"
 #include "ferret/mapping/world_octree.hpp"
 #include "ferret/planning/plan_overlay.hpp"
@@ -31,18 +30,6 @@ struct RenderArgs {
   RenderOptions render;
   bool annotate = true;
 };
-
-// A map_server YAML has keys a world YAML never has (image, resolution, origin),
-// so a map_server file that lacks one of them still gets map_server's messages.
-bool is_map_server_yaml(const fs::path& path) {
-  const std::string ext = path.extension().string();
-  if (ext != ".yaml" && ext != ".yml") return false;
-  const YAML::Node doc = yaml::load_file(path);
-  if (!doc.IsMap()) return false;
-  for (const char* key : {"image", "resolution", "origin"})
-    if (doc[key].IsDefined()) return true;
-  return false;
-}
 
 std::string slice_caption(const SliceOptions& s) {
   return s.half_band_m > 0 ? fmt::format("slice z = {:g} m +- {:g} m", s.z_m, s.half_band_m)

@@ -96,15 +96,18 @@ std::uint8_t scale_to_byte(std::uint64_t v, std::uint64_t maxval) {
   return static_cast<std::uint8_t>((v * 255 + maxval / 2) / maxval);
 }
 
-GreyImage read_with_opencv(const fs::path& path) {
-  const cv::Mat img = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+GreyImage read_with_opencv(const std::string& data, const std::string& source) {
+  if (data.size() > std::numeric_limits<int>::max())
+    throw InputError(source, "", "an image of at most 2 GiB", "a larger file");
+  const cv::Mat bytes(1, static_cast<int>(data.size()), CV_8U, const_cast<char*>(data.data()));
+  const cv::Mat img = data.empty() ? cv::Mat() : cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   if (img.empty())
-    throw InputError(path.string(), "", "an image OpenCV can read (PGM, PNG, ...)",
+    throw InputError(source, "", "an image OpenCV can read (PGM, PNG, ...)",
                      "unreadable or corrupt");
   if (img.depth() != CV_8U && img.depth() != CV_16U)
-    throw InputError(path.string(), "", "an 8- or 16-bit image", "another pixel depth");
+    throw InputError(source, "", "an 8- or 16-bit image", "another pixel depth");
   if (static_cast<std::uint64_t>(img.cols) * static_cast<std::uint64_t>(img.rows) > kMaxPixels)
-    throw InputError(path.string(), "", fmt::format("at most {} pixels", kMaxPixels),
+    throw InputError(source, "", fmt::format("at most {} pixels", kMaxPixels),
                      "a larger image");
   const int channels = img.channels();
   // Grey+alpha and BGRA: the alpha channel does not count towards the grey value.
@@ -128,7 +131,7 @@ GreyImage read_with_opencv(const fs::path& path) {
 // PNG through libpng's simplified API: its errors and warnings come back as text in
 // png_image::message instead of being printed to stderr (as OpenCV's use of libpng
 // does), so a broken PNG gives ferret's one line and nothing else.
-GreyImage read_png(const fs::path& path, const std::string& data) {
+GreyImage read_png(const std::string& data, const std::string& source) {
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
   struct Free {
@@ -136,16 +139,16 @@ GreyImage read_png(const fs::path& path, const std::string& data) {
     ~Free() { png_image_free(i); }
   } free_on_exit{&image};
   if (png_image_begin_read_from_memory(&image, data.data(), data.size()) == 0)
-    throw InputError(path.string(), "", "a PNG image", image.message);
+    throw InputError(source, "", "a PNG image", image.message);
   if (static_cast<std::uint64_t>(image.width) * image.height > kMaxPixels)
-    throw InputError(path.string(), "", fmt::format("at most {} pixels", kMaxPixels),
+    throw InputError(source, "", fmt::format("at most {} pixels", kMaxPixels),
                      fmt::format("{} x {} pixels", image.width, image.height));
   // RGBA, 8 bits: grey, grey+alpha, palette and 16-bit images all arrive as sRGB bytes;
   // the grey value is the mean of R, G and B, alpha does not count (as for OpenCV).
   image.format = PNG_FORMAT_RGBA;
   std::vector<std::uint8_t> rgba(PNG_IMAGE_SIZE(image));
   if (png_image_finish_read(&image, nullptr, rgba.data(), 0, nullptr) == 0)
-    throw InputError(path.string(), "", "a PNG image", image.message);
+    throw InputError(source, "", "a PNG image", image.message);
   const int w = static_cast<int>(image.width), h = static_cast<int>(image.height);
   GreyImage out{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * h)};
   for (std::size_t k = 0; k < out.pixels.size(); ++k) {
@@ -155,10 +158,8 @@ GreyImage read_png(const fs::path& path, const std::string& data) {
   return out;
 }
 
-bool is_png(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  char sig[8] = {};
-  return in.read(sig, 8) && std::string_view(sig, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8);
+bool is_png(std::string_view data) {
+  return data.substr(0, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8);
 }
 
 bool has_extension(const fs::path& p, std::string_view ext) {
@@ -185,7 +186,11 @@ bool operator==(const OccupancyMap2D& a, const OccupancyMap2D& b) {
 }
 
 GreyImage read_pgm(const fs::path& path) {
-  PgmReader in(read_binary_file(path, "a readable PGM file"), path.string());
+  return parse_pgm(read_binary_file(path, "a readable PGM file"), path.string());
+}
+
+GreyImage parse_pgm(std::string bytes, const std::string& source) {
+  PgmReader in(std::move(bytes), source);
   const std::string_view data = in.data();
   if (data.size() < 2 || data[0] != 'P' || (data[1] != '5' && data[1] != '2'))
     in.fail("magic", "'P5' (binary PGM) or 'P2' (ASCII PGM)",
@@ -264,8 +269,10 @@ void write_pgm(const GreyImage& image, const fs::path& path) {
   });
 }
 
-MapServerMeta load_map_server_meta(const fs::path& yaml_path) {
-  const yaml::MapReader r(yaml::load_file(yaml_path), yaml_path.string());
+namespace {
+
+MapServerMeta map_server_meta_from(const YAML::Node& doc, const std::string& source) {
+  const yaml::MapReader r(doc, source);
   r.allow_only(
       {"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode"});
   MapServerMeta meta;
@@ -307,6 +314,16 @@ MapServerMeta load_map_server_meta(const fs::path& yaml_path) {
   return meta;
 }
 
+}  // namespace
+
+MapServerMeta load_map_server_meta(const fs::path& yaml_path) {
+  return map_server_meta_from(yaml::load_file(yaml_path), yaml_path.string());
+}
+
+MapServerMeta parse_map_server_meta(const std::string& yaml_text, const std::string& source) {
+  return map_server_meta_from(yaml::load_string(yaml_text, source), source);
+}
+
 OccupancyMap2D load_map_server(const fs::path& yaml_path) {
   const MapServerMeta meta = load_map_server_meta(yaml_path);
   const fs::path image_path =
@@ -314,11 +331,23 @@ OccupancyMap2D load_map_server(const fs::path& yaml_path) {
   std::error_code ec;
   if (!fs::is_regular_file(image_path, ec))
     throw InputError(yaml_path.string(), "image", "an existing image file", image_path.string());
-  const GreyImage img =
-      has_extension(image_path, ".pgm") ? read_pgm(image_path)
-      : is_png(image_path) ? read_png(image_path, read_binary_file(image_path, "a readable PNG file"))
-                           : read_with_opencv(image_path);
+  // A file called .pgm is read as PGM whatever it holds, so a broken one gets the PGM
+  // reader's message naming the header field.
+  const GreyImage img = has_extension(image_path, ".pgm")
+                            ? read_pgm(image_path)
+                            : decode_map_image(read_binary_file(image_path, "a readable image file"),
+                                               image_path.string());
+  return map_from_image(meta, img);
+}
 
+GreyImage decode_map_image(std::string bytes, const std::string& source) {
+  if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '2'))
+    return parse_pgm(std::move(bytes), source);
+  if (is_png(bytes)) return read_png(bytes, source);
+  return read_with_opencv(bytes, source);
+}
+
+OccupancyMap2D map_from_image(const MapServerMeta& meta, const GreyImage& img) {
   OccupancyMap2D map;
   map.geometry =
       GridGeometry{meta.origin_x_m, meta.origin_y_m, meta.resolution_m, img.width, img.height};
@@ -337,6 +366,15 @@ OccupancyMap2D load_map_server(const fs::path& yaml_path) {
     }
   }
   return map;
+}
+
+bool is_map_server_yaml(const fs::path& path) {
+  if (!has_extension(path, ".yaml") && !has_extension(path, ".yml")) return false;
+  const YAML::Node doc = yaml::load_file(path);
+  if (!doc.IsMap()) return false;
+  for (const char* key : {"image", "resolution", "origin"})
+    if (doc[key].IsDefined()) return true;
+  return false;
 }
 
 void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path) {

@@ -356,6 +356,53 @@ std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world,
   return tree;
 }
 
+std::unique_ptr<octomap::OcTree> extrude_map_2d(const OccupancyMap2D& map, const std::string& source,
+                                                const Map2DExtrusion& options) {
+  const GridGeometry& g = map.geometry;
+  const double res = g.resolution_m;
+  if (!(std::isfinite(res) && res >= 0.001 && res <= 100.0))
+    throw InputError(source, "resolution", "metres per cell in [0.001, 100]", fmt::format("{}", res));
+  if (!(std::isfinite(options.height_m) && options.height_m > 0.0 && options.height_m <= 100.0))
+    throw InputError(source, "height_m", "a wall height in (0, 100] m", fmt::format("{}", options.height_m));
+  if (g.width < 1 || g.height < 1 || map.cells.size() != g.size())
+    throw InputError(source, "", "a non-empty map whose cell count matches its geometry");
+  if (!(std::isfinite(g.origin_x_m) && std::isfinite(g.origin_y_m)))
+    throw InputError(source, "origin", "a finite origin");
+  // Voxel index (key - kKeyOffset) of cell (0, 0): the origin snapped onto the voxel grid.
+  const double ix = std::round(g.origin_x_m / res), iy = std::round(g.origin_y_m / res);
+  const double reach = kKeyOffset - 1;
+  if (ix < -reach || iy < -reach || ix + g.width > reach || iy + g.height > reach)
+    throw InputError(source, "origin",
+                     fmt::format("a map within OctoMap's key range, +-{:g} m at {:g} m cells", reach * res, res),
+                     fmt::format("[{:g}, {:g}] to [{:g}, {:g}]", g.origin_x_m, g.origin_y_m,
+                                 g.origin_x_m + g.width * res, g.origin_y_m + g.height * res));
+  const long layers = std::max(1L, static_cast<long>(std::ceil(options.height_m / res - 1e-9)));
+  if (layers >= kKeyOffset) throw InputError(source, "height_m", "fewer than 2^15 voxel layers");
+  const std::size_t known = map.count(CellState::kFree) + map.count(CellState::kOccupied);
+  if (static_cast<double>(known) * static_cast<double>(layers + 1) > static_cast<double>(options.max_voxels))
+    throw InputError(source, "resolution",
+                     fmt::format("a map of at most {} voxels (known cells x {} layers)", options.max_voxels, layers + 1),
+                     fmt::format("{} known cells", known));
+  auto tree = std::make_unique<octomap::OcTree>(res);
+  const float occupied = tree->getClampingThresMaxLog(), free = tree->getClampingThresMinLog();
+  const long x0 = static_cast<long>(ix) + kKeyOffset, y0 = static_cast<long>(iy) + kKeyOffset;
+  const auto key = [](long v) { return static_cast<octomap::key_type>(v); };
+  for (int j = 0; j < g.height; ++j) {
+    for (int i = 0; i < g.width; ++i) {
+      const CellState s = map.at({i, j});
+      if (s == CellState::kUnknown) continue;
+      const long x = x0 + i, y = y0 + j;
+      tree->setNodeValue(octomap::OcTreeKey(key(x), key(y), key(kKeyOffset - 1)), occupied, true);
+      const float v = s == CellState::kOccupied ? occupied : free;
+      for (long k = 0; k < layers; ++k)
+        tree->setNodeValue(octomap::OcTreeKey(key(x), key(y), key(kKeyOffset + k)), v, true);
+    }
+  }
+  tree->prune();
+  tree->updateInnerOccupancy();
+  return tree;
+}
+
 std::unique_ptr<octomap::OcTree> load_octree(const fs::path& path) {
   const bool binary = has_ext(path, ".bt");
   if (!binary && !has_ext(path, ".ot"))

@@ -15,10 +15,29 @@
 namespace ferret {
 
 PlanningWorld load_planning_world(const std::filesystem::path& path) {
+  if (is_map_server_yaml(path)) return planning_world_from_map_2d(load_map_server(path), path.string());
   PlanningWorld w;
   w.source = path;
   w.tree = load_or_build_octree(path, &w.spec);
   return w;
+}
+
+PlanningWorld planning_world_from_map_2d(const OccupancyMap2D& map, const std::string& source,
+                                         const Map2DExtrusion& extrusion) {
+  PlanningWorld w;
+  w.source = source;
+  w.tree = extrude_map_2d(map, source, extrusion);
+  w.map_2d = map.geometry;
+  return w;
+}
+
+HiddenSpaceFrame map_2d_frame(const GridGeometry& g) {
+  HiddenSpaceFrame f;
+  f.lo_m = {g.origin_x_m, g.origin_y_m};
+  f.hi_m = {g.origin_x_m + g.width * g.resolution_m, g.origin_y_m + g.height * g.resolution_m};
+  f.floor_z_m = 0.0;
+  f.p_WE = Eigen::Vector2d::Zero();
+  return f;
 }
 
 HiddenSpaceFrame hidden_space_frame(const HiddenSpace& space) {

@@ -33,6 +33,9 @@ HiddenSpaceFrame request_space(const PlanningWorld& world, const UgvPathRequest&
       space = hidden_space_frame(world.spec->hidden_spaces[static_cast<std::size_t>(index)]);
       have_space = have_entry = true;
     }
+  } else if (world.map_2d) {
+    space = map_2d_frame(*world.map_2d);  // a 2D map is one hidden space; no entry of its own
+    have_space = true;
   }
   if (r.bounds) {
     const Aabb3& b = *r.bounds;
@@ -63,7 +66,7 @@ HiddenSpaceFrame request_space(const PlanningWorld& world, const UgvPathRequest&
                      "a start inside one of the world's hidden spaces (or a box as bounds)",
                      world.source.string());
   if (!have_entry)
-    throw InputError(kSource, "p_WE", "the tether's entry point (a box alone does not give one)");
+    throw InputError(kSource, "p_WE", "the tether's entry point (a box or a 2D map alone does not give one)");
   return space;
 }
 

@@ -229,5 +229,67 @@ TEST(OccupancyMap2D, CorruptPngIsInputError) {
   EXPECT_THROW((void)load_map_server(dir / "m.yaml"), InputError);
 }
 
+// A request body carries the YAML and the image as bytes: the same map as from files,
+// and the YAML's image key is never opened.
+TEST(OccupancyMap2D, TheYamlAndImageFromBytesGiveTheSameMapAsTheFiles) {
+  TempDir dir;
+  const std::string pgm = std::string("P5\n3 2\n255\n") + std::string{'\0', '\xfe', '\xcd', '\xfe', '\0', '\0'};
+  write_bytes(dir / "m.pgm", pgm);
+  write_bytes(dir / "m.yaml", yaml_for("m.pgm"));
+  const OccupancyMap2D from_files = load_map_server(dir / "m.yaml");
+  // The YAML names a file that does not exist: parsing its text must not look for it.
+  const MapServerMeta meta = parse_map_server_meta(yaml_for("/nonexistent/elsewhere.pgm"), "body");
+  EXPECT_EQ(meta.image, "/nonexistent/elsewhere.pgm");
+  const OccupancyMap2D from_bytes = map_from_image(meta, decode_map_image(pgm, "image"));
+  EXPECT_TRUE(from_bytes == from_files);
+  // Image row 0 is the top: cell (0, 1) is the first pixel (0: occupied).
+  EXPECT_EQ(from_bytes.at({0, 1}), CellState::kOccupied);
+  EXPECT_EQ(from_bytes.at({1, 1}), CellState::kFree);
+  EXPECT_EQ(from_bytes.at({2, 1}), CellState::kUnknown);
+  EXPECT_EQ(from_bytes.at({1, 0}), CellState::kOccupied);
+}
+
+TEST(OccupancyMap2D, ImageBytesAreRecognisedByTheirContentNotTheirName) {
+  // The same 2 x 1 map as PGM and as PNG (written by save_map_server and OpenCV-free
+  // libpng through a saved map): both decode to the same pixels.
+  TempDir dir;
+  OccupancyMap2D map = OccupancyMap2D::filled({0.0, 0.0, 0.1, 2, 1}, CellState::kFree);
+  map.at({1, 0}) = CellState::kOccupied;
+  save_map_server(map, dir / "m.yaml");
+  std::ifstream in(dir / "m.pgm", std::ios::binary);
+  const std::string pgm((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const GreyImage grey = decode_map_image(pgm, "image");
+  ASSERT_EQ(grey.width, 2);
+  EXPECT_EQ(grey.pixels[0], 254);
+  EXPECT_EQ(grey.pixels[1], 0);
+  // Not an image at all, an empty body, a broken PNG: the source is named.
+  expect_input_error([] { (void)decode_map_image("hello, not an image", "image"); }, "image", "");
+  expect_input_error([] { (void)decode_map_image("", "image"); }, "image", "");
+  expect_input_error([] { (void)decode_map_image("\x89PNG\r\n\x1a\nbroken", "image"); }, "image", "");
+  expect_input_error([] { (void)decode_map_image("P5\n3 2\n255\n\x01", "image"); }, "image", "pixels");
+  expect_input_error([] { (void)parse_map_server_meta("image: m.pgm\nresolution: -1\norigin: [0, 0, 0]\n", "yaml"); },
+                     "yaml", "resolution");
+  try {
+    (void)parse_map_server_meta("image: [unclosed", "yaml");
+    ADD_FAILURE() << "broken YAML accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "yaml");  // the field is where the YAML parser stopped
+  }
+}
+
+TEST(OccupancyMap2D, AMapServerYamlIsToldFromAWorldYaml) {
+  TempDir dir;
+  write_bytes(dir / "m.yaml", yaml_for("m.pgm"));
+  write_bytes(dir / "partial.yaml", "resolution: 0.05\n");  // lacks image: still map_server's
+  write_bytes(dir / "w.yaml", "name: w\nresolution_m: 0.05\n");
+  write_bytes(dir / "m.bt", "image: m.pgm\n");
+  EXPECT_TRUE(is_map_server_yaml(dir / "m.yaml"));
+  EXPECT_TRUE(is_map_server_yaml(dir / "partial.yaml"));
+  EXPECT_FALSE(is_map_server_yaml(dir / "w.yaml"));
+  EXPECT_FALSE(is_map_server_yaml(dir / "m.bt"));
+  EXPECT_TRUE(is_map_server_yaml(FERRET_SOURCE_DIR "/examples/maps/dense.yaml"));
+  EXPECT_FALSE(is_map_server_yaml(FERRET_SOURCE_DIR "/examples/worlds/default.yaml"));
+}
+
 }  // namespace
 }  // namespace ferret

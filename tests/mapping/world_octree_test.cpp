@@ -383,5 +383,81 @@ TEST(OctreeFiles, EmptyTreeRoundTrips) {
   EXPECT_EQ(dir.count(), 1u);
 }
 
+// A 2D map stands as walls on a floor: every voxel of a hand-made map checked at its
+// centre, above, below and beside it.
+TEST(ExtrudeMap2D, WallsFreeSpaceFloorAndUnknownAtTheirCells) {
+  // 4 x 3 cells of 0.1 m from (-0.2, 0.3): row j = 0 at the bottom.
+  OccupancyMap2D map = OccupancyMap2D::filled({-0.2, 0.3, 0.1, 4, 3}, CellState::kFree);
+  map.at({1, 1}) = CellState::kOccupied;
+  map.at({3, 2}) = CellState::kUnknown;
+  Map2DExtrusion e;
+  e.height_m = 0.3;  // three layers
+  const auto tree = extrude_map_2d(map, "m.yaml", e);
+  EXPECT_DOUBLE_EQ(tree->getResolution(), 0.1);
+  const auto centre = [&](int i, int j) { return std::pair{-0.2 + 0.1 * i + 0.05, 0.3 + 0.1 * j + 0.05}; };
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      const auto [x, y] = centre(i, j);
+      const CellState s = map.at({i, j});
+      const Voxel above = s == CellState::kOccupied ? Voxel::kOccupied
+                          : s == CellState::kFree   ? Voxel::kFree
+                                                    : Voxel::kUnknown;
+      for (double z : {0.05, 0.15, 0.25}) EXPECT_EQ(voxel_at(*tree, x, y, z), above) << i << "," << j << " z " << z;
+      // The floor under every known cell; nothing above the walls' height.
+      EXPECT_EQ(voxel_at(*tree, x, y, -0.05), s == CellState::kUnknown ? Voxel::kUnknown : Voxel::kOccupied);
+      EXPECT_EQ(voxel_at(*tree, x, y, 0.35), Voxel::kUnknown);
+      EXPECT_EQ(voxel_at(*tree, x, y, -0.15), Voxel::kUnknown);
+    }
+  }
+  // Beside the map: unknown.
+  EXPECT_EQ(voxel_at(*tree, -0.25, 0.35, 0.05), Voxel::kUnknown);
+  EXPECT_EQ(voxel_at(*tree, 0.25, 0.35, 0.05), Voxel::kUnknown);
+  // Its slice at the floor is the map again.
+  SliceOptions at_floor = at_z(0.05);
+  at_floor.window_m = Eigen::Vector4d(-0.2, 0.3, 0.2, 0.6);
+  const OccupancyMap2D slice = slice_octree(*tree, at_floor);
+  ASSERT_EQ(slice.geometry.width, 4);
+  ASSERT_EQ(slice.geometry.height, 3);
+  EXPECT_NEAR(slice.geometry.origin_x_m, -0.2, 1e-9);
+  EXPECT_NEAR(slice.geometry.origin_y_m, 0.3, 1e-9);
+  EXPECT_EQ(slice.cells, map.cells);
+}
+
+TEST(ExtrudeMap2D, AnOriginOffTheVoxelGridMovesLessThanHalfACell) {
+  OccupancyMap2D map = OccupancyMap2D::filled({0.13, -0.04, 0.1, 2, 1}, CellState::kFree);
+  map.at({1, 0}) = CellState::kOccupied;
+  const auto tree = extrude_map_2d(map, "m.yaml");
+  // Cell (1, 0) spans x 0.23..0.33: its voxel is x 0.2..0.3, whose centre lies in the cell.
+  // In y the cell spans -0.04..0.06, its voxel 0..0.1.
+  EXPECT_EQ(voxel_at(*tree, 0.25, 0.05, 0.05), Voxel::kOccupied);
+  EXPECT_EQ(voxel_at(*tree, 0.15, 0.05, 0.05), Voxel::kFree);
+  EXPECT_EQ(voxel_at(*tree, 0.35, 0.05, 0.05), Voxel::kUnknown);
+  EXPECT_EQ(voxel_at(*tree, 0.25, -0.05, 0.05), Voxel::kUnknown);
+}
+
+TEST(ExtrudeMap2D, ImpossibleMapsAreRefusedNamingTheField) {
+  const auto field_of = [](const OccupancyMap2D& m, const Map2DExtrusion& e = {}) {
+    try {
+      (void)extrude_map_2d(m, "m.yaml", e);
+    } catch (const InputError& err) {
+      EXPECT_EQ(err.source(), "m.yaml");
+      return err.field();
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 1e-5, 2, 2}, CellState::kFree)), "resolution");
+  // Beyond OctoMap's key range: 2^15 cells of 0.05 m is 1638 m.
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({1700.0, 0.0, 0.05, 2, 2}, CellState::kFree)), "origin");
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({-1637.0, 0.0, 0.05, 2, 2}, CellState::kFree)), "(accepted)");
+  Map2DExtrusion small;
+  small.max_voxels = 100;  // 10 x 10 known cells x (1 floor + 10 layers) = 1100
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 10, 10}, CellState::kFree), small), "resolution");
+  // Unknown cells cost nothing.
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 10, 10}, CellState::kUnknown), small), "(accepted)");
+  Map2DExtrusion flat;
+  flat.height_m = std::nan("");
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 2, 2}, CellState::kFree), flat), "height_m");
+}
+
 }  // namespace
 }  // namespace ferret

@@ -192,5 +192,69 @@ TEST(UgvPath, APreparedSetupPlansWhatTheOneCallPlans) {
   EXPECT_EQ(plan_to_json(once.plan), plan_to_json(twice.plan));
 }
 
+// A map_server map (a 2D hidden space, as `ferret explore` searches) is planned in as
+// one hidden space: its walls stand on a floor at z = 0, the entry comes with the
+// request. Ground truth is the 2D map itself: the miniUGV's inscribed circle (0.06 m,
+// half its 0.12 m width) never covers an occupied or unknown cell's centre, and FCL
+// on the extruded map agrees.
+TEST(UgvPath, AMapServerMapIsOneHiddenSpaceWhoseWallsThePlanGoesRound) {
+  const std::string yaml = kSource + "/examples/maps/sparse.yaml";
+  const PlanningWorld world = load_planning_world(yaml);
+  ASSERT_TRUE(world.map_2d.has_value());
+  EXPECT_FALSE(world.spec.has_value());
+  const OccupancyMap2D truth = load_map_server(yaml);
+  UgvPathRequest req;
+  req.start = {1.0, 4.0, 0.0};
+  req.goal = {10.0, 4.0, 0.0};
+  req.p_WE = Eigen::Vector2d(0.2, 4.0);
+  // The straight line crosses the block at x 8.5..9.3: the plan must go round it.
+  bool blocked = false;
+  for (double x = 1.0; x <= 10.0; x += 0.01) blocked |= truth.state_at(x, 4.0) == CellState::kOccupied;
+  ASSERT_TRUE(blocked);
+  const UgvPathResult r = plan_ugv_path(world, req);
+  ASSERT_TRUE(r.solved) << r.status;
+  EXPECT_EQ(test::check_plan(world, r.plan), std::nullopt);
+  EXPECT_NEAR(r.plan.bounds->lo.x(), 0.0, 1e-12);
+  EXPECT_NEAR(r.plan.bounds->hi.y(), 8.0, 1e-12);
+  EXPECT_NEAR(r.plan.bounds->lo.z(), 0.0, 1e-12);
+  double length = 0.0;
+  const double r_in = 0.06, res = truth.geometry.resolution_m;
+  for (std::size_t k = 1; k < r.plan.states.size(); ++k) {
+    const Eigen::Vector2d a = r.plan.states[k - 1].position().head<2>(), b = r.plan.states[k].position().head<2>();
+    length += (b - a).norm();
+    const int n = static_cast<int>(std::ceil((b - a).norm() / 0.01)) + 1;
+    for (int q = 0; q <= n; ++q) {
+      const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(q) / n);
+      for (double dx = -r_in; dx <= r_in + 1e-9; dx += res / 2)
+        for (double dy = -r_in; dy <= r_in + 1e-9; dy += res / 2) {
+          if (std::hypot(dx, dy) > r_in) continue;
+          const Cell c = truth.geometry.cell_at(p.x() + dx, p.y() + dy);
+          const Eigen::Vector2d centre(truth.geometry.origin_x_m + (c.i + 0.5) * res,
+                                       truth.geometry.origin_y_m + (c.j + 0.5) * res);
+          if ((centre - p).norm() > r_in) continue;
+          ASSERT_EQ(truth.state_at(centre.x(), centre.y()), CellState::kFree)
+              << "state " << k << " at " << p.transpose() << " covers cell " << c.i << "," << c.j;
+        }
+    }
+  }
+  EXPECT_GT(length, 9.0 + 0.1);
+  // The map names no entry, and no hidden space by name.
+  UgvPathRequest no_entry = req;
+  no_entry.p_WE.reset();
+  EXPECT_THROW(
+      {
+        try {
+          (void)plan_ugv_path(world, no_entry);
+        } catch (const InputError& e) {
+          EXPECT_EQ(e.field(), "p_WE");
+          throw;
+        }
+      },
+      InputError);
+  UgvPathRequest named = req;
+  named.hidden_space = "cellar";
+  EXPECT_THROW((void)plan_ugv_path(world, named), InputError);
+}
+
 }  // namespace
 }  // namespace ferret

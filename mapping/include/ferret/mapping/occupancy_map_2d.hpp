@@ -3,6 +3,7 @@
 // free, occupied or unknown, with the map's origin at the lower-left corner of
 // cell (0, 0). Loaded from and saved to map_server YAML + PGM.
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -38,6 +39,14 @@ struct OccupancyMap2D {
 /// Same geometry (exactly) and the same cell states.
 [[nodiscard]] bool operator==(const OccupancyMap2D& a, const OccupancyMap2D& b);
 
+/// How a 2D map becomes a 3D one (extrude_map_2d in world_octree.hpp).
+struct Map2DExtrusion {
+  double height_m = 0.5;  ///< walls, and known free space, reach this far above the floor
+  /// A map needing more voxels (known cells x layers) is refused instead of exhausting
+  /// memory and time.
+  std::size_t max_voxels = 60'000'000;
+};
+
 /// The keys of a map_server YAML (defaults are map_server's).
 struct MapServerMeta {
   std::filesystem::path image;  ///< PGM/PNG path, relative to the YAML
@@ -52,6 +61,16 @@ struct MapServerMeta {
 /// Reads and checks the keys of a map_server YAML without loading the image.
 /// Throws InputError naming the file and field (unknown keys included).
 [[nodiscard]] MapServerMeta load_map_server_meta(const std::filesystem::path& yaml_path);
+/// The same from the YAML's text (a request body); errors name `source`. The `image`
+/// key is read but not opened: the caller supplies the image.
+[[nodiscard]] MapServerMeta parse_map_server_meta(const std::string& yaml_text,
+                                                  const std::string& source);
+
+/// Does `path` look like a map_server YAML? A .yaml/.yml file with an `image`,
+/// `resolution` or `origin` key, which a world YAML never has, so a map_server file
+/// that lacks one of them still gets map_server's messages. Throws InputError for a
+/// file that is not YAML.
+[[nodiscard]] bool is_map_server_yaml(const std::filesystem::path& path);
 
 /// Loads a map_server YAML and its image (binary P5 or ASCII P2 PGM, 8 or 16 bit,
 /// or anything OpenCV reads, e.g. PNG). A pixel's occupancy is
@@ -80,6 +99,14 @@ struct GreyImage {
 /// not 255. Throws InputError naming the file and the header field or the pixel
 /// data for a wrong magic, a malformed header, or fewer samples than width*height.
 [[nodiscard]] GreyImage read_pgm(const std::filesystem::path& path);
+/// The same for a PGM's bytes already in memory; errors name `source`.
+[[nodiscard]] GreyImage parse_pgm(std::string bytes, const std::string& source);
+/// A map image's bytes: PGM (P5 or P2) by its magic, PNG by its signature (through
+/// libpng), anything else OpenCV decodes; as load_map_server() reads them. Errors
+/// (unreadable, too large, a pixel depth other than 8 or 16 bit) name `source`.
+[[nodiscard]] GreyImage decode_map_image(std::string bytes, const std::string& source);
+/// A map_server map from its keys and its image, by the rules of load_map_server().
+[[nodiscard]] OccupancyMap2D map_from_image(const MapServerMeta& meta, const GreyImage& image);
 
 /// Writes a binary PGM (P5, maxval 255) atomically.
 void write_pgm(const GreyImage& image, const std::filesystem::path& path);

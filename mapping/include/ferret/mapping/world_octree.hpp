@@ -82,6 +82,17 @@ struct SliceOptions {
 /// window, clipped to it), cell edges on voxel edges, at the tree's resolution.
 [[nodiscard]] OccupancyMap2D slice_octree(const octomap::OcTree& tree, const SliceOptions& options);
 
+/// A 2D map as a 3D world at its own resolution, for planning a ground robot in it:
+/// the floor's top at z = 0 (one layer of occupied voxels under every known cell),
+/// occupied cells walls from the floor to `height_m`, free cells known free space to
+/// `height_m`, unknown cells left unknown. OctoMap's voxels lie on multiples of the
+/// resolution, so a map whose origin does not is moved onto them, by under half a cell.
+/// InputError naming `source` and the field for a resolution outside [0.001, 100] m,
+/// a map beyond OctoMap's key range (+-2^15 cells from 0), or more voxels than allowed.
+[[nodiscard]] std::unique_ptr<octomap::OcTree> extrude_map_2d(const OccupancyMap2D& map,
+                                                              const std::string& source,
+                                                              const Map2DExtrusion& options = {});
+
 /// What `ferret world info` prints.
 struct OctreeSummary {
   double resolution_m = 0.0;

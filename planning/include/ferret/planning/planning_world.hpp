@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "ferret/core/grid.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/planning/plan_failure.hpp"
@@ -28,10 +30,21 @@ struct PlanningWorld {
   std::filesystem::path source;
   std::shared_ptr<const octomap::OcTree> tree;
   std::optional<WorldSpec> spec;  ///< for world YAMLs
+  /// For a 2D (map_server) map: its grid. The map is one hidden space, its whole
+  /// extent with the floor at z = 0 (extrude_map_2d); it names no tether entry.
+  std::optional<GridGeometry> map_2d;
 };
 
-/// Loads `.yaml`/`.yml` (built), `.bt` or `.ot`. InputError for anything else.
+/// Loads a world YAML (built), a map_server YAML (extruded: planning_world_from_map_2d),
+/// `.bt` or `.ot`. InputError for anything else.
 [[nodiscard]] PlanningWorld load_planning_world(const std::filesystem::path& path);
+/// A 2D map as a planning world: extrude_map_2d() with `extrusion`, errors naming
+/// `source`, which also becomes the world's source.
+[[nodiscard]] PlanningWorld planning_world_from_map_2d(const OccupancyMap2D& map,
+                                                       const std::string& source,
+                                                       const Map2DExtrusion& extrusion = {});
+/// The hidden space a 2D map is: its extent, the floor at z = 0, no entry yet (p_WE 0).
+[[nodiscard]] HiddenSpaceFrame map_2d_frame(const GridGeometry& map);
 
 /// The planning frame of a hidden space of a world YAML: the axis-aligned box around
 /// its interior, its floor, its entry point.
