@@ -62,6 +62,13 @@ void IrGrid::update_cell(Cell c, bool hit) {
   set_label(idx, l >= 0.0f ? GridLabel::kOccupied : GridLabel::kFree);
 }
 
+void IrGrid::set_probability(Cell c, double p_occupied) {
+  const std::size_t idx = geometry_.index(c);
+  const double p = std::clamp(p_occupied, options_.clamp_min, options_.clamp_max);
+  log_odds_[idx] = std::clamp(static_cast<float>(std::log(p / (1.0 - p))), l_min_, l_max_);
+  set_label(idx, log_odds_[idx] >= 0.0f ? GridLabel::kOccupied : GridLabel::kFree);
+}
+
 void IrGrid::integrate_scan(const RangeScan& scan) {
   if (++scan_id_ == 0) {  // stamps wrapped: reset so stale stamps never match
     std::fill(hit_stamp_.begin(), hit_stamp_.end(), 0);

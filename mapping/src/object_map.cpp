@@ -84,7 +84,19 @@ void ObjectMap::fuse(Cell c, double p_measurement) {
   const std::size_t idx = geometry_.index(c);
   float& l = log_odds_[idx];
   l = std::clamp(static_cast<float>(l + logit(p_measurement)), -l_clamp_, l_clamp_);
-  const bool evidence = l > 0.0f;
+  track_evidence(idx);
+}
+
+void ObjectMap::set_cell(Cell c, double probability, double last_confidence) {
+  const std::size_t idx = geometry_.index(c);
+  const double p = std::clamp(probability, 1e-9, 1.0 - 1e-9);
+  log_odds_[idx] = std::clamp(static_cast<float>(logit(p)), -l_clamp_, l_clamp_);
+  last_conf_[idx] = static_cast<float>(std::clamp(last_confidence, 0.0, 1.0));
+  track_evidence(idx);
+}
+
+void ObjectMap::track_evidence(std::size_t idx) {
+  const bool evidence = log_odds_[idx] > 0.0f;
   if (evidence && evidence_pos_[idx] < 0) {
     evidence_pos_[idx] = static_cast<std::int32_t>(evidence_.size());
     evidence_.push_back(idx);

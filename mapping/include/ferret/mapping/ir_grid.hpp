@@ -98,6 +98,9 @@ class IrGrid {
   /// One update of one cell, paper eq. (occ) in log-odds form:
   /// l_t = clamp(l_{t-1} + logit(p(g | z_t))), prior 0.5 (log-odds 0).
   void update_cell(Cell c, bool hit);
+  /// Sets a cell to an occupancy probability (clamped to [clamp_min, clamp_max]) as if
+  /// observed: a grid received from elsewhere (the planner service's next-goal request).
+  void set_probability(Cell c, double p_occupied);
 
   /// Marks the cells within `radius_m` of `p_W` free (the robot knows the ground it
   /// stands on before its first scan).

@@ -80,6 +80,10 @@ class ObjectMap {
   /// One Bayes update of one cell with the measurement likelihood `p_measurement`
   /// (paper eq. (p_o_update), prior 0.5).
   void fuse(Cell c, double p_measurement);
+  /// Sets a cell as a map received from elsewhere has it (the planner service's
+  /// next-goal request): its probability (clamped as fusion clamps) and the confidence
+  /// of the last detection fused into it (0: none), which CDOS's prediction starts from.
+  void set_cell(Cell c, double probability, double last_confidence);
 
   /// conf = clip(raw, conf_floor, conf_cap): a detection is always weak positive evidence.
   [[nodiscard]] double detection_confidence(double raw_confidence) const;
@@ -106,6 +110,7 @@ class ObjectMap {
 
  private:
   bool new_viewpoint(std::size_t idx, const Pose2& X_WC, double time_s) const;
+  void track_evidence(std::size_t idx);  // keeps evidence_ in step with the cell's log-odds
   void remember_viewpoint(std::size_t idx, const Pose2& X_WC, double time_s);
 
   GridGeometry geometry_;
