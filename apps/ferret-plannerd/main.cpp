@@ -18,6 +18,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/number.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/service/planner_service.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
@@ -107,7 +108,7 @@ int run(int argc, char** argv) {
   app.add_option("--max-deadline", max_deadline_s, "the longest deadline a request may ask for, seconds")
       ->capture_default_str();
   app.add_option("--max-maps", o.max_maps, "maps held at once")->capture_default_str();
-  app.add_option("--map", preload, "preload a map: NAME=FILE (.bt, .ot or world YAML); repeatable");
+  app.add_option("--map", preload, "preload a map: NAME=FILE (.bt, .ot, world YAML or map_server YAML); repeatable");
   app.add_flag("--log-json", o.json_log, "one JSON line a request on stderr");
   app.add_flag("--check-config", check_config,
                "check the options, robots, mission and maps, print what would be served, and exit");
@@ -146,8 +147,17 @@ int run(int argc, char** argv) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   ferret::PlannerService service(o);  // checks the options and loads both robots
-  for (const auto& [name, file] : maps)
-    service.put_map(name, slurp(file, "--map " + name), ferret::printable_path(file));
+  for (const auto& [name, file] : maps) {
+    if (ferret::is_map_server_yaml(file)) {
+      // A map_server map: its image is read where its YAML says, as ferret's commands do.
+      const ferret::MapServerMeta meta = ferret::load_map_server_meta(file);
+      const fs::path image = meta.image.is_absolute() ? meta.image : fs::path(file).parent_path() / meta.image;
+      service.put_map_2d(name, slurp(file, "--map " + name), slurp(image, "--map " + name),
+                         ferret::printable_path(file), ferret::printable_path(image.string()));
+    } else {
+      service.put_map(name, slurp(file, "--map " + name), ferret::printable_path(file));
+    }
+  }
   const std::string auth = o.token.empty() ? "none" : "bearer token";
   if (check_config) {
     std::cout << fmt::format(

@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <arpa/inet.h>
+#include <malloc.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <octomap/OcTree.h>
 
 #include <algorithm>
@@ -9,7 +13,9 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cerrno>
 #include <deque>
+#include <filesystem>
 #include <future>
 #include <iostream>
 #include <map>
@@ -20,8 +26,10 @@
 #include <vector>
 
 #include "ferret/core/error.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/mapping/world_octree.hpp"
 #include "ferret/mapping/world_spec.hpp"
+#include "ferret/planning/next_goal.hpp"
 #include "ferret/planning/plan_file.hpp"
 #include "ferret/planning/plan_validation.hpp"
 #include "ferret/planning/planning_world.hpp"
@@ -179,6 +187,19 @@ class Body {
 // built once by the first request that needs one; later ones wait for it.
 
 struct MapEntry {
+  MapEntry() = default;
+  MapEntry(const MapEntry&) = delete;
+  MapEntry& operator=(const MapEntry&) = delete;
+  // A map is millions of small nodes, built on whichever HTTP thread took the PUT, so
+  // in whichever malloc arena that thread uses. glibc keeps a freed map's pages in its
+  // arena; over many replacements every arena holds one and the service's memory grows
+  // with the number of threads. Trimming returns them to the system.
+  ~MapEntry() {
+    world = {};
+    ugv.setups.clear();
+    uav.setups.clear();
+    malloc_trim(0);
+  }
   std::string name, format;
   std::size_t bytes = 0;
   PlanningWorld world;
@@ -295,6 +316,52 @@ bool same_token(const std::string& a, const std::string& b) {
   return diff == 0;
 }
 
+// The socket of the connection a request came on. cpp-httplib 0.11 does not hand it to
+// a handler, so it is found by the peer's address and port among this process's
+// sockets (they stay open while the handler runs, so the descriptor cannot be reused
+// under it). -1 when not found: the search then ends by its deadline only.
+int connection_fd(const std::string& remote_addr, int remote_port, int want_local_port) {
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd", ec)) {
+    int fd = -1;
+    try {
+      fd = std::stoi(entry.path().filename().string());
+    } catch (const std::exception&) {
+      continue;
+    }
+    sockaddr_storage peer{}, local{};
+    socklen_t peer_len = sizeof peer, local_len = sizeof local;
+    if (::getpeername(fd, reinterpret_cast<sockaddr*>(&peer), &peer_len) != 0) continue;
+    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_len) != 0) continue;
+    char host[INET6_ADDRSTRLEN] = {};
+    int peer_port = -1, local_port = -1;
+    if (peer.ss_family == AF_INET) {
+      const auto* a = reinterpret_cast<const sockaddr_in*>(&peer);
+      ::inet_ntop(AF_INET, &a->sin_addr, host, sizeof host);
+      peer_port = ntohs(a->sin_port);
+      local_port = ntohs(reinterpret_cast<const sockaddr_in*>(&local)->sin_port);
+    } else if (peer.ss_family == AF_INET6) {
+      const auto* a = reinterpret_cast<const sockaddr_in6*>(&peer);
+      ::inet_ntop(AF_INET6, &a->sin6_addr, host, sizeof host);
+      peer_port = ntohs(a->sin6_port);
+      local_port = ntohs(reinterpret_cast<const sockaddr_in6*>(&local)->sin6_port);
+    } else {
+      continue;
+    }
+    if (peer_port == remote_port && local_port == want_local_port && remote_addr == host) return fd;
+  }
+  return -1;
+}
+
+// Has the peer closed its end? A peek that reads 0 bytes is an orderly close; bytes
+// waiting (a pipelined request) or nothing yet both mean the client is still there.
+bool peer_closed(int fd) {
+  char c = 0;
+  const ssize_t n = ::recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
+  if (n == 0) return true;
+  return n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------
@@ -383,12 +450,36 @@ struct PlannerService::Impl {
     return std::chrono::duration<double>(deadline - Clock::now()).count();
   }
 
-  std::function<bool()> cancel_flag() {
-    return [this] { return cancel_all.load(std::memory_order_relaxed); };
+  // The search stops when the service shuts down or the client hangs up. Most plans
+  // end within milliseconds, so the client's socket is looked for only once a search
+  // has run 10 ms, and then peeked at every 10 ms at most (a search's checks stay cheap).
+  std::function<bool()> cancel_flag(const httplib::Request& req) {
+    struct Watch {
+      std::string remote_addr;
+      int remote_port = -1, local_port = -1;
+      int fd = -2;  // -2: not looked for yet; -1: not found
+      Clock::time_point next{};
+      bool gone = false;
+    };
+    auto watch = std::make_shared<Watch>();
+    watch->remote_addr = req.remote_addr;
+    watch->remote_port = req.remote_port;
+    watch->local_port = req.local_port;
+    watch->next = Clock::now() + std::chrono::milliseconds(10);
+    return [this, watch] {
+      if (cancel_all.load(std::memory_order_relaxed)) return true;
+      if (watch->gone || watch->fd == -1) return watch->gone;
+      const auto now = Clock::now();
+      if (now < watch->next) return false;
+      watch->next = now + std::chrono::milliseconds(10);
+      if (watch->fd == -2) watch->fd = connection_fd(watch->remote_addr, watch->remote_port, watch->local_port);
+      watch->gone = watch->fd >= 0 && peer_closed(watch->fd);
+      return watch->gone;
+    };
   }
 
   json plan_response(const PlanResult& r, double wall_s, httplib::Response& res) {
-    metrics.record_plan(r.solved);
+    metrics.record_plan(r.solved ? "solved" : r.failure == PlanFailure::kCancelled ? "cancelled" : "failed");
     if (!r.solved) {
       const ApiError e{422, failure_code(r.failure), r.status, ""};
       json body = error_body(e);
@@ -402,23 +493,41 @@ struct PlannerService::Impl {
 
   // -- maps ------------------------------------------------------------------------
 
-  // The map in a body: an OctoMap file (by its header line) or a world YAML. InputError
-  // naming `source` when it is neither.
-  std::shared_ptr<MapEntry> load_map(const std::string& name, const std::string& body,
-                                     const std::string& content_type, const std::string& source) {
+  // The map in a body: an OctoMap file (by its header line) or a world YAML; or a
+  // map_server map as its YAML's text and its image's bytes (`map_2d`), the YAML's
+  // `image` key never opened (a request must not make the service read its files).
+  // InputError naming `source` (for a map_server map: "yaml" or "image") when the
+  // bytes are not a map.
+  struct Map2DUpload {
+    std::string yaml, image;                      // the YAML's text, the image's bytes
+    std::string yaml_source = "yaml", image_source = "image";  // what errors name
+  };
+  struct MapUpload {
+    std::string body;
+    std::optional<Map2DUpload> map_2d;
+  };
+  std::shared_ptr<MapEntry> load_map(const std::string& name, const MapUpload& upload, const std::string& source) {
     auto entry = std::make_shared<MapEntry>();
     entry->name = name;
-    entry->bytes = body.size();
     entry->loaded_at = utc_now();
-    entry->world.source = "maps/" + name;
+    const std::string& body = upload.body;
     const bool bt = body.rfind("# Octomap OcTree binary file", 0) == 0;
     const bool ot = !bt && body.rfind("# Octomap OcTree file", 0) == 0;
-    if (bt || ot) {
+    if (upload.map_2d) {
+      const Map2DUpload& u = *upload.map_2d;
+      entry->bytes = u.yaml.size() + u.image.size();
+      entry->format = "map_server";
+      const MapServerMeta meta = parse_map_server_meta(u.yaml, u.yaml_source);
+      Map2DExtrusion extrusion;
+      extrusion.max_voxels = options.max_map_nodes;
+      entry->world = planning_world_from_map_2d(map_from_image(meta, decode_map_image(u.image, u.image_source)),
+                                                u.yaml_source, extrusion);
+    } else if (bt || ot) {
+      entry->bytes = body.size();
       entry->format = bt ? "octomap_bt" : "octomap_ot";
       entry->world.tree = parse_octree(body, bt, source);
     } else {
-      if (content_type.rfind("multipart/", 0) == 0)
-        throw InputError(source, "", "an OctoMap .bt/.ot file or a world YAML as the whole body (map_server YAML + PGM uploads are not supported yet)");
+      entry->bytes = body.size();
       if (first_invalid_utf8(body) != std::string::npos)
         throw InputError(source, "", "an OctoMap file (it starts '# Octomap OcTree') or a world YAML (UTF-8 text)");
       entry->format = "world_yaml";
@@ -428,6 +537,7 @@ struct PlannerService::Impl {
       entry->world.tree = build_world_octree(spec, build);
       entry->world.spec = std::move(spec);
     }
+    entry->world.source = "maps/" + name;
     // Each hidden space's setup now, so the first plans there are as quick as the rest.
     if (entry->world.spec)
       for (const HiddenSpace& h : entry->world.spec->hidden_spaces) {
@@ -463,7 +573,36 @@ struct PlannerService::Impl {
                           {"entry_m", {f.p_WE.x(), f.p_WE.y()}}});
       }
     j["hidden_spaces"] = spaces;
+    if (m.world.map_2d) {
+      const GridGeometry& g = *m.world.map_2d;
+      const HiddenSpaceFrame f = map_2d_frame(g);
+      j["map_2d"] = {{"origin_m", {g.origin_x_m, g.origin_y_m}},
+                     {"resolution_m", g.resolution_m},
+                     {"width", g.width},
+                     {"height", g.height},
+                     {"bounds_xy_m", {f.lo_m.x(), f.lo_m.y(), f.hi_m.x(), f.hi_m.y()}},
+                     {"floor_z_m", f.floor_z_m}};
+    }
     return j;
+  }
+
+  // A PUT's map: the whole body, or a map_server map as multipart/form-data with the
+  // parts "yaml" and "image" (nothing else).
+  static MapUpload map_upload(const httplib::Request& req) {
+    MapUpload u;
+    if (!req.is_multipart_form_data()) {
+      u.body = req.body;
+      return u;
+    }
+    for (const auto& [key, part] : req.files)
+      if (key != "yaml" && key != "image")
+        throw ApiError{400, "INVALID_MAP", fmt::format("{}: expected only the parts yaml and image (a map_server map)", printable(key, 64)), printable(key, 64)};
+    for (const char* key : {"yaml", "image"}) {
+      if (req.files.count(key) != 1)
+        throw ApiError{400, "INVALID_MAP", fmt::format("{0}: expected one part called {0} (a map_server map: its YAML and its image)", key), key};
+    }
+    u.map_2d = Map2DUpload{req.get_file_value("yaml").content, req.get_file_value("image").content};
+    return u;
   }
 
   // -- plans -----------------------------------------------------------------------
@@ -509,7 +648,7 @@ struct PlannerService::Impl {
     }
     r.mode = return_path ? UgvPathMode::kReturnAlongTether : UgvPathMode::kPlan;
     r.seed = body.seed();
-    r.cancelled = cancel_flag();
+    r.cancelled = cancel_flag(req);
     const std::map<std::string, std::string> fields{{"start", "start"}, {"goal", "goal"},
                                                     {"hidden_space", "hidden_space"}, {"bounds", "bounds"},
                                                     {"p_WE", "entry"}, {"floor_z_m", "floor_z_m"},
@@ -580,7 +719,7 @@ struct PlannerService::Impl {
     }
     r.planner = body.text("planner", "rrtconnect");
     r.seed = body.seed();
-    r.cancelled = cancel_flag();
+    r.cancelled = cancel_flag(req);
     const std::map<std::string, std::string> fields{{"start", "start"}, {"goal", "goal"}, {"hidden_space", "hidden_space"},
                                                     {"tether_released_m", "tether_released_m"}, {"bounds", "bounds"},
                                                     {"planner", "planner"}, {"time_limit_s", "deadline_s"}};
@@ -644,6 +783,87 @@ struct PlannerService::Impl {
         send(res, 200, out);
       } catch (const InputError& e) {
         throw ApiError{400, "INVALID_REQUEST", printable(e.what()), e.field().empty() ? "plan" : e.field()};
+      }
+    });
+  }
+
+  void next_goal(const httplib::Request& req, httplib::Response& res) {
+    const auto arrived = Clock::now();
+    const Body body(req.body, {"grid", "object_probability", "object_confidence", "pose", "velocity", "method",
+                               "ir_fov_rad", "ir_range_m", "camera_range_m", "seed", "deadline_s"});
+    const auto deadline = deadline_of(body, arrived);
+    NextGoalRequest r;
+    r.mission = options.mission;
+    if (!body.has("grid") || !body.at("grid").is_object())
+      bad_request("grid", "an object: origin, resolution_m, width, height, occupancy");
+    const json& grid = body.at("grid");
+    for (const auto& [key, value] : grid.items())
+      if (key != "origin" && key != "resolution_m" && key != "width" && key != "height" && key != "occupancy")
+        bad_request("grid." + key, "one of the fields origin, resolution_m, width, height, occupancy", key);
+    const auto dim = [&](const char* key) {
+      if (!grid.contains(key) || !grid.at(key).is_number_integer() || grid.at(key).get<long long>() < 1 ||
+          grid.at(key).get<long long>() > 4096)
+        bad_request(std::string("grid.") + key, "an integer in [1, 4096]", grid.value(key, json()).dump());
+      return static_cast<int>(grid.at(key).get<long long>());
+    };
+    r.geometry.width = dim("width");
+    r.geometry.height = dim("height");
+    if (!grid.contains("resolution_m")) bad_request("grid.resolution_m", "metres in [0.005, 10] (required)");
+    r.geometry.resolution_m = Body::number_of(grid.at("resolution_m"), "grid.resolution_m", 0.005, 10.0, "metres in [0.005, 10]");
+    if (!grid.contains("origin")) bad_request("grid.origin", "[x, y] in metres (required)");
+    const auto o = Body::numbers_of(grid.at("origin"), "grid.origin", 2, "[x, y] in metres");
+    r.geometry.origin_x_m = o[0];
+    r.geometry.origin_y_m = o[1];
+    const std::size_t n = r.geometry.size();
+    if (!grid.contains("occupancy") || !grid.at("occupancy").is_array() || grid.at("occupancy").size() != n)
+      bad_request("grid.occupancy", fmt::format("an array of width x height = {} cells, each -1 (unknown) or 0..100", n));
+    r.occupancy.reserve(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const json& v = grid.at("occupancy")[k];
+      if (!v.is_number_integer() || v.get<long long>() < -1 || v.get<long long>() > 100)
+        bad_request(fmt::format("grid.occupancy[{}]", k), "-1 (unknown) or an integer 0..100 (percent occupied)", v.dump());
+      const long long x = v.get<long long>();
+      r.occupancy.push_back(x < 0 ? -1.0f : static_cast<float>(x) / 100.0f);
+    }
+    const auto per_cell = [&](const char* key, const char* what, std::vector<float>& out) {
+      if (!body.has(key)) return;
+      const json& q = body.at(key);
+      if (!q.is_array() || q.size() != n) bad_request(key, fmt::format("an array of {} values, {} each", n, what));
+      out.reserve(n);
+      for (std::size_t k = 0; k < n; ++k)
+        out.push_back(static_cast<float>(Body::number_of(q[k], fmt::format("{}[{}]", key, k), 0.0, 1.0, what)));
+    };
+    per_cell("object_probability", "a probability in [0, 1]", r.object_probability);
+    per_cell("object_confidence", "a confidence in [0, 1]", r.object_confidence);
+    const auto p = body.numbers("pose", 3, "[x, y, yaw] in metres and radians");
+    r.pose = {p[0], p[1], p[2]};
+    if (body.has("velocity")) {
+      const auto v = body.numbers("velocity", 2, "[vx, vy] in m/s");
+      r.velocity_W = {v[0], v[1]};
+    }
+    r.method = body.text("method", "cdos");
+    if (auto v = body.optional_number("ir_fov_rad", 1e-3, 6.3, "radians in (0, 2 pi]")) r.ir_fov_rad = *v;
+    if (auto v = body.optional_number("ir_range_m", 0.01, 100.0, "metres in (0, 100]")) r.ir_range_m = *v;
+    if (auto v = body.optional_number("camera_range_m", 0.01, 100.0, "metres in (0, 100]")) r.camera_range_m = *v;
+    r.seed = body.seed();
+    with_worker(res, deadline, [&] {
+      try {
+        const auto goal = next_exploration_goal(r);
+        const double wall_s = std::chrono::duration<double>(Clock::now() - arrived).count();
+        if (!goal) {
+          json out = error_body({422, "NO_FRONTIER", "no frontier is reachable: nothing left to explore from here", ""});
+          out["planning_time_s"] = wall_s;
+          send(res, 422, out);
+          return;
+        }
+        json path = json::array();
+        for (const Eigen::Vector2d& q : goal->path_W) path.push_back({q.x(), q.y()});
+        json g{{"x_m", goal->p_W.x()}, {"y_m", goal->p_W.y()}, {"cell", {goal->cell.i, goal->cell.j}},
+               {"score", goal->score}, {"reason", goal->reason}, {"path_m", path}};
+        g["heading_rad"] = goal->heading_rad ? json(*goal->heading_rad) : json(nullptr);
+        send(res, 200, json{{"goal", g}, {"method", r.method}, {"planning_time_s", wall_s}});
+      } catch (const InputError& e) {
+        throw from_input_error(e, {{"pose", "pose"}, {"method", "method"}, {"velocity", "velocity"}});
       }
     });
   }
@@ -753,10 +973,13 @@ struct PlannerService::Impl {
       const auto deadline = arrived + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.max_deadline_s));
       with_worker(res, deadline, [&] {
         std::shared_ptr<MapEntry> entry;
+        const MapUpload upload = map_upload(req);
         try {
-          entry = load_map(name, req.body, req.get_header_value("Content-Type"), "body");
+          entry = load_map(name, upload, "body");
         } catch (const InputError& e) {
-          throw ApiError{400, "INVALID_MAP", printable(e.what()), e.field().empty() ? "body" : "body." + e.field()};
+          // A map_server map's errors name their part (yaml, image), a whole body's "body".
+          const std::string part = upload.map_2d ? e.source() : "body";
+          throw ApiError{400, "INVALID_MAP", printable(e.what()), e.field().empty() ? part : part + "." + e.field()};
         }
         bool replaced = false;
         {
@@ -797,6 +1020,9 @@ struct PlannerService::Impl {
     }));
     s.Post("/v1/plan/uav", route("/v1/plan/uav", [this](const httplib::Request& req, httplib::Response& res) {
       plan_uav(req, res);
+    }));
+    s.Post("/v1/explore/next-goal", route("/v1/explore/next-goal", [this](const httplib::Request& req, httplib::Response& res) {
+      next_goal(req, res);
     }));
     s.Post("/v1/validate", route("/v1/validate", [this](const httplib::Request& req, httplib::Response& res) {
       validate(req, res);
@@ -858,10 +1084,27 @@ void PlannerService::put_map(const std::string& name, const std::string& bytes,
   Impl& m = *impl_;
   if (!valid_map_name(name))
     throw InputError(source, "name", "1 to 64 letters, digits, '_', '-' or '.'", name);
-  auto entry = m.load_map(name, bytes, "", source);
+  Impl::MapUpload upload;
+  upload.body = bytes;
+  auto entry = m.load_map(name, upload, source);
   const std::lock_guard lock(m.maps_mutex);
   if (!m.maps.count(name) && m.maps.size() >= m.options.max_maps)
     throw InputError(source, "", fmt::format("at most {} maps (--max-maps)", m.options.max_maps));
+  m.maps[name] = std::move(entry);
+}
+
+void PlannerService::put_map_2d(const std::string& name, const std::string& yaml_text,
+                                const std::string& image_bytes, const std::string& yaml_source,
+                                const std::string& image_source) {
+  Impl& m = *impl_;
+  if (!valid_map_name(name))
+    throw InputError(yaml_source, "name", "1 to 64 letters, digits, '_', '-' or '.'", name);
+  Impl::MapUpload upload;
+  upload.map_2d = Impl::Map2DUpload{yaml_text, image_bytes, yaml_source, image_source};
+  auto entry = m.load_map(name, upload, yaml_source);
+  const std::lock_guard lock(m.maps_mutex);
+  if (!m.maps.count(name) && m.maps.size() >= m.options.max_maps)
+    throw InputError(yaml_source, "", fmt::format("at most {} maps (--max-maps)", m.options.max_maps));
   m.maps[name] = std::move(entry);
 }
 

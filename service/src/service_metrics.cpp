@@ -17,9 +17,10 @@ void ServiceMetrics::record(const std::string& route, int status, double seconds
   h.sum_s += seconds;
 }
 
-void ServiceMetrics::record_plan(bool solved) {
+void ServiceMetrics::record_plan(const char* result) {
   const std::lock_guard lock(mutex_);
-  ++(solved ? plans_solved_ : plans_failed_);
+  const std::string r = result;
+  ++(r == "solved" ? plans_solved_ : r == "cancelled" ? plans_cancelled_ : plans_failed_);
 }
 
 std::string ServiceMetrics::text(int queue_depth, int active, std::size_t maps_loaded,
@@ -43,10 +44,11 @@ std::string ServiceMetrics::text(int queue_depth, int active, std::size_t maps_l
                        h.sum_s);
     out += fmt::format("ferret_request_duration_seconds_count{{route=\"{}\"}} {}\n", route, h.count);
   }
-  out += "# HELP ferret_plans_total Plans answered, solved or failed.\n";
+  out += "# HELP ferret_plans_total Plans answered: solved, failed, or cancelled (client gone, shutdown).\n";
   out += "# TYPE ferret_plans_total counter\n";
   out += fmt::format("ferret_plans_total{{result=\"solved\"}} {}\n", plans_solved_);
   out += fmt::format("ferret_plans_total{{result=\"failed\"}} {}\n", plans_failed_);
+  out += fmt::format("ferret_plans_total{{result=\"cancelled\"}} {}\n", plans_cancelled_);
   out += "# HELP ferret_queue_depth Requests waiting for a worker.\n";
   out += "# TYPE ferret_queue_depth gauge\n";
   out += fmt::format("ferret_queue_depth {}\n", queue_depth);

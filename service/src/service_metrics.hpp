@@ -18,8 +18,8 @@ class ServiceMetrics {
                                                      0.25,  0.5,    1.0,   2.5,  5.0,   10.0};
   /// One request answered: its route pattern, HTTP status and wall time.
   void record(const std::string& route, int status, double seconds);
-  /// A plan answered: solved, or failed with `code` (docs/service.md's codes).
-  void record_plan(bool solved);
+  /// A plan answered: solved, failed, or cancelled (its client went away, a shutdown).
+  void record_plan(const char* result);
   /// The whole exposition; gauges passed in as they are now.
   [[nodiscard]] std::string text(int queue_depth, int active, std::size_t maps_loaded,
                                  bool draining) const;
@@ -33,7 +33,7 @@ class ServiceMetrics {
   mutable std::mutex mutex_;
   std::map<std::pair<std::string, int>, std::uint64_t> requests_;
   std::map<std::string, Histogram> latency_;
-  std::uint64_t plans_solved_ = 0, plans_failed_ = 0;
+  std::uint64_t plans_solved_ = 0, plans_failed_ = 0, plans_cancelled_ = 0;
 };
 
 /// The process's resident memory in bytes (/proc/self/statm), 0 where unknown.

@@ -3,9 +3,15 @@
 // drain while busy. Plans are checked against collision ground truth (the library's
 // validator, FCL on the world's OctoMap), not against themselves.
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <vector>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -199,6 +205,146 @@ TEST(PlannerService, BadMapsAreRefusedNamingTheBodyAndKeepNothing) {
   EXPECT_EQ(r->status, 507);
   EXPECT_EQ(error_code(r), "TOO_MANY_MAPS");
   EXPECT_EQ(c.Put("/v1/maps/a", slurp(kDetour), "application/yaml")->status, 200);  // replacing is fine
+}
+
+// A multipart/form-data body as curl -F sends it: one part a (name, content).
+std::string multipart(const std::vector<std::pair<std::string, std::string>>& parts) {
+  std::string body;
+  for (const auto& [name, content] : parts)
+    body += "--ferret-test\r\nContent-Disposition: form-data; name=\"" + name + "\"; filename=\"" + name +
+            "\"\r\nContent-Type: application/octet-stream\r\n\r\n" + content + "\r\n";
+  return body + "--ferret-test--\r\n";
+}
+const char* kMultipart = "multipart/form-data; boundary=ferret-test";
+const std::string kSparse = FERRET_SOURCE_DIR "/examples/maps/sparse.yaml";
+const std::string kSparsePgm = FERRET_SOURCE_DIR "/examples/maps/sparse.pgm";
+
+TEST(PlannerService, AMapServerMapIsUploadedAsItsYamlAndImageAndPlannedIn) {
+  Served s;
+  auto c = s.client();
+  // The YAML's image key names a file the service must never open: the part is the image.
+  std::string yaml = slurp(kSparse);
+  yaml.replace(yaml.find("image: sparse.pgm"), 17, "image: /etc/shadow");
+  auto r = c.Put("/v1/maps/sparse", multipart({{"yaml", yaml}, {"image", slurp(kSparsePgm)}}), kMultipart);
+  ASSERT_EQ(r->status, 201) << r->body;
+  const json meta = body_of(r);
+  EXPECT_EQ(meta["format"], "map_server");
+  EXPECT_EQ(meta["map_2d"]["width"], 240);
+  EXPECT_EQ(meta["map_2d"]["height"], 160);
+  EXPECT_EQ(meta["map_2d"]["bounds_xy_m"], json({0.0, 0.0, 12.0, 8.0}));
+  // Round the block at x 8.5..9.3 on y = 4; the entry comes with the request.
+  json req{{"map", "sparse"}, {"start", {1.0, 4.0, 0.0}}, {"goal", {10.0, 4.0, 0.0}},
+           {"entry", {0.2, 4.0}}, {"deadline_s", 5.0}};
+  r = c.Post("/v1/plan/ugv", req.dump(), "application/json");
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json plan = body_of(r)["plan"];
+  expect_collision_free(plan, kSparse);  // FCL against the same map loaded from its files
+  EXPECT_EQ(plan["bounds"]["max"][0], 12.0);
+  req.erase("entry");
+  r = c.Post("/v1/plan/ugv", req.dump(), "application/json");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_field(r), "entry") << r->body;
+}
+
+TEST(PlannerService, ABrokenMapServerUploadNamesItsPart) {
+  Served s;
+  auto c = s.client();
+  const std::string yaml = slurp(kSparse), pgm = slurp(kSparsePgm);
+  const auto put = [&](const std::vector<std::pair<std::string, std::string>>& parts) {
+    return c.Put("/v1/maps/m", multipart(parts), kMultipart);
+  };
+  auto r = put({{"yaml", yaml}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_code(r), "INVALID_MAP");
+  EXPECT_EQ(error_field(r), "image") << r->body;
+  r = put({{"yaml", yaml}, {"image", pgm}, {"extra", "x"}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_field(r), "extra") << r->body;
+  r = put({{"yaml", "image: m.pgm\nresolution: -0.05\norigin: [0, 0, 0]\n"}, {"image", pgm}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_field(r), "yaml.resolution") << r->body;
+  r = put({{"yaml", yaml}, {"image", pgm.substr(0, pgm.size() - 100)}});  // truncated raster
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_field(r), "image.pixels") << r->body;
+  r = put({{"yaml", yaml}, {"image", "not an image"}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_field(r), "image") << r->body;
+  EXPECT_EQ(body_of(c.Get("/v1/maps"))["maps"].size(), 0u);
+}
+
+// A half-seen room as a client's occupancy grid (nav_msgs/OccupancyGrid values: -1
+// unknown, 0..100 percent occupied): 4 x 2 m at 0.05 m, the left half free.
+json half_seen_grid() {
+  json occupancy = json::array();
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 80; ++i) occupancy.push_back(i < 40 ? 0 : -1);
+  return json{{"origin", {0.0, 0.0}}, {"resolution_m", 0.05}, {"width", 80}, {"height", 40}, {"occupancy", occupancy}};
+}
+
+TEST(PlannerService, ExploreNextGoalAnswersThePolicysChoiceOrWhyNot) {
+  Served s;
+  auto c = s.client();
+  json req{{"grid", half_seen_grid()}, {"pose", {0.5, 1.0, 0.0}}, {"method", "rapid"}};
+  auto r = c.Post("/v1/explore/next-goal", req.dump(), "application/json");
+  ASSERT_EQ(r->status, 200) << r->body;
+  json goal = body_of(r)["goal"];
+  // At rest, facing the frontier column x = 1.975: straight ahead.
+  EXPECT_NEAR(goal["x_m"].get<double>(), 1.975, 0.051);
+  EXPECT_NEAR(goal["y_m"].get<double>(), 1.0, 0.051);
+  ASSERT_GE(goal["path_m"].size(), 2u);
+  EXPECT_NEAR(goal["path_m"][0][0].get<double>(), 0.5, 0.051);
+  EXPECT_TRUE(body_of(r).contains("planning_time_s"));
+  // Evidence near the frontier's top end draws CDOS there.
+  json p = json::array();
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 80; ++i) p.push_back(std::hypot(0.05 * i + 0.025 - 3.0, 0.05 * j + 0.025 - 1.8) < 0.3 ? 0.8 : 0.5);
+  req["method"] = "cdos";
+  req["object_probability"] = p;
+  r = c.Post("/v1/explore/next-goal", req.dump(), "application/json");
+  ASSERT_EQ(r->status, 200) << r->body;
+  goal = body_of(r)["goal"];
+  EXPECT_EQ(goal["reason"], "curiosity");
+  // The IR cone (30 degrees by default) sees the frontier for |y - 1| <= 1.475 tan 15 =
+  // 0.395 m: CDOS takes its top end, rapid took its middle.
+  EXPECT_GT(goal["y_m"].get<double>(), 1.3);
+  EXPECT_LT(goal["y_m"].get<double>(), 1.4);
+  // Errors name the field.
+  const auto field_of = [&](json bad) {
+    const auto a = c.Post("/v1/explore/next-goal", bad.dump(), "application/json");
+    EXPECT_EQ(a->status, 400) << a->body;
+    return error_field(a);
+  };
+  json bad = req;
+  bad["grid"]["occupancy"].erase(0);
+  EXPECT_EQ(field_of(bad), "grid.occupancy");
+  bad = req;
+  bad["grid"]["occupancy"][3] = 101;
+  EXPECT_EQ(field_of(bad), "grid.occupancy[3]");
+  bad = req;
+  bad["object_probability"][2] = "high";
+  EXPECT_EQ(field_of(bad), "object_probability[2]");
+  bad = req;
+  bad["method"] = "oracle";
+  EXPECT_EQ(field_of(bad), "method");
+  bad = req;
+  bad["pose"] = {9.0, 1.0, 0.0};
+  EXPECT_EQ(field_of(bad), "pose");
+  bad = req;
+  bad["grid"]["width"] = 0;
+  EXPECT_EQ(field_of(bad), "grid.width");
+  bad = req;
+  bad["grid"]["colour"] = "red";
+  EXPECT_EQ(field_of(bad), "grid.colour");
+  // Everything known: nothing to explore, said as such.
+  json known = req;
+  known.erase("object_probability");
+  for (auto& v : known["grid"]["occupancy"]) v = 0;
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 80; ++i)
+      if (i == 0 || j == 0 || i == 79 || j == 39) known["grid"]["occupancy"][j * 80 + i] = 100;
+  r = c.Post("/v1/explore/next-goal", known.dump(), "application/json");
+  EXPECT_EQ(r->status, 422) << r->body;
+  EXPECT_EQ(error_code(r), "NO_FRONTIER");
 }
 
 TEST(PlannerService, AUgvPlanIsTetherFeasibleAndCollisionFree) {
@@ -432,6 +578,32 @@ TEST(PlannerService, PastTheQueueRequestsAreShedWith503) {
   const auto late = c.Post("/v1/plan/ugv", hurry.dump(), "application/json");
   EXPECT_EQ(error_code(late), "TIMEOUT");
   EXPECT_EQ(busy2.get(), 422);
+}
+
+TEST(PlannerService, AClientThatHangsUpCancelsItsSearch) {
+  PlannerServiceOptions o;
+  o.max_deadline_s = 60.0;
+  Served s(o);
+  auto c = s.client();
+  put_detour(c);
+  // A raw connection: send a search that would run 60 s, then hang up.
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(s.port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  const std::string body = slow_request(60.0).dump();
+  const std::string request = "POST /v1/plan/ugv HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n"
+                              "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+  ASSERT_EQ(::send(fd, request.data(), request.size(), 0), static_cast<ssize_t>(request.size()));
+  wait_for_load(s, 1, 0);
+  ::close(fd);
+  // The search notices and stops: counted as cancelled, its worker free again.
+  wait_for_load(s, 0, 0);
+  const auto m = c.Get("/metrics");
+  EXPECT_NE(m->body.find("ferret_plans_total{result=\"cancelled\"} 1"), std::string::npos) << m->body;
 }
 
 TEST(PlannerService, AMapReplacedOrDeletedWhilePlansRunOnItIsSafe) {

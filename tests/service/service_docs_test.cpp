@@ -1,5 +1,6 @@
 // docs/service.md's examples, executed verbatim against a service on loopback: each
-// ```http request block is sent as written (a body "@FILE" is that file's contents)
+// ```http request block is sent as written (a body "@FILE" is that file's contents;
+// in a multipart body, each line "@FILE" is, and lines end in CRLF as on the wire)
 // and the ```http block after it is the answer it must get: its status, and every
 // field it shows (strings and booleans equal, numbers any number, an empty string or
 // array any string or array).
@@ -91,7 +92,15 @@ TEST(PlannerServiceDocs, EveryExampleAnswersAsDocumented) {
       if (line.rfind("Content-Type: ", 0) == 0) content_type = line.substr(14);
     std::string body((std::istreambuf_iterator<char>(req)), std::istreambuf_iterator<char>());
     while (!body.empty() && body.back() == '\n') body.pop_back();
-    if (!body.empty() && body[0] == '@') body = slurp(std::string(FERRET_SOURCE_DIR "/") + body.substr(1));
+    if (content_type.rfind("multipart/", 0) == 0) {
+      std::istringstream lines(body);
+      std::string wire;
+      while (std::getline(lines, line))
+        wire += (!line.empty() && line[0] == '@' ? slurp(std::string(FERRET_SOURCE_DIR "/") + line.substr(1)) : line) + "\r\n";
+      body = wire;
+    } else if (!body.empty() && body[0] == '@') {
+      body = slurp(std::string(FERRET_SOURCE_DIR "/") + body.substr(1));
+    }
     SCOPED_TRACE(method + " " + path);
     httplib::Result r = method == "GET"      ? c.Get(path)
                         : method == "DELETE" ? c.Delete(path)

@@ -58,9 +58,14 @@ class PlannerService {
   void stop();
   [[nodiscard]] bool draining() const;
   /// Loads a map as PUT /v1/maps/{name} would (the bytes of a .bt/.ot file or a world
-  /// YAML): `ferret-plannerd --map NAME=FILE` preloads with it. InputError naming
+  /// YAML as the whole body): `ferret-plannerd --map NAME=FILE` preloads with it. InputError naming
   /// `source` when the bytes are not a map.
   void put_map(const std::string& name, const std::string& bytes, const std::string& source);
+  /// Loads a map_server map as a multipart PUT would: its YAML's text and its image's
+  /// bytes (the YAML's `image` key is not opened). InputError naming `yaml_source` or
+  /// `image_source`.
+  void put_map_2d(const std::string& name, const std::string& yaml_text, const std::string& image_bytes,
+                  const std::string& yaml_source, const std::string& image_source);
 
  private:
   struct Impl;
