@@ -172,6 +172,18 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
         floor_source = "hidden space " + h.name;
       }
     }
+  } else if (ugv && world.map_2d) {
+    // A 2D map is one hidden space, its whole extent (it names no entry).
+    const HiddenSpaceFrame space = map_2d_frame(*world.map_2d);
+    if (!bounds) {
+      bounds = ugv_policy_bounds(space, ugv_box);
+      bounds_source = "the 2D map";
+      bounds_origin = {world_path.string(), "the 2D map's extent"};
+    }
+    if (!floor_z) {
+      floor_z = space.floor_z_m;
+      floor_source = "the 2D map";
+    }
   }
   UnknownPolicy unknown =
       plan.unknown_policy.value_or(ugv ? UnknownPolicy::kOccupied : UnknownPolicy::kFree);

@@ -80,6 +80,30 @@ nlohmann::json plan_back_to_the_entry(const TempDir& dir, const std::string& ugv
 // Retracing once pushed the middle corners of the row off "along the bend's
 // bisector", whose direction at a straight bend is rounding noise, into the block;
 // the fallback found nothing either (below), so --return failed.
+// A map_server map is a 2D hidden space: planned in with the entry given, validated,
+// and without the entry the option is named.
+TEST(PlanCli, UgvInAMapServerMapNeedsTheEntryAndValidates) {
+  TempDir dir;
+  const std::string map = "examples/maps/sparse.yaml";
+  const auto r = run_cli("plan ugv --world " + map + " --from 1,4,0 --to 10,4,0 --entry 0.2,4 -o " + dir / "p.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto plan = nlohmann::json::parse(slurp(dir / "p.json"));
+  EXPECT_EQ(plan["bounds"]["max"][0], 12.0);
+  EXPECT_EQ(plan["tether"]["entry"][0], 0.2);
+  const auto v = run_cli("validate --world " + map + " --plan " + dir / "p.json");
+  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
+  // Across the block at x 8.5..9.3 on y = 4: the straight line collides.
+  std::ofstream(dir / "straight.json") << R"({"states": [{"t_s": 0, "x_m": 1, "y_m": 4, "z_m": 0, "yaw_rad": 0},
+    {"t_s": 10, "x_m": 10, "y_m": 4, "z_m": 0, "yaw_rad": 0}]})";
+  const auto bad = run_cli("validate --world " + map + " --robot miniugv --entry 0.2,4 --plan " + dir / "straight.json");
+  EXPECT_EQ(bad.exit_code, 1) << bad.out << bad.err;
+  EXPECT_NE(bad.out.find("collision"), std::string::npos) << bad.out;
+  const auto no_entry = run_cli("plan ugv --world " + map + " --from 1,4,0 --to 10,4,0 -o " + dir / "q.json");
+  EXPECT_EQ(no_entry.exit_code, 2);
+  EXPECT_NE(no_entry.err.find("--entry"), std::string::npos) << no_entry.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "q.json"));
+}
+
 TEST(PlanCli, UgvReturnRetracesATetherAlongASlantedEdge) {
   TempDir dir;
   const auto plan = plan_back_to_the_entry(dir, "--return");
