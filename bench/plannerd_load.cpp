@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
   std::vector<std::thread> threads;
   for (int k = 0; k < concurrency; ++k) threads.emplace_back(run_client, k);
   // Meanwhile: the map replaced every few seconds, resident memory sampled.
-  std::vector<std::pair<double, std::uint64_t>> rss;
+  std::vector<std::pair<double, std::uint64_t>> rss, steady;
   std::size_t replaced = 0;
   auto next_replace = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(replace_every_s));
   auto next_sample = t0;
@@ -203,6 +203,9 @@ int main(int argc, char** argv) {
       next_sample += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(sample_every_s));
     }
     if (replace_every_s > 0 && now >= next_replace) {
+      // Resident memory just before each replacement: one map held, the same phase of
+      // every cycle (a sample during a rebuild holds two maps and the build's scratch).
+      steady.emplace_back(std::chrono::duration<double>(now - t0).count(), rss_from_metrics(*admin));
       const auto r = admin->Put("/v1/maps/" + map, world_bytes, "application/yaml");
       if (r && r->status < 300) ++replaced;
       next_replace += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(replace_every_s));
@@ -233,9 +236,11 @@ int main(int argc, char** argv) {
               {"answers", by_answer},
               {"map_replacements", replaced},
               {"deadline_s", deadline_s}};
-  json mem = json::array();
+  json mem = json::array(), before_replacement = json::array();
   for (const auto& [t, b] : rss) mem.push_back({t, b});
+  for (const auto& [t, b] : steady) before_replacement.push_back({t, b});
   report["resident_memory_bytes"] = mem;
+  report["resident_memory_before_replacement_bytes"] = before_replacement;
   std::cout << fmt::format("{} requests in {:.1f} s with {} clients: {:.0f}/s ({:.0f} solved/s)\n", samples.size(),
                            elapsed_s, concurrency, report["throughput_per_s"].get<double>(),
                            report["solved_per_s"].get<double>());
@@ -249,6 +254,21 @@ int main(int argc, char** argv) {
     std::cout << fmt::format("resident memory: first {:.1f} MiB, last {:.1f} MiB, min {:.1f}, max {:.1f} ({} samples, {} map replacements)\n",
                              rss.front().second / 1048576.0, rss.back().second / 1048576.0, lo / 1048576.0,
                              hi / 1048576.0, rss.size(), replaced);
+  }
+  if (steady.size() >= 2) {
+    // The soak's measure: memory at the same phase of each replacement cycle, after the
+    // first minute's warm-up (the allocator's pools and every thread's first plans).
+    std::uint64_t lo = UINT64_MAX, hi = 0, first = 0;
+    for (const auto& [t, b] : steady)
+      if (t >= std::min(60.0, duration_s / 2)) {
+        if (first == 0) first = b;
+        lo = std::min(lo, b), hi = std::max(hi, b);
+      }
+    if (first > 0)
+      std::cout << fmt::format("before each replacement, after warm-up: first {:.1f} MiB, last {:.1f} MiB, min {:.1f}, "
+                               "max {:.1f} ({:+.1f} % / {:+.1f} % of the first)\n",
+                               first / 1048576.0, steady.back().second / 1048576.0, lo / 1048576.0, hi / 1048576.0,
+                               100.0 * (static_cast<double>(lo) / first - 1.0), 100.0 * (static_cast<double>(hi) / first - 1.0));
   }
   if (!json_out.empty()) std::ofstream(json_out) << report.dump(2) << "\n";
   if (local) local->stop();

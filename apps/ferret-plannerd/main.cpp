@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <malloc.h>
 #include <signal.h>
 #include <sys/stat.h>
 
@@ -146,6 +147,14 @@ int run(int argc, char** argv) {
   sigaddset(&signals, SIGINT);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
+  // Large blocks (a map's distance fields, OcTree buffers) always from mmap, so a
+  // replaced map's go back to the system when freed. glibc otherwise raises its mmap
+  // threshold to the largest block freed (up to 32 MiB), after which they come from the
+  // heap, where a long-lived block between them keeps the pages.
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  // An arena a thread (glibc's default is 8 a core, fewer than the HTTP threads), so the
+  // service's map builder keeps its own (planner_service.cpp, MapBuilder).
+  mallopt(M_ARENA_MAX, o.workers + o.queue + 16);
   ferret::PlannerService service(o);  // checks the options and loads both robots
   for (const auto& [name, file] : maps) {
     if (ferret::is_map_server_yaml(file)) {

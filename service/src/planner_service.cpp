@@ -309,6 +309,79 @@ class Admission {
   int active_ = 0, waiting_ = 0;
 };
 
+// Every map is built on this one thread, which also hands freed memory back to the
+// system every few seconds. A map is millions of small blocks that live as
+// long as it does; built on whichever HTTP thread took the PUT, they land in the malloc
+// arenas where plans make their short-lived blocks, and a replaced map's holes there stay
+// partly in use: over a 10-minute soak with the map replaced every 3 s the resident
+// memory crept by 5 %. On one thread (with an arena of its own, ferret-plannerd's main
+// allows one a thread), each new map fills the holes the last but one left.
+class MapBuilder {
+ public:
+  MapBuilder() : thread_([this] { run(); }) {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [&] { return ready_; });  // its arena is taken before the HTTP threads start
+  }
+  ~MapBuilder() {
+    {
+      const std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+  MapBuilder(const MapBuilder&) = delete;
+  MapBuilder& operator=(const MapBuilder&) = delete;
+
+  /// Runs `work` on the builder's thread and returns what it returns (or throws what it threw).
+  template <typename Work>
+  auto run_here(Work work) -> decltype(work()) {
+    auto task = std::make_shared<std::packaged_task<decltype(work())()>>(std::move(work));
+    auto result = task->get_future();
+    {
+      const std::lock_guard lock(mutex_);
+      tasks_.emplace_back([task] { (*task)(); });
+    }
+    cv_.notify_all();
+    return result.get();
+  }
+
+ private:
+  void run() {
+    std::unique_lock lock(mutex_);
+    tasks_.reserve(4);  // a first allocation: this thread's arena, now
+    ready_ = true;
+    cv_.notify_all();
+    auto next_trim = std::chrono::steady_clock::now() + kTrimEvery;
+    for (;;) {
+      cv_.wait_until(lock, next_trim, [&] { return stop_ || !tasks_.empty(); });
+      if (stop_ && tasks_.empty()) return;
+      if (tasks_.empty()) {
+        // Plans free all they take, but the pages stay with the arena of the thread that
+        // freed them: without a trim the resident memory grew 374 -> 576 MiB in two
+        // minutes at 2500 plans/s on one map while the heap in use stayed at 190 MiB.
+        lock.unlock();
+        malloc_trim(0);
+        lock.lock();
+        next_trim = std::chrono::steady_clock::now() + kTrimEvery;
+        continue;
+      }
+      auto task = std::move(tasks_.front());
+      tasks_.erase(tasks_.begin());
+      lock.unlock();
+      task();
+      lock.lock();
+    }
+  }
+
+  static constexpr std::chrono::seconds kTrimEvery{5};
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::vector<std::function<void()>> tasks_;
+  bool ready_ = false, stop_ = false;
+  std::thread thread_;  // last: started once the members above exist
+};
+
 bool same_token(const std::string& a, const std::string& b) {
   // Constant time in the token's length: no early exit on the first wrong byte.
   unsigned char diff = a.size() == b.size() ? 0 : 1;
@@ -388,6 +461,7 @@ struct PlannerService::Impl {
       : options(std::move(o)), admission(options.workers, options.queue) {}
 
   PlannerServiceOptions options;
+  MapBuilder map_builder;  // before the server: its thread's arena comes first
   httplib::Server server;
   std::thread thread;
   Admission admission;
@@ -975,7 +1049,7 @@ struct PlannerService::Impl {
         std::shared_ptr<MapEntry> entry;
         const MapUpload upload = map_upload(req);
         try {
-          entry = load_map(name, upload, "body");
+          entry = map_builder.run_here([&] { return load_map(name, upload, "body"); });
         } catch (const InputError& e) {
           // A map_server map's errors name their part (yaml, image), a whole body's "body".
           const std::string part = upload.map_2d ? e.source() : "body";
@@ -1086,7 +1160,7 @@ void PlannerService::put_map(const std::string& name, const std::string& bytes,
     throw InputError(source, "name", "1 to 64 letters, digits, '_', '-' or '.'", name);
   Impl::MapUpload upload;
   upload.body = bytes;
-  auto entry = m.load_map(name, upload, source);
+  auto entry = m.map_builder.run_here([&] { return m.load_map(name, upload, source); });
   const std::lock_guard lock(m.maps_mutex);
   if (!m.maps.count(name) && m.maps.size() >= m.options.max_maps)
     throw InputError(source, "", fmt::format("at most {} maps (--max-maps)", m.options.max_maps));
@@ -1101,7 +1175,7 @@ void PlannerService::put_map_2d(const std::string& name, const std::string& yaml
     throw InputError(yaml_source, "name", "1 to 64 letters, digits, '_', '-' or '.'", name);
   Impl::MapUpload upload;
   upload.map_2d = Impl::Map2DUpload{yaml_text, image_bytes, yaml_source, image_source};
-  auto entry = m.load_map(name, upload, yaml_source);
+  auto entry = m.map_builder.run_here([&] { return m.load_map(name, upload, yaml_source); });
   const std::lock_guard lock(m.maps_mutex);
   if (!m.maps.count(name) && m.maps.size() >= m.options.max_maps)
     throw InputError(yaml_source, "", fmt::format("at most {} maps (--max-maps)", m.options.max_maps));
