@@ -5,6 +5,7 @@
 // service's contract is checked: every answer is JSON, a status from the documented
 // set, and every error names a code. Deadlines are kept to milliseconds so a body
 // that happens to be a valid request plans briefly.
+#include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
@@ -48,6 +49,8 @@ struct Fixture {
     port = service->start();
     client = std::make_unique<httplib::Client>("127.0.0.1", port);
     client->set_keep_alive(true);
+    // Loading a map has no deadline but its node budget; under ASan it may take seconds.
+    client->set_read_timeout(std::chrono::seconds(60));
     client->set_tcp_nodelay(true);  // no 40 ms Nagle wait an input
   }
   std::unique_ptr<ferret::PlannerService> service;

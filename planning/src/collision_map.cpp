@@ -352,6 +352,15 @@ std::shared_ptr<const CollisionMap> CollisionMap::build(const octomap::OcTree& s
   if (options.bounds) {
     const KeyBox box = key_box(*options.bounds, res);
     if (options.unknown == UnknownPolicy::kOccupied) {
+      std::array<double, 3> n{};
+      for (int a = 0; a < 3; ++a) n[a] = static_cast<double>(box.hi[a] - box.lo[a] + 1);
+      const double faces = 2.0 * (n[0] * n[1] + n[1] * n[2] + n[0] * n[2]);
+      if (faces > static_cast<double>(options.max_fill_face_voxels))
+        throw InputError("map", "bounds",
+                         fmt::format("a box whose faces hold at most {} voxels at {:g} m (unknown space in "
+                                     "it is filled as occupied)",
+                                     options.max_fill_face_voxels, res),
+                         fmt::format("{:g} x {:g} x {:g} m: {:.3g} voxels", n[0] * res, n[1] * res, n[2] * res, faces));
       if (!tree.getRoot()) {
         octomap::OcTreeKey k(static_cast<octomap::key_type>(box.lo[0]), static_cast<octomap::key_type>(box.lo[1]),
                              static_cast<octomap::key_type>(box.lo[2]));

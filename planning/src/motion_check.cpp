@@ -37,9 +37,11 @@ Waypoint interpolate(const Waypoint& a, const Waypoint& b, double s) {
 }
 
 std::optional<double> first_collision(CollisionChecker& checker, const Waypoint& a,
-                                      const Waypoint& b, const CheckResolution& res, bool exact) {
+                                      const Waypoint& b, const CheckResolution& res, bool exact,
+                                      const std::function<bool()>& cancelled) {
   const int n = segment_steps(a, b, res);
   for (int k = 0; k <= n; ++k) {
+    if (cancelled && k % 64 == 63 && cancelled()) return std::nullopt;
     const double s = static_cast<double>(k) / n;
     const Pose3 X = interpolate(a, b, s).pose();
     if (exact ? checker.in_collision_fcl(X) : checker.in_collision(X)) return s;

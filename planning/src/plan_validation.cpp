@@ -213,7 +213,11 @@ ValidationReport validate_plan(const PlanFile& plan, CollisionChecker& exact,
   }
   std::size_t next_timed = 0;  // the first timed segment that ends at or after state k
 
+  const auto stop_if_cancelled = [&] {
+    if (options.cancelled && options.cancelled()) throw ValidationCancelled();
+  };
   for (std::size_t k = 0; k < states.size(); ++k) {
+    stop_if_cancelled();
     const Waypoint& w = states[k];
     if (k > 0) {
       const Waypoint& p = states[k - 1];
@@ -241,14 +245,17 @@ ValidationReport validate_plan(const PlanFile& plan, CollisionChecker& exact,
           report.violations.push_back(v);
         }
       }
-      if (const auto s = first_collision(exact, p, w, options.resolution, /*exact=*/true))
+      if (const auto s = first_collision(exact, p, w, options.resolution, /*exact=*/true, options.cancelled))
         add_collision(k - 1, k, *s, interpolate(p, w, *s));
+      stop_if_cancelled();  // a check cut short found nothing: it must not pass as clear
       // The clearance at the poses the collision check visits.
       const int n = segment_steps(p, w, options.resolution);
-      for (int i = 1; i <= n; ++i)
+      for (int i = 1; i <= n; ++i) {
+        if (i % 64 == 0) stop_if_cancelled();
         m.min_clearance_m = std::min(
             m.min_clearance_m,
             exact.clearance_lower_bound_m(interpolate(p, w, static_cast<double>(i) / n).pose()));
+      }
     } else {
       if (exact.in_collision_fcl(w.pose())) add_collision(0, 0, 0.0, w);
       m.min_clearance_m = std::min(m.min_clearance_m, exact.clearance_lower_bound_m(w.pose()));

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "ferret/core/error.hpp"
@@ -258,7 +259,18 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
   } else {
     map_opt = uav_map_options(world.spec, unknown, bounds);
   }
-  const auto map = CollisionMap::build(*world.tree, map_opt);
+  const auto map = [&] {
+    try {
+      return CollisionMap::build(*world.tree, map_opt);
+    } catch (const InputError& e) {
+      // The box came from the plan or --bounds: name it there, not as the map's.
+      if (e.source() != "map" || e.field() != "bounds") throw;
+      const std::string head = "map: bounds: expected " + e.expected();
+      std::string got = std::string(e.what()).substr(std::min(head.size(), std::strlen(e.what())));
+      if (got.rfind(" (got ", 0) == 0 && got.size() > 7) got = got.substr(6, got.size() - 7);
+      throw InputError(bounds_origin.first, bounds_origin.second, e.expected(), got);
+    }
+  }();
 
   std::optional<RobotShape> urdf_shape;
   if (urdf) urdf_shape = robot_shape_from_description(*urdf);
@@ -299,6 +311,7 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
                      "no tether entry");
   opt.observed = world.tree.get();
   if (world.spec) opt.name_obstacle = world_namer(*world.spec);
+  opt.cancelled = request.cancelled;
   std::shared_ptr<const TetherCorners> corners;
   if (ugv) {
     HiddenSpaceFrame f;

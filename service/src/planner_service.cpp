@@ -849,6 +849,9 @@ struct PlannerService::Impl {
       }
     }
     v.floor_z_m = body.optional_number("floor_z_m", -1e6, 1e6, "a height in metres");
+    // A plan can ask for a million collision checks: the deadline bounds them too.
+    const auto stop = cancel_flag(req);
+    v.cancelled = [stop, deadline] { return Clock::now() >= deadline || stop(); };
     with_worker(res, deadline, [&] {
       try {
         const ValidationReport report = validate_plan(std::move(plan), map->world, v, "plan");
@@ -857,6 +860,10 @@ struct PlannerService::Impl {
         send(res, 200, out);
       } catch (const InputError& e) {
         throw ApiError{400, "INVALID_REQUEST", printable(e.what()), e.field().empty() ? "plan" : e.field()};
+      } catch (const ValidationCancelled&) {
+        if (Clock::now() >= deadline)
+          throw ApiError{422, "TIMEOUT", "the deadline passed before the plan was checked whole", "deadline_s"};
+        throw ApiError{503, "CANCELLED", "the validation was stopped (the service is stopping)", ""};
       }
     });
   }

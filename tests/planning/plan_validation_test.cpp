@@ -111,6 +111,25 @@ TEST(PlanValidation, ThroughAWall) {
   EXPECT_EQ(r.margins.min_clearance_m, 0.0);
 }
 
+// A deadline stops a long check part-way through a segment, and a check cut short is
+// never reported as a pass: ValidationCancelled, not a report without the collision.
+TEST(PlanValidation, ACancelledCheckStopsInsideASegmentAndIsNeverAPass) {
+  Fixture f;
+  // Through the block, then on along y = 4 for 7 m more: 1 000 poses at 1 cm.
+  const PlanFile p = ugv_plan({ugv_at(0, 1, 4, 0), ugv_at(10, 11, 4, 0)});
+  CollisionChecker checker(f.map, ugv_shape());
+  int asked = 0;
+  ValidationOptions o = options(f);
+  o.cancelled = [&] { return ++asked > 3; };  // true from the 4th question on
+  EXPECT_THROW((void)validate_plan(p, checker, f.corners, o), ValidationCancelled);
+  EXPECT_GE(asked, 4);  // asked inside the segment's poses, not only between states
+  // Never asked to stop: the same plan's collision is found.
+  o.cancelled = [] { return false; };
+  const ValidationReport r = validate_plan(p, checker, f.corners, o);
+  ASSERT_EQ(r.violations.size(), 1u);
+  EXPECT_EQ(r.violations[0].kind, ViolationKind::kCollision);
+}
+
 TEST(PlanValidation, ThroughUnknownSpace) {
   Fixture f;
   const PlanFile p = ugv_plan({ugv_at(0, 9.5, 7.4, 0), ugv_at(2.5, 11.9, 7.4, 0)});

@@ -499,6 +499,43 @@ TEST(PlannerService, UavPlansAndValidationAgreeWithGroundTruth) {
   EXPECT_EQ(error_field(v).rfind("plan", 0), 0u) << v->body;
 }
 
+// A plan that asks for hundreds of thousands of collision checks is stopped by its
+// deadline; one whose box would take hours to fill is refused at once.
+TEST(PlannerService, AValidationPastItsDeadlineIsATimeoutAndAnAbsurdBoxIsRefused) {
+  Served s;
+  auto c = s.client();
+  put_detour(c);
+  // Back and forth along y = 6.5 (above the block) 400 times: 4 km, 200 000 poses.
+  json states = json::array();
+  for (int k = 0; k <= 400; ++k)
+    states.push_back({{"t_s", 10.0 * k}, {"x_m", k % 2 ? 11.0 : 1.0}, {"y_m", 6.5}, {"z_m", 0.0}, {"yaw_rad", 0.0}});
+  json plan{{"format", "ferret-plan"}, {"version", 1}, {"robot", "ugv"}, {"frame", "world"},
+            {"bounds", {{"min", {0.0, 0.0, 0.0}}, {"max", {12.0, 8.0, 0.2}}}},
+            {"tether", {{"entry", {-0.1, 4.0}}, {"total_length_m", 13.0}, {"entry_offset_m", 1.0}}},
+            {"states", states}};
+  auto t0 = std::chrono::steady_clock::now();
+  auto r = c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 0.02}}.dump(),
+                  "application/json");
+  double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 422) << r->body.substr(0, 300);
+  EXPECT_EQ(error_code(r), "TIMEOUT") << r->body.substr(0, 300);
+  EXPECT_LT(took_s, 2.0);  // a bound with room for a slow machine, not a benchmark
+  // With time enough, the same plan is checked whole.
+  r = c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body.substr(0, 300);
+  // 3 x 3 km, 0.2 m high, unknown filled as occupied: billions of voxels. Refused.
+  plan["bounds"] = {{"min", {-1500.0, -1500.0, 0.0}}, {"max", {1500.0, 1500.0, 0.2}}};
+  t0 = std::chrono::steady_clock::now();
+  r = c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(), "application/json");
+  took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400) << r->body.substr(0, 300);
+  EXPECT_EQ(error_field(r), "bounds") << r->body.substr(0, 300);
+  EXPECT_LT(took_s, 2.0);
+}
+
 TEST(PlannerService, TheTokenGuardsEveryRouteButHealth) {
   PlannerServiceOptions o;
   o.token = "correct-horse-battery-staple";

@@ -55,6 +55,12 @@ struct CollisionMapOptions {
   /// resolution times the smallest power of two that fits (coarser cells give looser
   /// bounds, so more queries go to FCL).
   std::size_t max_field_cells = 40'000'000;
+  /// Upper bound on the voxels on the faces of `bounds` when unknown space in it is
+  /// filled as occupied: the fill is top-down, so its cost grows with the box's surface
+  /// (a 12 x 8 x 0.2 m hidden space at 5 cm: 0.1 million; the default world's 60 x 60 x
+  /// 10 m geofence: 3.8 million). A larger box is an InputError naming the bounds, not
+  /// hours of filling (a plan's 3 x 3 km box, 0.2 m high, would be 7 billion).
+  std::size_t max_fill_face_voxels = 10'000'000;
   /// Where the distance field is kept (default: around everything occupied). Parts
   /// reaching outside it always go to FCL; a small region allows a fine field.
   std::optional<Aabb3> field_region;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -42,10 +43,12 @@ struct CheckResolution {
 
 /// The fraction s of the first colliding pose of the segment a -> b, or nullopt when
 /// every checked pose is free. `exact` asks FCL alone (the reference), otherwise the
-/// checker's fast path (which gives the same answers).
+/// checker's fast path (which gives the same answers). `cancelled`, when set, is asked
+/// every 64 poses; true stops the check and returns nullopt (the caller asks it again).
 [[nodiscard]] std::optional<double> first_collision(CollisionChecker& checker, const Waypoint& a,
                                                     const Waypoint& b, const CheckResolution& res,
-                                                    bool exact = false);
+                                                    bool exact = false,
+                                                    const std::function<bool()>& cancelled = {});
 
 /// How the miniUGV drives from a to b: it turns in place to the drive heading, drives
 /// straight, and turns in place to b's heading. It drives forwards or backwards,

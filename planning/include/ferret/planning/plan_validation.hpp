@@ -16,6 +16,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -133,6 +134,15 @@ struct ValidationOptions {
   /// Names the thing a colliding voxel belongs to (validate_plan_file() names world
   /// YAML objects); empty: unnamed.
   std::function<std::string(const Eigen::Vector3d& p_W)> name_obstacle;
+  /// Asked between states and every 64 poses checked; true stops the check with
+  /// ValidationCancelled (a deadline passed, the client went away). Empty: never.
+  std::function<bool()> cancelled;
+};
+
+/// validate_plan() was stopped by its `cancelled` flag before it finished.
+class ValidationCancelled : public std::runtime_error {
+ public:
+  ValidationCancelled() : std::runtime_error("validation cancelled before it finished") {}
 };
 
 /// The most poses validate_plan() checks for collision in one plan (a limit on the
@@ -172,6 +182,7 @@ struct ValidateRequest {
   std::optional<Eigen::Vector2d> p_WE;   ///< tether entry for plans without a tether section
   std::optional<UnknownPolicy> unknown;  ///< default: the plan's, else the robot's
   std::optional<double> floor_z_m;       ///< override of the floor found in the map
+  std::function<bool()> cancelled;       ///< ValidationOptions::cancelled
 };
 
 /// Loads the plan and the world and validates the one against the other, as
