@@ -299,13 +299,14 @@ def dynamixel_seeds():
 
 def link_frame(msg_type, sender, sequence, payload):
     """A robot link frame (docs/link.md), written independently of the C++ codec."""
-    head = b"FL" + bytes([1, msg_type, sender]) + struct.pack("<IH", sequence, len(payload))
+    head = b"FL" + bytes([2, msg_type, sender]) + struct.pack("<IH", sequence, len(payload))
     return head + payload + struct.pack("<I", zlib.crc32(head + payload))
 
 
 def link_telemetry(plan):
     payload = struct.pack("<ddddffffBBBfdddfff", 12.5, 1.25, -0.5, 0.75, 0.4, -0.1, 0.05, 0.0,
                           1, 0, 0x05, 0.8, 0.5, 0.25, 3.5, 0.2, 0.01, -0.02)
+    payload += struct.pack("<I", 7)  # last_request_id (version 2)
     payload += bytes([len(plan)]) + b"".join(struct.pack("<fffff", *s) for s in plan)
     return link_frame(1, 2, 41, payload)
 
@@ -330,7 +331,7 @@ def link_seeds():
     bad = bytearray(link_frame(4, 1, 101, struct.pack("<d", 20.2)))
     bad[-1] ^= 0xFF
     put(t, "heartbeat_bad_crc.bin", bytes(bad))
-    put(t, "version_2.bin", b"FL\x02" + link_frame(4, 1, 1, struct.pack("<d", 1.0))[3:])
+    put(t, "version_1.bin", b"FL\x01" + link_frame(4, 1, 1, struct.pack("<d", 1.0))[3:])
     put(t, "truncated.bin", link_telemetry([])[:40])
 
 

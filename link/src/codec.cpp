@@ -84,6 +84,7 @@ void fields(Io& io, M& m) {
   io.f32("tether_uncertainty_m", m.tether_uncertainty_m, kLength);
   io.f32("roll_rad", m.roll_rad, kTilt);
   io.f32("pitch_rad", m.pitch_rad, kTilt);
+  io.u32("last_request_id", m.last_request_id, 0);
   const std::size_t n = io.count("plan_count", m.plan, UgvTelemetry::kMaxPlanSamples);
   for (std::size_t i = 0; i < n; ++i) {
     io.element("plan", i);

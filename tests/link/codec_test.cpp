@@ -44,17 +44,18 @@ UgvTelemetry fixed_telemetry() {
   t.tether_uncertainty_m = 0.25f;
   t.roll_rad = 0.0f;
   t.pitch_rad = 0.0f;
+  t.last_request_id = 9;
   t.plan = {{0.0625f, 1.0f, 0.5f, 0.5f, 0.0f}};
   return t;
 }
 
 const Bytes kTelemetryFrame = {
     0x46, 0x4c,                                      // magic "FL"
-    0x01,                                            // version 1
+    0x02,                                            // version 2
     0x01,                                            // type: telemetry
     0x02,                                            // sender: ugv
     0x04, 0x03, 0x02, 0x01,                          // sequence 0x01020304
-    0x70, 0x00,                                      // payload length 112
+    0x74, 0x00,                                      // payload length 116
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x40,  // t_s 2.0
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xf0, 0x3f,  // x_m 1.0
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xf0, 0xbf,  // y_m -1.0
@@ -73,13 +74,14 @@ const Bytes kTelemetryFrame = {
     0x00, 0x00, 0x80, 0x3e,                          // tether_uncertainty_m 0.25f
     0x00, 0x00, 0x00, 0x00,                          // roll_rad 0
     0x00, 0x00, 0x00, 0x00,                          // pitch_rad 0
+    0x09, 0x00, 0x00, 0x00,                          // last_request_id 9
     0x01,                                            // plan_count 1
     0x00, 0x00, 0x80, 0x3d,                          // plan[0].dt_s 0.0625f
     0x00, 0x00, 0x80, 0x3f,                          // plan[0].x_m 1.0f
     0x00, 0x00, 0x00, 0x3f,                          // plan[0].y_m 0.5f
     0x00, 0x00, 0x00, 0x3f,                          // plan[0].vx_mps 0.5f
     0x00, 0x00, 0x00, 0x00,                          // plan[0].vy_mps 0
-    0xbc, 0xde, 0xbb, 0x01,                          // CRC-32
+    0x44, 0x9c, 0xa6, 0xef,                          // CRC-32
 };
 
 UavRequest fixed_request() {
@@ -95,7 +97,7 @@ UavRequest fixed_request() {
 }
 
 const Bytes kRequestFrame = {
-    0x46, 0x4c, 0x01,
+    0x46, 0x4c, 0x02,
     0x02,                                            // type: request
     0x01,                                            // sender: uav
     0x01, 0x00, 0x00, 0x00,                          // sequence 1
@@ -107,27 +109,27 @@ const Bytes kRequestFrame = {
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xe0, 0x3f,  // entry_z_m 0.5
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xd0, 0x3f,  // entry_yaw_rad 0.25
     0x02, 'g',  'o',                                 // reason: length, bytes
-    0x1e, 0x36, 0x2d, 0xe1,                          // CRC-32
+    0x6a, 0x41, 0xb4, 0xab,                          // CRC-32
 };
 
 const Bytes kAckFrame = {
-    0x46, 0x4c, 0x01,
+    0x46, 0x4c, 0x02,
     0x03,                    // type: ack
     0x02,                    // sender: ugv
     0x02, 0x00, 0x00, 0x00,  // sequence 2
     0x04, 0x00,              // payload length 4
     0x03, 0x00, 0x00, 0x00,  // request_id 3
-    0xc5, 0x45, 0x2b, 0x2b,  // CRC-32
+    0x0b, 0x29, 0xe1, 0x96,  // CRC-32
 };
 
 const Bytes kHeartbeatFrame = {
-    0x46, 0x4c, 0x01,
+    0x46, 0x4c, 0x02,
     0x04,                                            // type: heartbeat
     0x01,                                            // sender: uav
     0x07, 0x00, 0x00, 0x00,                          // sequence 7
     0x08, 0x00,                                      // payload length 8
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xf8, 0x3f,  // t_s 1.5
-    0xae, 0xd7, 0xdd, 0x5a,                          // CRC-32
+    0x2a, 0x8c, 0x47, 0x09,                          // CRC-32
 };
 
 TEST(LinkCodec, EncodesEachMessageToItsDocumentedBytes) {
@@ -153,12 +155,12 @@ TEST(LinkCodec, DecodesTheDocumentedBytes) {
 
 TEST(LinkCodec, FrameSizesAreTheBandwidthTablesBytes) {
   UgvTelemetry t;
-  EXPECT_EQ(encoded_size(t), 107u);
+  EXPECT_EQ(encoded_size(t), 111u);
   t.plan.assign(UgvTelemetry::kMaxPlanSamples, PlanSample{});
   for (std::size_t i = 0; i < t.plan.size(); ++i)
     t.plan[i].dt_s = 0.05f * static_cast<float>(i + 1);
-  EXPECT_EQ(encoded_size(t), 307u);
-  EXPECT_EQ(encode(0, t).size(), 307u);
+  EXPECT_EQ(encoded_size(t), 311u);
+  EXPECT_EQ(encode(0, t).size(), 311u);
   UavRequest r;
   r.request_id = 1;
   EXPECT_EQ(encoded_size(r), 53u);
@@ -268,7 +270,7 @@ Bytes with_byte(Bytes frame, std::size_t at, std::uint8_t value, bool seal = tru
 // Offsets in the telemetry frame (header 11 bytes + the payload offset in docs/link.md).
 constexpr std::size_t kTelX = 11 + 8, kTelVx = 11 + 32, kTelMode = 11 + 48, kTelOutcome = 11 + 49,
                       kTelFlags = 11 + 50, kTelBattery = 11 + 51, kTelRoll = 11 + 83,
-                      kTelPlanCount = 11 + 91, kTelPlan0Dt = 11 + 92;
+                      kTelPlanCount = 11 + 95, kTelPlan0Dt = 11 + 96;
 
 void expect_rejected(const Bytes& bytes, Reason reason, const std::string& field,
                      const std::string& in_message = {}) {
@@ -302,8 +304,8 @@ TEST(LinkCodecRejects, AnotherProtocolAsBadMagic) {
 }
 
 TEST(LinkCodecRejects, OtherVersionsNamingTheVersion) {
-  expect_rejected(with_byte(kHeartbeatFrame, 2, 2), Reason::kUnknownVersion, "header.version",
-                  "header.version: expected protocol version 1 (got version 2)");
+  expect_rejected(with_byte(kHeartbeatFrame, 2, 1), Reason::kUnknownVersion, "header.version",
+                  "header.version: expected protocol version 2 (got version 1)");
   expect_rejected(with_byte(kHeartbeatFrame, 2, 0), Reason::kUnknownVersion, "header.version",
                   "(got version 0)");
   expect_rejected(Bytes{'F', 'L', 9}, Reason::kUnknownVersion, "header.version");
@@ -324,12 +326,12 @@ TEST(LinkCodecRejects, LengthsThatDoNotAddUp) {
   expect_rejected(longer, Reason::kLengthMismatch, "frame", "19 bytes");
   // A payload length that promises fewer bytes than the fields need, resealed: the
   // fields do not fit.
-  Bytes short_payload = {0x46, 0x4c, 0x01, 0x03, 0x02, 0x02, 0x00, 0x00, 0x00,
+  Bytes short_payload = {0x46, 0x4c, 0x02, 0x03, 0x02, 0x02, 0x00, 0x00, 0x00,
                          0x02, 0x00, 0x03, 0x00, 0,    0,    0,    0};
   expect_rejected(reseal(short_payload), Reason::kLengthMismatch, "header.payload_length",
                   "room for ack.request_id");
   // One that promises more than the fields: a byte left over.
-  Bytes long_payload = {0x46, 0x4c, 0x01, 0x03, 0x02, 0x02, 0x00, 0x00, 0x00, 0x05,
+  Bytes long_payload = {0x46, 0x4c, 0x02, 0x03, 0x02, 0x02, 0x00, 0x00, 0x00, 0x05,
                         0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0,    0,    0,    0};
   expect_rejected(reseal(long_payload), Reason::kLengthMismatch, "header.payload_length",
                   "4 bytes for this ack");
@@ -341,9 +343,9 @@ TEST(LinkCodecRejects, LengthsThatDoNotAddUp) {
 TEST(LinkCodecRejects, DamagedBytesByTheirCrc) {
   expect_rejected(with_byte(kTelemetryFrame, kTelX, 0x01, /*seal=*/false), Reason::kCrcMismatch,
                   "crc");
-  // The CRC's last byte 2b -> ab.
+  // The CRC's last byte 96 -> ab.
   expect_rejected(with_byte(kAckFrame, 18, 0xab, /*seal=*/false), Reason::kCrcMismatch, "crc",
-                  "(got 0xab2b45c5)");
+                  "(got 0xabe1290b)");
 }
 
 TEST(LinkCodecRejects, NanAndInfinityNamingTheField) {

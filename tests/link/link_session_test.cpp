@@ -292,7 +292,7 @@ TEST(LinkSessions, OwnFramesLoopedBackAndGarbageAreCountedNotActedOn) {
   UavLinkSession uav(clock);
   uav.request(request_of(UavRequest::Kind::kAbort));
   for (const auto& d : uav.take_outgoing()) uav.receive(d);  // a heartbeat and a request
-  uav.receive(std::vector<std::uint8_t>{'F', 'L', 1});
+  uav.receive(std::vector<std::uint8_t>{'F', 'L', 2});
   uav.receive(std::vector<std::uint8_t>(40, 0xFF));
   const auto& c = uav.counters();
   EXPECT_EQ(c.received, 4u);

@@ -42,6 +42,7 @@ inline UgvTelemetry random_telemetry(Rng& rng) {
   t.tether_uncertainty_m = random_float(rng, 0, 2);
   t.roll_rad = random_float(rng, -0.5, 0.5);
   t.pitch_rad = random_float(rng, -0.5, 0.5);
+  t.last_request_id = static_cast<std::uint32_t>(rng.uniform_int(0, 0xFFFFFFFF));
   const auto n = rng.uniform_int(0, UgvTelemetry::kMaxPlanSamples);
   for (std::int64_t i = 0; i < n; ++i)
     t.plan.push_back({0.05f * static_cast<float>(i + 1), random_float(rng, -30, 30),

@@ -92,6 +92,10 @@ struct UgvTelemetry {
   float tether_uncertainty_m = 0.0f;  ///< how much longer the real tether may be
   float roll_rad = 0.0f;              ///< IMU attitude (the touchdown check)
   float pitch_rad = 0.0f;
+  /// The newest UAV request the miniUGV has acted on (0: none yet). The UAV reads a
+  /// frame as the answer to its request only from this id on: a frame still on its way
+  /// from before (the last hidden space's "done") is not the new deployment's.
+  std::uint32_t last_request_id = 0;
   /// Optional: up to kMaxPlanSamples samples of the planned motion, dt_s increasing.
   std::vector<PlanSample> plan;
 
