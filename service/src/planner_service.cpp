@@ -68,8 +68,10 @@ struct ApiError {
 }
 
 json error_body(const ApiError& e) {
-  json err{{"code", e.code}, {"message", e.message}};
-  if (!e.field.empty()) err["field"] = e.field;
+  // Every part may hold the request's bytes (an unknown key, a part's name): printable
+  // ASCII, so the answer is JSON whatever the request held.
+  json err{{"code", printable(e.code, 64)}, {"message", printable(e.message)}};
+  if (!e.field.empty()) err["field"] = printable(e.field, 120);
   return json{{"error", err}};
 }
 
@@ -489,7 +491,8 @@ struct PlannerService::Impl {
 
   static void send(httplib::Response& res, int status, const json& body) {
     res.status = status;
-    res.set_content(body.dump() + "\n", "application/json");
+    // A string that is not UTF-8 is a bug upstream; it must not turn the answer into a 500.
+    res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace) + "\n", "application/json");
   }
 
   // A deadline from the request (seconds from arrival), within the service's bounds.
@@ -744,7 +747,7 @@ struct PlannerService::Impl {
                            {"length_at_goal_m", result.plan.states.back().tether_length_m},
                            {"wraps_at_goal_m", wraps}};
         }
-        res.set_content(out.dump() + "\n", "application/json");
+        send(res, res.status, out);
       } catch (const InputError& e) {
         throw from_input_error(e, fields);
       }
@@ -805,7 +808,7 @@ struct PlannerService::Impl {
         r.time_limit_s = std::min(left_s, 3600.0);
         const PlanResult result = plan_uav_approach(map->world, r, *setup);
         const json out = plan_response(result, std::chrono::duration<double>(Clock::now() - arrived).count(), res);
-        res.set_content(out.dump() + "\n", "application/json");
+        send(res, res.status, out);
       } catch (const InputError& e) {
         throw from_input_error(e, fields);
       }
@@ -1004,6 +1007,13 @@ struct PlannerService::Impl {
         return httplib::Server::HandlerResponse::Handled;
       }
       return httplib::Server::HandlerResponse::Unhandled;
+    });
+    // An exception that escapes a route (none should): a JSON 500, without cpp-httplib's
+    // default EXCEPTION_WHAT header, which would hand the client the exception's text.
+    s.set_exception_handler([this](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+      res.headers.clear();
+      send(res, 500, error_body({500, "INTERNAL", "the service failed to answer this request", ""}));
+      metrics.record("other", 500, 0.0);
     });
     s.set_error_handler([this](const httplib::Request& req, httplib::Response& res) {
       if (!res.body.empty()) return;  // a route's own error

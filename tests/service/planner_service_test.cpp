@@ -269,6 +269,12 @@ TEST(PlannerService, ABrokenMapServerUploadNamesItsPart) {
   r = put({{"yaml", yaml}, {"image", "not an image"}});
   EXPECT_EQ(r->status, 400);
   EXPECT_EQ(error_field(r), "image") << r->body;
+  // A key that is not UTF-8 (fuzz/regressions/service_request/map_yaml_key_not_utf8.bin):
+  // the answer named it in bytes JSON cannot hold, and turned into a 500.
+  r = put({{"yaml", std::string("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nne\0Ngate: 0\n", 59)}, {"image", pgm}});
+  EXPECT_EQ(r->status, 400) << r->body;
+  EXPECT_EQ(error_field(r).rfind("yaml.ne", 0), 0u) << r->body;
+  EXPECT_TRUE(r->get_header_value("EXCEPTION_WHAT").empty());
   EXPECT_EQ(body_of(c.Get("/v1/maps"))["maps"].size(), 0u);
 }
 
