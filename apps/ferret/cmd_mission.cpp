@@ -50,6 +50,8 @@ struct Options {
   std::string world, robot_uav, robot_ugv, mission, out, method = "cdos";
   std::string no_landing_zone;  ///< empty: the mission YAML's uav.no_landing_zone (hover)
   std::string planner = "grid";
+  std::string link = "in-process";
+  double link_loss = 0.0, link_reorder = 0.0;
   std::uint64_t seed = 1;
   bool quiet = false;
 };
@@ -62,6 +64,7 @@ nlohmann::json report_json(const Options& o, const fs::path& world, const Missio
   j["world"] = world.string();
   j["seed"] = o.seed;
   j["backends"] = r.backends;
+  if (!r.link_counters.empty()) j["link_counters"] = r.link_counters;
   j["outcome"] = to_string(r.outcome);
   j["time_s"] = r.time_s;
   j["summary"] = {{"hidden_spaces_in_world", r.hidden_spaces_in_world},
@@ -274,6 +277,13 @@ void run(const Options& o) {
   if (!o.no_landing_zone.empty() && o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
     throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
   if (o.planner != "grid" && o.planner != "ompl") throw InputError("--planner", "", "grid or ompl", o.planner);
+  if (o.link != "in-process" && o.link != "messages") throw InputError("--link", "", "in-process or messages", o.link);
+  for (const auto& [option, value] : {std::pair{"--link-loss", o.link_loss}, std::pair{"--link-reorder", o.link_reorder}}) {
+    if (!(std::isfinite(value) && value >= 0.0 && value <= 0.9))
+      throw InputError(option, "", "a fraction of the datagrams in [0, 0.9]", fmt::format("{}", value));
+    if (value > 0.0 && o.link != "messages")
+      throw InputError(option, "", "--link messages (in one process there are no messages to lose)", fmt::format("{}", value));
+  }
   if (!has_exploration_policy(o.method))
     throw InputError("--method", "", one_of(exploration_policy_names()), o.method);
   if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
@@ -299,6 +309,12 @@ void run(const Options& o) {
   // does not (l_0 = 0: no hover release) is named in the mission file.
   settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
   settings.ugv.ugv.explore.planner = o.planner;
+  if (o.link == "messages") {
+    link::LossyChannelOptions channel;
+    channel.drop_fraction = o.link_loss;
+    channel.reorder_fraction = o.link_reorder;
+    settings.link_channel = channel;
+  }
   const WorldSpec& spec = *world.spec;
 
   // What the mission YAML asked for (all sim here), and what the run itself uses
@@ -306,7 +322,10 @@ void run(const Options& o) {
   if (!o.quiet) {
     std::string line = "backends: " + backends.summary();
     for (const auto& [name, backend] : mission_backends())
-      if (name == "uav.cameras" || name == "link") line += ", " + name + ": " + backend;
+      if (name == "uav.cameras") line += ", " + name + ": " + backend;
+    line += ", link: " + (o.link == "messages" ? fmt::format("messages (loss {:g}, reordering {:g})", o.link_loss,
+                                                              o.link_reorder)
+                                               : o.link);
     std::fprintf(stderr, "%s\n", line.c_str());
   }
   TransitionLog log;
@@ -349,6 +368,7 @@ void run(const Options& o) {
                 d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(),
                 std::string(to_string(d.result.outcome)).c_str(), d.result.time_s, d.result.path_m,
                 d.result.battery_left);
+  if (!r.link_counters.empty()) std::printf("link: %s\n", r.link_counters.c_str());
   if (o.out.empty()) return;
 
   OutputSet files(fs::path(o.out), OutputKind::kDirectory);
@@ -399,6 +419,12 @@ const CommandRegistration kMission{
                       "No safe landing zone by an opening: hover (lower from a hover) or skip (default: the mission YAML's uav.no_landing_zone, hover)");
       sub->add_option("-o,--out", o->out,
                       "Directory for report.json, aerial.png, tether.png, battery.png, spaces/*/, map.bt, mission.mcap (default: none, summary only)");
+      sub->add_option("--link", o->link,
+                      "How the UAV and the miniUGV talk: in-process (calls) or messages (the robot link's frames and "
+                      "sessions through a simulated network, docs/link.md) (default: in-process)");
+      sub->add_option("--link-loss", o->link_loss, "With --link messages: the fraction of datagrams lost, each way (default: 0)");
+      sub->add_option("--link-reorder", o->link_reorder,
+                      "With --link messages: the fraction of datagrams held back past later ones, each way (default: 0)");
       sub->add_flag("-q,--quiet", o->quiet, "Print the summary only");
       sub->callback([o] { run(*o); });
     }};

@@ -8,6 +8,8 @@
 #include "ferret/core/error.hpp"
 #include "ferret/sim/search_robot.hpp"
 #include "ferret/uav/flight_planner.hpp"
+#include "ferret/uav/linked_ugv.hpp"
+#include "ferret/ugv/ugv_link_endpoint.hpp"
 #include "mission_world.hpp"
 
 namespace ferret {
@@ -88,6 +90,92 @@ class InProcessUgvLink final : public UgvLink {
   SimHiddenSpaces& spaces_;
 };
 
+// The miniUGV over the robot link's messages, both ends in this process. What the
+// UAV's calls do to the world happens at once, as the winch does it (the robot set
+// down at the entry, lifted out, the object let go); what they ask of the miniUGV's
+// controller travels as requests through a simulated network, and the UAV reads the
+// miniUGV from its telemetry, as it would from the robot.
+class SimLinkedUgv final : public UgvLink {
+ public:
+  SimLinkedUgv(SimHiddenSpaces& spaces, const Clock& clock, const link::LossyChannelOptions& channel,
+               std::uint64_t seed)
+      : spaces_(spaces),
+        uav_(clock),
+        ugv_(clock, [this](const link::UavRequest&) { return set_down(); }),
+        up_(seeded(channel, seed, 1)),
+        down_(seeded(channel, seed, 2)) {}
+  [[nodiscard]] static const char* kind() { return "messages"; }
+
+  void deploy(const Eigen::Vector3d& p_WE, double entry_yaw_rad) override {
+    spaces_.put_down(p_WE, true);
+    uav_.deploy(p_WE, entry_yaw_rad);
+  }
+  void retracted() override {
+    uav_.retracted();
+    if (const auto index = spaces_.lift()) pending_results_.emplace_back(uav_.last_request(), *index);
+  }
+  void release_object() override {
+    spaces_.release_object();
+    uav_.release_object();
+  }
+  void abort(const std::string& reason) override { uav_.abort(reason); }
+  void recall(const std::string& reason) override { uav_.recall(reason); }
+  [[nodiscard]] UgvReport report() const override {
+    if (spaces_.lonely() && !spaces_.active()) {  // set down where no hidden space is: nothing to search
+      UgvReport r;
+      r.done = true;
+      r.outcome = "no_hidden_space";
+      r.wants_retraction = true;
+      return r;
+    }
+    return uav_.report();
+  }
+
+  // At the miniUGV's control rate, before its step: the requests that arrived are acted
+  // on. True while the miniUGV holds (its link silent).
+  bool receive() {
+    for (const auto& d : up_.deliver()) ugv_.session().receive(d);
+    const ImuReading& hanging = spaces_.touchdown();
+    if (spaces_.active()) ugv_.set_attitude(0.0, 0.0);
+    else ugv_.set_attitude(hanging.roll_rad, hanging.pitch_rad);
+    const bool hold = ugv_.handle_requests();
+    // A deployment's controller heard it was lifted out: its result is final now.
+    std::erase_if(pending_results_, [&](const auto& p) {
+      if (ugv_.last_request_id() < p.first) return false;
+      spaces_.update_result(p.second);
+      return true;
+    });
+    return hold;
+  }
+  // After its step: the state it left goes to the UAV, and the UAV's messages go out.
+  void send() {
+    ugv_.report();
+    down_.send(ugv_.session().take_outgoing());
+    for (const auto& d : down_.deliver()) uav_.session().receive(d);
+    up_.send(uav_.session().take_outgoing());
+  }
+  [[nodiscard]] std::string summary() const {
+    return "UAV end: " + uav_.session().counters().summary() + "; miniUGV end: " + ugv_.session().counters().summary();
+  }
+
+ private:
+  static link::LossyChannelOptions seeded(link::LossyChannelOptions o, std::uint64_t seed, std::uint64_t way) {
+    o.seed = seed * 1000003u + way;
+    return o;
+  }
+  UgvLinkEndpoint::Deployment set_down() {
+    UgvMissionSim* s = spaces_.active();
+    if (!s) return {};
+    return {&s->mission(), &s->base()};
+  }
+
+  SimHiddenSpaces& spaces_;
+  LinkedUgv uav_;
+  UgvLinkEndpoint ugv_;
+  link::LossyChannel up_, down_;  // UAV -> miniUGV, miniUGV -> UAV
+  std::vector<std::pair<std::uint32_t, std::size_t>> pending_results_;  // (retracted request, deployment)
+};
+
 }  // namespace
 
 class MissionSimImpl {
@@ -137,7 +225,11 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
   TransitionLog own_log;
   TransitionLog& transitions = log ? *log : own_log;
   internal::MissionWorld sim(world, uav_robot, settings, seed, transitions);
-  InProcessUgvLink link(sim.spaces());
+  InProcessUgvLink in_process(sim.spaces());
+  std::unique_ptr<SimLinkedUgv> linked;
+  if (settings.link_channel)
+    linked = std::make_unique<SimLinkedUgv>(sim.spaces(), sim.clock(), *settings.link_channel, seed);
+  UgvLink& link = linked ? static_cast<UgvLink&>(*linked) : in_process;
   const MissionRunSettings& s = sim.settings();  // with the UAV's options filled from the world
   const FlightPlanner planner = make_flight_planner(world, uav_robot, s.ugv.exploration.mission,
                                                     s.uav_max_speed_mps, seed);
@@ -152,6 +244,10 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
   controllers.uav_state = [&] { return std::string(to_string(mission.state())); };
   // The base-only world step moves the robot; in this process the controller ticks first.
   controllers.ugv_tick = [] {};
+  if (linked) {
+    controllers.link_receive = [&] { return linked->receive(); };
+    controllers.link_send = [&] { linked->send(); };
+  }
   sim.run(controllers, [&](double t_s) {
     if (settings.on_sample) settings.on_sample(t_s, view);
   });
@@ -172,7 +268,8 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
                      {"uav.cameras", "sim"},  // rendered frames (SimUavCameras)
                      {"uav.winch", "sim"},    // tether::SimulatedWinch
                      {"ugv.base", "sim"},     // SimUgvBase in each hidden space
-                     {"link", link.kind()}};
+                     {"link", linked ? SimLinkedUgv::kind() : InProcessUgvLink::kind()}};
+  if (linked) result.link_counters = linked->summary();
   return result;
 }
 

@@ -74,9 +74,13 @@ void MissionWorld::run(const MissionControllers& controllers, const std::functio
       state = controllers.uav_state();
       spaces.set_reeling_in(state == to_string(UavMissionState::kRetract));
     }
-    if (step % ugv_every == 0 && spaces.active()) {
-      if (controllers.ugv_tick) controllers.ugv_tick();
-      spaces.step(ugv_every * kDt);
+    if (step % ugv_every == 0) {
+      const bool hold = controllers.link_receive && controllers.link_receive();
+      if (spaces.active()) {
+        if (controllers.ugv_tick) controllers.ugv_tick();
+        spaces.step(ugv_every * kDt, hold);
+      }
+      if (controllers.link_send) controllers.link_send();
     }
     flight.step(kDt);
     // The tether: taut on the floor while the miniUGV works (its tension from the

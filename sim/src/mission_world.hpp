@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -232,14 +233,29 @@ class SimHiddenSpaces {
   }
   /// Aboard again (the winch reeled it in): the deployment's result is kept, and what
   /// the magnet holds comes along.
-  void lift() {
+  /// Returns the deployment's index (none when it searched nothing).
+  std::optional<std::size_t> lift() {
+    std::optional<std::size_t> index;
     if (sim_) {
       deployments_.back().result = sim_->result(log_);
       deployments_.back().result.time_s = clock_.now_s() - deployments_.back().deployed_s;
       holding_ = sim_->base().object_held();
+      index = deployments_.size() - 1;
+      searched_[*index] = sim_.get();
       finished_.push_back(std::move(sim_));
     }
     tether_.reset();
+    return index;
+  }
+  /// A deployment's result again, once its controller has heard over the robot link
+  /// that it was lifted out, after the winch did it (its time stays the lift's).
+  void update_result(std::size_t index) {
+    const auto it = searched_.find(index);
+    if (it == searched_.end()) return;
+    UgvDeployment& d = deployments_[index];
+    const double time_s = d.result.time_s;
+    d.result = it->second->result(log_);
+    d.result.time_s = time_s;
   }
   /// The EPM off under the UAV: what it held falls where the UAV is.
   void release_object() {
@@ -248,10 +264,11 @@ class SimHiddenSpaces {
     released_at_.push_back(last_uav_W_);
   }
   // The world's step for the miniUGV (every UgvMissionSim::tick_s()).
-  void step(double dt) {
+  // `hold`: the controller holds (its link silent): the base stands, nothing ticks.
+  void step(double dt, bool hold = false) {
     if (!sim_) return;
     if (sim_->has_controller() && (sim_->mission().done() || sim_->mission().wants_retraction())) return;
-    sim_->step(dt);
+    sim_->step(dt, hold);
     const Pose2& p = sim_->base().true_pose();
     tether_->move_to({p.x_m, p.y_m});
     deployments_.back().max_true_tether_m =
@@ -326,6 +343,7 @@ class SimHiddenSpaces {
   bool reeling_in_ = false;
   ImuReading touchdown_;
   int touchdown_space_ = -1;  ///< the hidden space touchdown_ was read for
+  std::map<std::size_t, UgvMissionSim*> searched_;  ///< lifted deployments' controllers, by index
   Eigen::Vector3d last_uav_W_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> released_at_;
 };
@@ -338,6 +356,11 @@ struct MissionControllers {
   std::function<bool()> uav_done;
   std::function<std::string()> uav_state;   ///< its state's name (samples, collisions)
   std::function<void()> ugv_tick;           ///< the miniUGV controller's tick, while it is set down
+  /// The robot link's messages at the miniUGV's control rate, set down or not: those
+  /// that arrived, before its step (true while the miniUGV holds, its link silent), and
+  /// the ones it sends, after it. Empty: no link (one process).
+  std::function<bool()> link_receive;
+  std::function<void()> link_send;
 };
 
 class MissionWorld {

@@ -53,9 +53,11 @@ UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std
 
 UgvMissionSim::~UgvMissionSim() = default;
 
-void UgvMissionSim::step(double dt_s) {
+void UgvMissionSim::step(double dt_s, bool hold) {
   if (record_) trajectory_.push_back(base_->true_pose());
-  if (!mission_) {
+  if (hold) base_->command_velocity(0.0, 0.0);
+  // Set down but not told to search yet (its start on its way over the link): it stands.
+  if (!mission_ || hold || mission_->state() == UgvMissionState::kIdle) {
     base_->step(dt_s);
     return;
   }

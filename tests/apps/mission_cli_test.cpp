@@ -61,6 +61,15 @@ TEST(MissionCli, AnUnknownChoiceExits2) {
   const auto m = run_cli("mission --world /nonexistent/world.yaml");
   EXPECT_EQ(m.exit_code, 2);
   EXPECT_THAT(m.err, HasSubstr("/nonexistent/world.yaml"));
+  // The robot link: a way it cannot run, a loss it cannot have, a loss with no messages.
+  for (const auto& [args, named] : {std::pair{"--link carrier-pigeon", "--link: expected in-process or messages"},
+                                    std::pair{"--link messages --link-loss 1.5", "--link-loss: expected a fraction"},
+                                    std::pair{"--link messages --link-reorder nan", "--link-reorder"},
+                                    std::pair{"--link-loss 0.1", "--link-loss: expected --link messages"}}) {
+    const auto l = run_cli(std::string("mission -q ") + args);
+    EXPECT_EQ(l.exit_code, 2) << args;
+    EXPECT_THAT(l.err, HasSubstr(named)) << args;
+  }
 }
 
 }  // namespace

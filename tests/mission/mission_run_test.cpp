@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -49,7 +50,7 @@ struct MissionRunOut {
 
 MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::uint64_t seed = 1,
         const std::string& no_landing_zone = "hover", const std::string& planner = "grid",
-        double flight_endurance_s = 0.0) {
+        double flight_endurance_s = 0.0, std::optional<link::LossyChannelOptions> link = std::nullopt) {
   const RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), mission);
   const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
   MissionRunOut r{{}, load_planning_world(world_path)};
@@ -57,6 +58,7 @@ MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::u
   s.uav.no_landing_zone = no_landing_zone;
   s.ugv.ugv.explore.planner = planner;
   if (flight_endurance_s > 0) s.uav.flight_endurance_s = flight_endurance_s;
+  s.link_channel = link;
   r.result = run_mission(r.world, uav, s, seed);
   return r;
 }
@@ -265,6 +267,40 @@ TEST(MissionRun, AnObjectBeyondTheTethersReachIsNeverReached) {
   EXPECT_FALSE(shed->object_retrieved);
   EXPECT_TRUE(shed->ugv_outcome == "no_object" || shed->ugv_outcome == "return_failed") << shed->ugv_outcome;
   for (const auto& d : r.deployments) EXPECT_FALSE(d.result.object_held) << d.hidden_space;
+}
+
+// The controllers talk in the robot link's messages (wire format, sessions, watchdogs)
+// through a network that loses and reorders a tenth of the datagrams each way: the
+// mission ends as it does with the two in one process, and as safely.
+TEST(MissionRun, OverTheLinkWithATenthLostAndReorderedTheOutcomeIsTheSame) {
+  const MissionConfig mission;
+  const auto direct = run(data_path("worlds/two_sites.yaml"));
+  link::LossyChannelOptions lossy;
+  lossy.drop_fraction = 0.1;
+  lossy.reorder_fraction = 0.1;
+  const auto linked = run(data_path("worlds/two_sites.yaml"), mission, 1, "hover", "grid", 0.0, lossy);
+  const MissionRunResult& a = direct.result;
+  const MissionRunResult& b = linked.result;
+  expect_safe(b, mission);
+  EXPECT_EQ(b.outcome, a.outcome) << to_string(b.outcome);
+  EXPECT_EQ(b.objects_dropped, a.objects_dropped);
+  ASSERT_EQ(b.visits.size(), a.visits.size());
+  for (std::size_t k = 0; k < a.visits.size(); ++k) {
+    EXPECT_EQ(b.visits[k].marker_id, a.visits[k].marker_id);
+    EXPECT_EQ(b.visits[k].state, a.visits[k].state);
+    EXPECT_EQ(b.visits[k].object_retrieved, a.visits[k].object_retrieved);
+    EXPECT_EQ(b.visits[k].ugv_outcome, a.visits[k].ugv_outcome);
+  }
+  ASSERT_EQ(b.deployments.size(), a.deployments.size());
+  for (std::size_t k = 0; k < a.deployments.size(); ++k)
+    EXPECT_EQ(b.deployments[k].result.outcome, a.deployments[k].result.outcome) << a.deployments[k].hidden_space;
+  EXPECT_EQ(b.backends.at("link"), "messages");
+  EXPECT_EQ(a.backends.at("link"), "in-process");
+  // The network did lose and reorder: the UAV's end dropped late telemetry as stale.
+  const std::string uav_end = b.link_counters.substr(0, b.link_counters.find("; miniUGV end"));
+  EXPECT_NE(uav_end.find("stale "), std::string::npos) << b.link_counters;
+  EXPECT_EQ(uav_end.find("stale 0 "), std::string::npos) << b.link_counters;
+  EXPECT_EQ(b.link_counters.find("given_up 1"), std::string::npos) << b.link_counters;
 }
 
 }  // namespace

@@ -547,7 +547,11 @@ void UavMission::tick() {
       if (!current().landed) hw_.flight.command_position(release_W_, current().opening.entry_yaw_rad, 0.5);
       const UgvReport r = hw_.ugv.report();
       current().max_released_m = std::max(current().max_released_m, w.released_m);
-      required_->update(r);
+      // Over the robot link the miniUGV answers its search request a moment later:
+      // until it has started (or while it is not heard) the winch cannot know where the
+      // line must go, and holds its length. In one process it has started at once.
+      const bool heard = r.link_ok && (r.running || r.done || r.wants_retraction);
+      if (heard) required_->update(r);
       tether::TetherObservation obs;
       obs.t_s = now;
       obs.released_m = w.released_m;
@@ -556,7 +560,9 @@ void UavMission::tick() {
       obs.ugv.p_WG = r.p_WG;
       obs.ugv.v_WG = r.v_WG;
       obs.slack_margin_m = r.tether_uncertainty_m;
-      hw_.winch.command_velocity_mps(winch_ctl_->step(obs));
+      // Without word from the miniUGV the winch holds its length (the miniUGV holds too,
+      // docs/link.md "Watchdogs").
+      hw_.winch.command_velocity_mps(heard ? winch_ctl_->step(obs) : 0.0);
       if (r.done || r.wants_retraction) {
         current().ugv_outcome = r.outcome.empty() ? "at the entry" : r.outcome;
         return enter(UavMissionState::kRetract, "miniUGV asks to be lifted out (" + current().ugv_outcome + ")");

@@ -11,10 +11,12 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "ferret/core/transition_log.hpp"
+#include "ferret/link/lossy_channel.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/uav/uav_mission.hpp"
@@ -33,6 +35,11 @@ struct MissionRunSettings {
   double uav_max_yaw_rate_radps = 1.0;
   double landed_height_m = 0.25;       ///< base_link above the ground when landed
   double time_limit_s = 4 * 3600.0;    ///< the simulation's own bound
+  /// The robot link. nullopt: the two controllers call each other (one process, no
+  /// messages). Set: every call is a message of the link's wire format through its
+  /// sessions (docs/link.md), through a simulated network with these faults each way
+  /// (its seed drawn from the run's), and the UAV reads the miniUGV from telemetry.
+  std::optional<link::LossyChannelOptions> link_channel;
   /// Called every 0.1 s of simulated time (the MCAP recorder's hook).
   std::function<void(double t_s, const class MissionSim&)> on_sample;
 };
@@ -64,6 +71,9 @@ struct MissionRunResult {
   /// "uav.winch", "ugv.base", and "uav.cameras": sim or hw; "link": in-process), read
   /// from the objects the run used.
   std::map<std::string, std::string> backends;
+  /// With the robot link's messages (MissionRunSettings::link_channel): what each end's
+  /// session counted (received, accepted, corrupted, duplicates, stale, resent, ...).
+  std::string link_counters;
   UavMissionOutcome outcome = UavMissionOutcome::kNone;
   double time_s = 0.0;
   std::vector<HiddenSpaceVisit> visits;

@@ -77,8 +77,9 @@ class UgvMissionSim {
 
   void start() { mission_->start(); }
   /// The controller's tick at the clock's time (when it has one), then the robot moves
-  /// by `dt_s`.
-  void step(double dt_s);
+  /// by `dt_s`. `hold`: the controller does not tick and the wheels stop (the robot
+  /// link's watchdog).
+  void step(double dt_s, bool hold = false);
   [[nodiscard]] bool has_controller() const { return mission_ != nullptr; }
   /// The control period (the IR rate).
   [[nodiscard]] double tick_s() const { return tick_s_; }

@@ -74,6 +74,9 @@ struct UgvReport {
   double roll_rad = 0.0;           ///< its IMU attitude (the touchdown check)
   double pitch_rad = 0.0;
   double battery_fraction = 1.0;
+  /// The link carries its messages: false once it has been silent past the link's
+  /// timeout (the winch then holds its length). Always true in one process.
+  bool link_ok = true;
 };
 
 class UgvLink {

@@ -1,0 +1,139 @@
+#include "ferret/ugv/ugv_link_endpoint.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "ferret/ugv/mini_ugv_mission.hpp"
+#include "ferret/ugv/ugv_base.hpp"
+
+namespace ferret {
+namespace {
+
+// The link mirrors the mission's enums value for value (link/messages.hpp).
+static_assert(static_cast<int>(UgvMissionState::kDone) == static_cast<int>(link::UgvMode::kDone));
+static_assert(static_cast<int>(UgvMissionOutcome::kRecalled) == static_cast<int>(link::UgvOutcome::kRecalled));
+
+link::UgvMode mode_of(UgvMissionState s) { return static_cast<link::UgvMode>(static_cast<int>(s)); }
+link::UgvOutcome outcome_of(UgvMissionOutcome o) { return static_cast<link::UgvOutcome>(static_cast<int>(o)); }
+
+// The wire's ranges (docs/link.md): a value past them is the sender's bug, so it is
+// held inside them here rather than thrown at the robot's control loop.
+float clamped(double v, double limit) { return static_cast<float>(std::clamp(v, -limit, limit)); }
+
+}  // namespace
+
+UgvLinkEndpoint::UgvLinkEndpoint(const Clock& clock, StartSearch start_search, UgvLinkEndpointOptions options)
+    : clock_(clock), start_search_(std::move(start_search)), options_(options), session_(clock, options.link) {
+  if (!(std::isfinite(options_.telemetry_period_s) && options_.telemetry_period_s > 0.0))
+    throw std::invalid_argument("UgvLinkEndpoint: telemetry_period_s must be > 0");
+  if (!start_search_) throw std::invalid_argument("UgvLinkEndpoint: no start_search");
+}
+
+void UgvLinkEndpoint::set_attitude(double roll_rad, double pitch_rad) {
+  roll_rad_ = roll_rad;
+  pitch_rad_ = pitch_rad;
+}
+
+void UgvLinkEndpoint::act_on(const link::UavRequest& r) {
+  using Kind = link::UavRequest::Kind;
+  last_request_id_ = r.request_id;
+  if (r.kind == Kind::kReleaseObject) {  // under the UAV: the magnet is the robot's, not the mission's
+    if (base_) base_->set_epm(false);
+    else ++without_mission_;
+    return;
+  }
+  if (r.kind == Kind::kStartSearch) {
+    if (mission_ && !mission_->done()) mission_->stop("a new search was asked for");
+    const Deployment d = start_search_(r);
+    mission_ = d.mission;
+    if (d.base) base_ = d.base;
+    if (!mission_) {
+      ++without_mission_;
+      return;
+    }
+    if (mission_->state() == UgvMissionState::kIdle) mission_->start();
+    return;
+  }
+  if (!mission_) {
+    ++without_mission_;
+    return;
+  }
+  MiniUgvMission& m = *mission_;
+  switch (r.kind) {
+    case Kind::kRecall:
+      m.recall(r.reason);
+      return;
+    case Kind::kRetracted:
+      if (m.wants_retraction()) m.retracted();
+      if (!m.done()) m.stop("lifted out");
+      mission_ = nullptr;  // aboard: the next search is another mission
+      return;
+    case Kind::kAbort:
+      if (!m.done()) m.stop(r.reason.empty() ? "the UAV aborted" : r.reason);
+      return;
+    case Kind::kStartSearch:
+    case Kind::kReleaseObject:
+      return;
+  }
+}
+
+bool UgvLinkEndpoint::handle_requests() {
+  while (const auto request = session_.next_request()) act_on(*request);
+  const bool under_way = mission_ && !mission_->done() && mission_->state() != UgvMissionState::kIdle;
+  const bool hold = under_way && session_.peer_silent();
+  if (hold && !holding_) ++holds_;
+  holding_ = hold;
+  if (holding_ && base_) base_->command_velocity(0.0, 0.0);
+  return holding_;
+}
+
+void UgvLinkEndpoint::report() {
+  const double now = clock_.now_s();
+  if (now + 1e-9 < next_telemetry_s_) return;
+  session_.send_telemetry(telemetry());
+  next_telemetry_s_ = now + options_.telemetry_period_s;
+}
+
+link::UgvTelemetry UgvLinkEndpoint::telemetry() const {
+  link::UgvTelemetry t;
+  t.t_s = std::clamp(clock_.now_s(), 0.0, 1e9);
+  t.last_request_id = last_request_id_;
+  t.roll_rad = clamped(roll_rad_, 3.14159);
+  t.pitch_rad = clamped(pitch_rad_, 3.14159);
+  if (base_) {
+    const UgvStatus st = base_->status();
+    t.battery_fraction = static_cast<float>(std::clamp(st.battery_fraction, 0.0, 1.0));
+    t.epm_on = st.epm_on;
+    t.object_held = st.epm_on && st.contact;
+    const Pose2 p = base_->odometry();
+    t.x_m = std::clamp(p.x_m, -1e5, 1e5);
+    t.y_m = std::clamp(p.y_m, -1e5, 1e5);
+    t.yaw_rad = std::remainder(p.yaw_rad, 2.0 * M_PI);
+    const double v = base_->speed_mps();
+    t.vx_mps = clamped(v * std::cos(p.yaw_rad), 100.0);
+    t.vy_mps = clamped(v * std::sin(p.yaw_rad), 100.0);
+    t.tether_anchor_x_m = t.x_m;
+    t.tether_anchor_y_m = t.y_m;
+  }
+  if (!mission_) return t;
+  const MiniUgvMission& m = *mission_;
+  t.mode = mode_of(m.state());
+  t.wants_retraction = m.wants_retraction();
+  if (m.done()) t.outcome = outcome_of(m.outcome());
+  if (m.wants_retraction()) t.outcome = outcome_of(m.return_outcome());
+  if (const auto a = m.explore_controller().tether_anchor()) {
+    t.tether_anchor_x_m = std::clamp(a->first.x(), -1e5, 1e5);
+    t.tether_anchor_y_m = std::clamp(a->first.y(), -1e5, 1e5);
+    t.tether_to_anchor_m = std::clamp(a->second, 0.0, 1e4);
+    t.tether_uncertainty_m = static_cast<float>(std::clamp(
+        m.explore_controller().reach_length_m() - m.explore_controller().tether_length_m(), 0.0, 1e4));
+  } else {
+    t.tether_anchor_x_m = m.entry_W().x();
+    t.tether_anchor_y_m = m.entry_W().y();
+  }
+  return t;
+}
+
+}  // namespace ferret
