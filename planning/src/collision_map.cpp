@@ -322,6 +322,19 @@ int DistanceField::occupied_at(const Eigen::Vector3d& p) const {
 
 const char* to_string(UnknownPolicy policy) { return policy == UnknownPolicy::kFree ? "free" : "occupied"; }
 
+std::string collision_map_options_key(const CollisionMapOptions& o) {
+  const auto box = [](const std::optional<Aabb3>& b) {
+    return b ? fmt::format("{:a},{:a},{:a},{:a},{:a},{:a}", b->lo.x(), b->lo.y(), b->lo.z(), b->hi.x(), b->hi.y(),
+                           b->hi.z())
+             : std::string("-");
+  };
+  return fmt::format("{}|{}|{}|{}|{}|{}|{}", to_string(o.unknown), box(o.bounds), o.max_field_cells,
+                     o.max_fill_face_voxels, box(o.field_region),
+                     o.field_floor_cut_z ? fmt::format("{:a}", *o.field_floor_cut_z) : "-",
+                     o.ground_band_z ? fmt::format("{:a},{:a}", o.ground_band_z->first, o.ground_band_z->second)
+                                     : "-");
+}
+
 UnknownPolicy parse_unknown_policy(const std::string& text, const std::string& source) {
   if (text == "free") return UnknownPolicy::kFree;
   if (text == "occupied") return UnknownPolicy::kOccupied;

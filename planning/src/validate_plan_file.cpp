@@ -261,7 +261,8 @@ ValidationReport validate_checked_plan(PlanFile plan, const PlanningWorld& world
   }
   const auto map = [&] {
     try {
-      return CollisionMap::build(*world.tree, map_opt);
+      return request.collision_map ? request.collision_map(*world.tree, map_opt)
+                                   : CollisionMap::build(*world.tree, map_opt);
     } catch (const InputError& e) {
       // The box came from the plan or --bounds: name it there, not as the map's.
       if (e.source() != "map" || e.field() != "bounds") throw;

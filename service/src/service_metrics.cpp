@@ -23,6 +23,11 @@ void ServiceMetrics::record_plan(const char* result) {
   ++(r == "solved" ? plans_solved_ : r == "cancelled" ? plans_cancelled_ : plans_failed_);
 }
 
+void ServiceMetrics::record_setup_built(const char* kind) {
+  const std::lock_guard lock(mutex_);
+  ++setups_built_[kind];
+}
+
 std::string ServiceMetrics::text(int queue_depth, int active, std::size_t maps_loaded,
                                  bool draining) const {
   const std::lock_guard lock(mutex_);
@@ -49,6 +54,9 @@ std::string ServiceMetrics::text(int queue_depth, int active, std::size_t maps_l
   out += fmt::format("ferret_plans_total{{result=\"solved\"}} {}\n", plans_solved_);
   out += fmt::format("ferret_plans_total{{result=\"failed\"}} {}\n", plans_failed_);
   out += fmt::format("ferret_plans_total{{result=\"cancelled\"}} {}\n", plans_cancelled_);
+  out += "# HELP ferret_setups_built_total What the maps' plans and validations share, built (cache misses).\n";
+  out += "# TYPE ferret_setups_built_total counter\n";
+  for (const auto& [kind, n] : setups_built_) out += fmt::format("ferret_setups_built_total{{kind=\"{}\"}} {}\n", kind, n);
   out += "# HELP ferret_queue_depth Requests waiting for a worker.\n";
   out += "# TYPE ferret_queue_depth gauge\n";
   out += fmt::format("ferret_queue_depth {}\n", queue_depth);

@@ -20,6 +20,8 @@ class ServiceMetrics {
   void record(const std::string& route, int status, double seconds);
   /// A plan answered: solved, failed, or cancelled (its client went away, a shutdown).
   void record_plan(const char* result);
+  /// A map's setup built (a cache miss): "uav", "ugv" or "validation".
+  void record_setup_built(const char* kind);
   /// The whole exposition; gauges passed in as they are now.
   [[nodiscard]] std::string text(int queue_depth, int active, std::size_t maps_loaded,
                                  bool draining) const;
@@ -34,6 +36,7 @@ class ServiceMetrics {
   std::map<std::pair<std::string, int>, std::uint64_t> requests_;
   std::map<std::string, Histogram> latency_;
   std::uint64_t plans_solved_ = 0, plans_failed_ = 0, plans_cancelled_ = 0;
+  std::map<std::string, std::uint64_t> setups_built_{{"uav", 0}, {"ugv", 0}, {"validation", 0}};
 };
 
 /// The process's resident memory in bytes (/proc/self/statm), 0 where unknown.

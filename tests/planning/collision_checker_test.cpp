@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <set>
 #include <thread>
 
 #include "ferret/core/error.hpp"
@@ -219,6 +221,32 @@ TEST(CollisionMap, EmptyMapIsFree) {
   EXPECT_FALSE(checker.in_collision(pose({0, 0, 0}, 0)));
   EXPECT_FALSE(checker.in_collision_fcl(pose({0, 0, 0}, 0)));
   EXPECT_TRUE(std::isinf(checker.clearance_lower_bound_m(pose({0, 0, 0}, 0))));
+}
+
+TEST(CollisionMap, OptionKeysAreEqualExactlyWhenTheOptionsAre) {
+  CollisionMapOptions a;
+  a.unknown = UnknownPolicy::kOccupied;
+  a.bounds = Aabb3{{0, 0, 0}, {12, 8, 0.2}};
+  a.field_floor_cut_z = 0.0;
+  const std::string key = collision_map_options_key(a);
+  EXPECT_EQ(collision_map_options_key(a), key);
+  std::vector<CollisionMapOptions> changed(7, a);
+  changed[0].unknown = UnknownPolicy::kFree;
+  changed[1].bounds->hi.z() = std::nextafter(0.2, 1.0);  // one bit apart is another map
+  changed[2].max_field_cells = a.max_field_cells - 1;
+  changed[3].max_fill_face_voxels = a.max_fill_face_voxels + 1;
+  changed[4].field_region = a.bounds;
+  changed[5].field_floor_cut_z.reset();
+  changed[6].ground_band_z = std::pair{0.0, 0.05};
+  std::set<std::string> keys{key};
+  for (const CollisionMapOptions& o : changed) keys.insert(collision_map_options_key(o));
+  EXPECT_EQ(keys.size(), changed.size() + 1);
+  // The bounds and the field region are different fields, even holding the same box.
+  CollisionMapOptions swapped = a;
+  swapped.bounds.reset();
+  swapped.field_region = a.bounds;
+  EXPECT_NE(collision_map_options_key(swapped), collision_map_options_key(changed[4]));
+  EXPECT_NE(collision_map_options_key(swapped), key);
 }
 
 TEST(CollisionMap, PrunedOccupiedBlocksKeepTheirExtent) {

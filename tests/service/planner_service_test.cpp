@@ -478,7 +478,7 @@ TEST(PlannerService, UavPlansAndValidationAgreeWithGroundTruth) {
   const json plan = body_of(r)["plan"];
   expect_collision_free(plan, kDefault);
   // /v1/validate agrees, and finds the collision in a plan moved into the container.
-  const auto ok = c.Post("/v1/validate", json{{"map", "site"}, {"plan", plan}}.dump(), "application/json");
+  const auto ok = c.Post("/v1/validate", json{{"map", "site"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(), "application/json");
   ASSERT_EQ(ok->status, 200) << ok->body;
   EXPECT_EQ(body_of(ok)["verdict"], "valid") << ok->body;
   json bad = plan;
@@ -487,10 +487,26 @@ TEST(PlannerService, UavPlansAndValidationAgreeWithGroundTruth) {
     st["y_m"] = 15.0;
     st["z_m"] = 1.5;
   }
-  const auto hit = c.Post("/v1/validate", json{{"map", "site"}, {"plan", bad}}.dump(), "application/json");
+  const auto hit = c.Post("/v1/validate", json{{"map", "site"}, {"plan", bad}, {"deadline_s", 30.0}}.dump(), "application/json");
   ASSERT_EQ(hit->status, 200) << hit->body;
   EXPECT_EQ(body_of(hit)["verdict"], "invalid");
   EXPECT_FALSE(body_of(hit)["violations"].empty());
+  // The plan's own collision map served both. Unknown space as occupied in a box is another.
+  const auto built = [&c] {
+    const std::string m = c.Get("/metrics")->body;
+    const std::string key = "ferret_setups_built_total{kind=\"validation\"} ";
+    const auto at = m.find(key);
+    return at == std::string::npos ? -1 : std::stoi(m.substr(at + key.size()));
+  };
+  EXPECT_EQ(built(), 0);
+  json boxed = bad;
+  boxed["bounds"] = {{"min", {-10.0, 0.0, 0.5}}, {"max", {20.0, 25.0, 5.0}}};
+  const auto hit2 = c.Post("/v1/validate",
+                           json{{"map", "site"}, {"plan", boxed}, {"unknown", "occupied"}, {"deadline_s", 30.0}}.dump(),
+                           "application/json");
+  ASSERT_EQ(hit2->status, 200) << hit2->body;
+  EXPECT_EQ(body_of(hit2)["verdict"], "invalid");
+  EXPECT_EQ(built(), 1);
   // A UAV goal inside the container.
   json inside = req;
   inside.erase("hidden_space");

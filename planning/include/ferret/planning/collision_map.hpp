@@ -74,6 +74,10 @@ struct CollisionMapOptions {
   std::optional<std::pair<double, double>> ground_band_z;
 };
 
+/// A text that is equal for two option sets exactly when they build the same map from
+/// one tree (every field, doubles to the last bit): a key for keeping built maps.
+[[nodiscard]] std::string collision_map_options_key(const CollisionMapOptions& options);
+
 class CollisionMap {
  public:
   /// Builds a snapshot from `source` (copied; later edits of `source` do not show).

@@ -183,6 +183,11 @@ struct ValidateRequest {
   std::optional<UnknownPolicy> unknown;  ///< default: the plan's, else the robot's
   std::optional<double> floor_z_m;       ///< override of the floor found in the map
   std::function<bool()> cancelled;       ///< ValidationOptions::cancelled
+  /// Where the collision map comes from (default: built for this request). A program
+  /// that validates many plans against one world (the planner service) keeps the maps
+  /// it built, by collision_map_options_key(); building one is most of a validation.
+  std::function<std::shared_ptr<const CollisionMap>(const octomap::OcTree&, const CollisionMapOptions&)>
+      collision_map;
 };
 
 /// Loads the plan and the world and validates the one against the other, as
