@@ -274,8 +274,17 @@ const CommandRegistration kExplore{
       sub->add_option("--map", o->map, "Hidden space, map_server YAML")->required();
       sub->add_option("--start", o->start, "Start pose x,y,yaw (m, m, rad)")->required();
       sub->add_option("--object", o->object, "Object position x,y (m)")->required();
-      sub->add_option("--method", o->method, "cdos, cdos-literal, rapid, nearest or oracle")
-          ->capture_default_str();
+      std::string methods;
+      for (const auto& n : exploration_policy_names()) methods += (methods.empty() ? "" : ", ") + n;
+      sub->add_option("--method", o->method, "one of " + methods + " (--list-methods)")->capture_default_str();
+      // Before the required options are checked, so it needs none.
+      sub->add_flag_callback(
+          "--list-methods",
+          [] {
+            for (const auto& n : exploration_policy_names()) std::printf("%s\n", n.c_str());
+            throw CLI::Success();
+          },
+          "Print the registered search methods, one a line, and exit");
       add_seed_option(sub, o->seed, "Seed of the sensor noise");
       sub->add_option("-o,--out", o->out,
                       "Directory for G.png, O.png, G_O.png and log.json (default: none, the "

@@ -1,6 +1,7 @@
-// `ferret world build | slice | info`: a world YAML becomes an OctoMap (.bt/.ot),
-// an OctoMap (or world YAML) becomes a 2D map_server slice, and `info` summarises
-// either. docs/maps_and_worlds.md describes the formats.
+// `ferret world build | slice | info | generate-hidden`: a world YAML becomes an
+// OctoMap (.bt/.ot), an OctoMap (or world YAML) becomes a 2D map_server slice, `info`
+// summarises either, and `generate-hidden` writes a hidden space for the object
+// search. docs/maps_and_worlds.md describes the formats.
 
 #include <fmt/format.h>
 
@@ -16,6 +17,7 @@
 #include "command.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/world_octree.hpp"
+#include "ferret/sim/hidden_space_generator.hpp"
 
 namespace ferret::cli {
 namespace {
@@ -157,13 +159,52 @@ void add_info(CLI::App& world) {
   });
 }
 
+void add_generate_hidden(CLI::App& world) {
+  struct Args {
+    std::string output, clutter = "sparse";
+    std::vector<double> size{12.0, 8.0};
+    HiddenSpaceGeneratorOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  auto* gen = world.add_subcommand(
+      "generate-hidden",
+      "Write a generated hidden space (map_server YAML + PGM) with the object search's start and zones");
+  add_seed_option(gen, args->options.seed, "seed of the layout");
+  gen->add_option("--size", args->size, "width (along the start's heading), height in metres: [8, 64] x [5, 64]")
+      ->expected(2)
+      ->delimiter(',')
+      ->capture_default_str();
+  gen->add_option("--clutter", args->clutter, "sparse or dense")->capture_default_str();
+  gen->add_option("--resolution", args->options.resolution_m, "cell size, metres")->capture_default_str();
+  add_out_option(gen, args->output, "output map_server YAML (the PGM is written beside it)");
+  gen->callback([args] {
+    (void)checked_out_file(args->output, "an output map_server YAML");
+    require_extension(args->output, {".yaml"}, "an output path ending in .yaml");
+    (void)checked_out_file(fs::path(args->output).replace_extension(".pgm").string(), "the PGM beside the YAML");
+    const auto clutter = parse_hidden_space_clutter(args->clutter);
+    if (!clutter) throw InputError("--clutter", "", "sparse or dense", args->clutter);
+    HiddenSpaceGeneratorOptions o = args->options;
+    o.clutter = *clutter;
+    o.width_m = args->size[0];
+    o.height_m = args->size[1];
+    const GeneratedHiddenSpace h = generate_hidden_space(o);
+    save_map_server(h.map, args->output, h.search_yaml());
+    std::cout << fmt::format(
+        "{} hidden space, seed {}: {} x {} cells ({} occupied, {} free), start ({}, {}) -> {}\n",
+        to_string(o.clutter), o.seed, h.map.geometry.width, h.map.geometry.height,
+        h.map.count(CellState::kOccupied), h.map.count(CellState::kFree), h.start.x_m, h.start.y_m,
+        args->output);
+  });
+}
+
 void setup(CLI::App& app) {
   auto* world = app.add_subcommand(
-      "world", "Build 3D worlds (OctoMap) from YAML, slice them to 2D, summarise them");
+      "world", "Build 3D worlds (OctoMap) from YAML, slice them to 2D, summarise them, generate hidden spaces");
   world->require_subcommand(1);
   add_build(*world);
   add_slice(*world);
   add_info(*world);
+  add_generate_hidden(*world);
 }
 
 const CommandRegistration kWorld{"world", setup};

@@ -273,8 +273,12 @@ namespace {
 
 MapServerMeta map_server_meta_from(const YAML::Node& doc, const std::string& source) {
   const yaml::MapReader r(doc, source);
-  r.allow_only(
-      {"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode"});
+  // `search`: ferret's object-search setup (start and zones) for `ferret experiment`,
+  // which reads it; map_server ignores keys it does not know.
+  r.allow_only({"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode",
+                "search"});
+  if (r.has("search") && !r.node()["search"].IsMap())
+    r.fail("search", "a mapping (start and zones of the object search, docs/object_search.md)");
   MapServerMeta meta;
   const auto image = r.get<std::string>("image");
   if (image.empty()) r.fail("image", "a non-empty image path");
@@ -377,7 +381,7 @@ bool is_map_server_yaml(const fs::path& path) {
   return false;
 }
 
-void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path) {
+void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path, const std::string& extra_yaml) {
   if (!has_extension(yaml_path, ".yaml"))
     throw InputError(yaml_path.string(), "", "an output path ending in .yaml");
   const GridGeometry& g = map.geometry;
@@ -412,7 +416,8 @@ void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path) {
   out.write_text(yaml_path.filename(),
                  fmt::format("image: {}\nmode: trinary\nresolution: {}\norigin: [{}, {}, 0]\n"
                              "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
-                             quoted, g.resolution_m, g.origin_x_m, g.origin_y_m));
+                             quoted, g.resolution_m, g.origin_x_m, g.origin_y_m) +
+                     extra_yaml);
   out.commit();
 }
 

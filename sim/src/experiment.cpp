@@ -1,5 +1,7 @@
 #include "ferret/sim/experiment.hpp"
+#include "ferret/sim/hidden_space_generator.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -79,19 +81,9 @@ std::vector<Cell> zone_cells(const OccupancyMap2D& map, const ZoneSpec& zone, do
   return cells;
 }
 
-ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double clearance_m) {
-  r.allow_only({"name", "map", "start", "zones"});
-  ExperimentMap m;
-  m.name = r.get<std::string>("name");
-  if (m.name.empty() || m.name.find_first_of(",\"\n") != std::string::npos)
-    r.fail("name", "a non-empty name without commas or quotes", m.name);
-  m.map_path = base / r.get<std::string>("map");
-  try {
-    m.map = load_map_server(m.map_path);
-  } catch (const InputError& e) {
-    r.fail("map", "a readable map_server YAML (" + std::string(e.what()) + ")",
-           m.map_path.string());
-  }
+// The start and zones of a map, from `r` (the experiment's entry, or the map YAML's
+// `search` section that ferret world generate-hidden writes).
+void read_search(const yaml::MapReader& r, ExperimentMap& m, double clearance_m) {
   const auto start = r.get_list<double>("start", 3);
   m.start = {start[0], start[1], start[2]};
   if (!m.map.is_free(m.map.geometry.cell_at(m.start.x_m, m.start.y_m)))
@@ -140,7 +132,78 @@ ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double cl
       zr.fail(std::to_string(id), "zones numbered 1.." + std::to_string(by_id.size()) +
                                       " without gaps (zone " + std::to_string(id) + " missing)");
   for (const auto& [id, z] : by_id) m.zones.push_back(z);
+}
+
+ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double clearance_m) {
+  r.allow_only({"name", "map", "start", "zones"});
+  ExperimentMap m;
+  m.name = r.get<std::string>("name");
+  if (m.name.empty() || m.name.find_first_of(",\"\n") != std::string::npos)
+    r.fail("name", "a non-empty name without commas or quotes", m.name);
+  m.map_path = base / r.get<std::string>("map");
+  try {
+    m.map = load_map_server(m.map_path);
+  } catch (const InputError& e) {
+    r.fail("map", "a readable map_server YAML (" + std::string(e.what()) + ")",
+           m.map_path.string());
+  }
+  // Without start and zones: the map's own (a generated map carries them).
+  if (!r.has("start") && !r.has("zones")) {
+    const YAML::Node search = YAML::LoadFile(m.map_path.string())["search"];
+    if (!search || !search.IsMap())
+      r.fail("start", "start and zones, here or in the map YAML's search section (required field missing)");
+    read_search(yaml::MapReader(search, m.map_path.string(), "search"), m, clearance_m);
+  } else {
+    read_search(r, m, clearance_m);
+  }
   return m;
+}
+
+// `generate: {count, seed, clutter, size_m}`: maps k = 0..count-1 are
+// `ferret world generate-hidden --seed SEED+k`, named CLUTTER-sSEED+k.
+std::vector<ExperimentMap> generate_maps(const yaml::MapReader& entry, double clearance_m) {
+  entry.allow_only({"generate"});
+  const yaml::MapReader g = entry.child("generate");
+  g.allow_only({"count", "seed", "clutter", "size_m", "resolution_m"});
+  const int count = static_cast<int>(g.get_in_range("count", 1, 10000));
+  if (g.get<double>("count") != count) g.fail("count", "a whole number of maps in [1, 10000]");
+  const double seed = g.get_in_range_or("seed", 0, 9.0e15, 1.0);
+  if (seed != std::floor(seed)) g.fail("seed", "a whole number in [0, 9e15]");
+  HiddenSpaceGeneratorOptions o;
+  const auto clutter = parse_hidden_space_clutter(g.get_or<std::string>("clutter", "sparse"));
+  if (!clutter) g.fail("clutter", "sparse or dense", g.get_or<std::string>("clutter", ""));
+  o.clutter = *clutter;
+  if (g.has("size_m")) {
+    const auto size = g.get_list<double>("size_m", 2);
+    o.width_m = size[0];
+    o.height_m = size[1];
+    if (!(o.width_m >= 8 && o.width_m <= 64 && o.height_m >= 5 && o.height_m <= 64))
+      g.fail("size_m", "[width, height] in [8, 64] x [5, 64] metres");
+  }
+  o.resolution_m = g.get_in_range_or("resolution_m", 0.02, 0.2, o.resolution_m);
+  // Every map is held for the whole experiment: 10^8 cells (100 MB) in all at most.
+  const double cells = std::round(o.width_m / o.resolution_m) * std::round(o.height_m / o.resolution_m);
+  if (count * cells > 1e8)
+    g.fail("count", fmt::format("at most {:.0f} maps of this size and resolution (10^8 cells in all)",
+                                std::floor(1e8 / cells)),
+           std::to_string(count));
+  std::vector<ExperimentMap> maps;
+  for (int k = 0; k < count; ++k) {
+    o.seed = static_cast<std::uint64_t>(seed) + static_cast<std::uint64_t>(k);
+    GeneratedHiddenSpace h = generate_hidden_space(o);
+    ExperimentMap m;
+    m.name = fmt::format("{}-s{}", to_string(o.clutter), o.seed);
+    m.map_path = fmt::format("generated: {} --seed {}", to_string(o.clutter), o.seed);
+    m.map = std::move(h.map);
+    m.start = h.start;
+    m.zones = h.zones;
+    for (const ZoneSpec& z : m.zones)
+      if (zone_cells(m.map, z, clearance_m).empty())
+        g.fail("clutter", fmt::format("maps whose zones have free cells {} m from obstacles (seed {} zone {} has none)",
+                                      clearance_m, o.seed, z.id));
+    maps.push_back(std::move(m));
+  }
+  return maps;
 }
 
 std::string format_double(double v) {
@@ -253,11 +316,23 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
   }
   const auto maps = r.child_list("maps");
   if (maps.empty()) r.fail("maps", "at least one map");
-  for (const auto& m : maps) c.maps.push_back(read_map(m, base, c.object_clearance_m));
+  std::vector<std::size_t> entry_of;  // the `maps` entry each map came from
+  for (std::size_t e = 0; e < maps.size(); ++e) {
+    if (maps[e].has("generate")) {
+      for (ExperimentMap& m : generate_maps(maps[e], c.object_clearance_m)) {
+        c.maps.push_back(std::move(m));
+        entry_of.push_back(e);
+      }
+    } else {
+      c.maps.push_back(read_map(maps[e], base, c.object_clearance_m));
+      entry_of.push_back(e);
+    }
+  }
   for (std::size_t a = 0; a < c.maps.size(); ++a)
     for (std::size_t b = 0; b < a; ++b)
       if (c.maps[a].name == c.maps[b].name)
-        maps[a].fail("name", "a name no other map has", c.maps[a].name);
+        maps[entry_of[a]].fail(maps[entry_of[a]].has("generate") ? "generate" : "name", "a name no other map has",
+                               c.maps[a].name);
   for (const auto& m : c.methods)
     if (m != "oracle") c.sweep_methods.push_back(m);
   c.sweep_objects_per_zone = c.objects_per_zone;

@@ -1,8 +1,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "support/cli_runner.hpp"
 #include "support/test_maps.hpp"
@@ -61,6 +63,23 @@ TEST(ExploreCli, BadInputExitsTwoNamingTheOption) {
 }
 
 const std::string kRover = std::string(FERRET_SOURCE_DIR) + "/tests/data/robots/rover.urdf";
+
+TEST(ExploreCli, ListMethodsPrintsEveryRegisteredMethodAndNeedsNoMap) {
+  const auto r = run_cli("explore --list-methods");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream in(r.out);
+  std::vector<std::string> names;
+  for (std::string line; std::getline(in, line);) names.push_back(line);
+  // The same names --method accepts, in the same order.
+  Room room;
+  const auto bad = run_cli("explore --map " + room.map + " --start 0.5,1,0 --object 4,1 --method bogus");
+  EXPECT_EQ(bad.exit_code, 2);
+  std::string joined;
+  for (const auto& n : names) joined += (joined.empty() ? "" : ", ") + n;
+  EXPECT_THAT(bad.err, HasSubstr("one of " + joined)) << bad.err;
+  for (const char* m : {"cdos", "cdos-literal", "rapid", "oracle"})
+    EXPECT_NE(std::find(names.begin(), names.end(), m), names.end()) << m;
+}
 
 TEST(ExploreCli, TheRobotsUrdfGivesTheSensorsAndTheSpeed) {
   Room room;

@@ -1,8 +1,9 @@
-// End-to-end tests of `ferret world build | slice | info`.
+// End-to-end tests of `ferret world build | slice | info | generate-hidden`.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -160,6 +161,47 @@ TEST(WorldCli, OutFollowsTheCliConvention) {
   EXPECT_THAT(help.out, Not(HasSubstr("--output")));
   EXPECT_THAT(help.out, HasSubstr("--z FLOAT=0.03"));  // defaults are shown
   EXPECT_EQ(dir.count(), 4u);                          // a.bt, b.bt, s.yaml, s.pgm
+}
+
+TEST(WorldCli, GenerateHiddenWritesAMapWithItsSearchAndIsReproducible) {
+  TempDir dir;
+  const auto a = run_cli("world generate-hidden --seed 4 --clutter dense -o " + (dir / "a.yaml"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_THAT(a.out, HasSubstr("dense hidden space, seed 4: 240 x 160 cells"));
+  const OccupancyMap2D m = load_map_server(dir / "a.yaml");
+  EXPECT_EQ(m.geometry.width, 240);
+  EXPECT_GT(m.count(CellState::kOccupied), 0u);
+  EXPECT_THAT(read(dir / "a.yaml"), HasSubstr("search:\n  start: [1, "));
+  ASSERT_EQ(run_cli("world generate-hidden --seed 4 --clutter dense -o " + (dir / "b.yaml")).exit_code, 0);
+  EXPECT_EQ(read(dir / "a.pgm"), read(dir / "b.pgm"));
+  ASSERT_EQ(run_cli("world generate-hidden --seed 5 --clutter dense -o " + (dir / "c.yaml")).exit_code, 0);
+  EXPECT_NE(read(dir / "a.pgm"), read(dir / "c.pgm"));
+  const auto big = run_cli("world generate-hidden --size 24,10 --resolution 0.1 -o " + (dir / "d.yaml"));
+  ASSERT_EQ(big.exit_code, 0) << big.err;
+  EXPECT_THAT(big.out, HasSubstr("240 x 100 cells"));
+  // A search with it runs: ferret explore takes the map as any other.
+  const auto e = run_cli("explore --map " + (dir / "a.yaml") + " --start 1,4,0 --object 10,1.5 --time-limit 5");
+  EXPECT_NE(e.exit_code, 2) << e.err;
+  EXPECT_EQ(dir.count(), 8u);
+}
+
+TEST(WorldCli, GenerateHiddenBadOptionsExitTwoAndWriteNothing) {
+  TempDir dir;
+  const std::string out = " -o " + (dir / "g.yaml");
+  for (const auto& [args, option] :
+       std::vector<std::pair<std::string, std::string>>{{"--clutter medium", "--clutter"},
+                                                        {"--size 4,4", "--size"},
+                                                        {"--size 12,80", "--size"},
+                                                        {"--resolution 0.5", "--resolution"},
+                                                        {"--seed -3", "--seed"}}) {
+    const auto r = run_cli("world generate-hidden " + args + out);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_THAT(r.err, HasSubstr(option)) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  const auto txt = run_cli("world generate-hidden -o " + (dir / "g.txt"));
+  EXPECT_EQ(txt.exit_code, 2);
+  EXPECT_EQ(dir.count(), 0u);
 }
 
 }  // namespace

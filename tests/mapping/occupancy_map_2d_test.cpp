@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <fstream>
 
 #include "ferret/core/error.hpp"
@@ -220,6 +222,21 @@ TEST(OccupancyMap2D, BadYamlFieldsNameTheField) {
   check("image: m.pgm\nresolution: fine\norigin: [0, 0, 0]\n", "resolution");
   check("image: m.pgm\nresolution: 0.1\norigin: [0, 0]\n", "origin");
   check("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0.5]\n", "origin[2]");
+  check(yaml_for("m.pgm", "search: 3\n"), "search");  // the object search's section is a mapping
+  write_bytes(y, yaml_for("m.pgm", "search: {start: [1, 1, 0]}\n"));
+  EXPECT_EQ(load_map_server(y).geometry.width, 1);  // whose contents ferret experiment checks
+}
+
+TEST(OccupancyMap2D, ExtraYamlIsWrittenAfterTheMapServerKeys) {
+  TempDir dir;
+  const OccupancyMap2D map = OccupancyMap2D::filled(GridGeometry{0, 0, 0.1, 3, 2}, CellState::kFree);
+  save_map_server(map, dir / "s.yaml", "search:\n  start: [0.1, 0.1, 0]\n");
+  EXPECT_TRUE(load_map_server(dir / "s.yaml") == map);
+  std::ifstream in(dir / "s.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("free_thresh: 0.196\nsearch:\n  start: [0.1, 0.1, 0]\n"), std::string::npos)
+      << text.str();
 }
 
 TEST(OccupancyMap2D, CorruptPngIsInputError) {

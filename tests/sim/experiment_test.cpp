@@ -12,6 +12,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/random.hpp"
+#include "ferret/sim/hidden_space_generator.hpp"
 #include "support/cli_runner.hpp"
 #include "support/test_maps.hpp"
 
@@ -88,6 +89,92 @@ TEST(Experiment, BadConfigsNameTheField) {
     out << "methods: [cdos]\nmaps:\n  - {name: a, map: room.yaml, start: [0.5, 1, 0]}\n";
   }
   expect_input_error(s.dir.path() / "exp.yaml", "maps[0].zones");
+}
+
+TEST(Experiment, AGeneratedMapBringsItsOwnStartAndZones) {
+  ExperimentDir s;
+  HiddenSpaceGeneratorOptions o;
+  o.seed = 5;
+  const GeneratedHiddenSpace h = generate_hidden_space(o);
+  save_map_server(h.map, s.dir.path() / "gen.yaml", h.search_yaml());
+  {
+    std::ofstream out(s.dir.path() / "exp.yaml");
+    out << "methods: [cdos]\nmaps:\n  - {name: g, map: gen.yaml}\n"
+           "  - {name: h, map: gen.yaml, start: [1.0, 4.0, 0.0], zones: {1: [2, 3.7, 4, 4.3]}}\n";
+  }
+  const auto c = load_experiment_config(s.dir.path() / "exp.yaml");
+  ASSERT_EQ(c.maps.size(), 2u);
+  EXPECT_EQ(c.maps[0].map, h.map);
+  EXPECT_DOUBLE_EQ(c.maps[0].start.y_m, h.start.y_m);
+  ASSERT_EQ(c.maps[0].zones.size(), 5u);
+  for (std::size_t z = 0; z < 5; ++z) {
+    EXPECT_EQ(c.maps[0].zones[z].id, h.zones[z].id);
+    EXPECT_DOUBLE_EQ(c.maps[0].zones[z].xmin_m, h.zones[z].xmin_m);
+    EXPECT_DOUBLE_EQ(c.maps[0].zones[z].ymax_m, h.zones[z].ymax_m);
+  }
+  // The entry's own start and zones win over the map's.
+  EXPECT_EQ(c.maps[1].zones.size(), 1u);
+  // A map with neither: the start is what is missing.
+  {
+    std::ofstream out(s.dir.path() / "exp.yaml");
+    out << "methods: [cdos]\nmaps:\n  - {name: a, map: room.yaml}\n";
+  }
+  expect_input_error(s.dir.path() / "exp.yaml", "maps[0].start");
+  // A broken search section is named in the map's file.
+  {
+    std::ofstream out(s.dir.path() / "bad.yaml");
+    out << "image: gen.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n"
+           "free_thresh: 0.196\nsearch: {start: [1, 4], zones: {1: [2, 3.7, 4, 4.3]}}\n";
+    std::ofstream exp(s.dir.path() / "exp.yaml");
+    exp << "methods: [cdos]\nmaps:\n  - {name: a, map: bad.yaml}\n";
+  }
+  try {
+    (void)load_experiment_config(s.dir.path() / "exp.yaml");
+    FAIL() << "a two-number start";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "search.start") << e.what();
+    EXPECT_THAT(e.source(), HasSubstr("bad.yaml"));
+  }
+}
+
+TEST(Experiment, AGenerateEntryIsThatManyGeneratedMaps) {
+  ExperimentDir s;
+  {
+    std::ofstream out(s.dir.path() / "exp.yaml");
+    out << "methods: [cdos, rapid]\nobjects_per_zone: 1\nmaps:\n  - generate: {count: 3, seed: 10, clutter: dense}\n"
+           "  - {name: room, map: room.yaml, start: [0.5, 1.0, 0.0], zones: {1: [1.0, 0.5, 1.8, 1.5]}}\n";
+  }
+  const auto c = load_experiment_config(s.dir.path() / "exp.yaml");
+  ASSERT_EQ(c.maps.size(), 4u);
+  for (std::uint64_t k = 0; k < 3; ++k) {
+    HiddenSpaceGeneratorOptions o;
+    o.seed = 10 + k;
+    o.clutter = HiddenSpaceClutter::kDense;
+    EXPECT_EQ(c.maps[k].name, "dense-s" + std::to_string(10 + k));
+    EXPECT_EQ(c.maps[k].map, generate_hidden_space(o).map) << k;
+    EXPECT_EQ(c.maps[k].zones.size(), 5u);
+  }
+  EXPECT_EQ(c.maps[3].name, "room");
+  // 4 maps: 3 x 5 zones + 1 zone, one object each, two methods.
+  EXPECT_EQ(plan_runs(c).size(), 2u * (3 * 5 + 1));
+  const auto entry = [&](const std::string& generate) {
+    std::ofstream out(s.dir.path() / "exp.yaml");
+    out << "methods: [cdos]\nmaps:\n  - generate: " << generate << "\n";
+    return s.dir.path() / "exp.yaml";
+  };
+  expect_input_error(entry("{count: 0}"), "maps[0].generate.count");
+  expect_input_error(entry("{count: 2.5}"), "maps[0].generate.count");
+  expect_input_error(entry("{count: 1, clutter: medium}"), "maps[0].generate.clutter");
+  expect_input_error(entry("{count: 1, size_m: [4, 4]}"), "maps[0].generate.size_m");
+  expect_input_error(entry("{count: 1, seed: -1}"), "maps[0].generate.seed");
+  expect_input_error(entry("{count: 1, colour: red}"), "maps[0].generate.colour");
+  expect_input_error(entry("{count: 200, size_m: [64, 64]}"), "maps[0].generate.count");  // 3.3e8 cells
+  // Two entries that generate the same map names are one map twice.
+  {
+    std::ofstream out(s.dir.path() / "exp.yaml");
+    out << "methods: [cdos]\nmaps:\n  - generate: {count: 2, seed: 1}\n  - generate: {count: 1, seed: 2}\n";
+  }
+  expect_input_error(s.dir.path() / "exp.yaml", "maps[1].generate");
 }
 
 TEST(Experiment, ObjectsAreUniformInTheZoneWithClearanceAndReproducible) {

@@ -77,7 +77,8 @@ struct MapServerMeta {
 /// (255 - v) / 255 with v its grey value scaled to 0..255 (colour channels averaged,
 /// alpha ignored), or v / 255 when `negate`; occupancy > occupied_thresh is
 /// occupied, < free_thresh free, anything between unknown. The top image row is
-/// the map's top (largest y). Throws InputError naming the file and field for
+/// the map's top (largest y). A `search` mapping (ferret's object-search start and
+/// zones, read by `ferret experiment`) is allowed beside map_server's keys. Throws InputError naming the file and field for
 /// anything malformed (missing keys, bad thresholds, truncated PGM, a non-zero
 /// origin yaw, which map_server also does not honour, a mode other than trinary).
 [[nodiscard]] OccupancyMap2D load_map_server(const std::filesystem::path& yaml_path);
@@ -86,7 +87,9 @@ struct MapServerMeta {
 /// unknown; thresholds 0.65/0.196, negate 0) as one output set: both appear or
 /// neither. `yaml_path` must end in .yaml; InputError for a YAML or PGM path that is a
 /// directory, a FIFO or a device.
-void save_map_server(const OccupancyMap2D& map, const std::filesystem::path& yaml_path);
+/// `extra_yaml`: top-level keys appended to the YAML (the object search's `search`).
+void save_map_server(const OccupancyMap2D& map, const std::filesystem::path& yaml_path,
+                     const std::string& extra_yaml = "");
 
 /// A greyscale image: rows top to bottom, `width * height` 8-bit values.
 struct GreyImage {
