@@ -163,6 +163,9 @@ def experiment_seeds():
         "sweeps: {camera_fov_deg: [60, 90], methods: [cdos]}\n")
     put(t, "start_in_wall.yaml",
         "maps:\n  - {name: room, map: room.yaml, start: [0.1, 0.1, 0.0], zones: {1: [1, 1, 2, 2]}}\n")
+    put(t, "searched_map.yaml", "maps:\n  - {name: s, map: searched.yaml}\n")
+    put(t, "generated_maps.yaml",
+        "objects_per_zone: 1\nmaps:\n  - generate: {count: 2, seed: 9, clutter: dense, size_m: [8, 5], resolution_m: 0.1}\n")
     put(t, "duplicate_maps.yaml",
         "maps:\n  - {name: a, map: room.yaml, start: [1, 1, 0], zones: {1: [1, 1, 2, 2]}}\n"
         "  - {name: a, map: room.yaml, start: [1, 1, 0], zones: {1: [1, 1, 2, 2]}}\n")
@@ -178,6 +181,7 @@ def map_seeds():
     put("map_yaml", "swapped_thresholds.yaml", base + "occupied_thresh: 0.1\nfree_thresh: 0.9\n")
     put("map_yaml", "missing_image.yaml", "image: none.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n")
     put("map_yaml", "png_image.yaml", "image: room.png\nresolution: 0.05\norigin: [0, 0, 0]\n")
+    put("map_yaml", "search_section.yaml", base + "search:\n  start: [1, 1, 0]\n  zones: {1: [1.5, 1.5, 3, 2.5]}\n")
     put("map_yaml", "yaw_and_nan.yaml", "image: room.pgm\nresolution: .nan\norigin: [0, 0, 1.57]\n")
     reset("map_pgm")
     # The shipped maps are 38 kB each; their first rows carry the header variants.
