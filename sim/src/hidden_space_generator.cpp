@@ -225,10 +225,11 @@ GeneratedHiddenSpace generate_hidden_space(const HiddenSpaceGeneratorOptions& o)
   }
 
   // Boxes, pillars and debris, anywhere but the start's view of its zones.
-  const auto scatter = [&](int n, double min_side, double max_side, bool near_allowed) {
+  const Rect inside{kWall, kWall, W - kWall, H - kWall};
+  const auto scatter = [&](int n, double min_side, double max_side, const Rect& region, bool near_allowed) {
     for (int k = 0, tries = 0; k < n && tries < 20 * n; ++tries) {
       const double sx = rng.uniform(min_side, max_side), sy = rng.uniform(min_side, max_side);
-      const double x = rng.uniform(kWall, W - kWall - sx), y = rng.uniform(kWall, H - kWall - sy);
+      const double x = rng.uniform(region.x0, region.x1 - sx), y = rng.uniform(region.y0, region.y1 - sy);
       const Rect r{x, y, x + sx, y + sy};
       if (r.overlaps(near) && !near_allowed) continue;
       if (r.overlaps(z1, 0.3) || r.overlaps(z2, 0.3) || r.overlaps(z4, 0.3)) continue;
@@ -236,10 +237,12 @@ GeneratedHiddenSpace generate_hidden_space(const HiddenSpaceGeneratorOptions& o)
       if (layout.add(r)) ++k;
     }
   };
-  scatter(count(dense ? 0.13 : 0.055, far_area), 0.3, 1.0, false);      // boxes
-  scatter(count(dense ? 0.04 : 0.01, area), 0.15, 0.25, false);         // pillars
-  if (dense) scatter(2 + static_cast<int>(rng.uniform_int(0, 2)), 0.15, 0.2, true);  // pillars in view
-  scatter(count(dense ? 0.2 : 0.05, area), 0.05, 0.15, false);          // debris
+  scatter(count(dense ? 0.13 : 0.055, far_area), 0.3, 1.0, inside, false);   // boxes
+  scatter(count(dense ? 0.04 : 0.01, area), 0.15, 0.25, inside, false);      // pillars
+  if (dense)  // thin pillars in the start's view, beside its zones
+    scatter(2 + static_cast<int>(rng.uniform_int(0, 2)), 0.15, 0.2,
+            Rect{near.x0 + kWall, std::max(near.y0, kWall), near.x1, std::min(near.y1, H - kWall)}, true);
+  scatter(count(dense ? 0.2 : 0.05, area), 0.05, 0.15, inside, false);       // debris
   out.map = layout.map();
   return out;
 }
