@@ -5,8 +5,12 @@
 //
 //   build/<dir>/bench/ferret_bench_cdos
 //
+// Then the same cycle on generated sparse hidden spaces of 12 x 8, 24 x 16 and 48 x 32 m
+// (ferret world generate-hidden --seed 1 --size W,H), the robot 1.2 m into the space
+// and an object seen in zone 2: how the cycle's cost grows with the space (issue 15).
+//
 // Prints Google Benchmark's table (15 repetitions, mean/median/stddev) and then the
-// median time of each method and the ratio cdos / rapid.
+// median time of each method, the ratio cdos / rapid, and each size's over 12 x 8's.
 
 #include <benchmark/benchmark.h>
 
@@ -20,6 +24,7 @@
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/grid_path_planner.hpp"
+#include "ferret/sim/hidden_space_generator.hpp"
 #include "ferret/sim/hidden_space_sim.hpp"
 #include "ferret/urdf/mission_config.hpp"
 
@@ -29,9 +34,8 @@ namespace {
 // The robot mid-search: it has driven from the start (1, 4) to (2.2, 4) and turned a
 // little towards an object in zone 2 that its camera has seen from afar.
 struct Scene {
-  OccupancyMap2D truth =
-      load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/sparse.yaml");
-  Eigen::Vector2d object{3.6, 5.4};
+  OccupancyMap2D truth;
+  Eigen::Vector2d start, object;
   SensorOptions sensors;
   HiddenSpaceSim sim{truth, object, sensors, 1};
   IrGrid grid{truth.geometry, {}};
@@ -39,14 +43,17 @@ struct Scene {
                     ObjectMap::Options::from(ObjectSearchParams{}, sensors.camera_range_m)};
   FrontierTracker tracker{truth.geometry};
   GridPathPlanner planner{truth.geometry};
-  Pose2 pose{2.2, 4.0, 0.3};
+  Pose2 pose{start.x() + 1.2, start.y(), 0.3};
   RangeScan scan;
   CameraFrame frame;
 
-  Scene() {
-    grid.mark_free_disk({1.0, 4.0}, 0.2);
+  // The shipped sparse space, start (1, 4), the object at (3.6, 5.4).
+  Scene() : Scene(load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/sparse.yaml"), {1.0, 4.0}, {3.6, 5.4}) {}
+  Scene(OccupancyMap2D map, Eigen::Vector2d start_W, Eigen::Vector2d object_W)
+      : truth(std::move(map)), start(start_W), object(object_W) {
+    grid.mark_free_disk(start, 0.2);
     for (int k = 0; k <= 12; ++k) {
-      const Pose2 p{1.0 + 0.1 * k, 4.0, 0.025 * k};
+      const Pose2 p{start.x() + 0.1 * k, start.y(), 0.025 * k};
       grid.integrate_scan(sim.ir_scan(p));
       objects.integrate_frame(sim.camera_frame(p, 0.1 * k));
     }
@@ -56,8 +63,7 @@ struct Scene {
   }
 };
 
-void decision_cycle(benchmark::State& state, const char* method) {
-  Scene scene;
+void run_cycles(benchmark::State& state, const char* method, Scene& scene) {
   const PolicyOptions options =
       PolicyOptions::from(MissionConfig{}, scene.sensors.camera_range_m, 2.0);
   auto policy = make_exploration_policy(method, options);
@@ -79,7 +85,7 @@ void decision_cycle(benchmark::State& state, const char* method) {
                              sets,
                              scene.planner,
                              scene.pose,
-                             Eigen::Vector2d(1.0, 0.3),
+                             Eigen::Vector2d(1.0, 0.3),  // its velocity
                              scene.sensors.ir_fov_rad,
                              scene.sensors.ir_range_m,
                              std::nullopt};
@@ -93,8 +99,38 @@ void decision_cycle(benchmark::State& state, const char* method) {
   state.counters["F_v"] = static_cast<double>(visible);
 }
 
+void decision_cycle(benchmark::State& state, const char* method) {
+  Scene scene;
+  run_cycles(state, method, scene);
+}
+
+// A generated sparse space of the benchmark's size (its args: width, height in m).
+void decision_cycle_size(benchmark::State& state, const char* method) {
+  HiddenSpaceGeneratorOptions o;
+  o.width_m = static_cast<double>(state.range(0));
+  o.height_m = static_cast<double>(state.range(1));
+  GeneratedHiddenSpace h = generate_hidden_space(o);
+  const ZoneSpec& zone2 = h.zones[1];
+  Scene scene(std::move(h.map), {h.start.x_m, h.start.y_m},
+              {0.5 * (zone2.xmin_m + zone2.xmax_m), 0.5 * (zone2.ymin_m + zone2.ymax_m)});
+  run_cycles(state, method, scene);
+  state.counters["cells"] = static_cast<double>(scene.truth.geometry.size());
+}
+
 BENCHMARK_CAPTURE(decision_cycle, cdos, "cdos")->Unit(benchmark::kMicrosecond)->Repetitions(15);
 BENCHMARK_CAPTURE(decision_cycle, rapid, "rapid")->Unit(benchmark::kMicrosecond)->Repetitions(15);
+BENCHMARK_CAPTURE(decision_cycle_size, cdos, "cdos")
+    ->Args({12, 8})
+    ->Args({24, 16})
+    ->Args({48, 32})
+    ->Unit(benchmark::kMicrosecond)
+    ->Repetitions(15);
+BENCHMARK_CAPTURE(decision_cycle_size, rapid, "rapid")
+    ->Args({12, 8})
+    ->Args({24, 16})
+    ->Args({48, 32})
+    ->Unit(benchmark::kMicrosecond)
+    ->Repetitions(15);
 
 // Keeps the medians to print their ratio after the table.
 class MedianReporter : public benchmark::ConsoleReporter {
@@ -120,6 +156,16 @@ int main(int argc, char** argv) {
   if (cdos != m.end() && rapid != m.end())
     std::printf("median decision cycle: cdos %.1f us, rapid %.1f us, ratio cdos/rapid %.2f\n",
                 cdos->second, rapid->second, cdos->second / rapid->second);
+  for (const char* method : {"cdos", "rapid"}) {
+    const auto base = m.find(std::string("decision_cycle_size/") + method + "/12/8/repeats:15");
+    if (base == m.end()) continue;
+    for (const char* size : {"12/8", "24/16", "48/32"}) {
+      const auto at = m.find(std::string("decision_cycle_size/") + method + "/" + size + "/repeats:15");
+      if (at != m.end())
+        std::printf("generated sparse %s m, %s: median %.1f us, %.2fx the 12 x 8 m space's\n", size, method,
+                    at->second, at->second / base->second);
+    }
+  }
   benchmark::Shutdown();
   return 0;
 }
