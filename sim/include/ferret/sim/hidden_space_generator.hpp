@@ -37,9 +37,12 @@ struct HiddenSpaceGeneratorOptions {
   double height_m = 8.0;   ///< across it, [5, 64]
   double resolution_m = 0.05;  ///< [0.02, 0.2]
   HiddenSpaceClutter clutter = HiddenSpaceClutter::kSparse;
-  /// Every free cell the robot can stand on stays reachable from the start for a disc
-  /// of this radius (the miniUGV's 130 x 120 mm footprint's half diagonal, rounded up).
-  double robot_radius_m = 0.1;
+  /// Every place a robot of this radius can stand on stays reachable from the start, so
+  /// no passage is narrower than twice it (plus a cell). The search keeps its paths
+  /// 0.15 m from what its IR grid holds (ugv/path_follower.hpp) and sees walls a cell
+  /// or two thick: with 0.1 m (the miniUGV's half diagonal) rooms behind a 0.3 m gap
+  /// were found by no method, the oracle included.
+  double robot_radius_m = 0.25;
 };
 
 struct GeneratedHiddenSpace {
