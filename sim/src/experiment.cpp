@@ -152,7 +152,9 @@ ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double cl
     const YAML::Node search = YAML::LoadFile(m.map_path.string())["search"];
     if (!search || !search.IsMap())
       r.fail("start", "start and zones, here or in the map YAML's search section (required field missing)");
-    read_search(yaml::MapReader(search, m.map_path.string(), "search"), m, clearance_m);
+    const yaml::MapReader sr(search, m.map_path.string(), "search");
+    sr.allow_only({"start", "zones", "generator"});  // generator: what made it, for people
+    read_search(sr, m, clearance_m);
   } else {
     read_search(r, m, clearance_m);
   }

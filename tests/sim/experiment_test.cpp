@@ -135,6 +135,18 @@ TEST(Experiment, AGeneratedMapBringsItsOwnStartAndZones) {
     EXPECT_EQ(e.field(), "search.start") << e.what();
     EXPECT_THAT(e.source(), HasSubstr("bad.yaml"));
   }
+  // A key the section does not know is a typo, not ignored.
+  {
+    std::ofstream out(s.dir.path() / "bad.yaml");
+    out << "image: gen.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"
+           "search: {start: [1, 4, 0], zones: {1: [2, 3.7, 4, 4.3]}, zone: {2: [3, 5, 4, 6]}}\n";
+  }
+  try {
+    (void)load_experiment_config(s.dir.path() / "exp.yaml");
+    FAIL() << "an unknown key in search";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "search.zone") << e.what();
+  }
 }
 
 TEST(Experiment, AGenerateEntryIsThatManyGeneratedMaps) {
