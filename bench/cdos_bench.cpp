@@ -119,18 +119,16 @@ void decision_cycle_size(benchmark::State& state, const char* method) {
 
 BENCHMARK_CAPTURE(decision_cycle, cdos, "cdos")->Unit(benchmark::kMicrosecond)->Repetitions(15);
 BENCHMARK_CAPTURE(decision_cycle, rapid, "rapid")->Unit(benchmark::kMicrosecond)->Repetitions(15);
-BENCHMARK_CAPTURE(decision_cycle_size, cdos, "cdos")
-    ->Args({12, 8})
-    ->Args({24, 16})
-    ->Args({48, 32})
-    ->Unit(benchmark::kMicrosecond)
-    ->Repetitions(15);
-BENCHMARK_CAPTURE(decision_cycle_size, rapid, "rapid")
-    ->Args({12, 8})
-    ->Args({24, 16})
-    ->Args({48, 32})
-    ->Unit(benchmark::kMicrosecond)
-    ->Repetitions(15);
+// decision_cycle_size/METHOD/W/H, registered in main() for both methods.
+void register_sizes() {
+  for (const char* method : {"cdos", "rapid"})
+    benchmark::RegisterBenchmark((std::string("decision_cycle_size/") + method).c_str(), decision_cycle_size, method)
+        ->Args({12, 8})
+        ->Args({24, 16})
+        ->Args({48, 32})
+        ->Unit(benchmark::kMicrosecond)
+        ->Repetitions(15);
+}
 
 // Keeps the medians to print their ratio after the table.
 class MedianReporter : public benchmark::ConsoleReporter {
@@ -147,6 +145,7 @@ class MedianReporter : public benchmark::ConsoleReporter {
 }  // namespace ferret
 
 int main(int argc, char** argv) {
+  ferret::register_sizes();
   benchmark::Initialize(&argc, argv);
   ferret::MedianReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
