@@ -54,6 +54,7 @@ struct Options {
   double link_loss = 0.0, link_reorder = 0.0;
   std::uint64_t seed = 1;
   bool quiet = false;
+  bool render_every_frame = false;
 };
 
 nlohmann::json xyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
@@ -83,7 +84,8 @@ nlohmann::json report_json(const Options& o, const fs::path& world, const Missio
                   {"leg_spacing_m", r.leg_spacing_m},
                   {"pattern_waypoints", r.pattern_waypoints},
                   {"pattern_done", r.pattern_done},
-                  {"marker_frames", r.frames}};
+                  {"marker_frames", r.frames},
+                  {"marker_frames_rendered", r.marker_frames_rendered}};
   j["time_in_state_s"] = r.time_in_state;
   auto& visits = j["hidden_spaces"] = nlohmann::json::array();
   for (const HiddenSpaceVisit& v : r.visits) {
@@ -309,6 +311,7 @@ void run(const Options& o) {
   // does not (l_0 = 0: no hover release) is named in the mission file.
   settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
   settings.ugv.ugv.explore.planner = o.planner;
+  settings.render_markerless_frames = o.render_every_frame;
   if (o.link == "messages") {
     link::LossyChannelOptions channel;
     channel.drop_fraction = o.link_loss;
@@ -425,6 +428,9 @@ const CommandRegistration kMission{
       sub->add_option("--link-loss", o->link_loss, "With --link messages: the fraction of datagrams lost, each way (default: 0)");
       sub->add_option("--link-reorder", o->link_reorder,
                       "With --link messages: the fraction of datagrams held back past later ones, each way (default: 0)");
+      sub->add_flag("--render-every-frame", o->render_every_frame,
+                    "Render and search every marker frame, also those no marker's quad lies in (default: such "
+                    "frames reach the mission empty; docs/mission.md)");
       sub->add_flag("-q,--quiet", o->quiet, "Print the summary only");
       sub->callback([o] { run(*o); });
     }};

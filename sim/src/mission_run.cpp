@@ -263,6 +263,7 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
   result.pattern_done = mission.pattern_done();
   result.first_pass_waypoints = mission.first_pass_waypoints();
   result.frames = mission.frames_processed();
+  result.marker_frames_rendered = static_cast<int>(sim.cameras().marker_frames_rendered());
   result.transitions = transitions.all();
   result.backends = {{"uav.flight_controller", sim.flight().backend()},
                      {"uav.cameras", "sim"},  // rendered frames (SimUavCameras)

@@ -37,7 +37,7 @@ MissionWorld::MissionWorld(const PlanningWorld& world, const RobotDescription& u
   flight_ = std::make_unique<SimFlightController>(
       sensors_, Eigen::Vector3d(home_xy.x(), home_xy.y(), home_z + settings_.landed_height_m), settings_);
   cameras_ = std::make_unique<SimUavCameras>(sensors_, *flight_, marker_sensor, marker_model_, depth_sensor,
-                                             depth_model_, seed);
+                                             depth_model_, seed, settings_.render_markerless_frames);
   tether::SimulatedWinch::Options wo;
   wo.total_length_m = uo.tether.total_length_m;
   winch_ = std::make_unique<tether::SimulatedWinch>(wo);

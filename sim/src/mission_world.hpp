@@ -142,13 +142,21 @@ class SimFlightController final : public FlightController {
 class SimUavCameras final : public UavCameras {
  public:
   SimUavCameras(const SensorSimulator& world, const SimFlightController& flight, const CameraSensor& marker,
-                CameraModel marker_model, const CameraSensor& depth, CameraModel depth_model, std::uint64_t seed)
+                CameraModel marker_model, const CameraSensor& depth, CameraModel depth_model, std::uint64_t seed,
+                bool render_markerless_frames)
       : world_(world), flight_(flight), marker_(marker), depth_(depth),
-        marker_model_(std::move(marker_model)), depth_model_(std::move(depth_model)), seed_(seed) {}
+        marker_model_(std::move(marker_model)), depth_model_(std::move(depth_model)), seed_(seed),
+        render_markerless_(render_markerless_frames) {}
   CameraShot<GrayImage> marker_frame() override {
     const Pose3 X_WC = optical_pose(body_pose(flight_.state()), marker_);
-    return {world_.render_gray(marker_model_, X_WC, CameraFrameOptions{}, seed_ + 2 * frame_++), X_WC};
+    const std::uint64_t frame_seed = seed_ + 2 * frame_++;  // drawn either way: later frames keep their noise
+    // No marker's quad in the image: a detector has nothing to find, so the frame is not
+    // rendered (MissionRunSettings::render_markerless_frames).
+    if (!render_markerless_ && !world_.markers_in_frame(marker_model_, X_WC)) return {GrayImage{}, X_WC};
+    ++marker_frames_rendered_;
+    return {world_.render_gray(marker_model_, X_WC, CameraFrameOptions{}, frame_seed), X_WC};
   }
+  [[nodiscard]] std::uint64_t marker_frames_rendered() const { return marker_frames_rendered_; }
   CameraShot<DepthImageMm> depth_frame() override {
     const Pose3 X_WC = optical_pose(body_pose(flight_.state()), depth_);
     return {world_.render_depth(depth_model_, X_WC, DepthFrameOptions{}, seed_ + 2 * frame_++ + 1), X_WC};
@@ -161,7 +169,9 @@ class SimUavCameras final : public UavCameras {
   const CameraSensor& depth_;
   CameraModel marker_model_, depth_model_;
   std::uint64_t seed_;
+  bool render_markerless_;
   std::uint64_t frame_ = 0;
+  std::uint64_t marker_frames_rendered_ = 0;
 };
 
 

@@ -365,6 +365,11 @@ DepthImageMm SensorSimulator::render_depth(const CameraModel& camera, const Pose
   return out;
 }
 
+bool SensorSimulator::markers_in_frame(const CameraModel& camera, const Pose3& X_WC) const {
+  camera.check();
+  return scene_->markers_in_frame(*scene_->rays(camera), X_WC);
+}
+
 std::vector<VisibleMarker> SensorSimulator::visible_markers(const CameraModel& camera,
                                                             const Pose3& X_WC) const {
   camera.check();

@@ -280,6 +280,40 @@ void for_each_interleaved(int n, const std::function<void(int)>& body) {
   for (auto& w : workers) w.join();
 }
 
+namespace {
+
+/// Calls f(k) for every tile k whose rays' bounds overlap `rect` (normalised image
+/// coordinates) until f returns false; false then, else true.
+template <typename F>
+bool for_each_tile_under(const RayTable& rays, const std::array<double, 4>& rect, F&& f) {
+  std::vector<int> columns;
+  for (int tx = 0; tx < rays.tiles_x; ++tx)
+    if (rays.column_x[tx][1] >= rect[0] && rays.column_x[tx][0] <= rect[1]) columns.push_back(tx);
+  for (int ty = 0; ty < rays.tiles_y && !columns.empty(); ++ty) {
+    if (rays.row_y[ty][1] < rect[2] || rays.row_y[ty][0] > rect[3]) continue;
+    for (const int tx : columns) {
+      const std::size_t k = static_cast<std::size_t>(ty) * rays.tiles_x + tx;
+      const auto& tr = rays.tile_rect[k];
+      if (tr[1] < rect[0] || tr[0] > rect[1] || tr[3] < rect[2] || tr[2] > rect[3]) continue;
+      if (!f(k)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool Scene::markers_in_frame(const RayTable& rays, const Pose3& X_WC) const {
+  const Pose3 X_CW = X_WC.inverse();
+  for (const MarkerPrim& m : markers) {
+    std::array<double, 4> rect{};
+    double z_min = 0.0;
+    if (!projected_rect(hull_of(m), X_CW, rect, z_min)) continue;
+    if (!for_each_tile_under(rays, rect, [](std::size_t) { return false; })) return true;
+  }
+  return false;
+}
+
 void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_markers,
                        CastBuffers& out) const {
   const int w = rays.width, h = rays.height;
@@ -329,24 +363,11 @@ void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_marker
   std::vector<std::vector<const FramePrim*>> solid_bins(tiles), mark_bins(tiles);
   const auto bin = [&](const std::vector<FramePrim>& list,
                        std::vector<std::vector<const FramePrim*>>& bins) {
-    std::vector<int> columns;
-    for (const FramePrim& p : list) {
-      columns.clear();
-      for (int tx = 0; tx < rays.tiles_x; ++tx)
-        if (rays.column_x[tx][1] >= p.rect[0] && rays.column_x[tx][0] <= p.rect[1])
-          columns.push_back(tx);
-      if (columns.empty()) continue;
-      for (int ty = 0; ty < rays.tiles_y; ++ty) {
-        if (rays.row_y[ty][1] < p.rect[2] || rays.row_y[ty][0] > p.rect[3]) continue;
-        for (const int tx : columns) {
-          const std::size_t k = static_cast<std::size_t>(ty) * rays.tiles_x + tx;
-          const auto& tr = rays.tile_rect[k];
-          if (tr[1] < p.rect[0] || tr[0] > p.rect[1] || tr[3] < p.rect[2] || tr[2] > p.rect[3])
-            continue;
-          bins[k].push_back(&p);
-        }
-      }
-    }
+    for (const FramePrim& p : list)
+      for_each_tile_under(rays, p.rect, [&](std::size_t k) {
+        bins[k].push_back(&p);
+        return true;
+      });
   };
   bin(solids, solid_bins);
   bin(marks, mark_bins);

@@ -120,6 +120,9 @@ struct Scene {
   /// Casts every pixel's ray from X_WC; markers only when `with_markers`.
   void cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_markers,
                   CastBuffers& out) const;
+  /// Whether a marker could cover a pixel of the frame from X_WC: exactly when
+  /// cast_frame with markers would test one at all (some tile's marker bin is not empty).
+  [[nodiscard]] bool markers_in_frame(const RayTable& rays, const Pose3& X_WC) const;
   /// The nearest hit of one ray (any direction scale) among ground, boxes, cylinders.
   [[nodiscard]] double cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
                             std::int32_t* code) const;

@@ -12,13 +12,19 @@ namespace ferret {
 struct SimFlightAdapter::Impl {
   Impl(const PlanningWorld& world, const RobotDescription& uav_robot, const MissionRunSettings& settings,
        std::uint64_t seed)
-      : mission_world(world, uav_robot, settings, seed, log),
+      : mission_world(world, uav_robot, every_frame(settings), seed, log),
         service(mission_world.flight(), mission_world.cameras(), "sim",
                 FlightAdapterService::Hooks{
                     [this](const Eigen::Vector3d& v_W, double yaw_rate_radps) {
                       mission_world.flight().command_velocity(v_W, yaw_rate_radps);
                     },
                     [this](const std::string& op, const std::string& request) { return extension(op, request); }}) {}
+
+  // A camera on a vehicle delivers every frame; so does the reference adapter.
+  static MissionRunSettings every_frame(MissionRunSettings s) {
+    s.render_markerless_frames = true;
+    return s;
+  }
 
   std::optional<link::StreamMessage> extension(const std::string& op, const std::string& request) {
     using nlohmann::json;

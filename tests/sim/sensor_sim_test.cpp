@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -392,6 +393,47 @@ TEST(SensorSim, AMarkerBehindAWallIsNeitherVisibleNorDrawn) {
   for (int v = v0 - half_px; v <= v0 + half_px; ++v)
     for (int u = u0 - half_px; u <= u0 + half_px; ++u) dark += img2.at(u, v, 1) < 40;
   EXPECT_GT(dark, half_px * half_px);  // a 4x4 ArUco marker is mostly black
+}
+
+// markers_in_frame is the mission's reason not to render a frame: it must be false only
+// when the frame is the one the scene gives without the marker. Two worlds that differ
+// only in the marker's id give the same bytes exactly then; panning the camera across
+// the marker and past it sweeps both sides of the image's edge.
+TEST(SensorSim, AFrameNoMarkerIsInIsTheSameWhateverTheMarker) {
+  const WorldSpec w3 = world(hidden_space("{id: 3, size_m: 0.2, placement: wall}"));
+  const WorldSpec w4 = world(hidden_space("{id: 4, size_m: 0.2, placement: wall}"));
+  const SensorSimulator sim3(w3), sim4(w4);
+  CameraModel lens = kCam;  // a distorting lens: the image is not a rectangle of rays
+  lens.distortion = DistortionModel::kPlumbBob;
+  lens.distortion_coefficients = {-0.25, 0.08, 0.0, 0.0, 0.0};
+  const Eigen::Vector3d c = w3.hidden_spaces[0].marker.X_WM.translation();
+  int out_of_frame = 0, seen = 0;
+  for (const CameraModel* cam : std::array<const CameraModel*, 2>{&kCam, &lens})
+    for (const double distance_m : {1.0, 3.0})
+      for (int deg = -70; deg <= 70; deg += 4) {
+        const Eigen::Vector3d eye = c + Eigen::Vector3d(distance_m, 0.1, 0.05);
+        const double a = deg_to_rad(deg);
+        // Looking from `eye` towards the marker, turned by `deg` about the vertical.
+        const Eigen::Vector3d ahead = Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()) * (c - eye);
+        const Pose3 X_WC = look_at(eye, eye + ahead);
+        const bool in = sim3.markers_in_frame(*cam, X_WC);
+        EXPECT_EQ(in, sim4.markers_in_frame(*cam, X_WC));
+        const GrayImage a3 = sim3.render_gray(*cam, X_WC, CameraFrameOptions{}, 9);
+        const GrayImage a4 = sim4.render_gray(*cam, X_WC, CameraFrameOptions{}, 9);
+        const auto visible = sim3.visible_markers(*cam, X_WC);
+        if (!in) {
+          ++out_of_frame;
+          EXPECT_TRUE(a3.data == a4.data) << deg << " deg at " << distance_m << " m";
+          EXPECT_TRUE(visible.empty()) << deg;
+        } else if (!visible.empty() && visible[0].visible_fraction == 1.0) {  // (the border is every id's)
+          ++seen;
+          EXPECT_FALSE(a3.data == a4.data) << deg << " deg at " << distance_m << " m";
+        }
+      }
+  EXPECT_GT(out_of_frame, 20);
+  EXPECT_GT(seen, 20);
+  // Behind the camera, and facing away: not in the frame.
+  EXPECT_FALSE(sim3.markers_in_frame(kCam, look_at(c + Eigen::Vector3d(1, 0, 0), c + Eigen::Vector3d(2, 0, 0))));
 }
 
 TEST(SensorSim, AMarkerHalfBehindAPostIsPartlyVisible) {

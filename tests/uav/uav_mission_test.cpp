@@ -65,10 +65,12 @@ class BlankCameras final : public UavCameras {
   BlankCameras(const CameraModel& m, const CameraModel& d) : m_(m), d_(d) {}
   CameraShot<GrayImage> marker_frame() override {
     ++frames;
+    if (dropped) return {GrayImage{}, Pose3::Identity()};
     return {GrayImage(m_.width_px, m_.height_px, 128), Pose3::Identity()};
   }
   CameraShot<DepthImageMm> depth_frame() override { return {DepthImageMm(d_.width_px, d_.height_px, 0), Pose3::Identity()}; }
   int frames = 0;
+  bool dropped = false;  ///< every marker frame empty (none arrived)
 
  private:
   CameraModel m_, d_;
@@ -166,6 +168,20 @@ TEST(UavMission, FliesThePatternThenLandsAtHome) {
   EXPECT_TRUE(m->visits().empty());
   // A frame every frame_period_s of the search.
   EXPECT_NEAR(rig.cameras.frames, m->time_in_state().at("search") / 0.5, 3.0);
+}
+
+// A camera that delivers no frame (empty images: dropped, or the simulator's frames no
+// marker can be in) is looked past: the search goes on and ends as usual.
+TEST(UavMission, EmptyMarkerFramesAreCountedAndLookedPast) {
+  Rig rig;
+  rig.cameras.dropped = true;
+  auto m = rig.mission(small_area());
+  rig.run(*m, 600.0);
+  ASSERT_TRUE(m->done());
+  EXPECT_EQ(m->outcome(), UavMissionOutcome::kSearchComplete);
+  EXPECT_TRUE(m->visits().empty());
+  EXPECT_GT(rig.cameras.frames, 10);
+  EXPECT_EQ(m->frames_processed(), rig.cameras.frames);
 }
 
 TEST(UavMission, TheLegSpacingFollowsTheMarkerCamera) {

@@ -313,6 +313,7 @@ std::optional<UavMission::MarkerFrame> UavMission::marker_frame_due() {
   next_frame_s_ = clock_.now_s() + options_.frame_period_s;
   const CameraShot<GrayImage> shot = hw_.cameras.marker_frame();
   ++frames_;
+  if (shot.image.empty()) return MarkerFrame{shot.X_WC, {}};  // dropped: nothing to look at
   return MarkerFrame{shot.X_WC, detector_->detect(shot.image, marker_camera_)};
 }
 

@@ -35,6 +35,12 @@ struct MissionRunSettings {
   double uav_max_yaw_rate_radps = 1.0;
   double landed_height_m = 0.25;       ///< base_link above the ground when landed
   double time_limit_s = 4 * 3600.0;    ///< the simulation's own bound
+  /// Render the marker camera's frames also when no marker's quad lies in the image.
+  /// Off: such a frame reaches the mission empty, as a dropped frame, and the detector
+  /// does not run on it. The rendered frame would hold only the scene without markers;
+  /// off changes an outcome only if the detector found a marker there (docs/mission.md
+  /// says what was measured). Most survey frames are such frames.
+  bool render_markerless_frames = false;
   /// The robot link. nullopt: the two controllers call each other (one process, no
   /// messages). Set: every call is a message of the link's wire format through its
   /// sessions (docs/link.md), through a simulated network with these faults each way
@@ -93,7 +99,8 @@ struct MissionRunResult {
   double max_tension_n = 0.0;
   double leg_spacing_m = 0.0;
   std::size_t pattern_waypoints = 0, pattern_done = 0, first_pass_waypoints = 0;
-  int frames = 0;
+  int frames = 0;                  ///< marker frames the mission asked for
+  int marker_frames_rendered = 0;  ///< of which rendered (render_markerless_frames)
   std::vector<MissionSample> samples;  ///< every 0.5 s
   std::vector<Transition> transitions;
 };

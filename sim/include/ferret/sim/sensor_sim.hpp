@@ -129,6 +129,10 @@ class SensorSimulator {
   [[nodiscard]] DepthImageMm render_depth(const CameraModel& camera, const Pose3& X_WC,
                                           const DepthFrameOptions& options,
                                           std::uint64_t seed) const;
+  /// Whether any marker's quad (bitmap and quiet zone) projects into the camera's image
+  /// from X_WC, occluded or not. When not, render_camera and render_gray give the frame
+  /// the scene gives without markers: a detector has nothing to find in it.
+  [[nodiscard]] bool markers_in_frame(const CameraModel& camera, const Pose3& X_WC) const;
   /// The world's markers the camera sees (visible_fraction > 0), in hidden-space order.
   [[nodiscard]] std::vector<VisibleMarker> visible_markers(const CameraModel& camera,
                                                            const Pose3& X_WC) const;

@@ -50,7 +50,8 @@ struct CameraShot {
 class UavCameras {
  public:
   virtual ~UavCameras() = default;
-  /// The forward marker camera's frame now.
+  /// The forward marker camera's frame now; an empty image when there is none to look at
+  /// (a dropped frame; the simulator's when no marker can be in it).
   [[nodiscard]] virtual CameraShot<GrayImage> marker_frame() = 0;
   /// The downward depth camera's frame now.
   [[nodiscard]] virtual CameraShot<DepthImageMm> depth_frame() = 0;
