@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "rpc_replay.hpp"
+
 #include "ferret/core/error.hpp"
 #include "ferret/uav/adapter_flight_controller.hpp"
 #include "ferret/uav/flight_adapter_service.hpp"
@@ -41,11 +43,6 @@ struct TinyCameras final : ferret::UavCameras {
   ferret::CameraShot<ferret::DepthImageMm> depth_frame() override { return {ferret::DepthImageMm(1, 2), {}}; }
 };
 
-struct Replay final : ferret::link::RpcChannel {
-  StreamMessage reply;
-  StreamMessage call(const std::string&) override { return reply; }
-};
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -63,7 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   // The reply's blob: what follows a NUL in the text, so frames get pixels to check.
-  Replay channel;
+  ferret::fuzz::RpcReplay channel;
   const std::size_t nul = text.find('\0');
   channel.reply.header = text.substr(0, nul);
   if (nul != std::string::npos) channel.reply.blob.assign(text.begin() + static_cast<long>(nul) + 1, text.end());

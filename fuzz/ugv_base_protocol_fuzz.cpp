@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "rpc_replay.hpp"
+
 #include "ferret/ugv/remote_ugv_base.hpp"
 
 namespace {
@@ -36,11 +38,6 @@ struct RecordingBase final : ferret::UgvBase {
   ferret::UgvStatus status() const override { return {}; }
 };
 
-struct Replay final : ferret::link::RpcChannel {
-  StreamMessage reply;
-  StreamMessage call(const std::string&) override { return reply; }
-};
-
 void check_scan(const ferret::RangeScan& s) {
   if (s.beams.size() > ferret::kMaxRemoteBeams || !(s.max_range_m > 0) || !std::isfinite(s.X_WS.yaw_rad)) std::abort();
   for (const auto& b : s.beams)
@@ -61,7 +58,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!r["ok"].get<bool>() && base.commands != 0) std::abort();  // refused, yet acted on
     return 0;
   }
-  Replay channel;
+  ferret::fuzz::RpcReplay channel;
   channel.reply.header = text;
   try {
     ferret::RemoteUgvBase base(channel, "sim");
