@@ -22,6 +22,7 @@
 
 #include "cli_options.hpp"
 #include "command.hpp"
+#include "mission_setup.hpp"
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/foxglove_log.hpp"
@@ -47,9 +48,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-  std::string world, robot_uav, robot_ugv, mission, out, method = "cdos";
-  std::string no_landing_zone;  ///< empty: the mission YAML's uav.no_landing_zone (hover)
-  std::string planner = "grid";
+  MissionSetupOptions setup;
+  std::string out;
   std::string link = "in-process";
   double link_loss = 0.0, link_reorder = 0.0;
   std::uint64_t seed = 1;
@@ -276,9 +276,6 @@ std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition
 }
 
 void run(const Options& o) {
-  if (!o.no_landing_zone.empty() && o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
-    throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
-  if (o.planner != "grid" && o.planner != "ompl") throw InputError("--planner", "", "grid or ompl", o.planner);
   if (o.link != "in-process" && o.link != "messages") throw InputError("--link", "", "in-process or messages", o.link);
   for (const auto& [option, value] : {std::pair{"--link-loss", o.link_loss}, std::pair{"--link-reorder", o.link_reorder}}) {
     if (!(std::isfinite(value) && value >= 0.0 && value <= 0.9))
@@ -286,31 +283,15 @@ void run(const Options& o) {
     if (value > 0.0 && o.link != "messages")
       throw InputError(option, "", "--link messages (in one process there are no messages to lose)", fmt::format("{}", value));
   }
-  if (!has_exploration_policy(o.method))
-    throw InputError("--method", "", one_of(exploration_policy_names()), o.method);
   if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
-  const fs::path world_path = o.world.empty() ? data_path("worlds/default.yaml") : fs::path(o.world);
-  const MissionConfig mission = load_mission_or_defaults(o.mission);
-  const RobotBackends backends = o.mission.empty() ? RobotBackends{} : load_robot_backends(o.mission);
-  require_all_sim(backends, o.mission, "ferret mission runs both robots in its own simulator");
-  const RobotDescription uav = load_robot_description(resolve_robot(o.robot_uav, "m100.urdf"), mission);
-  const RobotDescription ugv = load_robot_description(resolve_robot(o.robot_ugv, "miniugv.urdf"), mission);
-  const PlanningWorld world = load_planning_world(world_path);
-  if (!world.spec)
-    throw InputError(world_path.string(), "", "a world YAML (an OctoMap file names no hidden spaces or markers)");
-  if (world.spec->hidden_spaces.empty())
-    throw InputError(world_path.string(), "hidden_spaces", "at least one hidden space with a marker");
-
-  MissionRunSettings settings = mission_settings_for(uav, ugv, mission, *world.spec);
-  settings.ugv.exploration.method = o.method;
-  // The UAV mission's keys of the mission YAML over what the world set (the search area
-  // from its bounds); the command line's choice over both.
-  if (!o.mission.empty()) (void)load_uav_mission_options(o.mission, settings.uav);
-  if (!o.no_landing_zone.empty()) settings.uav.no_landing_zone = o.no_landing_zone;
-  // Checked here too, so that a value the miniUGV's commands accept but the UAV's mission
-  // does not (l_0 = 0: no hover release) is named in the mission file.
-  settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
-  settings.ugv.ugv.explore.planner = o.planner;
+  MissionSetup setup = load_mission_setup(o.setup);
+  require_all_sim(setup.backends, o.setup.mission, "ferret mission runs both robots in its own simulator");
+  const fs::path& world_path = setup.world_path;
+  const MissionConfig& mission = setup.mission;
+  const RobotBackends& backends = setup.backends;
+  const RobotDescription& uav = setup.uav;
+  const PlanningWorld& world = setup.world;
+  MissionRunSettings& settings = setup.settings;
   settings.render_markerless_frames = o.render_every_frame;
   if (o.link == "messages") {
     link::LossyChannelOptions channel;
@@ -410,16 +391,8 @@ const CommandRegistration kMission{
     "mission", [](CLI::App& app) {
       auto o = std::make_shared<Options>();
       auto* sub = app.add_subcommand("mission", "Simulate the whole mission: search, land, retrieve, drop");
-      sub->add_option("--world", o->world, "World YAML (default: the shipped default world)");
-      sub->add_option("--robot-uav", o->robot_uav, "The UAV's URDF (default: the shipped m100)");
-      sub->add_option("--robot-ugv", o->robot_ugv, "The miniUGV's URDF (default: the shipped miniugv)");
-      sub->add_option("--mission", o->mission, "Mission YAML (default: the built-in defaults)");
+      add_mission_setup_options(sub, o->setup);
       add_seed_option(sub, o->seed, "mission");
-      sub->add_option("--method", o->method, "The miniUGV's search: cdos, rapid, nearest, ... (default: cdos)");
-      sub->add_option("--planner", o->planner,
-                      "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM) (default: grid)");
-      sub->add_option("--no-landing-zone", o->no_landing_zone,
-                      "No safe landing zone by an opening: hover (lower from a hover) or skip (default: the mission YAML's uav.no_landing_zone, hover)");
       sub->add_option("-o,--out", o->out,
                       "Directory for report.json, aerial.png, tether.png, battery.png, spaces/*/, map.bt, mission.mcap (default: none, summary only)");
       sub->add_option("--link", o->link,

@@ -190,4 +190,32 @@ StreamMessage StreamRpcChannel::call(const std::string& request) {
   return std::move(*reply);
 }
 
+std::vector<std::uint8_t> pack_datagrams(const std::vector<std::vector<std::uint8_t>>& datagrams) {
+  std::vector<std::uint8_t> blob;
+  for (const auto& d : datagrams) {
+    const auto n = static_cast<std::uint32_t>(d.size());
+    for (int k = 0; k < 4; ++k) blob.push_back(static_cast<std::uint8_t>(n >> (8 * k)));
+    blob.insert(blob.end(), d.begin(), d.end());
+  }
+  return blob;
+}
+
+std::vector<std::vector<std::uint8_t>> unpack_datagrams(const std::vector<std::uint8_t>& blob,
+                                                        std::size_t max_datagram_bytes) {
+  std::vector<std::vector<std::uint8_t>> out;
+  std::size_t at = 0;
+  while (at < blob.size()) {
+    if (blob.size() - at < 4) throw StreamError("relayed datagrams: a length cut short");
+    std::size_t n = 0;
+    for (int k = 0; k < 4; ++k) n |= static_cast<std::size_t>(blob[at + static_cast<std::size_t>(k)]) << (8 * k);
+    at += 4;
+    if (n > max_datagram_bytes || n > blob.size() - at)
+      throw StreamError("relayed datagrams: a datagram of " + std::to_string(n) + " bytes where " +
+                        std::to_string(std::min(max_datagram_bytes, blob.size() - at)) + " remain allowed");
+    out.emplace_back(blob.begin() + static_cast<std::ptrdiff_t>(at), blob.begin() + static_cast<std::ptrdiff_t>(at + n));
+    at += n;
+  }
+  return out;
+}
+
 }  // namespace ferret::link

@@ -52,12 +52,7 @@ class InProcessUgvLink final : public UgvLink {
   [[nodiscard]] UgvReport report() const override {
     UgvReport r;
     const UgvMissionSim* s = spaces_.active();
-    if (spaces_.lonely() && !s) {
-      r.done = true;
-      r.outcome = "no_hidden_space";
-      r.wants_retraction = true;
-      return r;
-    }
+    if (spaces_.lonely() && !s) return UgvReport::nothing_to_search();
     if (!s) {  // hanging or aboard: its IMU sees where it would touch down
       r.object_held = spaces_.holding();
       r.roll_rad = spaces_.touchdown().roll_rad;
@@ -121,13 +116,8 @@ class SimLinkedUgv final : public UgvLink {
   void abort(const std::string& reason) override { uav_.abort(reason); }
   void recall(const std::string& reason) override { uav_.recall(reason); }
   [[nodiscard]] UgvReport report() const override {
-    if (spaces_.lonely() && !spaces_.active()) {  // set down where no hidden space is: nothing to search
-      UgvReport r;
-      r.done = true;
-      r.outcome = "no_hidden_space";
-      r.wants_retraction = true;
-      return r;
-    }
+    // Set down where no hidden space is: nothing to search.
+    if (spaces_.lonely() && !spaces_.active()) return UgvReport::nothing_to_search();
     return uav_.report();
   }
 

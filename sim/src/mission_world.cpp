@@ -78,7 +78,7 @@ void MissionWorld::run(const MissionControllers& controllers, const std::functio
       const bool hold = controllers.link_receive && controllers.link_receive();
       if (spaces.active()) {
         if (controllers.ugv_tick) controllers.ugv_tick();
-        spaces.step(ugv_every * kDt, hold);
+        if (!controllers.ugv_stopped || !controllers.ugv_stopped()) spaces.step(ugv_every * kDt, hold);
       }
       if (controllers.link_send) controllers.link_send();
     }

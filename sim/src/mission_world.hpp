@@ -237,6 +237,8 @@ class SimHiddenSpaces {
     tether_ = std::make_unique<TautTether>(TetherCorners::from_map(dep.truth), start, start);
     const Pose2 start_pose{start.x(), start.y(), h.entry_yaw_rad};
     const std::uint64_t seed = seed_ + 7919 * deployments_.size();
+    start_pose_ = start_pose;
+    deployment_seed_ = seed;
     sim_ = with_controller
                ? std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed, clock_, log_)
                : std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed);
@@ -313,9 +315,20 @@ class SimHiddenSpaces {
     if (!sim_ || !tether_ || reeling_in_) return std::nullopt;
     return settings_.uav.tether.entry_offset_m + tether_->length_m();
   }
+  /// The base of the deployment under way, or of the last one lifted out (what a robot
+  /// process's link endpoint still talks to aboard); null before the first.
+  [[nodiscard]] SimUgvBase* last_base() {
+    if (sim_) return &sim_->base();
+    return finished_.empty() ? nullptr : &finished_.back()->base();
+  }
   [[nodiscard]] const UgvMissionSim* active() const { return sim_.get(); }
   [[nodiscard]] UgvMissionSim* active() { return sim_.get(); }
   [[nodiscard]] bool lonely() const { return lonely_; }
+  /// The deployment under way: where the miniUGV was set down, its search's seed, the
+  /// extent of the world's slice (a robot process builds its controller from these).
+  [[nodiscard]] const Pose2& start_pose() const { return start_pose_; }
+  [[nodiscard]] std::uint64_t deployment_seed() const { return deployment_seed_; }
+  [[nodiscard]] const GridGeometry& truth_geometry() const { return deployments_.back().truth.geometry; }
   [[nodiscard]] bool holding() const { return holding_; }
   [[nodiscard]] const ImuReading& touchdown() const { return touchdown_; }
   [[nodiscard]] const Eigen::Vector2d& entry_W() const { return entry_W_; }
@@ -349,6 +362,8 @@ class SimHiddenSpaces {
   std::unique_ptr<TautTether> tether_;
   Eigen::Vector2d entry_W_ = Eigen::Vector2d::Zero();
   bool lonely_ = false;
+  Pose2 start_pose_;
+  std::uint64_t deployment_seed_ = 0;
   bool holding_ = false;
   bool reeling_in_ = false;
   ImuReading touchdown_;
@@ -366,6 +381,9 @@ struct MissionControllers {
   std::function<bool()> uav_done;
   std::function<std::string()> uav_state;   ///< its state's name (samples, collisions)
   std::function<void()> ugv_tick;           ///< the miniUGV controller's tick, while it is set down
+  /// True when a controller elsewhere (a robot process) is done or waits to be lifted
+  /// out: the world does not step its base (as it does not for one in this process).
+  std::function<bool()> ugv_stopped;
   /// The robot link's messages at the miniUGV's control rate, set down or not: those
   /// that arrived, before its step (true while the miniUGV holds, its link silent), and
   /// the ones it sends, after it. Empty: no link (one process).

@@ -9,6 +9,7 @@
 #include "ferret/core/error.hpp"
 #include "ferret/link/codec.hpp"
 #include "ferret/link/link_session.hpp"
+#include "ferret/link/message_stream.hpp"
 
 namespace ferret::link {
 namespace {
@@ -143,6 +144,29 @@ TEST(UdpLink, TwoSessionsTalkOverLoopback) {
   EXPECT_EQ(uav.requests().pending(), 0u);  // acknowledged
   EXPECT_EQ(uav.telemetry()->x_m, 0.5);
   EXPECT_EQ(uav.counters().corrupted, 0u);
+}
+
+}  // namespace
+}  // namespace ferret::link
+
+namespace ferret::link {
+namespace {
+
+// The robot link's datagrams relayed in a stream message's blob (sim-world's network).
+TEST(RelayedDatagrams, PackAndUnpackAreInverseAndABrokenBlobIsRefused) {
+  const std::vector<std::vector<std::uint8_t>> datagrams = {{1, 2, 3}, {}, std::vector<std::uint8_t>(300, 7)};
+  const std::vector<std::uint8_t> blob = pack_datagrams(datagrams);
+  ASSERT_EQ(blob.size(), 3u * 4u + 3u + 300u);
+  EXPECT_EQ(blob[0], 3);  // little-endian length first
+  EXPECT_EQ(blob[1], 0);
+  EXPECT_EQ(unpack_datagrams(blob), datagrams);
+  EXPECT_TRUE(unpack_datagrams({}).empty());
+  std::vector<std::uint8_t> cut(blob.begin(), blob.end() - 1);  // the last datagram one byte short
+  EXPECT_THROW((void)unpack_datagrams(cut), StreamError);
+  EXPECT_THROW((void)unpack_datagrams({5, 0}), StreamError);  // a length cut short
+  EXPECT_THROW((void)unpack_datagrams(blob, 100), StreamError);  // 300 bytes over a limit of 100
+  const std::vector<std::uint8_t> huge = {0xff, 0xff, 0xff, 0xff, 1};
+  EXPECT_THROW((void)unpack_datagrams(huge), StreamError);  // 4 GiB claimed, 1 byte there
 }
 
 }  // namespace

@@ -92,6 +92,7 @@ Image frame_image(const json& j, const StreamMessage& m, const std::string& op, 
   if (text(j, "encoding", "", op) != encoding)
     throw FlightAdapterError("flight adapter: the reply to '" + op + "' must be encoded " + encoding);
   const double w = number(j, "width", op), h = number(j, "height", op);
+  if (w == 0 && h == 0 && m.blob.empty()) return Image{};  // no frame this time (dropped)
   if (!(w >= 1 && h >= 1 && w <= 16384 && h <= 16384 && w == std::floor(w) && h == std::floor(h)))
     throw FlightAdapterError("flight adapter: a frame of " + std::to_string(w) + " x " + std::to_string(h) + " px");
   Image image(static_cast<int>(w), static_cast<int>(h));

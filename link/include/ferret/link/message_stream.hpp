@@ -98,4 +98,13 @@ class StreamRpcChannel final : public RpcChannel {
   int reply_timeout_ms_;
 };
 
+/// The robot link's datagrams carried in a stream message's blob (the simulated world
+/// relays them between the robot processes through its simulated network): each as a
+/// little-endian uint32 length, then its bytes.
+[[nodiscard]] std::vector<std::uint8_t> pack_datagrams(const std::vector<std::vector<std::uint8_t>>& datagrams);
+/// The datagrams of a blob; StreamError for a length past the blob's end, or a datagram
+/// longer than `max_datagram_bytes` (the robot link's are a few hundred bytes).
+[[nodiscard]] std::vector<std::vector<std::uint8_t>> unpack_datagrams(const std::vector<std::uint8_t>& blob,
+                                                                      std::size_t max_datagram_bytes = 65536);
+
 }  // namespace ferret::link

@@ -78,6 +78,16 @@ struct UgvReport {
   /// The link carries its messages: false once it has been silent past the link's
   /// timeout (the winch then holds its length). Always true in one process.
   bool link_ok = true;
+
+  /// What the simulated world reports for a miniUGV set down where no hidden space is:
+  /// done with nothing to search, asking to be lifted out.
+  [[nodiscard]] static UgvReport nothing_to_search() {
+    UgvReport r;
+    r.done = true;
+    r.outcome = "no_hidden_space";
+    r.wants_retraction = true;
+    return r;
+  }
 };
 
 class UgvLink {

@@ -1,0 +1,414 @@
+// One process a robot (docs/robots.md, "One process a robot"):
+//   ferret sim-world [--world W] [--mission M] [--seed N] [--listen ADDR] [--link-loss F --link-reorder F]
+//       the simulated world, serving both robots' hardware and the link between them
+//   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR]
+//   ferret ugv [--world W] [--mission M] [--seed N] [--sim-world ADDR]
+//       the UAV's and the miniUGV's mission controllers, each in its process, against
+//       the hardware interfaces the robots have, served by `ferret sim-world`
+// The three read the same world, robots and mission YAML; with the same seed the run ends
+// as `ferret mission --link messages` does.
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_options.hpp"
+#include "command.hpp"
+#include "ferret/core/clock.hpp"
+#include "ferret/core/error.hpp"
+#include "ferret/core/transition_log.hpp"
+#include "ferret/link/ip_address.hpp"
+#include "ferret/link/message_stream.hpp"
+#include "ferret/perception/camera_model.hpp"
+#include "ferret/sim/sensor_sim.hpp"
+#include "ferret/sim/sim_world_server.hpp"
+#include "ferret/sim/ugv_mission_run.hpp"
+#include "ferret/uav/adapter_flight_controller.hpp"
+#include "ferret/uav/flight_planner.hpp"
+#include "ferret/uav/linked_ugv.hpp"
+#include "ferret/uav/remote_winch.hpp"
+#include "ferret/uav/uav_mission.hpp"
+#include "ferret/ugv/mini_ugv_mission.hpp"
+#include "ferret/ugv/remote_ugv_base.hpp"
+#include "ferret/ugv/ugv_link_endpoint.hpp"
+#include "mission_setup.hpp"
+
+namespace ferret::cli {
+namespace {
+
+using link::MessageStream;
+using link::StreamError;
+using link::StreamMessage;
+using nlohmann::json;
+
+constexpr const char* kDefaultSimWorld = "127.0.0.1:47830";
+constexpr int kReplyTimeoutMs = 60'000;
+
+std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+struct Options {
+  MissionSetupOptions setup;
+  std::uint64_t seed = 1;
+  std::string address = kDefaultSimWorld;  ///< sim-world: --listen; robots: --sim-world
+  double link_loss = 0.0, link_reorder = 0.0;
+  bool render_every_frame = false;
+  bool quiet = false;
+};
+
+void print_transitions(TransitionLog& log, bool quiet) {
+  log.on_transition([quiet](const Transition& t) {
+    if (!quiet) std::fprintf(stderr, "%s\n", TransitionLog::format(t).c_str());
+  });
+}
+
+// --- sim-world ---------------------------------------------------------------------
+
+void run_sim_world_command(const Options& o) {
+  for (const auto& [option, value] : {std::pair{"--link-loss", o.link_loss}, std::pair{"--link-reorder", o.link_reorder}})
+    if (!(std::isfinite(value) && value >= 0.0 && value <= 0.9))
+      throw InputError(option, "", "a fraction of the datagrams in [0, 0.9]", fmt::format("{}", value));
+  const link::Ipv4Address address = link::parse_ipv4_address(o.address, "--listen", "", true);
+  MissionSetup setup = load_mission_setup(o.setup);
+  MissionRunSettings& settings = setup.settings;
+  settings.render_markerless_frames = o.render_every_frame;
+  link::LossyChannelOptions channel;
+  channel.drop_fraction = o.link_loss;
+  channel.reorder_fraction = o.link_reorder;
+  settings.link_channel = channel;
+
+  link::MessageListener listener(address, "--listen", "");
+  std::fprintf(stderr, "sim-world: %s, seed %llu, listening on %s for the uav and ugv processes\n",
+               setup.world_path.string().c_str(), static_cast<unsigned long long>(o.seed),
+               link::Ipv4Address{address.ip, listener.port()}.to_string().c_str());
+  std::optional<MessageStream> uav, ugv;
+  while (!uav || !ugv) {
+    std::optional<MessageStream> s = listener.accept(1000);
+    if (!s) continue;
+    std::optional<StreamMessage> hello;
+    try {
+      hello = s->receive(10'000);
+    } catch (const StreamError&) {
+      continue;
+    }
+    const json h = hello ? json::parse(hello->header, nullptr, false) : json();
+    const std::string role = h.is_object() && h.contains("role") && h["role"].is_string() ? h["role"].get<std::string>() : "";
+    const bool ours = h.is_object() && h.value("op", "") == "robot_hello" && h.value("protocol", 0) == kSimWorldProtocol;
+    std::optional<MessageStream>& slot = role == "uav" ? uav : ugv;
+    if (!ours || (role != "uav" && role != "ugv") || slot) {
+      s->send(dump({{"ok", false},
+                    {"error", "expected robot_hello of protocol " + std::to_string(kSimWorldProtocol) +
+                                  " with role uav or ugv, each once"}}));
+      continue;
+    }
+    s->send(dump({{"ok", true}, {"protocol", kSimWorldProtocol}, {"seed", o.seed}}));
+    std::fprintf(stderr, "sim-world: %s process at %s\n", role.c_str(), s->peer().c_str());
+    slot = std::move(s);
+  }
+  TransitionLog log;
+  const SimWorldReport r = run_sim_world(setup.world, setup.uav, settings, o.seed, *uav, *ugv, log, kReplyTimeoutMs);
+  const MissionRunResult& t = r.truth;
+  std::printf("time_s: %.1f\nobjects_dropped: %d of %d\nflown_m: %.1f\nbattery_left: %.3f\ntether_max_m: %.2f\n"
+              "tether_over_tension_events: %d\nuav_collisions: %d\nlink: %s\n",
+              t.time_s, t.objects_dropped, t.objects_in_world, t.flown_m, t.battery_left, t.max_released_m,
+              t.over_tension_events, t.uav_collisions, t.link_counters.c_str());
+  for (const UgvDeployment& d : t.deployments)
+    std::printf("  miniUGV in %s: %.1f m driven, battery %.2f%s\n", d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(),
+                d.result.path_m, d.result.battery_left, d.result.object_held ? ", holding the object" : "");
+  std::printf("uav: %s\nugv: %s\n", r.uav_summary.c_str(), r.ugv_summary.c_str());
+}
+
+// --- the robots' lockstep loop -------------------------------------------------------
+
+// Connects to sim-world and says which robot this is.
+link::StreamRpcChannel connect_to_world(const Options& o, const std::string& role) {
+  const link::Ipv4Address address = link::parse_ipv4_address(o.address, "--sim-world", "", false);
+  link::StreamRpcChannel channel(MessageStream::connect(address, 30.0), kReplyTimeoutMs);
+  const json hello = json::parse(
+      channel.call(dump({{"op", "robot_hello"}, {"role", role}, {"protocol", kSimWorldProtocol}})).header, nullptr, false);
+  if (!hello.is_object() || !hello.value("ok", false))
+    throw StreamError("sim-world at " + o.address + " refused the " + role + " process: " +
+                      (hello.is_object() ? hello.value("error", std::string("no reason given")) : "not a JSON reply"));
+  if (hello.value("seed", o.seed) != o.seed)
+    std::fprintf(stderr, "%s: sim-world runs seed %llu, this process %llu\n", role.c_str(),
+                 static_cast<unsigned long long>(hello.value("seed", o.seed)), static_cast<unsigned long long>(o.seed));
+  return channel;
+}
+
+// Waits for sim-world's next lockstep message (it may be building its world first).
+std::pair<json, StreamMessage> next_step(MessageStream& stream) {
+  for (;;) {
+    std::optional<StreamMessage> m = stream.receive(1000);
+    if (!m) continue;
+    json j = json::parse(m->header, nullptr, false);
+    if (!j.is_object() || !j.contains("op") || !j["op"].is_string())
+      throw StreamError("sim-world sent a message without an 'op'");
+    return {std::move(j), std::move(*m)};
+  }
+}
+
+double time_of(const json& j) {
+  if (!j.contains("t_s") || !j["t_s"].is_number() || !std::isfinite(j["t_s"].get<double>()))
+    throw StreamError("sim-world's '" + j["op"].get<std::string>() + "' has no time 't_s'");
+  return j["t_s"].get<double>();
+}
+
+// --- uav -----------------------------------------------------------------------------
+
+// The miniUGV over the robot link, as the UAV's mission sees it, with what lowering and
+// lifting it does done by the simulated world (on the robot: the winch and gravity).
+class SimWorldUgvLink final : public UgvLink {
+ public:
+  SimWorldUgvLink(LinkedUgv& linked, link::RpcChannel& world) : linked_(linked), world_(world) {}
+  void deploy(const Eigen::Vector3d& p_WE, double entry_yaw_rad) override {
+    effect({{"op", "ugv_put_down"}, {"p_WE", {p_WE.x(), p_WE.y(), p_WE.z()}}, {"entry_yaw_rad", entry_yaw_rad}});
+    linked_.deploy(p_WE, entry_yaw_rad);
+  }
+  void retracted() override {
+    linked_.retracted();
+    effect({{"op", "ugv_lift"}});
+  }
+  void release_object() override {
+    effect({{"op", "ugv_release"}});
+    linked_.release_object();
+  }
+  void abort(const std::string& reason) override { linked_.abort(reason); }
+  void recall(const std::string& reason) override { linked_.recall(reason); }
+  [[nodiscard]] UgvReport report() const override {
+    return lonely_ ? UgvReport::nothing_to_search() : linked_.report();
+  }
+  void set_lonely(bool lonely) { lonely_ = lonely; }
+
+ private:
+  void effect(const json& request) {
+    const json r = json::parse(world_.call(dump(request)).header, nullptr, false);
+    if (!r.is_object() || !r.value("ok", false))
+      throw StreamError("sim-world refused '" + request["op"].get<std::string>() + "': " +
+                        (r.is_object() ? r.value("error", std::string("no reason given")) : "not a JSON reply"));
+    lonely_ = r.value("lonely", false);
+  }
+  LinkedUgv& linked_;
+  link::RpcChannel& world_;
+  bool lonely_ = false;
+};
+
+void run_uav(const Options& o) {
+  (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);  // before the world loads
+  const MissionSetup setup = load_mission_setup(o.setup);
+  require_all_sim(setup.backends, o.setup.mission,
+                  "ferret uav drives the hardware ferret sim-world serves (the robot's own loop is not written yet)");
+  const MissionRunSettings& settings = setup.settings;
+  UavMissionOptions options = settings.uav;
+  fill_uav_mission_from_world(options, *setup.world.spec, settings.ugv.exploration.mission);
+  options.validate(o.setup.mission.empty() ? "(built-in defaults)" : o.setup.mission);
+  const CameraModel marker_model = camera_model(camera_for(setup.uav, false, "marker_camera"), setup.uav.source);
+  const CameraModel depth_model = camera_model(camera_for(setup.uav, true, "depth_camera"), setup.uav.source);
+  const FlightPlanner planner = make_flight_planner(setup.world, setup.uav, settings.ugv.exploration.mission,
+                                                    settings.uav_max_speed_mps, o.seed);
+
+  link::StreamRpcChannel channel = connect_to_world(o, "uav");
+  RemoteWinch winch(channel);
+  SimClock clock;
+  LinkedUgv linked(clock);
+  SimWorldUgvLink ugv(linked, channel);
+  TransitionLog log;
+  print_transitions(log, o.quiet);
+  // Requests go out only inside a lockstep step (between sim-world's message and this
+  // process's answer), so the adapter's greeting waits for "start".
+  std::optional<AdapterFlightController> flight;
+  std::optional<UavMission> started;
+  const auto mission_or_throw = [&]() -> UavMission& {
+    if (!started) throw StreamError("sim-world stepped the UAV before its 'start'");
+    return *started;
+  };
+  const auto state = [&] {
+    const UavMission& mission = mission_or_throw();
+    return json{{"state", std::string(to_string(mission.state()))}, {"done", mission.done()}};
+  };
+  MessageStream& stream = channel.stream();
+  for (;;) {
+    auto [j, m] = next_step(stream);
+    const std::string op = j["op"].get<std::string>();
+    if (op == "start") {
+      flight.emplace(channel, "sim");
+      started.emplace(UavMission::Hardware{*flight, *flight, winch, ugv}, clock, planner, marker_model, depth_model,
+                      options, &log);
+      started->start();
+      json r = state();
+      r["op"] = "start_done";
+      stream.send(dump(r));
+    } else if (op == "tick") {
+      clock.set(time_of(j));
+      ugv.set_lonely(j.value("lonely", false));
+      mission_or_throw().tick();
+      json r = state();
+      r["op"] = "tick_done";
+      stream.send(dump(r));
+    } else if (op == "link") {
+      clock.set(time_of(j));
+      for (const auto& d : link::unpack_datagrams(m.blob)) linked.session().receive(d);
+      stream.send(StreamMessage{R"({"op":"link_done"})", link::pack_datagrams(linked.session().take_outgoing())});
+    } else if (op == "end") {
+      clock.set(time_of(j));
+      UavMission& mission = mission_or_throw();
+      if (!mission.done()) mission.stop("the simulation's time limit");
+      int retrieved = 0, dropped = 0;
+      for (const HiddenSpaceVisit& v : mission.visits()) {
+        retrieved += v.object_retrieved ? 1 : 0;
+        dropped += v.object_dropped ? 1 : 0;
+      }
+      std::printf("outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu\nobjects_retrieved: %d\nobjects_dropped: %d\n",
+                  std::string(to_string(mission.outcome())).c_str(), clock.now_s(), mission.visits().size(), retrieved,
+                  dropped);
+      json visits = json::array();
+      for (const HiddenSpaceVisit& v : mission.visits()) {
+        std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, v.state.c_str(),
+                    v.state == "serviced" ? (v.landed ? " (landed)" : " (hovered)") : "",
+                    v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(), v.object_dropped ? ", object dropped" : "");
+        visits.push_back({{"marker_id", v.marker_id}, {"state", v.state}, {"landed", v.landed},
+                          {"ugv_outcome", v.ugv_outcome}, {"object_retrieved", v.object_retrieved},
+                          {"object_dropped", v.object_dropped}});
+      }
+      std::printf("link: UAV end: %s\n", linked.session().counters().summary().c_str());
+      std::fflush(stdout);
+      stream.send(dump({{"op", "end_done"},
+                        {"outcome", std::string(to_string(mission.outcome()))},
+                        {"hidden_spaces_found", mission.visits().size()},
+                        {"objects_retrieved", retrieved},
+                        {"visits", visits}}));
+      return;
+    } else {
+      throw StreamError("sim-world sent the UAV an op it does not know: '" + printable(op) + "'");
+    }
+  }
+}
+
+// --- ugv -----------------------------------------------------------------------------
+
+void run_ugv(const Options& o) {
+  (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);
+  const MissionSetup setup = load_mission_setup(o.setup);
+  require_all_sim(setup.backends, o.setup.mission,
+                  "ferret ugv drives the hardware ferret sim-world serves (the robot's own loop is not written yet)");
+  const UgvMissionRunSettings& settings = setup.settings.ugv;
+  link::StreamRpcChannel channel = connect_to_world(o, "ugv");
+  std::optional<RemoteUgvBase> base;  // greets the world's base at "start"
+  SimClock clock;
+  TransitionLog log;
+  print_transitions(log, o.quiet);
+  std::vector<std::unique_ptr<MiniUgvMission>> missions;
+  // A search request: the mission for where the winch set the robot down. On the robot
+  // it starts where it stands; here the world says where that is, with the search's seed.
+  UgvLinkEndpoint endpoint(clock, [&](const link::UavRequest&) -> UgvLinkEndpoint::Deployment {
+    const json d = json::parse(channel.call(R"({"op":"ugv_deployment"})").header, nullptr, false);
+    if (!d.is_object() || !d.value("ok", false)) throw StreamError("sim-world did not say where the miniUGV is");
+    if (!d.value("set_down", false)) return {};
+    const json& s = d.at("start");
+    const Pose2 start{s.at(0).get<double>(), s.at(1).get<double>(), s.at(2).get<double>()};
+    const json& map = d.at("map");
+    GridGeometry truth{map.at("origin_m").at(0).get<double>(), map.at("origin_m").at(1).get<double>(),
+                       map.at("resolution_m").get<double>(), map.at("cells").at(0).get<int>(),
+                       map.at("cells").at(1).get<int>()};
+    const std::uint64_t seed = d.at("seed").get<std::uint64_t>();
+    if (!base) throw StreamError("sim-world asked the miniUGV to search before its 'start'");
+    missions.push_back(std::make_unique<MiniUgvMission>(*base, clock, ugv_mission_map(truth, start, settings),
+                                                        ugv_mission_options(settings, seed, std::nullopt, truth), &log));
+    return {missions.back().get(), &*base};
+  });
+  MessageStream& stream = channel.stream();
+  for (;;) {
+    auto [j, m] = next_step(stream);
+    const std::string op = j["op"].get<std::string>();
+    if (op == "start") {
+      base.emplace(channel, "sim");
+      stream.send(R"({"op":"start_done"})");
+    } else if (op == "step") {
+      clock.set(time_of(j));
+      for (const auto& d : link::unpack_datagrams(m.blob)) endpoint.session().receive(d);
+      const json& a = j.at("attitude_rad");
+      endpoint.set_attitude(a.at(0).get<double>(), a.at(1).get<double>());
+      const bool hold = endpoint.handle_requests();
+      MiniUgvMission* mission = endpoint.mission();
+      const bool set_down = j.value("set_down", false);
+      // The world steps a base whose controller is done or waits to be lifted no more.
+      const bool stopped = set_down && mission && (mission->done() || mission->wants_retraction());
+      if (set_down && !stopped && !hold && mission && mission->state() != UgvMissionState::kIdle) mission->tick();
+      stream.send(dump({{"op", "step_done"}, {"hold", hold}, {"stopped", stopped}}));
+    } else if (op == "report") {
+      clock.set(time_of(j));
+      endpoint.report();
+      stream.send(StreamMessage{R"({"op":"report_done"})", link::pack_datagrams(endpoint.session().take_outgoing())});
+    } else if (op == "end") {
+      clock.set(time_of(j));
+      json deployments = json::array();
+      for (auto& mission : missions) {
+        if (!mission->done()) mission->stop("the mission ended");
+        std::printf("  miniUGV search: %s\n", std::string(to_string(mission->outcome())).c_str());
+        deployments.push_back(std::string(to_string(mission->outcome())));
+      }
+      std::printf("link: miniUGV end: %s\n", endpoint.session().counters().summary().c_str());
+      std::fflush(stdout);
+      stream.send(dump({{"op", "end_done"}, {"searches", deployments}}));
+      return;
+    } else {
+      throw StreamError("sim-world sent the miniUGV an op it does not know: '" + printable(op) + "'");
+    }
+  }
+}
+
+// A robot process or the world that loses its peer, or hears what it cannot follow, ends
+// as a failed run (exit 1), not as an internal error.
+template <class Run>
+void failing_on_stream_errors(const Run& run, const Options& o) {
+  try {
+    run(o);
+  } catch (const StreamError& e) {
+    throw CheckFailed(e.what());
+  } catch (const nlohmann::json::exception& e) {
+    throw CheckFailed(std::string("a lockstep message without the fields it needs: ") + e.what());
+  }
+}
+
+void add_common(CLI::App* sub, Options& o) {
+  add_mission_setup_options(sub, o.setup);
+  add_seed_option(sub, o.seed, "mission");
+  sub->add_flag("-q,--quiet", o.quiet, "Print the summary only");
+}
+
+}  // namespace
+
+const CommandRegistration kSimWorld{"sim-world", [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  auto* sub = app.add_subcommand("sim-world", "Serve the simulated world to a ferret uav and a ferret ugv process");
+  add_common(sub, *o);
+  sub->add_option("--listen", o->address, "Address:port to listen on (port 0: any free one)")->capture_default_str();
+  sub->add_option("--link-loss", o->link_loss, "The fraction of the robot link's datagrams lost, each way (default: 0)");
+  sub->add_option("--link-reorder", o->link_reorder,
+                  "The fraction of the robot link's datagrams held back past later ones, each way (default: 0)");
+  sub->add_flag("--render-every-frame", o->render_every_frame,
+                "Render every marker frame, also those no marker's quad lies in (docs/mission.md)");
+  sub->callback([o] { failing_on_stream_errors(run_sim_world_command, *o); });
+}};
+
+const CommandRegistration kUav{"uav", [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  auto* sub = app.add_subcommand("uav", "Run the UAV's mission controller against the hardware ferret sim-world serves");
+  add_common(sub, *o);
+  sub->add_option("--sim-world", o->address, "The ferret sim-world's address:port")->capture_default_str();
+  sub->callback([o] { failing_on_stream_errors(run_uav, *o); });
+}};
+
+const CommandRegistration kUgv{"ugv", [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  auto* sub = app.add_subcommand("ugv", "Run the miniUGV's mission controller against the hardware ferret sim-world serves");
+  add_common(sub, *o);
+  sub->add_option("--sim-world", o->address, "The ferret sim-world's address:port")->capture_default_str();
+  sub->callback([o] { failing_on_stream_errors(run_ugv, *o); });
+}};
+
+}  // namespace ferret::cli

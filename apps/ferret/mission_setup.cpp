@@ -1,0 +1,59 @@
+#include "mission_setup.hpp"
+
+#include "cli_options.hpp"
+#include "ferret/core/data_path.hpp"
+#include "ferret/core/error.hpp"
+#include "ferret/planning/exploration_policy.hpp"
+#include "ferret/uav/uav_mission_config.hpp"
+
+namespace ferret::cli {
+
+void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o) {
+  sub->add_option("--world", o.world, "World YAML (default: the shipped default world)");
+  sub->add_option("--robot-uav", o.robot_uav, "The UAV's URDF (default: the shipped m100)");
+  sub->add_option("--robot-ugv", o.robot_ugv, "The miniUGV's URDF (default: the shipped miniugv)");
+  sub->add_option("--mission", o.mission, "Mission YAML (default: the built-in defaults)");
+  sub->add_option("--method", o.method, "The miniUGV's search: cdos, rapid, nearest, ... (default: cdos)");
+  sub->add_option("--planner", o.planner,
+                  "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM) (default: grid)");
+  sub->add_option("--no-landing-zone", o.no_landing_zone,
+                  "No safe landing zone by an opening: hover (lower from a hover) or skip (default: the mission YAML's uav.no_landing_zone, hover)");
+}
+
+MissionSetup load_mission_setup(const MissionSetupOptions& o) {
+  if (!o.no_landing_zone.empty() && o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
+    throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
+  if (o.planner != "grid" && o.planner != "ompl") throw InputError("--planner", "", "grid or ompl", o.planner);
+  if (!has_exploration_policy(o.method))
+    throw InputError("--method", "", one_of(exploration_policy_names()), o.method);
+  MissionSetup s{o.world.empty() ? data_path("worlds/default.yaml") : std::filesystem::path(o.world),
+                 load_mission_or_defaults(o.mission),
+                 {},
+                 {},
+                 {},
+                 {},
+                 {}};
+  s.backends = o.mission.empty() ? RobotBackends{} : load_robot_backends(o.mission);
+  s.uav = load_robot_description(resolve_robot(o.robot_uav, "m100.urdf"), s.mission);
+  s.ugv = load_robot_description(resolve_robot(o.robot_ugv, "miniugv.urdf"), s.mission);
+  s.world = load_planning_world(s.world_path);
+  if (!s.world.spec)
+    throw InputError(s.world_path.string(), "", "a world YAML (an OctoMap file names no hidden spaces or markers)");
+  if (s.world.spec->hidden_spaces.empty())
+    throw InputError(s.world_path.string(), "hidden_spaces", "at least one hidden space with a marker");
+
+  MissionRunSettings& settings = s.settings;
+  settings = mission_settings_for(s.uav, s.ugv, s.mission, *s.world.spec);
+  settings.ugv.exploration.method = o.method;
+  // The UAV mission's keys of the mission YAML over what the world set (the search area
+  // from its bounds); the command line's choice over both.
+  if (!o.mission.empty()) (void)load_uav_mission_options(o.mission, settings.uav);
+  if (!o.no_landing_zone.empty()) settings.uav.no_landing_zone = o.no_landing_zone;
+  // Checked here too, so that a value the miniUGV's commands accept but the UAV's mission
+  // does not (l_0 = 0: no hover release) is named in the mission file.
+  settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
+  settings.ugv.ugv.explore.planner = o.planner;
+  return s;
+}
+
+}  // namespace ferret::cli

@@ -1,0 +1,40 @@
+#pragma once
+// What `ferret mission`, `ferret sim-world`, `ferret uav` and `ferret ugv` read alike: the
+// world, the two robots, the mission YAML and the command line's choices, made into the
+// settings of one mission. The three processes of a mission run read the same files and
+// so build the same settings; the in-process `ferret mission` builds them the same way.
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "ferret/planning/planning_world.hpp"
+#include "ferret/sim/mission_run.hpp"
+#include "ferret/sim/robot_backends.hpp"
+#include "ferret/urdf/mission_config.hpp"
+#include "ferret/urdf/robot_description.hpp"
+
+namespace ferret::cli {
+
+struct MissionSetupOptions {
+  std::string world, robot_uav, robot_ugv, mission, method = "cdos", planner = "grid";
+  std::string no_landing_zone;  ///< empty: the mission YAML's uav.no_landing_zone (hover)
+};
+
+/// --world, --robot-uav, --robot-ugv, --mission, --method, --planner, --no-landing-zone.
+void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o);
+
+struct MissionSetup {
+  std::filesystem::path world_path;
+  MissionConfig mission;
+  RobotBackends backends;  ///< the mission YAML's (all sim without one)
+  RobotDescription uav, ugv;
+  PlanningWorld world;
+  MissionRunSettings settings;
+};
+
+/// Loads and checks everything; InputError naming the option or the file and field.
+[[nodiscard]] MissionSetup load_mission_setup(const MissionSetupOptions& o);
+
+}  // namespace ferret::cli
