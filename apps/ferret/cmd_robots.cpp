@@ -211,6 +211,11 @@ void run_uav(const Options& o) {
   const FlightPlanner planner = make_flight_planner(setup.world, setup.uav, settings.ugv.exploration.mission,
                                                     settings.uav_max_speed_mps, o.seed);
 
+  if (!o.quiet)  // the log's first line: what drives each interface
+    std::fprintf(stderr,
+                 "backends: %s; served by sim-world at %s: uav.flight_controller (flight adapter protocol), "
+                 "uav.cameras, uav.winch; link: relayed by sim-world\n",
+                 setup.backends.summary().c_str(), o.address.c_str());
   link::StreamRpcChannel channel = connect_to_world(o, "uav");
   RemoteWinch winch(channel);
   SimClock clock;
@@ -296,6 +301,9 @@ void run_ugv(const Options& o) {
   require_all_sim(setup.backends, o.setup.mission,
                   "ferret ugv drives the hardware ferret sim-world serves (the robot's own loop is not written yet)");
   const UgvMissionRunSettings& settings = setup.settings.ugv;
+  if (!o.quiet)
+    std::fprintf(stderr, "backends: %s; served by sim-world at %s: ugv.base (base protocol); link: relayed by sim-world\n",
+                 setup.backends.summary().c_str(), o.address.c_str());
   link::StreamRpcChannel channel = connect_to_world(o, "ugv");
   std::optional<RemoteUgvBase> base;  // greets the world's base at "start"
   SimClock clock;
