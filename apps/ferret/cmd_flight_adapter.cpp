@@ -31,6 +31,7 @@ struct Options {
   std::string world, robot, mission;
   std::uint64_t seed = 1;
   int clients = 0;
+  bool real_time = false;
   std::string adapter;
   int timeout_ms = 2000;
 };
@@ -55,7 +56,10 @@ void serve(const Options& o) {
     auto stream = listener.accept(1000);
     if (!stream) continue;
     std::fprintf(stderr, "flight adapter: client %s\n", stream->peer().c_str());
-    adapter.serve(*stream, [] { return true; });
+    if (o.real_time)
+      adapter.serve_in_real_time(*stream, [] { return true; });
+    else
+      adapter.serve(*stream, [] { return true; });
     std::fprintf(stderr, "flight adapter: client %s left at t = %.2f s\n", stream->peer().c_str(), adapter.now_s());
     ++served;
   }
@@ -94,6 +98,9 @@ const CommandRegistration kFlightAdapter{
       add_seed_option(s, o->seed, "simulated cameras");
       s->add_option("--clients", o->clients, "Clients to serve one after another, then exit (0: until interrupted)")
           ->capture_default_str();
+      s->add_flag("--real-time", o->real_time,
+                  "The vehicle moves by itself in wall time, as a real one (for ferret uav on hw backends); "
+                  "without it, only sim_advance moves it");
       s->callback([o] { serve(*o); });
       auto* c = cmd->add_subcommand("check", "Ground checks of an adapter: hello, state, frames, refusals");
       c->add_option("--adapter", o->adapter, "The adapter's address:port")->required();

@@ -1,10 +1,12 @@
 // One process a robot (docs/robots.md, "One process a robot"):
 //   ferret sim-world [--world W] [--mission M] [--seed N] [--listen ADDR] [--link-loss F --link-reorder F]
 //       the simulated world, serving both robots' hardware and the link between them
-//   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR]
-//   ferret ugv [--world W] [--mission M] [--seed N] [--sim-world ADDR]
+//   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A --duration-s S]
+//   ferret ugv [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A --duration-s S]
 //       the UAV's and the miniUGV's mission controllers, each in its process, against
-//       the hardware interfaces the robots have, served by `ferret sim-world`
+//       the hardware interfaces the robots have: served by `ferret sim-world` when the
+//       mission YAML's backends are sim, the robot's own devices when they are hw
+//       (robots_on_hardware.cpp)
 // The three read the same world, robots and mission YAML; with the same seed the run ends
 // as `ferret mission --link messages` does.
 
@@ -38,6 +40,7 @@
 #include "ferret/ugv/remote_ugv_base.hpp"
 #include "ferret/ugv/ugv_link_endpoint.hpp"
 #include "mission_setup.hpp"
+#include "robots_on_hardware.hpp"
 
 namespace ferret::cli {
 namespace {
@@ -59,7 +62,34 @@ struct Options {
   double link_loss = 0.0, link_reorder = 0.0;
   bool render_every_frame = false;
   bool quiet = false;
+  // A robot on its hardware (docs/robots.md, "On the robots"):
+  std::string link_bind, link_peer;
+  double duration_s = 0.0;
+  bool sim_world_given = false;  ///< --sim-world on the command line
 };
+
+// The options of one mode given in the other are a mistake worth naming.
+void check_mode_options(const Options& o, bool on_hardware) {
+  if (on_hardware && o.sim_world_given)
+    throw InputError("--sim-world", "", "no --sim-world: the mission YAML's backends are hw (the robot's own loop)",
+                     o.address);
+  if (on_hardware) {
+    if (!(std::isfinite(o.duration_s) && o.duration_s >= 0.0 && o.duration_s <= 1e6))
+      throw InputError("--duration-s", "", "seconds in [0, 1e6] (0: until done or interrupted)",
+                       fmt::format("{}", o.duration_s));
+    return;
+  }
+  for (const auto& [option, given] : {std::pair{"--link-bind", !o.link_bind.empty()},
+                                      std::pair{"--link-peer", !o.link_peer.empty()},
+                                      std::pair{"--duration-s", o.duration_s != 0.0}})
+    if (given)
+      throw InputError(option, "", "only with hw backends (under ferret sim-world the world relays the link and keeps the time)",
+                       "given");
+}
+
+RobotOnHardwareOptions hardware_options(const Options& o) {
+  return {o.setup.mission, o.link_bind, o.link_peer, o.duration_s, o.seed, o.quiet};
+}
 
 void print_transitions(TransitionLog& log, bool quiet) {
   log.on_transition([quiet](const Transition& t) {
@@ -198,10 +228,13 @@ class SimWorldUgvLink final : public UgvLink {
 };
 
 void run_uav(const Options& o) {
-  (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);  // before the world loads
   const MissionSetup setup = load_mission_setup(o.setup);
+  const bool on_hardware = uav_on_hardware(setup, o.setup.mission);
+  check_mode_options(o, on_hardware);
+  if (on_hardware) return run_uav_on_hardware(setup, hardware_options(o));
+  (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);
   require_all_sim(setup.backends, o.setup.mission,
-                  "ferret uav drives the hardware ferret sim-world serves (the robot's own loop is not written yet)");
+                  "ferret uav under ferret sim-world: every interface simulated; all of the UAV's hw for its own loop");
   const MissionRunSettings& settings = setup.settings;
   UavMissionOptions options = settings.uav;
   fill_uav_mission_from_world(options, *setup.world.spec, settings.ugv.exploration.mission);
@@ -262,23 +295,12 @@ void run_uav(const Options& o) {
       clock.set(time_of(j));
       UavMission& mission = mission_or_throw();
       if (!mission.done()) mission.stop("the simulation's time limit");
-      int retrieved = 0, dropped = 0;
-      for (const HiddenSpaceVisit& v : mission.visits()) {
-        retrieved += v.object_retrieved ? 1 : 0;
-        dropped += v.object_dropped ? 1 : 0;
-      }
-      std::printf("outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu\nobjects_retrieved: %d\nobjects_dropped: %d\n",
-                  std::string(to_string(mission.outcome())).c_str(), clock.now_s(), mission.visits().size(), retrieved,
-                  dropped);
+      const int retrieved = print_uav_outcome(mission, clock.now_s());
       json visits = json::array();
-      for (const HiddenSpaceVisit& v : mission.visits()) {
-        std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, v.state.c_str(),
-                    v.state == "serviced" ? (v.landed ? " (landed)" : " (hovered)") : "",
-                    v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(), v.object_dropped ? ", object dropped" : "");
+      for (const HiddenSpaceVisit& v : mission.visits())
         visits.push_back({{"marker_id", v.marker_id}, {"state", v.state}, {"landed", v.landed},
                           {"ugv_outcome", v.ugv_outcome}, {"object_retrieved", v.object_retrieved},
                           {"object_dropped", v.object_dropped}});
-      }
       std::printf("link: UAV end: %s\n", linked.session().counters().summary().c_str());
       std::fflush(stdout);
       stream.send(dump({{"op", "end_done"},
@@ -296,10 +318,13 @@ void run_uav(const Options& o) {
 // --- ugv -----------------------------------------------------------------------------
 
 void run_ugv(const Options& o) {
-  (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);
   const MissionSetup setup = load_mission_setup(o.setup);
+  const bool on_hardware = ugv_on_hardware(setup);
+  check_mode_options(o, on_hardware);
+  if (on_hardware) return run_ugv_on_hardware(setup, hardware_options(o));
+  (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);
   require_all_sim(setup.backends, o.setup.mission,
-                  "ferret ugv drives the hardware ferret sim-world serves (the robot's own loop is not written yet)");
+                  "ferret ugv under ferret sim-world: every interface simulated; ugv.base hw for its own loop");
   const UgvMissionRunSettings& settings = setup.settings.ugv;
   if (!o.quiet)
     std::fprintf(stderr, "backends: %s; served by sim-world at %s: ugv.base (base protocol); link: relayed by sim-world\n",
@@ -388,6 +413,17 @@ void add_common(CLI::App* sub, Options& o) {
   sub->add_flag("-q,--quiet", o.quiet, "Print the summary only");
 }
 
+void add_robot_options(CLI::App* sub, Options& o, const std::string& own_port, const std::string& peer_default) {
+  sub->add_option("--sim-world", o.address, "With sim backends: the ferret sim-world's address:port")
+      ->capture_default_str();
+  sub->add_option("--link-bind", o.link_bind,
+                  "With hw backends: this robot's robot-link address:port (default: 127.0.0.1:" + own_port + ")");
+  sub->add_option("--link-peer", o.link_peer, "With hw backends: the other robot's address:port (default: " +
+                                                  peer_default + ")");
+  sub->add_option("--duration-s", o.duration_s,
+                  "With hw backends: stop after this many seconds (default: when done, or at SIGINT/SIGTERM)");
+}
+
 }  // namespace
 
 const CommandRegistration kSimWorld{"sim-world", [](CLI::App& app) {
@@ -405,18 +441,26 @@ const CommandRegistration kSimWorld{"sim-world", [](CLI::App& app) {
 
 const CommandRegistration kUav{"uav", [](CLI::App& app) {
   auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("uav", "Run the UAV's mission controller against the hardware ferret sim-world serves");
+  auto* sub = app.add_subcommand(
+      "uav", "Run the UAV's mission controller: on its hardware (hw backends) or against ferret sim-world (sim)");
   add_common(sub, *o);
-  sub->add_option("--sim-world", o->address, "The ferret sim-world's address:port")->capture_default_str();
-  sub->callback([o] { failing_on_stream_errors(run_uav, *o); });
+  add_robot_options(sub, *o, "47810", "the miniUGV's, 127.0.0.1:47811");
+  sub->callback([o, sub] {
+    o->sim_world_given = sub->count("--sim-world") > 0;
+    failing_on_stream_errors(run_uav, *o);
+  });
 }};
 
 const CommandRegistration kUgv{"ugv", [](CLI::App& app) {
   auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("ugv", "Run the miniUGV's mission controller against the hardware ferret sim-world serves");
+  auto* sub = app.add_subcommand(
+      "ugv", "Run the miniUGV's mission controller: on its hardware (hw backend) or against ferret sim-world (sim)");
   add_common(sub, *o);
-  sub->add_option("--sim-world", o->address, "The ferret sim-world's address:port")->capture_default_str();
-  sub->callback([o] { failing_on_stream_errors(run_ugv, *o); });
+  add_robot_options(sub, *o, "47811", "the UAV's, 127.0.0.1:47810");
+  sub->callback([o, sub] {
+    o->sim_world_given = sub->count("--sim-world") > 0;
+    failing_on_stream_errors(run_ugv, *o);
+  });
 }};
 
 }  // namespace ferret::cli

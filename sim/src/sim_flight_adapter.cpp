@@ -3,6 +3,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "ferret/core/clock.hpp"
+
 #include "ferret/core/transition_log.hpp"
 #include "ferret/uav/flight_adapter_service.hpp"
 #include "mission_world.hpp"
@@ -37,12 +39,17 @@ struct SimFlightAdapter::Impl {
       return link::StreamMessage{
           json{{"ok", false}, {"op", op}, {"error", "'seconds': expected a number in [0, 3600]"}}.dump(), {}};
     const long steps = std::lround(seconds / internal::kDt);
-    for (long k = 0; k < steps; ++k) {
-      ++step;
-      mission_world.clock().set(static_cast<double>(step) * internal::kDt);
-      mission_world.flight().step(internal::kDt);
-    }
+    for (long k = 0; k < steps; ++k) step_once();
     return link::StreamMessage{json{{"ok", true}, {"t_s", mission_world.clock().now_s()}}.dump(), {}};
+  }
+
+  void step_once() {
+    ++step;
+    mission_world.clock().set(static_cast<double>(step) * internal::kDt);
+    mission_world.flight().step(internal::kDt);
+  }
+  void advance_to(double t_s) {
+    while (static_cast<double>(step + 1) * internal::kDt <= t_s) step_once();
   }
 
   TransitionLog log;
@@ -61,6 +68,20 @@ link::StreamMessage SimFlightAdapter::handle(const link::StreamMessage& request)
 }
 void SimFlightAdapter::serve(link::MessageStream& stream, const std::function<bool()>& keep_going) {
   impl_->service.serve(stream, keep_going);
+}
+void SimFlightAdapter::serve_in_real_time(link::MessageStream& stream, const std::function<bool()>& keep_going) {
+  const SteadyClock wall;
+  const double t0_s = now_s();
+  while (keep_going()) {
+    std::optional<link::StreamMessage> request;
+    try {
+      request = stream.receive(10);
+    } catch (const link::StreamError&) {
+      return;  // the client went away
+    }
+    impl_->advance_to(t0_s + wall.now_s());
+    if (request) stream.send(handle(*request));
+  }
 }
 double SimFlightAdapter::now_s() const { return impl_->mission_world.clock().now_s(); }
 

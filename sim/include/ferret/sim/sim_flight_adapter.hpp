@@ -33,6 +33,11 @@ class SimFlightAdapter {
   [[nodiscard]] link::StreamMessage handle(const link::StreamMessage& request);
   /// Answers requests on `stream` until the client closes it or `keep_going()` is false.
   void serve(link::MessageStream& stream, const std::function<bool()>& keep_going);
+  /// The same with the vehicle moving by itself, as a real one does: before each request
+  /// (and every 10 ms without one) the simulation is stepped up to the wall time since
+  /// this call (`ferret flight-adapter serve --real-time`, for a `ferret uav` on its own
+  /// steady clock).
+  void serve_in_real_time(link::MessageStream& stream, const std::function<bool()>& keep_going);
   [[nodiscard]] double now_s() const;
 
  private:
