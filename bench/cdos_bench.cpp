@@ -104,30 +104,41 @@ void decision_cycle(benchmark::State& state, const char* method) {
   run_cycles(state, method, scene);
 }
 
-// A generated sparse space of the benchmark's size (its args: width, height in m).
-void decision_cycle_size(benchmark::State& state, const char* method) {
+// A generated sparse space of the benchmark's size (its args: width, height in m), the
+// object in the middle of zone `zone` (2: seen from the start, evidence; 5: not seen).
+void cycle_in_generated_space(benchmark::State& state, const char* method, int zone) {
   HiddenSpaceGeneratorOptions o;
   o.width_m = static_cast<double>(state.range(0));
   o.height_m = static_cast<double>(state.range(1));
   GeneratedHiddenSpace h = generate_hidden_space(o);
-  const ZoneSpec& zone2 = h.zones[1];
+  const ZoneSpec& z = h.zones[static_cast<std::size_t>(zone - 1)];
   Scene scene(std::move(h.map), {h.start.x_m, h.start.y_m},
-              {0.5 * (zone2.xmin_m + zone2.xmax_m), 0.5 * (zone2.ymin_m + zone2.ymax_m)});
+              {0.5 * (z.xmin_m + z.xmax_m), 0.5 * (z.ymin_m + z.ymax_m)});
   run_cycles(state, method, scene);
   state.counters["cells"] = static_cast<double>(scene.truth.geometry.size());
+}
+void decision_cycle_size(benchmark::State& state, const char* method) { cycle_in_generated_space(state, method, 2); }
+// bayes's own cycle: no evidence, a fresh viewpoint choice every cycle (its worst case:
+// it keeps a goal between choices).
+void decision_cycle_unseen(benchmark::State& state, const char* method) {
+  cycle_in_generated_space(state, method, 5);
 }
 
 BENCHMARK_CAPTURE(decision_cycle, cdos, "cdos")->Unit(benchmark::kMicrosecond)->Repetitions(15);
 BENCHMARK_CAPTURE(decision_cycle, rapid, "rapid")->Unit(benchmark::kMicrosecond)->Repetitions(15);
-// decision_cycle_size/METHOD/W/H, registered in main() for both methods.
+// decision_cycle_{size,unseen}/METHOD/W/H, registered in main() for each method.
 void register_sizes() {
-  for (const char* method : {"cdos", "rapid"})
-    benchmark::RegisterBenchmark((std::string("decision_cycle_size/") + method).c_str(), decision_cycle_size, method)
-        ->Args({12, 8})
-        ->Args({24, 16})
-        ->Args({48, 32})
-        ->Unit(benchmark::kMicrosecond)
-        ->Repetitions(15);
+  for (const char* method : {"cdos", "rapid", "bayes"})
+    for (const auto& [name, fn] :
+         {std::pair<const char*, void (*)(benchmark::State&, const char*)>{"decision_cycle_size/", decision_cycle_size},
+          std::pair<const char*, void (*)(benchmark::State&, const char*)>{"decision_cycle_unseen/",
+                                                                           decision_cycle_unseen}})
+      benchmark::RegisterBenchmark((std::string(name) + method).c_str(), fn, method)
+          ->Args({12, 8})
+          ->Args({24, 16})
+          ->Args({48, 32})
+          ->Unit(benchmark::kMicrosecond)
+          ->Repetitions(15);
 }
 
 // Keeps the medians to print their ratio after the table.
@@ -155,16 +166,18 @@ int main(int argc, char** argv) {
   if (cdos != m.end() && rapid != m.end())
     std::printf("median decision cycle: cdos %.1f us, rapid %.1f us, ratio cdos/rapid %.2f\n",
                 cdos->second, rapid->second, cdos->second / rapid->second);
-  for (const char* method : {"cdos", "rapid"}) {
-    const auto base = m.find(std::string("decision_cycle_size/") + method + "/12/8/repeats:15");
-    if (base == m.end()) continue;
-    for (const char* size : {"12/8", "24/16", "48/32"}) {
-      const auto at = m.find(std::string("decision_cycle_size/") + method + "/" + size + "/repeats:15");
-      if (at != m.end())
-        std::printf("generated sparse %s m, %s: median %.1f us, %.2fx the 12 x 8 m space's\n", size, method,
-                    at->second, at->second / base->second);
+  for (const char* kind : {"size", "unseen"})
+    for (const char* method : {"cdos", "rapid", "bayes"}) {
+      const std::string prefix = std::string("decision_cycle_") + kind + "/" + method + "/";
+      const auto base = m.find(prefix + "12/8/repeats:15");
+      if (base == m.end()) continue;
+      for (const char* size : {"12/8", "24/16", "48/32"}) {
+        const auto at = m.find(prefix + size + "/repeats:15");
+        if (at != m.end())
+          std::printf("generated sparse %s m, object %s, %s: median %.1f us, %.2fx the 12 x 8 m space's\n", size,
+                      std::string(kind) == "size" ? "seen" : "unseen", method, at->second, at->second / base->second);
+      }
     }
-  }
   benchmark::Shutdown();
   return 0;
 }

@@ -92,6 +92,8 @@ void ObjectMap::set_cell(Cell c, double probability, double last_confidence) {
   const double p = std::clamp(probability, 1e-9, 1.0 - 1e-9);
   log_odds_[idx] = std::clamp(static_cast<float>(logit(p)), -l_clamp_, l_clamp_);
   last_conf_[idx] = static_cast<float>(std::clamp(last_confidence, 0.0, 1.0));
+  // A cell whose probability is not the prior's was measured where the map was made.
+  if (std::abs(p - 0.5) > 1e-6 && !observed(idx)) last_time_[idx] = 0.0f;
   track_evidence(idx);
 }
 

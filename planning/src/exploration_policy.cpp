@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "ferret/planning/policies.hpp"
+#include "ferret/planning/viewpoint_search.hpp"
 
 namespace ferret {
 namespace {
@@ -41,6 +42,9 @@ Registry& registry() {
     };
     reg->factories["oracle"] = [](const PolicyOptions& o) {
       return std::make_unique<OraclePolicy>(o);
+    };
+    reg->factories["bayes"] = [](const PolicyOptions& o) {
+      return std::make_unique<ViewpointSearchPolicy>(o);
     };
     return reg;
   }();

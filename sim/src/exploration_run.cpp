@@ -12,8 +12,8 @@
 namespace ferret {
 
 UgvSensorGeometry sensor_geometry(const SensorOptions& s) {
-  return {s.ir_fov_rad,     s.ir_range_m,     s.ir_rate_hz,
-          s.camera_range_m, s.camera_rate_hz, s.object_radius_m};
+  return {s.ir_fov_rad,     s.ir_range_m,     s.ir_rate_hz,      s.camera_range_m,
+          s.camera_rate_hz, s.object_radius_m, s.camera_fov_rad};
 }
 
 ExploreOptions explore_options(const ExplorationSettings& settings, std::uint64_t seed,

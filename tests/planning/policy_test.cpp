@@ -18,7 +18,7 @@ PolicyOptions options() { return PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
 TEST(Policy, RegistryKnowsTheBuiltInsAndRejectsUnknownNames) {
   const auto names = exploration_policy_names();
   for (const char* n :
-       {"cdos", "cdos-literal", "cdos-fg", "cdos-closest", "rapid", "nearest", "oracle"}) {
+       {"cdos", "cdos-literal", "cdos-fg", "cdos-closest", "rapid", "nearest", "oracle", "bayes"}) {
     EXPECT_TRUE(has_exploration_policy(n)) << n;
     EXPECT_EQ(make_exploration_policy(n, options())->name(), n);
   }

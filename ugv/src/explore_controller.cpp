@@ -48,6 +48,8 @@ ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& 
   policy_options.cdos_candidates_global = options_.cdos_candidates_global;
   policy_options.curiosity.closest_approach = options_.cdos_closest_approach;
   policy_options.seed = options_.seed;
+  policy_options.camera_fov_rad = s.camera_fov_rad;
+  policy_options.max_yaw_rate_radps = options_.robot.max_yaw_rate_radps;
   view_distance_m_ = policy_options.view_distance_m;
   policy_ = make_exploration_policy(policy_name, policy_options);
 

@@ -83,6 +83,7 @@ class ObjectMap {
   /// Sets a cell as a map received from elsewhere has it (the planner service's
   /// next-goal request): its probability (clamped as fusion clamps) and the confidence
   /// of the last detection fused into it (0: none), which CDOS's prediction starts from.
+  /// A probability other than 0.5 marks the cell observed (measured where the map was made).
   void set_cell(Cell c, double probability, double last_confidence);
 
   /// conf = clip(raw, conf_floor, conf_cap): a detection is always weak positive evidence.

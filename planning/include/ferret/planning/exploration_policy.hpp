@@ -9,6 +9,8 @@
 //   rapid         rapid frontier (Cieslewski et al. 2017), the paper's baseline
 //   nearest       classic nearest reachable frontier (Yamauchi 1997)
 //   oracle        knows the object; drives towards the nearest pose that sees it
+//   bayes         Bayesian viewpoint search without evidence, CDOS with it
+//                 (viewpoint_search.hpp)
 // docs/object_search.md describes each. A new policy is one class plus one
 // register_exploration_policy() call (or one line in the built-in table).
 
@@ -71,6 +73,10 @@ struct PolicyOptions {
   /// Oracle and "revisit the evidence": a pose this close sees the object with
   /// conf = eta / d > lambda2 (0.9 eta / lambda2 by default).
   double view_distance_m = 0.95;
+  /// The object camera's horizontal field of view (bayes: what a viewpoint sees).
+  double camera_fov_rad = 1.5707963267948966;
+  /// The robot's turn rate (bayes: the time a viewpoint's turns cost).
+  double max_yaw_rate_radps = 2.0;
   /// The run's seed, for policies that draw random numbers (the OMPL frontier policies).
   std::uint64_t seed = 0;
 

@@ -36,6 +36,7 @@ struct UgvSensorGeometry {
   double camera_range_m = 4.0;           ///< D_cam
   double camera_rate_hz = 10.0;
   double object_radius_m = 0.1;
+  double camera_fov_rad = deg_to_rad(90.0);  ///< alpha
 };
 
 struct ExploreOptions {

@@ -1,0 +1,218 @@
+#include "ferret/planning/viewpoint_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "ferret/mapping/frontier.hpp"
+#include "ferret/mapping/ir_grid.hpp"
+#include "ferret/mapping/object_map.hpp"
+#include "ferret/planning/curiosity.hpp"
+#include "ferret/planning/grid_path_planner.hpp"
+
+namespace ferret {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+double direction_rad(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
+
+// Along the ray from p at bearing phi, the distance to where it leaves the map.
+double distance_to_edge_m(const GridGeometry& g, const Eigen::Vector2d& p, double phi) {
+  const double c = std::cos(phi), s = std::sin(phi);
+  const double x0 = g.origin_x_m, x1 = g.origin_x_m + g.width * g.resolution_m;
+  const double y0 = g.origin_y_m, y1 = g.origin_y_m + g.height * g.resolution_m;
+  double t = std::numeric_limits<double>::infinity();
+  if (c > 1e-12) t = std::min(t, (x1 - p.x()) / c);
+  if (c < -1e-12) t = std::min(t, (x0 - p.x()) / c);
+  if (s > 1e-12) t = std::min(t, (y1 - p.y()) / s);
+  if (s < -1e-12) t = std::min(t, (y0 - p.y()) / s);
+  return std::max(0.0, t);
+}
+
+int ray_of(double bearing_rad, int rays) {
+  const double u = bearing_rad / kTwoPi;
+  const int k = static_cast<int>(std::floor((u - std::floor(u)) * rays + 0.5));
+  return k % rays;
+}
+
+ViewpointSearchOptions options_from(const PolicyOptions& p) {
+  ViewpointSearchOptions o;
+  o.camera_fov_rad = p.camera_fov_rad;
+  o.camera_range_m = p.curiosity.camera_range_m;
+  o.max_velocity_mps = p.max_velocity_mps;
+  o.max_yaw_rate_radps = p.max_yaw_rate_radps;
+  return o;
+}
+
+}  // namespace
+
+double unsearched_mass(const IrGrid& grid, const ObjectMap& objects, std::size_t idx, double searched_weight) {
+  if (grid.label_at(idx) == GridLabel::kOccupied) return 0.0;
+  // Measured by the camera without a detection: what the detector's misses leave
+  // (the object map's own miss model treats far looks as weak, the detector's recall
+  // does not fall with distance inside D_cam).
+  return objects.observed(idx) ? searched_weight : 1.0;
+}
+
+std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, const Eigen::Vector2d& p_W,
+                                 const ViewpointSearchOptions& options) {
+  const GridGeometry& g = grid.geometry();
+  const int rays = std::max(1, options.rays);
+  const double dphi = kTwoPi / rays;
+  // The ray's length inside a cell, times the arc r * dphi its sector is wide there, is
+  // the sector's area in that cell: in cells, length * r * dphi / resolution^2. (Each
+  // cell a ray touches counted whole would count diagonal rays up to 1.4 times over.)
+  const double per_m2 = dphi / (g.resolution_m * g.resolution_m);
+  std::vector<double> profile(static_cast<std::size_t>(rays), 0.0);
+  for (int k = 0; k < rays; ++k) {
+    const double phi = k * dphi;
+    const Eigen::Vector2d to = p_W + options.camera_range_m * Eigen::Vector2d(std::cos(phi), std::sin(phi));
+    double sum = 0.0, mass = 0.0, entry_m = 0.0;
+    const auto close_cell = [&](double exit_m) {  // the cell entered at entry_m, left at exit_m
+      const double r_mid = 0.5 * (entry_m + exit_m);
+      sum += mass * (exit_m - entry_m) * r_mid * per_m2;
+    };
+    bool blocked = false;
+    trace_ray(g, p_W, to, [&](Cell c, double distance_m) {
+      const std::size_t idx = g.index(c);
+      close_cell(distance_m);
+      entry_m = distance_m;
+      if (grid.label_at(idx) == GridLabel::kOccupied) {  // the view ends at a wall
+        blocked = true;
+        return false;
+      }
+      mass = unsearched_mass(grid, objects, idx, options.searched_weight);
+      return true;
+    });
+    if (!blocked) close_cell(std::min(options.camera_range_m, distance_to_edge_m(g, p_W, phi)));
+    profile[static_cast<std::size_t>(k)] = sum;
+  }
+  return profile;
+}
+
+double mass_in_view(const std::vector<double>& profile, double heading_rad, double fov_rad) {
+  const int rays = static_cast<int>(profile.size());
+  if (rays == 0) return 0.0;
+  const int half = static_cast<int>(std::floor(0.5 * fov_rad / (kTwoPi / rays) + 1e-9));
+  const int centre = ray_of(heading_rad, rays);
+  double sum = 0.0;
+  for (int d = -half; d <= half; ++d) sum += profile[static_cast<std::size_t>(((centre + d) % rays + rays) % rays)];
+  return sum;
+}
+
+HeadingValue best_heading(const std::vector<double>& profile, double fov_rad) {
+  const int rays = static_cast<int>(profile.size());
+  HeadingValue best;
+  if (rays == 0) return best;
+  const int half = static_cast<int>(std::floor(0.5 * fov_rad / (kTwoPi / rays) + 1e-9));
+  // A sliding window over the circle.
+  double window = 0.0;
+  for (int d = -half; d <= half; ++d) window += profile[static_cast<std::size_t>(((d % rays) + rays) % rays)];
+  best.mass = window;
+  for (int k = 1; k < rays; ++k) {
+    window += profile[static_cast<std::size_t>((k + half) % rays)] -
+              profile[static_cast<std::size_t>(((k - half - 1) % rays + rays) % rays)];
+    if (window > best.mass + 1e-12) {
+      best.mass = window;
+      best.heading_rad = k * kTwoPi / rays;
+    }
+  }
+  best.heading_rad = wrap_angle_rad(best.heading_rad);
+  return best;
+}
+
+ViewpointSearchPolicy::ViewpointSearchPolicy(const PolicyOptions& options)
+    : options_(options_from(options)), cdos_(options, false) {}
+
+bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const {
+  if (!objects.evidence_cells().empty()) return !committed_ && cdos_.keeps_goal(objects, tracker);
+  // Without evidence the viewpoint is kept by choose() (its mass is looked at again
+  // there, which the maps alone cannot tell).
+  (void)tracker;
+  return false;
+}
+
+std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationState& s) {
+  if (!s.objects.evidence_cells().empty()) {
+    committed_.reset();  // evidence: curiosity decides until it is confirmed or dismissed
+    return cdos_.choose(s);
+  }
+  if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell)) {
+    const auto profile = view_profile(s.grid, s.objects, committed_->p_W, options_);
+    const double mass = mass_in_view(profile, committed_->heading_rad.value_or(0.0), options_.camera_fov_rad);
+    if (mass >= options_.keep_fraction * committed_mass_ && mass > 0.0) return committed_;
+  }
+  committed_.reset();
+  // The camera searches what it faces at its next frame: while most of its view is
+  // still unsearched (the start, a new room), there is no reason to turn away; CDOS
+  // (the rapid rule without evidence) drives on into it.
+  if (fresh_view(s)) return cdos_.choose(s);
+  if (auto goal = choose_viewpoint(s)) {
+    committed_ = goal;
+    committed_mass_ = goal->score;  // see choose_viewpoint: the mass, not the rate
+    committed_->score = goal->score;
+    return committed_;
+  }
+  return cdos_.choose(s);  // nothing left to see from known ground: explore as CDOS does
+}
+
+bool ViewpointSearchPolicy::fresh_view(const ExplorationState& s) const {
+  const Eigen::Vector2d p = s.X_WG.position();
+  ViewpointSearchOptions all = options_;
+  all.searched_weight = 1.0;
+  const double full = mass_in_view(view_profile(s.grid, s.objects, p, all), s.X_WG.yaw_rad, options_.camera_fov_rad);
+  const double left = mass_in_view(view_profile(s.grid, s.objects, p, options_), s.X_WG.yaw_rad, options_.camera_fov_rad);
+  return full > 0.0 && left >= options_.fresh_view_fraction * full;
+}
+
+std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const ExplorationState& s) {
+  const GridGeometry& g = s.grid.geometry();
+  std::vector<Cell> candidates;
+  const int stride = std::max(1, static_cast<int>(std::lround(options_.lattice_m / g.resolution_m)));
+  for (int j = stride / 2; j < g.height; j += stride)
+    for (int i = stride / 2; i < g.width; i += stride) {
+      const Cell c{i, j};
+      if (s.paths.reachable(c) && !s.tracker.blacklisted(c)) candidates.push_back(c);
+    }
+  for (const auto* set : {&s.frontiers.visible, &s.frontiers.global}) {
+    const std::size_t n = set->size();
+    const std::size_t limit = static_cast<std::size_t>(std::max(1, options_.max_frontier_candidates));
+    const std::size_t step = std::max<std::size_t>(1, (n + limit - 1) / limit);
+    for (std::size_t k = 0; k < n; k += step) {
+      const Cell c = (*set)[k];
+      if (s.paths.reachable(c) && !s.tracker.blacklisted(c)) candidates.push_back(c);
+    }
+  }
+  const Eigen::Vector2d p = s.X_WG.position();
+  std::optional<ExplorationGoal> best;
+  double best_rate = 0.0;
+  for (const Cell& c : candidates) {
+    const Eigen::Vector2d q = g.center(c);
+    const auto profile = view_profile(s.grid, s.objects, q, options_);
+    const HeadingValue view = best_heading(profile, options_.camera_fov_rad);
+    if (view.mass <= 1e-9) continue;
+    // Turning to leave, driving, turning to face the view (the arrival heading taken as
+    // the straight line's: the path's own bends are not priced).
+    const Eigen::Vector2d to = q - p;
+    const double along = to.norm() > 1e-6 ? direction_rad(to) : s.X_WG.yaw_rad;
+    const double turns = std::abs(wrap_angle_rad(along - s.X_WG.yaw_rad)) * (to.norm() > 1e-6 ? 1.0 : 0.0) +
+                         std::abs(wrap_angle_rad(view.heading_rad - along));
+    const double time_s = s.paths.distance_m(c) / options_.max_velocity_mps + turns / options_.max_yaw_rate_radps +
+                          options_.overhead_s;
+    const double rate = view.mass / time_s;
+    if (!best || rate > best_rate + 1e-12) {
+      best_rate = rate;
+      best = ExplorationGoal{};
+      best->cell = c;
+      best->p_W = q;
+      best->heading_rad = view.heading_rad;
+      best->score = view.mass;
+      best->reason = "viewpoint";
+    }
+  }
+  return best;
+}
+
+}  // namespace ferret

@@ -1,0 +1,166 @@
+// The Bayesian viewpoint search (bayes): the mass a viewpoint sees, against hand-computed
+// areas; negative evidence and walls lowering it; the policy's choices.
+#include "ferret/planning/viewpoint_search.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "exploration_room.hpp"
+
+namespace ferret {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// An 8 x 8 m room at 0.05 m, every cell known free, nothing looked at by the camera.
+struct OpenRoom {
+  GridGeometry geo{0.0, 0.0, 0.05, 160, 160};
+  IrGrid grid{geo, {}};
+  ObjectMap objects{geo, {}};
+  OpenRoom() {
+    for (int j = 0; j < geo.height; ++j)
+      for (int i = 0; i < geo.width; ++i) grid.update_cell({i, j}, false);
+  }
+  // The camera at `pose` saw its whole 90-degree, `range_m` view and detected nothing.
+  void look(const Pose2& pose, double range_m) {
+    CameraFrame frame;
+    frame.time_s = 0.0;
+    frame.view.X_WS = pose;
+    frame.view.max_range_m = range_m;
+    for (int k = -90; k <= 90; ++k) frame.view.beams.push_back({deg_to_rad(0.5 * k), range_m});
+    objects.integrate_frame(frame);
+  }
+};
+
+ViewpointSearchOptions options(double range_m) {
+  ViewpointSearchOptions o;
+  o.camera_range_m = range_m;
+  o.camera_fov_rad = kPi / 2;
+  o.rays = 360;
+  return o;
+}
+
+TEST(ViewpointSearch, AnUnsearchedViewHoldsItsAreaInCells) {
+  OpenRoom room;
+  const auto o = options(2.0);
+  const auto profile = view_profile(room.grid, room.objects, {4.0, 4.0}, o);
+  ASSERT_EQ(profile.size(), 360u);
+  // A quarter disc of radius 2 m (91 rays of the 360 are in view: 91/360 of the disc),
+  // in 0.05 m cells: pi * 2^2 * 91 / 360 / 0.0025 = 1270.6.
+  const double expected = kPi * 4.0 * 91.0 / 360.0 / 0.0025;
+  EXPECT_NEAR(mass_in_view(profile, 0.0, o.camera_fov_rad), expected, 0.05 * expected);
+  EXPECT_NEAR(mass_in_view(profile, 2.0, o.camera_fov_rad), expected, 0.05 * expected);
+  // Every direction the same: the whole disc is four views.
+  double all = 0.0;
+  for (const double m : profile) all += m;
+  EXPECT_NEAR(all, kPi * 4.0 / 0.0025, 0.05 * kPi * 4.0 / 0.0025);
+}
+
+TEST(ViewpointSearch, NegativeEvidenceLowersARegionsValue) {
+  OpenRoom room;
+  const auto o = options(2.0);
+  const double before = mass_in_view(view_profile(room.grid, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
+  // The camera looked east from here and saw nothing: what it saw keeps searched_weight.
+  room.look({4.0, 4.0, 0.0}, 2.0);
+  const auto profile = view_profile(room.grid, room.objects, {4.0, 4.0}, o);
+  const double east = mass_in_view(profile, 0.0, o.camera_fov_rad);
+  EXPECT_NEAR(east, o.searched_weight * before, 0.1 * o.searched_weight * before + 15.0);
+  // West was not looked at: its value is untouched, and it is the best heading now.
+  EXPECT_NEAR(mass_in_view(profile, kPi, o.camera_fov_rad), before, 0.02 * before);
+  const HeadingValue best = best_heading(profile, o.camera_fov_rad);
+  EXPECT_GT(std::abs(wrap_angle_rad(best.heading_rad)), kPi / 2 - 0.05);  // facing away from the searched side
+  EXPECT_NEAR(best.mass, before, 0.05 * before);
+}
+
+TEST(ViewpointSearch, AWallEndsTheViewAndHoldsNoMass) {
+  OpenRoom room;
+  const auto o = options(2.0);
+  // A wall 1 m east of the viewpoint, across the whole view.
+  for (int j = 0; j < room.geo.height; ++j) room.grid.update_cell(room.geo.cell_at(5.0, j * 0.05 + 0.025), true);
+  const auto profile = view_profile(room.grid, room.objects, {4.0, 4.0}, o);
+  // East: a triangle-ish sector cut at x = 5: the 90-degree view to 1 m ahead holds the
+  // triangle of half-width 1 m, 1 m^2 = 400 cells (up to the rays' sampling).
+  EXPECT_NEAR(mass_in_view(profile, 0.0, o.camera_fov_rad), 400.0, 40.0);
+  // West sees its whole quarter disc.
+  EXPECT_GT(mass_in_view(profile, kPi, o.camera_fov_rad), 1200.0);
+  // unsearched_mass: an occupied cell holds none, a free unseen cell 1.
+  EXPECT_EQ(unsearched_mass(room.grid, room.objects, room.geo.index(room.geo.cell_at(5.0, 4.0)), 0.1), 0.0);
+  EXPECT_EQ(unsearched_mass(room.grid, room.objects, room.geo.index(room.geo.cell_at(3.0, 4.0)), 0.1), 1.0);
+}
+
+TEST(ViewpointSearch, BestHeadingFindsTheRichestWindowAcrossTheWrap) {
+  std::vector<double> profile(8, 0.0);
+  profile[7] = 2.0;  // bearing 315 degrees
+  profile[0] = 1.0;  // 0 degrees
+  profile[3] = 2.5;  // 135 degrees
+  // A 90-degree view holds three rays of 45 degrees: rays 7, 0, 1 hold 3.0.
+  const HeadingValue best = best_heading(profile, kPi / 2);
+  EXPECT_NEAR(best.mass, 3.0, 1e-12);
+  EXPECT_NEAR(best.heading_rad, 0.0, 1e-12);  // centred on ray 0
+  EXPECT_NEAR(mass_in_view(profile, 3 * kPi / 4, kPi / 2), 2.5, 1e-12);
+}
+
+TEST(ViewpointSearch, ThePolicyFacesTheUnsearchedHalfOfTheRoom) {
+  test::HalfSeenRoom w;  // left half known free, right half unknown; robot at (0.5, 1) facing +x
+  // The camera has searched the known half (looked at from where the robot stands).
+  CameraFrame frame;
+  frame.view.X_WS = {0.5, 1.0, kPi};
+  frame.view.max_range_m = 4.0;
+  for (int k = -180; k < 180; ++k) frame.view.beams.push_back({deg_to_rad(k), 4.0});
+  w.objects.integrate_frame(frame);
+  w.pose.yaw_rad = kPi;  // facing the searched wall, so its view holds nothing new
+  w.refresh();
+  PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  auto policy = make_exploration_policy("bayes", po);
+  EXPECT_EQ(policy->name(), "bayes");
+  const auto goal = policy->choose(w.state());
+  ASSERT_TRUE(goal);
+  EXPECT_EQ(goal->reason, "viewpoint");
+  ASSERT_TRUE(goal->heading_rad);
+  // It looks into the unknown half (+x), from the known side.
+  EXPECT_LT(std::abs(wrap_angle_rad(*goal->heading_rad)), kPi / 4);
+  EXPECT_LT(goal->p_W.x(), 2.0);
+  // A viewpoint that sees more mass wins: nearer the unknown half than the robot.
+  const auto o = options(4.0);
+  const double there = best_heading(view_profile(w.grid, w.objects, goal->p_W, o), o.camera_fov_rad).mass;
+  const double here = best_heading(view_profile(w.grid, w.objects, w.pose.position(), o), o.camera_fov_rad).mass;
+  EXPECT_GT(there, here);
+  // It keeps the goal while the goal still holds its mass.
+  const auto again = policy->choose(w.state());
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->cell, goal->cell);
+}
+
+TEST(ViewpointSearch, WithEvidenceItChoosesAsCdos) {
+  test::HalfSeenRoom w;
+  const Eigen::Vector2d object{3.0, 1.8};
+  CameraFrame frame;
+  frame.view = {w.pose, 4.0, {}};
+  const Eigen::Vector2d to = object - w.pose.position();
+  frame.detections = {{std::atan2(to.y(), to.x()), to.norm(), 1.0 / to.norm()}};
+  w.objects.integrate_frame(frame);
+  ASSERT_FALSE(w.objects.evidence_cells().empty());
+  const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  auto bayes = make_exploration_policy("bayes", po);
+  auto cdos = make_exploration_policy("cdos", po);
+  const auto a = bayes->choose(w.state()), b = cdos->choose(w.state());
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->reason, "curiosity");
+  EXPECT_EQ(a->cell, b->cell);
+}
+
+TEST(ViewpointSearch, AMapSentAsProbabilitiesMarksItsMeasuredCellsObserved) {
+  OpenRoom room;
+  const Cell c{10, 10};
+  EXPECT_FALSE(room.objects.observed(room.geo.index(c)));
+  room.objects.set_cell(c, 0.5, 0.0);  // the prior: not measured
+  EXPECT_FALSE(room.objects.observed(room.geo.index(c)));
+  room.objects.set_cell(c, 0.3, 0.0);
+  EXPECT_TRUE(room.objects.observed(room.geo.index(c)));
+  EXPECT_EQ(unsearched_mass(room.grid, room.objects, room.geo.index(c), 0.1), 0.1);
+}
+
+}  // namespace
+}  // namespace ferret
