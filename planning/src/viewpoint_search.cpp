@@ -124,7 +124,7 @@ HeadingValue best_heading(const std::vector<double>& profile, double fov_rad) {
 }
 
 ViewpointSearchPolicy::ViewpointSearchPolicy(const PolicyOptions& options)
-    : options_(options_from(options)), cdos_(options, false) {}
+    : options_(options_from(options)), cdos_(options, false), view_distance_m_(options.view_distance_m) {}
 
 bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const {
   if (!objects.evidence_cells().empty()) return !committed_ && cdos_.keeps_goal(objects, tracker);
@@ -137,6 +137,16 @@ bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects, const FrontierT
 std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationState& s) {
   if (!s.objects.evidence_cells().empty()) {
     committed_.reset();  // evidence: curiosity decides until it is confirmed or dismissed
+    // Evidence farther than evidence_view_min_m: drive to a pose that sees it from
+    // within view_distance_m (the nearest such known-free cell, facing it), as the
+    // oracle does with the truth; nearer, CDOS's curiosity confirms it on its way.
+    const auto evidence = collect_evidence(s.objects);
+    const EvidenceCell& strongest = strongest_evidence(evidence);
+    if ((strongest.p_W - s.X_WG.position()).norm() >= options_.evidence_view_min_m)
+      if (auto goal = viewing_goal(s.grid, s.tracker, s.paths, strongest.p_W, view_distance_m_)) {
+        goal->reason = "evidence";
+        return goal;
+      }
     return cdos_.choose(s);
   }
   if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell)) {

@@ -133,14 +133,39 @@ TEST(ViewpointSearch, ThePolicyFacesTheUnsearchedHalfOfTheRoom) {
   EXPECT_EQ(again->cell, goal->cell);
 }
 
-TEST(ViewpointSearch, WithEvidenceItChoosesAsCdos) {
-  test::HalfSeenRoom w;
-  const Eigen::Vector2d object{3.0, 1.8};
+// One far detection of an object at `object_W`, seen from the robot's pose.
+void detect(test::HalfSeenRoom& w, const Eigen::Vector2d& object_W) {
   CameraFrame frame;
   frame.view = {w.pose, 4.0, {}};
-  const Eigen::Vector2d to = object - w.pose.position();
+  const Eigen::Vector2d to = object_W - w.pose.position();
   frame.detections = {{std::atan2(to.y(), to.x()), to.norm(), 1.0 / to.norm()}};
   w.objects.integrate_frame(frame);
+}
+
+TEST(ViewpointSearch, EvidenceItCanReachIsLookedAtFromTheViewDistance) {
+  test::HalfSeenRoom w;
+  w.pose = {0.2, 0.4, 0.0};
+  w.refresh();
+  const Eigen::Vector2d object{1.8, 1.6};  // in the known half, 2 m away
+  detect(w, object);
+  ASSERT_FALSE(w.objects.evidence_cells().empty());
+  const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  auto bayes = make_exploration_policy("bayes", po);
+  const auto goal = bayes->choose(w.state());
+  ASSERT_TRUE(goal);
+  EXPECT_EQ(goal->reason, "evidence");
+  // Within the view distance of the evidence (which lies within the object's radius of
+  // the object), on the robot's side of it, facing it.
+  EXPECT_LE((goal->p_W - object).norm(), po.view_distance_m + 0.15);
+  EXPECT_LT((goal->p_W - w.pose.position()).norm(), (object - w.pose.position()).norm());
+  ASSERT_TRUE(goal->heading_rad);
+  const Eigen::Vector2d to = object - goal->p_W;
+  EXPECT_NEAR(wrap_angle_rad(*goal->heading_rad - std::atan2(to.y(), to.x())), 0.0, 0.2);
+}
+
+TEST(ViewpointSearch, EvidenceNearOrOutOfReachIsLeftToCdos) {
+  test::HalfSeenRoom w;
+  detect(w, {3.0, 1.8});  // in the unknown half: no known pose within the view distance
   ASSERT_FALSE(w.objects.evidence_cells().empty());
   const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
   auto bayes = make_exploration_policy("bayes", po);
@@ -149,6 +174,15 @@ TEST(ViewpointSearch, WithEvidenceItChoosesAsCdos) {
   ASSERT_TRUE(a && b);
   EXPECT_EQ(a->reason, "curiosity");
   EXPECT_EQ(a->cell, b->cell);
+  // Near evidence (1 m, under evidence_view_min_m): CDOS's choice too.
+  test::HalfSeenRoom near;
+  detect(near, {1.5, 1.1});
+  auto bayes_near = make_exploration_policy("bayes", po);
+  auto cdos_near = make_exploration_policy("cdos", po);
+  const auto c = bayes_near->choose(near.state()), d = cdos_near->choose(near.state());
+  ASSERT_TRUE(c && d);
+  EXPECT_EQ(c->reason, d->reason);
+  EXPECT_EQ(c->cell, d->cell);
 }
 
 TEST(ViewpointSearch, AMapSentAsProbabilitiesMarksItsMeasuredCellsObserved) {

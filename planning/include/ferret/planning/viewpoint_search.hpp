@@ -15,8 +15,11 @@
 //   T(x, th)   = path distance / v_max + turns / yaw rate + overhead_s
 //   goal       = argmax V / T over reachable cells on a lattice and the frontier cells
 //
-// Once there is evidence (a cell with p > 0.5) it chooses as CDOS does: curiosity
-// drives towards the evidence until it is confirmed or dismissed. The chosen viewpoint
+// Once there is evidence (a cell with p > 0.5) it looks at it: the goal is the nearest
+// reachable pose within the view distance of the strongest evidence (where one frame's
+// confidence passes lambda2), facing it, as the oracle does with the truth; evidence
+// nearer than evidence_view_min_m, or none such pose, leaves the choice to CDOS's
+// curiosity. Without evidence the chosen viewpoint
 // is kept while it still holds keep_fraction of the mass it was chosen for.
 
 #include <Eigen/Core>
@@ -48,6 +51,9 @@ struct ViewpointSearchOptions {
   /// A new choice waits while this much of what the camera faces now is unsearched
   /// (its next frames search it on the way; CDOS's rule drives meanwhile).
   double fresh_view_fraction = 0.5;
+  /// Evidence at least this far from the robot is looked at from a pose within the
+  /// view distance of it (viewing_goal); nearer evidence is left to CDOS's curiosity.
+  double evidence_view_min_m = 1.5;
 };
 
 /// m(c) of the header comment, for the cell at `idx`.
@@ -90,6 +96,7 @@ class ViewpointSearchPolicy final : public ExplorationPolicy {
   CdosPolicy cdos_;
   std::optional<ExplorationGoal> committed_;
   double committed_mass_ = 0.0;
+  double view_distance_m_ = 0.95;
 };
 
 }  // namespace ferret
