@@ -53,11 +53,38 @@ double unsearched_mass(const IrGrid& grid, const ObjectMap& objects, std::size_t
   // Measured by the camera without a detection: what the detector's misses leave
   // (the object map's own miss model treats far looks as weak, the detector's recall
   // does not fall with distance inside D_cam).
-  return objects.observed(idx) ? searched_weight : 1.0;
+  if (!objects.observed(idx)) return 1.0;
+  // Each further look leaves searched_weight of what was left: the looks are counted by
+  // the object map's odds (one miss at close range lowers them by the miss likelihood's;
+  // far looks count less), the first look whole.
+  const double p = std::clamp(objects.probability_at(idx), 1e-6, 0.5);
+  const double miss = objects.options().miss_likelihood;
+  const double looks = std::log(p / (1.0 - p)) / std::log(miss / (1.0 - miss));
+  return std::pow(searched_weight, std::max(1.0, looks));
+}
+
+void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC, const ViewpointSearchOptions& options,
+                           const std::function<void(std::size_t)>& visit) {
+  const GridGeometry& g = grid.geometry();
+  const int rays = std::max(1, options.rays);
+  const double dphi = kTwoPi / rays;
+  const int half = static_cast<int>(std::floor(0.5 * options.camera_fov_rad / dphi + 1e-9));
+  const int centre = ray_of(X_WC.yaw_rad, rays);
+  const Eigen::Vector2d p = X_WC.position();
+  for (int d = -half; d <= half; ++d) {
+    const double phi = (centre + d) * dphi;
+    const Eigen::Vector2d to = p + options.camera_range_m * Eigen::Vector2d(std::cos(phi), std::sin(phi));
+    trace_ray(g, p, to, [&](Cell c, double) {
+      const std::size_t idx = g.index(c);
+      if (grid.label_at(idx) == GridLabel::kOccupied) return false;
+      visit(idx);
+      return true;
+    });
+  }
 }
 
 std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, const Eigen::Vector2d& p_W,
-                                 const ViewpointSearchOptions& options) {
+                                 const ViewpointSearchOptions& options, const std::vector<std::uint8_t>& unseeable) {
   const GridGeometry& g = grid.geometry();
   const int rays = std::max(1, options.rays);
   const double dphi = kTwoPi / rays;
@@ -69,7 +96,7 @@ std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, c
   for (int k = 0; k < rays; ++k) {
     const double phi = k * dphi;
     const Eigen::Vector2d to = p_W + options.camera_range_m * Eigen::Vector2d(std::cos(phi), std::sin(phi));
-    double sum = 0.0, mass = 0.0, entry_m = 0.0;
+    double sum = 0.0, mass = 0.0, entry_m = 0.0, transmission = 1.0;
     const auto close_cell = [&](double exit_m) {  // the cell entered at entry_m, left at exit_m
       const double r_mid = 0.5 * (entry_m + exit_m);
       sum += mass * (exit_m - entry_m) * r_mid * per_m2;
@@ -83,7 +110,11 @@ std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, c
         blocked = true;
         return false;
       }
-      mass = unsearched_mass(grid, objects, idx, options.searched_weight);
+      mass = !unseeable.empty() && unseeable[idx] != 0
+                 ? 0.0
+                 : transmission * unsearched_mass(grid, objects, idx, options.searched_weight);
+      // An unknown cell may hold what ends the view: the view beyond it is worth less.
+      if (grid.label_at(idx) == GridLabel::kUnknown) transmission *= 1.0 - options.unknown_block_probability;
       return true;
     });
     if (!blocked) close_cell(std::min(options.camera_range_m, distance_to_edge_m(g, p_W, phi)));
@@ -126,6 +157,22 @@ HeadingValue best_heading(const std::vector<double>& profile, double fov_rad) {
 ViewpointSearchPolicy::ViewpointSearchPolicy(const PolicyOptions& options)
     : options_(options_from(options)), cdos_(options, false), view_distance_m_(options.view_distance_m) {}
 
+void ViewpointSearchPolicy::goal_done() {
+  if (committed_ && committed_->heading_rad) {
+    const Pose2 view{committed_->p_W.x(), committed_->p_W.y(), *committed_->heading_rad};
+    visited_.push_back(view);
+    // Reached (not given up): what its view did not show, no view of it can.
+    if (grid_ && objects_ && (last_robot_W_ - committed_->p_W).norm() <= options_.revisit_radius_m) {
+      if (unseeable_.empty()) unseeable_.assign(grid_->geometry().size(), 0);
+      for_each_cell_in_view(*grid_, view, options_, [&](std::size_t idx) {
+        if (!objects_->observed(idx)) unseeable_[idx] = 1;
+      });
+    }
+  }
+  committed_.reset();
+  cdos_.goal_done();
+}
+
 bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const {
   if (!objects.evidence_cells().empty()) return !committed_ && cdos_.keeps_goal(objects, tracker);
   // Without evidence the viewpoint is kept by choose() (its mass is looked at again
@@ -135,6 +182,9 @@ bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects, const FrontierT
 }
 
 std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationState& s) {
+  grid_ = &s.grid;
+  objects_ = &s.objects;
+  last_robot_W_ = s.X_WG.position();
   if (!s.objects.evidence_cells().empty()) {
     committed_.reset();  // evidence: curiosity decides until it is confirmed or dismissed
     // Evidence farther than evidence_view_min_m: drive to a pose that sees it from
@@ -150,7 +200,7 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     return cdos_.choose(s);
   }
   if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell)) {
-    const auto profile = view_profile(s.grid, s.objects, committed_->p_W, options_);
+    const auto profile = view_profile(s.grid, s.objects, committed_->p_W, options_, unseeable_);
     const double mass = mass_in_view(profile, committed_->heading_rad.value_or(0.0), options_.camera_fov_rad);
     if (mass >= options_.keep_fraction * committed_mass_ && mass > 0.0) return committed_;
   }
@@ -200,9 +250,14 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const Exp
   double best_rate = 0.0;
   for (const Cell& c : candidates) {
     const Eigen::Vector2d q = g.center(c);
-    const auto profile = view_profile(s.grid, s.objects, q, options_);
+    const auto profile = view_profile(s.grid, s.objects, q, options_, unseeable_);
     const HeadingValue view = best_heading(profile, options_.camera_fov_rad);
     if (view.mass <= 1e-9) continue;
+    const bool seen_from_here = std::any_of(visited_.begin(), visited_.end(), [&](const Pose2& v) {
+      return (v.position() - q).norm() < options_.revisit_radius_m &&
+             std::abs(wrap_angle_rad(v.yaw_rad - view.heading_rad)) < 0.5 * options_.camera_fov_rad;
+    });
+    if (seen_from_here) continue;
     // Turning to leave, driving, turning to face the view (the arrival heading taken as
     // the straight line's: the path's own bends are not priced).
     const Eigen::Vector2d to = q - p;

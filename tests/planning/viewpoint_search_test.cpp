@@ -191,9 +191,72 @@ TEST(ViewpointSearch, AMapSentAsProbabilitiesMarksItsMeasuredCellsObserved) {
   EXPECT_FALSE(room.objects.observed(room.geo.index(c)));
   room.objects.set_cell(c, 0.5, 0.0);  // the prior: not measured
   EXPECT_FALSE(room.objects.observed(room.geo.index(c)));
-  room.objects.set_cell(c, 0.3, 0.0);
+  room.objects.set_cell(c, 0.45, 0.0);  // one far look: counted as one whole look
   EXPECT_TRUE(room.objects.observed(room.geo.index(c)));
-  EXPECT_EQ(unsearched_mass(room.grid, room.objects, room.geo.index(c), 0.1), 0.1);
+  EXPECT_NEAR(unsearched_mass(room.grid, room.objects, room.geo.index(c), 0.1), 0.1, 1e-12);
+  // Odds of 0.3 / 0.7 are logit(0.3) / logit(0.4) = 2.090 close looks (miss likelihood
+  // 0.4): 0.1^2.090 = 0.00813 of the mass is left.
+  room.objects.set_cell(c, 0.3, 0.0);
+  EXPECT_NEAR(unsearched_mass(room.grid, room.objects, room.geo.index(c), 0.1), 0.008133, 1e-5);
+}
+
+TEST(ViewpointSearch, EveryLookLowersTheMassFurther) {
+  OpenRoom room;
+  const Cell c = room.geo.cell_at(4.5, 4.0);  // 0.5 m ahead of the camera
+  const std::size_t idx = room.geo.index(c);
+  double before = unsearched_mass(room.grid, room.objects, idx, 0.1);
+  EXPECT_EQ(before, 1.0);
+  for (int look = 0; look < 3; ++look) {
+    CameraFrame frame;  // from a new viewpoint each time (the object map gates repeats)
+    frame.time_s = 2.0 * look;
+    frame.view = {{4.0, 4.0 - 0.1 * look, 0.0}, 2.0, {}};
+    for (int k = -45; k <= 45; ++k) frame.view.beams.push_back({deg_to_rad(k), 2.0});
+    room.objects.integrate_frame(frame);
+    const double after = unsearched_mass(room.grid, room.objects, idx, 0.1);
+    EXPECT_LT(after, before) << "look " << look;
+    before = after;
+  }
+  EXPECT_LT(before, 0.01);
+}
+
+TEST(ViewpointSearch, UnknownCellsDimTheViewBeyondThem) {
+  OpenRoom room;
+  auto o = options(2.0);
+  o.unknown_block_probability = 0.02;
+  const double open = mass_in_view(view_profile(room.grid, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
+  // The same space unknown to G (a grid nothing was integrated into): each cell's view is
+  // dimmed by the unknown cells before it.
+  const IrGrid unknown(room.geo, {});
+  const double dim = mass_in_view(view_profile(unknown, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
+  EXPECT_LT(dim, 0.6 * open);
+  EXPECT_GT(dim, 0.2 * open);  // about 0.98^(r / 5 cm) over the area: ~0.45 of it at 2 m
+}
+
+TEST(ViewpointSearch, AReachedViewpointIsNotChosenAgainNorWhatItCouldNotShow) {
+  test::HalfSeenRoom w;
+  CameraFrame frame;
+  frame.view.X_WS = {0.5, 1.0, kPi};
+  frame.view.max_range_m = 4.0;
+  for (int k = -180; k < 180; ++k) frame.view.beams.push_back({deg_to_rad(k), 4.0});
+  w.objects.integrate_frame(frame);
+  w.pose.yaw_rad = kPi;
+  w.refresh();
+  auto policy = make_exploration_policy("bayes", PolicyOptions::from(MissionConfig{}, 4.0, 2.0));
+  const auto first = policy->choose(w.state());
+  ASSERT_TRUE(first && first->heading_rad);
+  // The robot gets there and faces the view; its camera shows nothing of it (as if a
+  // wall G has not seen stood right in front of it).
+  w.pose = {first->p_W.x(), first->p_W.y(), *first->heading_rad};
+  w.refresh();
+  (void)policy->choose(w.state());  // keeps the goal; remembers where the robot is
+  policy->goal_done();
+  const auto second = policy->choose(w.state());
+  ASSERT_TRUE(second);
+  EXPECT_GT((second->p_W - first->p_W).norm() + std::abs(wrap_angle_rad(*second->heading_rad - *first->heading_rad)),
+            0.3);
+  // What the first view held is no longer counted: the second view's mass is not the
+  // first's region again (it faces elsewhere or sees less of it).
+  EXPECT_NE(second->cell, first->cell);
 }
 
 }  // namespace

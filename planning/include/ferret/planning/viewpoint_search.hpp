@@ -7,11 +7,14 @@
 // next goal is the viewpoint (a reachable pose and heading) that brings the most of the
 // remaining probability mass into the camera's view per second of travel:
 //
-//   m(c)       = 0 (G occupied) | searched_weight (the camera measured c) | 1 (otherwise)
+//   m(c)       = 0 (G occupied) | 1 (the camera never measured c) | searched_weight^k
+//                after k looks without a detection (k >= 1, counted by the object map's
+//                odds, which hold every frame's evidence on the cell)
 //   V(x, th)   = sum of m(c) over the cells the camera sees from x facing th: within
-//                D_cam and the field of view, on a line of sight through G that no
-//                occupied cell blocks (unknown cells let the view through: they are
-//                what is left to see), each weighted by the area its ray stands for
+//                D_cam and the field of view, on a line of sight through G that an
+//                occupied cell ends and each unknown cell dims by (1 - 0.02) (the
+//                clutter the IR has not met yet), each weighted by the area of the view
+//                it holds
 //   T(x, th)   = path distance / v_max + turns / yaw rate + overhead_s
 //   goal       = argmax V / T over reachable cells on a lattice and the frontier cells
 //
@@ -19,10 +22,13 @@
 // reachable pose within the view distance of the strongest evidence (where one frame's
 // confidence passes lambda2), facing it, as the oracle does with the truth; evidence
 // nearer than evidence_view_min_m, or none such pose, leaves the choice to CDOS's
-// curiosity. Without evidence the chosen viewpoint
-// is kept while it still holds keep_fraction of the mass it was chosen for.
+// curiosity. Without evidence the chosen viewpoint is kept while it still holds
+// keep_fraction of the mass it was chosen for; once reached it is not chosen again, and
+// what its view did not show holds no mass from then on (hidden by what G has not seen).
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -38,10 +44,16 @@ class ObjectMap;
 struct ViewpointSearchOptions {
   double camera_fov_rad = 1.5707963267948966;  ///< the object camera's horizontal field of view
   double camera_range_m = 4.0;                 ///< D_cam
-  /// Mass left in a cell the camera measured without a detection: 1 - the detector's
-  /// recall (the simulated detector's detection_probability is 0.9 within D_cam).
+  /// Mass a look without a detection leaves in a cell: 1 - the detector's recall (the
+  /// simulated detector's detection_probability is 0.9 within D_cam). The first look
+  /// counts whole wherever in D_cam it was; further looks are counted by the object
+  /// map's odds (unsearched_mass).
   double searched_weight = 0.1;
   int rays = 72;                 ///< rays of a viewpoint's 360-degree profile
+  /// The chance that an unknown cell of G ends the camera's view (each cell's share of
+  /// the clutter the IR has not seen yet): the view through n unknown cells is worth
+  /// (1 - this)^n.
+  double unknown_block_probability = 0.02;
   double lattice_m = 0.5;        ///< spacing of the candidate viewpoints on known free ground
   int max_frontier_candidates = 64;  ///< frontier cells also tried (evenly subsampled)
   double max_velocity_mps = 2.0;
@@ -54,6 +66,9 @@ struct ViewpointSearchOptions {
   /// Evidence at least this far from the robot is looked at from a pose within the
   /// view distance of it (viewing_goal); nearer evidence is left to CDOS's curiosity.
   double evidence_view_min_m = 1.5;
+  /// A candidate this near a viewpoint already reached, facing within half the field of
+  /// view of its heading, is not chosen again.
+  double revisit_radius_m = 0.5;
 };
 
 /// m(c) of the header comment, for the cell at `idx`.
@@ -61,10 +76,16 @@ struct ViewpointSearchOptions {
                                      double searched_weight);
 
 /// The mass each of `options.rays` rays (ray k at bearing 2 pi k / rays in the world
-/// frame) brings into view from p_W, area-weighted.
+/// frame) brings into view from p_W, area-weighted. Cells flagged in `unseeable` (one
+/// byte a cell, or empty) hold none.
 [[nodiscard]] std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects,
                                                const Eigen::Vector2d& p_W,
-                                               const ViewpointSearchOptions& options);
+                                               const ViewpointSearchOptions& options,
+                                               const std::vector<std::uint8_t>& unseeable = {});
+/// Calls visit(idx) for every cell the camera would see from `X_WC` (its field of view,
+/// D_cam, lines of sight that G's occupied cells end).
+void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC, const ViewpointSearchOptions& options,
+                           const std::function<void(std::size_t)>& visit);
 
 struct HeadingValue {
   double heading_rad = 0.0;
@@ -81,10 +102,8 @@ class ViewpointSearchPolicy final : public ExplorationPolicy {
   explicit ViewpointSearchPolicy(const PolicyOptions& options);
   [[nodiscard]] std::string_view name() const override { return "bayes"; }
   [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
-  void goal_done() override {
-    committed_.reset();
-    cdos_.goal_done();
-  }
+  /// The viewpoint was reached (or given up): it is not chosen again (see visited_).
+  void goal_done() override;
   [[nodiscard]] bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const override;
   [[nodiscard]] const ViewpointSearchOptions& options() const { return options_; }
 
@@ -97,6 +116,19 @@ class ViewpointSearchPolicy final : public ExplorationPolicy {
   std::optional<ExplorationGoal> committed_;
   double committed_mass_ = 0.0;
   double view_distance_m_ = 0.95;
+  /// Viewpoints reached or given up. What a view still holds there is mass the camera
+  /// cannot reach from it (behind a wall G has not seen, which the view's unknown
+  /// cells let through): chosen again, the robot would shuttle between such views.
+  std::vector<Pose2> visited_;
+  /// Cells that were in view of a viewpoint the robot stood at, and that its camera did
+  /// not measure: something G has not seen hides them there (the inside of a box whose
+  /// sides the IR has not met). They hold no mass from then on, or the robot would
+  /// keep coming back for what no view of it can show.
+  std::vector<std::uint8_t> unseeable_;
+  Eigen::Vector2d last_robot_W_ = Eigen::Vector2d::Constant(1e9);
+  // The maps of the last choice (the caller's, alive for the search): goal_done() reads them.
+  const IrGrid* grid_ = nullptr;
+  const ObjectMap* objects_ = nullptr;
 };
 
 }  // namespace ferret
