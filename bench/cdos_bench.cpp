@@ -89,7 +89,9 @@ void run_cycles(benchmark::State& state, const char* method, Scene& scene) {
                              scene.sensors.ir_fov_rad,
                              scene.sensors.ir_range_m,
                              std::nullopt};
-    policy->goal_done();  // choose afresh every cycle
+    // Choose afresh every cycle, as a new policy would: goal_done() would also tell
+    // bayes each time that its goal was reached, and its list of viewpoints seen grows.
+    policy = make_exploration_policy(method, options);
     auto goal = policy->choose(s);
     benchmark::DoNotOptimize(goal);
     evidence = scene.objects.evidence_cells().size();

@@ -48,19 +48,28 @@ ViewpointSearchOptions options_from(const PolicyOptions& p) {
 
 }  // namespace
 
-double unsearched_mass(const IrGrid& grid, const ObjectMap& objects, std::size_t idx, double searched_weight) {
+namespace {
+// 1 / logit(miss likelihood): log-odds to looks (one close miss is one look).
+double looks_per_log_odds(const ObjectMap& objects) {
+  const double miss = objects.options().miss_likelihood;
+  return 1.0 / std::log(miss / (1.0 - miss));
+}
+
+double mass_of(const IrGrid& grid, const ObjectMap& objects, std::size_t idx, double searched_weight,
+               double looks_per_log_odds) {
   if (grid.label_at(idx) == GridLabel::kOccupied) return 0.0;
-  // Measured by the camera without a detection: what the detector's misses leave
-  // (the object map's own miss model treats far looks as weak, the detector's recall
-  // does not fall with distance inside D_cam).
   if (!objects.observed(idx)) return 1.0;
   // Each further look leaves searched_weight of what was left: the looks are counted by
   // the object map's odds (one miss at close range lowers them by the miss likelihood's;
-  // far looks count less), the first look whole.
-  const double p = std::clamp(objects.probability_at(idx), 1e-6, 0.5);
-  const double miss = objects.options().miss_likelihood;
-  const double looks = std::log(p / (1.0 - p)) / std::log(miss / (1.0 - miss));
-  return std::pow(searched_weight, std::max(1.0, looks));
+  // far looks count less), the first look whole. Most cells were looked at once or
+  // from afar (looks <= 1): no power to take.
+  const double looks = std::min(0.0, static_cast<double>(objects.log_odds_at(idx))) * looks_per_log_odds;
+  return looks <= 1.0 ? searched_weight : std::pow(searched_weight, looks);
+}
+}  // namespace
+
+double unsearched_mass(const IrGrid& grid, const ObjectMap& objects, std::size_t idx, double searched_weight) {
+  return mass_of(grid, objects, idx, searched_weight, looks_per_log_odds(objects));
 }
 
 void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC, const ViewpointSearchOptions& options,
@@ -92,6 +101,7 @@ std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, c
   // the sector's area in that cell: in cells, length * r * dphi / resolution^2. (Each
   // cell a ray touches counted whole would count diagonal rays up to 1.4 times over.)
   const double per_m2 = dphi / (g.resolution_m * g.resolution_m);
+  const double looks_per_m = looks_per_log_odds(objects);
   std::vector<double> profile(static_cast<std::size_t>(rays), 0.0);
   for (int k = 0; k < rays; ++k) {
     const double phi = k * dphi;
@@ -112,7 +122,7 @@ std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, c
       }
       mass = !unseeable.empty() && unseeable[idx] != 0
                  ? 0.0
-                 : transmission * unsearched_mass(grid, objects, idx, options.searched_weight);
+                 : transmission * mass_of(grid, objects, idx, options.searched_weight, looks_per_m);
       // An unknown cell may hold what ends the view: the view beyond it is worth less.
       if (grid.label_at(idx) == GridLabel::kUnknown) transmission *= 1.0 - options.unknown_block_probability;
       return true;

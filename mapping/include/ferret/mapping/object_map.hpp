@@ -95,6 +95,8 @@ class ObjectMap {
   [[nodiscard]] const Options& options() const { return options_; }
   [[nodiscard]] double probability(Cell c) const { return probability_at(geometry_.index(c)); }
   [[nodiscard]] double probability_at(std::size_t idx) const;
+  /// The cell's log-odds, logit(p) (0: the prior; clamped as fusion clamps).
+  [[nodiscard]] float log_odds_at(std::size_t idx) const { return log_odds_[idx]; }
   /// The label of a probability (paper eq. (cap_O)).
   [[nodiscard]] ObjectLabel label_of(double p) const;
   [[nodiscard]] ObjectLabel label(Cell c) const { return label_of(probability(c)); }
