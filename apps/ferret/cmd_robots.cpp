@@ -91,12 +91,6 @@ RobotOnHardwareOptions hardware_options(const Options& o) {
   return {o.setup.mission, o.link_bind, o.link_peer, o.duration_s, o.seed, o.quiet};
 }
 
-void print_transitions(TransitionLog& log, bool quiet) {
-  log.on_transition([quiet](const Transition& t) {
-    if (!quiet) std::fprintf(stderr, "%s\n", TransitionLog::format(t).c_str());
-  });
-}
-
 // --- sim-world ---------------------------------------------------------------------
 
 void run_sim_world_command(const Options& o) {

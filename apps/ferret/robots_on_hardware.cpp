@@ -46,12 +46,6 @@ link::UdpLink open_link(const RobotOnHardwareOptions& o, std::string_view bind, 
   return link::UdpLink(u);
 }
 
-void print_transitions(TransitionLog& log, bool quiet) {
-  log.on_transition([quiet](const Transition& t) {
-    if (!quiet) std::fprintf(stderr, "%s\n", TransitionLog::format(t).c_str());
-  });
-}
-
 // Sends what the session has to send; a failed send is the lossy link's business.
 void send_outgoing(link::UdpLink& udp, link::LinkSession& session) {
   for (const auto& datagram : session.take_outgoing()) (void)udp.send(datagram);
@@ -86,6 +80,12 @@ std::unique_ptr<tether::Winch> bring_up_winch(const MissionSetup& setup, const s
 }
 
 }  // namespace
+
+void print_transitions(TransitionLog& log, bool quiet) {
+  log.on_transition([quiet](const Transition& t) {
+    if (!quiet) std::fprintf(stderr, "%s\n", TransitionLog::format(t).c_str());
+  });
+}
 
 int print_uav_outcome(const UavMission& mission, double time_s) {
   int retrieved = 0, dropped = 0;

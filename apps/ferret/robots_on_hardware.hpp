@@ -10,6 +10,7 @@
 #include "mission_setup.hpp"
 
 namespace ferret {
+class TransitionLog;
 class UavMission;
 }
 
@@ -33,6 +34,9 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
 /// the miniUGV over the link; the mission from take-off to its end at 50 Hz. Prints the
 /// outcome as the simulated `ferret uav` does.
 void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions& o);
+
+/// Prints each transition on stderr as it happens (unless quiet): a robot process's log.
+void print_transitions(TransitionLog& log, bool quiet);
 
 /// Prints the UAV mission's outcome (the summary both `ferret uav` modes end with);
 /// returns the objects retrieved.

@@ -46,9 +46,6 @@ ViewpointSearchOptions options_from(const PolicyOptions& p) {
   return o;
 }
 
-}  // namespace
-
-namespace {
 // 1 / logit(miss likelihood): log-odds to looks (one close miss is one look).
 double looks_per_log_odds(const ObjectMap& objects) {
   const double miss = objects.options().miss_likelihood;
