@@ -40,6 +40,7 @@ void IrGrid::set_label(std::size_t idx, GridLabel label) {
   const auto old = static_cast<GridLabel>(label_[idx]);
   if (old == label) return;
   label_[idx] = static_cast<std::uint8_t>(label);
+  label_revisions_.touch(idx);
   if (!changed_flag_[idx]) {
     changed_flag_[idx] = 1;
     changed_.push_back(idx);

@@ -84,6 +84,7 @@ void ObjectMap::fuse(Cell c, double p_measurement) {
   const std::size_t idx = geometry_.index(c);
   float& l = log_odds_[idx];
   l = std::clamp(static_cast<float>(l + logit(p_measurement)), -l_clamp_, l_clamp_);
+  revisions_.touch(idx);
   track_evidence(idx);
 }
 
@@ -94,6 +95,7 @@ void ObjectMap::set_cell(Cell c, double probability, double last_confidence) {
   last_conf_[idx] = static_cast<float>(std::clamp(last_confidence, 0.0, 1.0));
   // A cell whose probability is not the prior's was measured where the map was made.
   if (std::abs(p - 0.5) > 1e-6 && !observed(idx)) last_time_[idx] = 0.0f;
+  revisions_.touch(idx);
   track_evidence(idx);
 }
 
@@ -123,6 +125,7 @@ void ObjectMap::remember_viewpoint(std::size_t idx, const Pose2& X_WC, double ti
   last_x_[idx] = static_cast<float>(X_WC.x_m);
   last_y_[idx] = static_cast<float>(X_WC.y_m);
   last_yaw_[idx] = static_cast<float>(X_WC.yaw_rad);
+  if (!observed(idx)) revisions_.touch(idx);  // its mass in a search changes (unobserved to observed)
   last_time_[idx] = static_cast<float>(time_s);
 }
 

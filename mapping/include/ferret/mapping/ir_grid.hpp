@@ -16,6 +16,7 @@
 
 #include "ferret/core/grid.hpp"
 #include "ferret/core/pose.hpp"
+#include "ferret/mapping/block_revisions.hpp"
 
 namespace ferret {
 
@@ -124,6 +125,8 @@ class IrGrid {
   }
   /// Cells whose label changed since the last call (each index once).
   [[nodiscard]] std::vector<std::size_t> take_changed_cells();
+  /// Where and when labels changed, for readers that keep what they computed from them.
+  [[nodiscard]] const BlockRevisions& label_revisions() const { return label_revisions_; }
 
  private:
   void set_label(std::size_t idx, GridLabel label);
@@ -137,6 +140,7 @@ class IrGrid {
   std::vector<Cell> inflation_offsets_;
   std::vector<std::size_t> changed_;
   std::vector<std::uint8_t> changed_flag_;
+  BlockRevisions label_revisions_{geometry_};
   // Per-cell stamps of the scan being integrated (one update per cell per scan).
   std::vector<std::uint32_t> hit_stamp_, free_stamp_;
   std::uint32_t scan_id_ = 0;

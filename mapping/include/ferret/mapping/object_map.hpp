@@ -108,6 +108,9 @@ class ObjectMap {
   [[nodiscard]] bool observed(std::size_t idx) const { return last_time_[idx] > -1e29f; }
   /// Cells with object evidence (p > 0.5), in no particular order.
   [[nodiscard]] const std::vector<std::size_t>& evidence_cells() const { return evidence_; }
+  /// Where and when cells changed (their odds, or their first observation), for readers
+  /// that keep what they computed from them.
+  [[nodiscard]] const BlockRevisions& revisions() const { return revisions_; }
   /// The most probable cell once one has passed lambda2.
   [[nodiscard]] std::optional<Cell> found_cell() const;
 
@@ -125,6 +128,7 @@ class ObjectMap {
   std::vector<std::int32_t> evidence_pos_;  ///< index into evidence_, -1 if absent
   std::vector<std::size_t> evidence_;
   std::vector<std::uint32_t> stamp_;  ///< frame stamps: one update per cell per frame
+  BlockRevisions revisions_{geometry_};
   std::uint32_t frame_id_ = 0;
 };
 
