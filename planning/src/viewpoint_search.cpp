@@ -18,9 +18,9 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 double direction_rad(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
 
-// Along the ray from p at bearing phi, the distance to where it leaves the map.
-double distance_to_edge_m(const GridGeometry& g, const Eigen::Vector2d& p, double phi) {
-  const double c = std::cos(phi), s = std::sin(phi);
+// Along the ray from p in the unit direction u, the distance to where it leaves the map.
+double distance_to_edge_m(const GridGeometry& g, const Eigen::Vector2d& p, const Eigen::Vector2d& u) {
+  const double c = u.x(), s = u.y();
   const double x0 = g.origin_x_m, x1 = g.origin_x_m + g.width * g.resolution_m;
   const double y0 = g.origin_y_m, y1 = g.origin_y_m + g.height * g.resolution_m;
   double t = std::numeric_limits<double>::infinity();
@@ -29,6 +29,14 @@ double distance_to_edge_m(const GridGeometry& g, const Eigen::Vector2d& p, doubl
   if (s > 1e-12) t = std::min(t, (y1 - p.y()) / s);
   if (s < -1e-12) t = std::min(t, (y0 - p.y()) / s);
   return std::max(0.0, t);
+}
+
+// The unit direction of each of `rays` rays, ray k at bearing 2 pi k / rays.
+std::vector<Eigen::Vector2d> ray_directions(int rays) {
+  const double dphi = kTwoPi / rays;
+  std::vector<Eigen::Vector2d> u(static_cast<std::size_t>(rays));
+  for (int k = 0; k < rays; ++k) u[static_cast<std::size_t>(k)] = {std::cos(k * dphi), std::sin(k * dphi)};
+  return u;
 }
 
 int ray_of(double bearing_rad, int rays) {
@@ -89,20 +97,23 @@ void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC, const Viewpoin
   }
 }
 
-std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, const Eigen::Vector2d& p_W,
-                                 const ViewpointSearchOptions& options, const std::vector<std::uint8_t>& unseeable) {
+namespace {
+// view_profile with m(c) from `mass_at(idx)` (the unseeable cells already 0).
+// `directions` is ray_directions(options.rays).
+template <class MassAt>
+std::vector<double> profile_with(const IrGrid& grid, const Eigen::Vector2d& p_W, const ViewpointSearchOptions& options,
+                                 const std::vector<Eigen::Vector2d>& directions, MassAt&& mass_at) {
   const GridGeometry& g = grid.geometry();
-  const int rays = std::max(1, options.rays);
+  const int rays = static_cast<int>(directions.size());
   const double dphi = kTwoPi / rays;
   // The ray's length inside a cell, times the arc r * dphi its sector is wide there, is
   // the sector's area in that cell: in cells, length * r * dphi / resolution^2. (Each
   // cell a ray touches counted whole would count diagonal rays up to 1.4 times over.)
   const double per_m2 = dphi / (g.resolution_m * g.resolution_m);
-  const double looks_per_m = looks_per_log_odds(objects);
   std::vector<double> profile(static_cast<std::size_t>(rays), 0.0);
   for (int k = 0; k < rays; ++k) {
-    const double phi = k * dphi;
-    const Eigen::Vector2d to = p_W + options.camera_range_m * Eigen::Vector2d(std::cos(phi), std::sin(phi));
+    const Eigen::Vector2d& u = directions[static_cast<std::size_t>(k)];
+    const Eigen::Vector2d to = p_W + options.camera_range_m * u;
     double sum = 0.0, mass = 0.0, entry_m = 0.0, transmission = 1.0;
     const auto close_cell = [&](double exit_m) {  // the cell entered at entry_m, left at exit_m
       const double r_mid = 0.5 * (entry_m + exit_m);
@@ -117,17 +128,71 @@ std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, c
         blocked = true;
         return false;
       }
-      mass = !unseeable.empty() && unseeable[idx] != 0
-                 ? 0.0
-                 : transmission * mass_of(grid, objects, idx, options.searched_weight, looks_per_m);
+      mass = transmission * mass_at(idx);
       // An unknown cell may hold what ends the view: the view beyond it is worth less.
       if (grid.label_at(idx) == GridLabel::kUnknown) transmission *= 1.0 - options.unknown_block_probability;
       return true;
     });
-    if (!blocked) close_cell(std::min(options.camera_range_m, distance_to_edge_m(g, p_W, phi)));
+    if (!blocked) close_cell(std::min(options.camera_range_m, distance_to_edge_m(g, p_W, u)));
     profile[static_cast<std::size_t>(k)] = sum;
   }
   return profile;
+}
+}  // namespace
+
+std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, const Eigen::Vector2d& p_W,
+                                 const ViewpointSearchOptions& options, const std::vector<std::uint8_t>& unseeable) {
+  const double looks_per_m = looks_per_log_odds(objects);
+  return profile_with(grid, p_W, options, ray_directions(std::max(1, options.rays)), [&](std::size_t idx) {
+    return !unseeable.empty() && unseeable[idx] != 0 ? 0.0
+                                                     : mass_of(grid, objects, idx, options.searched_weight, looks_per_m);
+  });
+}
+
+std::vector<double> ViewpointSearchPolicy::cached_profile(const IrGrid& grid, const ObjectMap& objects,
+                                                          const Eigen::Vector2d& p_W) {
+  const double looks_per_m = looks_per_log_odds(objects);
+  return profile_with(grid, p_W, options_, directions_, [&](std::size_t idx) {
+    if (memo_stamp_[idx] != memo_generation_) {
+      memo_stamp_[idx] = memo_generation_;
+      memo_mass_[idx] = !unseeable_.empty() && unseeable_[idx] != 0
+                            ? 0.0
+                            : mass_of(grid, objects, idx, options_.searched_weight, looks_per_m);
+    }
+    return memo_mass_[idx];
+  });
+}
+
+HeadingValue ViewpointSearchPolicy::view_from(const IrGrid& grid, const ObjectMap& objects, Cell c) {
+  const GridGeometry& g = grid.geometry();
+  // Every cell a ray from c's centre can reach (D_cam, and a cell for the ray's end).
+  const int reach = static_cast<int>(std::ceil(options_.camera_range_m / g.resolution_m)) + 1;
+  const Cell lo{c.i - reach, c.j - reach}, hi{c.i + reach, c.j + reach};
+  const std::uint64_t unseeable = unseeable_revisions_ ? unseeable_revisions_->revision() : 0;
+  const auto it = keep_views_ ? kept_views_.find(g.index(c)) : kept_views_.end();
+  if (it != kept_views_.end() && grid.label_revisions().unchanged_since(it->second.labels, lo, hi) &&
+      objects.revisions().unchanged_since(it->second.odds, lo, hi) &&
+      (!unseeable_revisions_ || unseeable_revisions_->unchanged_since(it->second.unseeable, lo, hi))) {
+    ++views_kept_;
+    return it->second.view;
+  }
+  ++views_computed_;
+  const HeadingValue view = best_heading(cached_profile(grid, objects, g.center(c)), options_.camera_fov_rad);
+  if (keep_views_)
+    kept_views_[g.index(c)] = {view, grid.label_revisions().revision(), objects.revisions().revision(), unseeable};
+  return view;
+}
+
+void ViewpointSearchPolicy::begin_cycle(std::size_t cells) {
+  if (memo_stamp_.size() != cells) {
+    memo_stamp_.assign(cells, 0);
+    memo_mass_.assign(cells, 0.0);
+    memo_generation_ = 0;
+  }
+  if (++memo_generation_ == 0) {  // wrapped after 2^32 cycles: forget every stamp
+    std::fill(memo_stamp_.begin(), memo_stamp_.end(), 0u);
+    memo_generation_ = 1;
+  }
 }
 
 double mass_in_view(const std::vector<double>& profile, double heading_rad, double fov_rad) {
@@ -161,8 +226,12 @@ HeadingValue best_heading(const std::vector<double>& profile, double fov_rad) {
   return best;
 }
 
-ViewpointSearchPolicy::ViewpointSearchPolicy(const PolicyOptions& options)
-    : options_(options_from(options)), cdos_(options, false), view_distance_m_(options.view_distance_m) {}
+ViewpointSearchPolicy::ViewpointSearchPolicy(const PolicyOptions& options, bool keep_views)
+    : options_(options_from(options)),
+      cdos_(options, false),
+      view_distance_m_(options.view_distance_m),
+      directions_(ray_directions(std::max(1, options_.rays))),
+      keep_views_(keep_views) {}
 
 void ViewpointSearchPolicy::goal_done() {
   if (committed_ && committed_->heading_rad) {
@@ -170,9 +239,15 @@ void ViewpointSearchPolicy::goal_done() {
     visited_.push_back(view);
     // Reached (not given up): what its view did not show, no view of it can.
     if (grid_ && objects_ && (last_robot_W_ - committed_->p_W).norm() <= options_.revisit_radius_m) {
-      if (unseeable_.empty()) unseeable_.assign(grid_->geometry().size(), 0);
+      if (unseeable_.empty()) {
+        unseeable_.assign(grid_->geometry().size(), 0);
+        unseeable_revisions_.emplace(grid_->geometry());
+      }
       for_each_cell_in_view(*grid_, view, options_, [&](std::size_t idx) {
-        if (!objects_->observed(idx)) unseeable_[idx] = 1;
+        if (!objects_->observed(idx) && unseeable_[idx] == 0) {
+          unseeable_[idx] = 1;
+          unseeable_revisions_->touch(idx);
+        }
       });
     }
   }
@@ -189,8 +264,10 @@ bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects, const FrontierT
 }
 
 std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationState& s) {
+  if (grid_ != &s.grid || objects_ != &s.objects) kept_views_.clear();  // other maps: nothing kept holds
   grid_ = &s.grid;
   objects_ = &s.objects;
+  begin_cycle(s.grid.geometry().size());
   last_robot_W_ = s.X_WG.position();
   if (!s.objects.evidence_cells().empty()) {
     committed_.reset();  // evidence: curiosity decides until it is confirmed or dismissed
@@ -207,7 +284,7 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     return cdos_.choose(s);
   }
   if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell)) {
-    const auto profile = view_profile(s.grid, s.objects, committed_->p_W, options_, unseeable_);
+    const auto profile = cached_profile(s.grid, s.objects, committed_->p_W);
     const double mass = mass_in_view(profile, committed_->heading_rad.value_or(0.0), options_.camera_fov_rad);
     if (mass >= options_.keep_fraction * committed_mass_ && mass > 0.0) return committed_;
   }
@@ -253,24 +330,48 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const Exp
     }
   }
   const Eigen::Vector2d p = s.X_WG.position();
+  // Turning to leave, driving, turning to face the view (the arrival heading taken as
+  // the straight line's: the path's own bends are not priced). All but the last turn
+  // is known before the view is: the least time a candidate can take.
+  struct Timed {
+    Cell cell;
+    double along_rad, leave_turn_rad, least_s;
+  };
+  std::vector<Timed> timed;
+  timed.reserve(candidates.size());
+  for (const Cell& c : candidates) {
+    const Eigen::Vector2d to = g.center(c) - p;
+    const bool moves = to.norm() > 1e-6;
+    const double along = moves ? direction_rad(to) : s.X_WG.yaw_rad;
+    const double leave_turn = std::abs(wrap_angle_rad(along - s.X_WG.yaw_rad)) * (moves ? 1.0 : 0.0);
+    timed.push_back({c, along, leave_turn,
+                     s.paths.distance_m(c) / options_.max_velocity_mps + leave_turn / options_.max_yaw_rate_radps +
+                         options_.overhead_s});
+  }
+  // No view holds more than every cell of the field of view's sectors at mass 1, seen
+  // whole (a ray's segments sum to the integral of r dr over at most D_cam): a
+  // candidate whose least time makes even that slower than the best so far cannot win,
+  // nor can any after it in order of that time. The choice is the full scan's.
+  const int rays = static_cast<int>(directions_.size());
+  const double dphi = kTwoPi / rays;
+  const int half = static_cast<int>(std::floor(0.5 * options_.camera_fov_rad / dphi + 1e-9));
+  const double most_mass = (1.0 + 1e-9) * (2 * half + 1) * 0.5 * options_.camera_range_m * options_.camera_range_m *
+                           dphi / (g.resolution_m * g.resolution_m);
+  std::stable_sort(timed.begin(), timed.end(), [](const Timed& a, const Timed& b) { return a.least_s < b.least_s; });
   std::optional<ExplorationGoal> best;
   double best_rate = 0.0;
-  for (const Cell& c : candidates) {
+  for (const Timed& t : timed) {
+    if (best && most_mass / t.least_s < best_rate) break;
+    const Cell& c = t.cell;
     const Eigen::Vector2d q = g.center(c);
-    const auto profile = view_profile(s.grid, s.objects, q, options_, unseeable_);
-    const HeadingValue view = best_heading(profile, options_.camera_fov_rad);
+    const HeadingValue view = view_from(s.grid, s.objects, c);
     if (view.mass <= 1e-9) continue;
     const bool seen_from_here = std::any_of(visited_.begin(), visited_.end(), [&](const Pose2& v) {
       return (v.position() - q).norm() < options_.revisit_radius_m &&
              std::abs(wrap_angle_rad(v.yaw_rad - view.heading_rad)) < 0.5 * options_.camera_fov_rad;
     });
     if (seen_from_here) continue;
-    // Turning to leave, driving, turning to face the view (the arrival heading taken as
-    // the straight line's: the path's own bends are not priced).
-    const Eigen::Vector2d to = q - p;
-    const double along = to.norm() > 1e-6 ? direction_rad(to) : s.X_WG.yaw_rad;
-    const double turns = std::abs(wrap_angle_rad(along - s.X_WG.yaw_rad)) * (to.norm() > 1e-6 ? 1.0 : 0.0) +
-                         std::abs(wrap_angle_rad(view.heading_rad - along));
+    const double turns = t.leave_turn_rad + std::abs(wrap_angle_rad(view.heading_rad - t.along_rad));
     const double time_s = s.paths.distance_m(c) / options_.max_velocity_mps + turns / options_.max_yaw_rate_radps +
                           options_.overhead_s;
     const double rate = view.mass / time_s;

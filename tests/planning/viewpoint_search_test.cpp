@@ -259,5 +259,89 @@ TEST(ViewpointSearch, AReachedViewpointIsNotChosenAgainNorWhatItCouldNotShow) {
   EXPECT_NE(second->cell, first->cell);
 }
 
+// A search in a 12 x 6 m space with a box and a wall: the west half known at the start,
+// the east half found by the IR within 1.5 m of the robot as it drives east, the camera
+// looking 4 m: at each step a fresh choice (the last goal given up, or reached every
+// third step, which marks what its view could not show). The views kept between
+// choices (while no cell within D_cam of them changed) must give exactly the choices
+// of computing every view afresh.
+TEST(ViewpointSearch, KeptViewsChooseExactlyAsViewsComputedAfresh) {
+  const GridGeometry geo{0.0, 0.0, 0.05, 240, 120};
+  IrGrid grid(geo, {});
+  ObjectMap objects(geo, {});
+  FrontierTracker tracker(geo);
+  GridPathPlanner paths(geo);
+  const auto solid = [](const Eigen::Vector2d& p) {
+    return (p.x() > 4.0 && p.x() < 4.6 && p.y() > 2.0 && p.y() < 3.2) ||  // a box
+           (p.x() > 8.0 && p.x() < 8.15 && p.y() > 1.0);                   // a wall with a gap at the bottom
+  };
+  for (int j = 0; j < geo.height; ++j)
+    for (int i = 0; i < geo.width / 2; ++i) grid.update_cell({i, j}, solid(geo.center({i, j})));
+  Pose2 pose{1.0, 3.0, 0.0};
+  FrontierSets sets;
+  // The sensors at `pose`: the ground within 1.5 m revealed (free, or occupied where
+  // solid), the camera's 90-degree, 4 m view looked at without a detection.
+  const auto sense = [&] {
+    const Cell c0 = geo.cell_at(pose.x_m, pose.y_m);
+    for (int dj = -30; dj <= 30; ++dj)
+      for (int di = -30; di <= 30; ++di) {
+        const Cell c{c0.i + di, c0.j + dj};
+        if (!geo.contains(c) || di * di + dj * dj > 30 * 30) continue;
+        grid.update_cell(c, solid(geo.center(c)));
+      }
+    CameraFrame frame;
+    frame.time_s = pose.x_m + pose.y_m;  // every frame is fused
+    frame.view.X_WS = pose;
+    frame.view.max_range_m = 4.0;
+    for (int k = -45; k <= 45; ++k) frame.view.beams.push_back({deg_to_rad(k), 4.0});
+    objects.integrate_frame(frame);
+    tracker.update(grid);
+    paths.compute(grid, geo.cell_at(pose.x_m, pose.y_m), GridPathPlanner::Traversal::kKnownFree);
+    sets = tracker.extract(paths.distances_m(), pose, deg_to_rad(30), 4.0);
+  };
+  const auto state = [&] {
+    return ExplorationState{grid, objects, tracker, sets, paths, pose, {0.0, 0.0}, deg_to_rad(30), 4.0,
+                            std::nullopt};
+  };
+  const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  ViewpointSearchPolicy kept(po, true), afresh(po, false);
+  int compared = 0;
+  for (int step = 0; step < 24; ++step) {
+    pose = {1.0 + 0.45 * step, 3.0 + 1.2 * std::sin(0.9 * step), 2.5 * std::sin(0.7 * step)};
+    if (solid(pose.position())) pose.y_m = 0.6;
+    sense();
+    const auto a = kept.choose(state());
+    const auto b = afresh.choose(state());
+    ASSERT_EQ(a.has_value(), b.has_value()) << "step " << step;
+    if (!a) continue;
+    EXPECT_EQ(a->cell, b->cell) << "step " << step;
+    EXPECT_EQ(a->heading_rad, b->heading_rad) << "step " << step;
+    EXPECT_EQ(a->score, b->score) << "step " << step;
+    EXPECT_EQ(a->reason, b->reason) << "step " << step;
+    ++compared;
+    // Every view on a 0.25 m lattice, kept or not, is the one computed afresh.
+    for (int j = 2; j < geo.height; j += 5)
+      for (int i = 2; i < geo.width; i += 5) {
+        const HeadingValue x = kept.view_from(grid, objects, {i, j}), y = afresh.view_from(grid, objects, {i, j});
+        ASSERT_EQ(x.mass, y.mass) << "step " << step << " cell " << i << "," << j;
+        ASSERT_EQ(x.heading_rad, y.heading_rad) << "step " << step << " cell " << i << "," << j;
+      }
+    if (step % 3 == 2 && a->heading_rad && a->reason == "viewpoint") {
+      // Reached: the robot stands there facing the view, and looks.
+      pose = {a->p_W.x(), a->p_W.y(), *a->heading_rad};
+      sense();
+      (void)kept.choose(state());
+      (void)afresh.choose(state());
+    }
+    kept.goal_done();
+    afresh.goal_done();
+  }
+  EXPECT_GE(compared, 20);
+  // The kept views were used (the test would prove nothing otherwise), and not always.
+  EXPECT_GT(kept.views_kept(), kept.views_computed() / 8);
+  EXPECT_GT(kept.views_computed(), 0u);
+  EXPECT_EQ(afresh.views_kept(), 0u);
+}
+
 }  // namespace
 }  // namespace ferret

@@ -30,9 +30,11 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "ferret/core/grid.hpp"
+#include "ferret/mapping/block_revisions.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/policies.hpp"
 
@@ -99,23 +101,39 @@ struct HeadingValue {
 
 class ViewpointSearchPolicy final : public ExplorationPolicy {
  public:
-  explicit ViewpointSearchPolicy(const PolicyOptions& options);
+  /// keep_views false computes every candidate's view afresh each choice (the tests'
+  /// reference for the kept views, which must choose the same).
+  explicit ViewpointSearchPolicy(const PolicyOptions& options, bool keep_views = true);
   [[nodiscard]] std::string_view name() const override { return "bayes"; }
   [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
   /// The viewpoint was reached (or given up): it is not chosen again (see visited_).
   void goal_done() override;
   [[nodiscard]] bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const override;
   [[nodiscard]] const ViewpointSearchOptions& options() const { return options_; }
+  /// The best view from cell c's centre (best_heading of its view_profile, what the
+  /// robot's reached views could not show left out), kept or computed, on the maps of
+  /// the last choose(), which must be the maps given.
+  [[nodiscard]] HeadingValue view_from(const IrGrid& grid, const ObjectMap& objects, Cell c);
+  /// Candidate views taken from the kept ones, and computed, since construction.
+  [[nodiscard]] std::size_t views_kept() const { return views_kept_; }
+  [[nodiscard]] std::size_t views_computed() const { return views_computed_; }
 
  private:
   std::optional<ExplorationGoal> choose_viewpoint(const ExplorationState& s);
   [[nodiscard]] bool fresh_view(const ExplorationState& s) const;
+  /// A new cycle's maps: the masses remembered from the last one are stale.
+  void begin_cycle(std::size_t cells);
+  /// view_profile with the unseeable cells, each cell's m(c) computed once a cycle (a
+  /// cell is in view of most candidates, and m(c) of a cell looked at twice is a pow).
+  [[nodiscard]] std::vector<double> cached_profile(const IrGrid& grid, const ObjectMap& objects,
+                                                   const Eigen::Vector2d& p_W);
 
   ViewpointSearchOptions options_;
   CdosPolicy cdos_;
   std::optional<ExplorationGoal> committed_;
   double committed_mass_ = 0.0;
   double view_distance_m_ = 0.95;
+  std::vector<Eigen::Vector2d> directions_;  ///< the rays' unit directions (ray_directions)
   /// Viewpoints reached or given up. What a view still holds there is mass the camera
   /// cannot reach from it (behind a wall G has not seen, which the view's unknown
   /// cells let through): chosen again, the robot would shuttle between such views.
@@ -126,6 +144,23 @@ class ViewpointSearchPolicy final : public ExplorationPolicy {
   /// keep coming back for what no view of it can show.
   std::vector<std::uint8_t> unseeable_;
   Eigen::Vector2d last_robot_W_ = Eigen::Vector2d::Constant(1e9);
+  // m(c) of this cycle, valid where memo_stamp_ is memo_generation_ (no pass over the
+  // map to clear it each cycle).
+  std::vector<double> memo_mass_;
+  std::vector<std::uint32_t> memo_stamp_;
+  std::uint32_t memo_generation_ = 0;
+  /// The best view from each candidate cell, kept while no cell within D_cam of it
+  /// changed (its labels, its odds, its being unseeable; the maps' BlockRevisions): a
+  /// frame changes the views near the robot, the rest are taken from here.
+  struct KeptView {
+    HeadingValue view;
+    std::uint64_t labels = 0, odds = 0, unseeable = 0;  ///< the revisions it was computed at
+  };
+  std::unordered_map<std::size_t, KeptView> kept_views_;
+  bool keep_views_ = true;
+  std::size_t views_kept_ = 0, views_computed_ = 0;
+  std::optional<BlockRevisions> unseeable_revisions_;
+
   // The maps of the last choice (the caller's, alive for the search): goal_done() reads them.
   const IrGrid* grid_ = nullptr;
   const ObjectMap* objects_ = nullptr;
