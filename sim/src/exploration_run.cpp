@@ -1,6 +1,8 @@
 #include "ferret/sim/exploration_run.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <optional>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -62,9 +64,14 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start,
     const double t = static_cast<double>(step) * dt;
     const Pose2 pose = base.odometry();
     if (settings.record) result.trajectory.push_back(pose);
-    controller.observe_scan(base.ir_scan());
-    if (controller.frame_due(step)) {
-      if (const auto cell = controller.observe_frame(base.camera_frame(t))) {
+    // The simulated sensors are drawn outside the timed span: on the robot they arrive.
+    const RangeScan scan = base.ir_scan();
+    std::optional<CameraFrame> frame;
+    if (controller.frame_due(step)) frame = base.camera_frame(t);
+    const auto cycle_start = std::chrono::steady_clock::now();
+    controller.observe_scan(scan);
+    if (frame) {
+      if (const auto cell = controller.observe_frame(*frame)) {
         result.found_W = geo.center(*cell);
         result.found =
             (result.found_W - object_W).norm() <= sensors.object_radius_m + 2 * geo.resolution_m;
@@ -79,6 +86,9 @@ EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start,
       break;
     }
     const ExploreController::Command command = controller.decide(step, pose);
+    if (settings.time_decision_cycles && controller.cycle_ran())
+      result.decision_cycle_s.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - cycle_start).count());
     if (command.explored) {
       result.end_reason = "explored";
       result.time_s = t;

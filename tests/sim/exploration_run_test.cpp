@@ -63,6 +63,32 @@ TEST(ExplorationRun, ObjectInViewIsFoundQuicklyAndRecordsTheRun) {
   EXPECT_FALSE(r.decision_log.empty());
 }
 
+// The benchmarks' timing of decision cycles (bench/search_cycle_bench.cpp) times the
+// same search: one time a cycle, at least one a decision, none when not asked.
+TEST(ExplorationRun, TimingTheDecisionCyclesChangesNothing) {
+  const auto map = test::small_hidden_space();
+  for (const char* method : {"bayes", "cdos"}) {
+    auto s = settings(method);
+    s.record = true;
+    const auto plain = run_exploration(map, kStart, kBehindPartition, s, 4);
+    s.time_decision_cycles = true;
+    const auto timed = run_exploration(map, kStart, kBehindPartition, s, 4);
+    EXPECT_TRUE(plain.decision_cycle_s.empty());
+    EXPECT_EQ(timed.time_s, plain.time_s) << method;
+    EXPECT_EQ(timed.path_m, plain.path_m) << method;
+    EXPECT_EQ(timed.decisions, plain.decisions) << method;
+    // A decision is made in a cycle; a cycle runs at most every decision period (0.1 s,
+    // two IR steps) but for a goal dropped on the way (then one at the next step).
+    EXPECT_GE(timed.decision_cycle_s.size(), static_cast<std::size_t>(timed.decisions)) << method;
+    EXPECT_LE(timed.decision_cycle_s.size(), timed.trajectory.size()) << method;
+    EXPECT_GE(timed.decision_cycle_s.size(), static_cast<std::size_t>(timed.time_s)) << method;  // >= 1 a second
+    for (const double t : timed.decision_cycle_s) {
+      EXPECT_GT(t, 0.0);
+      EXPECT_LT(t, 10.0);
+    }
+  }
+}
+
 TEST(ExplorationRun, RejectsUnknownMethodsAndStartsInWalls) {
   const auto map = test::small_hidden_space();
   EXPECT_THROW((void)run_exploration(map, kStart, kBehindPartition, settings("random"), 1),

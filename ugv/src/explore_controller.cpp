@@ -210,6 +210,7 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
 
   const bool periodic = tick % decide_every_ == 0;
   if (decide_now_ || periodic) tracker_->update(*grid_);
+  cycle_ran_ = false;
   // A decision cycle, unless the policy keeps its goal on the evidence of the maps
   // (then the path from the last full cycle is still followed; a full cycle runs at
   // least every kFullDecision_s to refresh it).
@@ -217,6 +218,7 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
       (periodic && (!goal_ || t - last_full_decision_s_ >= kFullDecision_s ||
                     (!goal_is_revisit_ && !policy_->keeps_goal(*objects_, *tracker_))))) {
     decide_now_ = false;
+    cycle_ran_ = true;
     last_full_decision_s_ = t;
     const Cell robot_cell = geo_.cell_at(pose.x_m, pose.y_m);
     planner_->compute(*grid_, robot_cell, GridPathPlanner::Traversal::kKnownFree, escape_m_);

@@ -33,6 +33,9 @@ struct ExplorationSettings {
   bool cdos_candidates_global = false;  ///< cdos option: score F_g, not F_v
   bool cdos_closest_approach = false;   ///< cdos option: d_{t+1} at the closest approach
   bool record = false;                  ///< keep the trajectory, decisions and final maps
+  /// Time each step that ran a decision cycle (EpisodeResult::decision_cycle_s): wall
+  /// time, for benchmarks only; it changes nothing the search does.
+  bool time_decision_cycles = false;
 };
 
 struct EpisodeResult {
@@ -48,6 +51,10 @@ struct EpisodeResult {
   std::shared_ptr<const IrGrid> grid;
   std::shared_ptr<const ObjectMap> objects;
   std::vector<Cell> frontier;  ///< the frontier cells of G at the end
+  /// With ExplorationSettings::time_decision_cycles: the wall time (s) of each step that
+  /// ran a decision cycle, its IR scan and camera frame folded into the maps included
+  /// (what the miniUGV's computer does in that step).
+  std::vector<double> decision_cycle_s;
 };
 
 /// The controller's view of the simulated sensors.

@@ -105,6 +105,9 @@ class ExploreController {
   [[nodiscard]] std::shared_ptr<const IrGrid> grid_ptr() const { return grid_; }
   [[nodiscard]] std::shared_ptr<const ObjectMap> objects_ptr() const { return objects_; }
   [[nodiscard]] int decisions() const { return decisions_; }
+  /// True when the last decide() ran a decision cycle (frontiers, the path field, the
+  /// policy's choice), false when it only followed the path of an earlier one.
+  [[nodiscard]] bool cycle_ran() const { return cycle_ran_; }
   [[nodiscard]] const std::vector<DecisionRecord>& decision_log() const { return decision_log_; }
   /// The frontier cells of G now.
   [[nodiscard]] std::vector<Cell> frontier();
@@ -175,6 +178,7 @@ class ExploreController {
   Pose2 progress_pose_;
   double progress_time_s_ = 0.0;
   int decisions_ = 0;
+  bool cycle_ran_ = false;
   std::vector<DecisionRecord> decision_log_;
   // The tether (with a budget): the driven path (every 5 cm) replayed over the corners
   // of G's occupied cells when they are refreshed, followed tick by tick in between.
