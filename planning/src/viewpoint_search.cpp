@@ -273,10 +273,15 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     committed_.reset();  // evidence: curiosity decides until it is confirmed or dismissed
     // Evidence farther than evidence_view_min_m: drive to a pose that sees it from
     // within view_distance_m (the nearest such known-free cell, facing it), as the
-    // oracle does with the truth; nearer, CDOS's curiosity confirms it on its way.
+    // oracle does with the truth; nearer, or ahead inside the IR fan (F_v lies round
+    // it: CDOS drives at it without stopping short), CDOS's curiosity confirms it on
+    // its way.
     const auto evidence = collect_evidence(s.objects);
     const EvidenceCell& strongest = strongest_evidence(evidence);
-    if ((strongest.p_W - s.X_WG.position()).norm() >= options_.evidence_view_min_m)
+    const Eigen::Vector2d to = strongest.p_W - s.X_WG.position();
+    const bool ahead = to.norm() <= s.ir_range_m &&
+                       std::abs(wrap_angle_rad(direction_rad(to) - s.X_WG.yaw_rad)) <= 0.5 * s.ir_fov_rad;
+    if (!ahead && to.norm() >= options_.evidence_view_min_m)
       if (auto goal = viewing_goal(s.grid, s.tracker, s.paths, strongest.p_W, view_distance_m_)) {
         goal->reason = "evidence";
         return goal;

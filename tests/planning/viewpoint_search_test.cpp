@@ -185,6 +185,37 @@ TEST(ViewpointSearch, EvidenceNearOrOutOfReachIsLeftToCdos) {
   EXPECT_EQ(c->cell, d->cell);
 }
 
+// Far evidence straight ahead, inside the IR fan: CDOS's curiosity drives at it through
+// the frontier cells around it and confirms it on the way; a view of it would stop
+// short. The same evidence off to the side is looked at from the view distance.
+TEST(ViewpointSearch, FarEvidenceInsideTheIrFanIsLeftToCdos) {
+  const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  const Eigen::Vector2d object{1.9, 1.1};
+  for (const double yaw : {0.0, 0.75}) {  // the state's IR fan is 60 degrees: +-30 about the heading
+    test::HalfSeenRoom w;
+    w.pose = {0.2, 1.0, yaw};
+    w.refresh();
+    // 1.7 m away, 3 degrees left of the x axis, in the camera's 90 degrees either way.
+    CameraFrame frame;
+    frame.view = {w.pose, 4.0, {}};
+    const Eigen::Vector2d to = object - w.pose.position();
+    frame.detections = {{wrap_angle_rad(std::atan2(to.y(), to.x()) - yaw), to.norm(), 1.0 / to.norm()}};
+    w.objects.integrate_frame(frame);
+    ASSERT_FALSE(w.objects.evidence_cells().empty());
+    auto bayes = make_exploration_policy("bayes", po);
+    auto cdos = make_exploration_policy("cdos", po);
+    const auto a = bayes->choose(w.state()), b = cdos->choose(w.state());
+    ASSERT_TRUE(a && b);
+    if (yaw == 0.0) {
+      EXPECT_EQ(a->reason, b->reason);
+      EXPECT_EQ(a->cell, b->cell);
+    } else {
+      EXPECT_EQ(a->reason, "evidence");  // 40 degrees off the heading
+      EXPECT_LE((a->p_W - object).norm(), po.view_distance_m + 0.15);
+    }
+  }
+}
+
 TEST(ViewpointSearch, AMapSentAsProbabilitiesMarksItsMeasuredCellsObserved) {
   OpenRoom room;
   const Cell c{10, 10};

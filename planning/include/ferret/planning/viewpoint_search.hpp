@@ -21,8 +21,8 @@
 // Once there is evidence (a cell with p > 0.5) it looks at it: the goal is the nearest
 // reachable pose within the view distance of the strongest evidence (where one frame's
 // confidence passes lambda2), facing it, as the oracle does with the truth; evidence
-// nearer than evidence_view_min_m, or none such pose, leaves the choice to CDOS's
-// curiosity. Without evidence the chosen viewpoint is kept while it still holds
+// nearer than evidence_view_min_m, or inside the IR fan ahead (where CDOS's frontier
+// cells lead straight at it), or no such pose, leaves the choice to CDOS's curiosity. Without evidence the chosen viewpoint is kept while it still holds
 // keep_fraction of the mass it was chosen for; once reached it is not chosen again, and
 // what its view did not show holds no mass from then on (hidden by what G has not seen).
 
