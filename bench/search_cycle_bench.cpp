@@ -58,6 +58,10 @@ void searches(benchmark::State& state, const char* method) {
         cycles_s.insert(cycles_s.end(), r.decision_cycle_s.begin(), r.decision_cycle_s.end());
         found += r.found ? 1 : 0;
         ++runs;
+        if (!r.found)
+          std::fprintf(stderr, "%s, %g x %g m, seed %llu, zone %d, object (%.3f, %.3f): %s after %.1f s\n", method,
+                       o.width_m, o.height_m, static_cast<unsigned long long>(seed), zone, objects.front().x(),
+                       objects.front().y(), r.end_reason.c_str(), r.time_s);
       }
     }
   }
