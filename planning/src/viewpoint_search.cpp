@@ -252,6 +252,7 @@ void ViewpointSearchPolicy::goal_done() {
     }
   }
   committed_.reset();
+  recheck_.reset();
   cdos_.goal_done();
 }
 
@@ -278,6 +279,7 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     // its way.
     const auto evidence = collect_evidence(s.objects);
     const EvidenceCell& strongest = strongest_evidence(evidence);
+    last_evidence_W_ = strongest.p_W;
     const Eigen::Vector2d to = strongest.p_W - s.X_WG.position();
     const bool ahead = to.norm() <= s.ir_range_m &&
                        std::abs(wrap_angle_rad(direction_rad(to) - s.X_WG.yaw_rad)) <= 0.5 * s.ir_fov_rad;
@@ -287,6 +289,10 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
         return goal;
       }
     return cdos_.choose(s);
+  }
+  if (recheck_) {
+    if (s.paths.reachable(recheck_->cell) && !s.tracker.blacklisted(recheck_->cell)) return recheck_;
+    recheck_.reset();
   }
   if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell)) {
     const auto profile = cached_profile(s.grid, s.objects, committed_->p_W);
@@ -298,6 +304,28 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
   // still unsearched (the start, a new room), there is no reason to turn away; CDOS
   // (the rapid rule without evidence) drives on into it.
   if (fresh_view(s)) return cdos_.choose(s);
+  // Evidence the frames dismissed before the robot came near it: when the robot would
+  // turn to a new view and that place is out of the camera's view, it looks at it once
+  // more, from the view distance (a few misses from afar do not make it searched).
+  // While the camera faces unsearched ground (above), or faces the place, its next
+  // frames may see the object again; once they looked from near, it is done.
+  if (last_evidence_W_) {
+    const Eigen::Vector2d at = *last_evidence_W_;
+    const Eigen::Vector2d to = at - s.X_WG.position();
+    const bool far = to.norm() > 1.5 * view_distance_m_;
+    const bool in_view = to.norm() <= options_.camera_range_m &&
+                         std::abs(wrap_angle_rad(direction_rad(to) - s.X_WG.yaw_rad)) <= 0.5 * options_.camera_fov_rad;
+    if (!in_view || !far) last_evidence_W_.reset();
+    const bool rechecked = std::any_of(rechecked_W_.begin(), rechecked_W_.end(),
+                                       [&](const Eigen::Vector2d& r) { return (r - at).norm() < 0.5; });
+    if (!in_view && far && !rechecked)
+      if (auto goal = viewing_goal(s.grid, s.tracker, s.paths, at, view_distance_m_)) {
+        rechecked_W_.push_back(at);
+        goal->reason = "recheck";
+        recheck_ = goal;
+        return recheck_;
+      }
+  }
   if (auto goal = choose_viewpoint(s)) {
     committed_ = goal;
     committed_mass_ = goal->score;  // see choose_viewpoint: the mass, not the rate

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <vector>
 
 #include "exploration_room.hpp"
 
@@ -213,6 +215,65 @@ TEST(ViewpointSearch, FarEvidenceInsideTheIrFanIsLeftToCdos) {
       EXPECT_EQ(a->reason, "evidence");  // 40 degrees off the heading
       EXPECT_LE((a->p_W - object).norm(), po.view_distance_m + 0.15);
     }
+  }
+}
+
+// Evidence the next frames dismiss while the robot is still far from it is looked at
+// once more from the view distance, once, when the robot would turn to a new view and
+// the place is out of its camera's view; not while the camera faces unsearched ground
+// (it drives on) or the place itself (its frames look again), nor when it is near.
+TEST(ViewpointSearch, EvidenceDismissedFromAfarIsLookedAtOnceMore) {
+  const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  const Eigen::Vector2d object{1.8, 1.6};
+  struct Case {
+    Pose2 at;                    // where it saw the object and the frames dismissed it (facing +x)
+    std::vector<double> yaws;    // where it faces at each choice after (the last one decides)
+    bool recheck;
+  };
+  for (const Case& c : {Case{{0.2, 0.4, 0.0}, {-0.6}, true},        // 2 m away, facing what it searched
+                        Case{{0.2, 0.4, 0.0}, {0.5, -0.6}, true},   // facing the place first: later
+                        Case{{0.2, 0.4, 0.0}, {2.0}, false},        // facing the unsearched north-west
+                        Case{{0.2, 0.4, 0.0}, {0.5}, false},        // facing the place
+                        Case{{1.2, 1.2, 0.0}, {-1.2}, false}}) {    // 0.7 m away
+    test::HalfSeenRoom w;
+    w.pose = c.at;
+    w.refresh();
+    detect(w, object);
+    auto bayes = make_exploration_policy("bayes", po);
+    ASSERT_TRUE(bayes->choose(w.state()));  // it has seen the evidence
+    // Frames from here that show the object's cells without a detection, until the
+    // evidence is gone.
+    for (int k = 1; k <= 20 && !w.objects.evidence_cells().empty(); ++k) {
+      CameraFrame frame;
+      frame.time_s = 10.0 * k;
+      frame.view.X_WS = w.pose;
+      frame.view.max_range_m = 4.0;
+      for (int b = -45; b <= 45; ++b) frame.view.beams.push_back({deg_to_rad(b), 4.0});
+      w.objects.integrate_frame(frame);
+    }
+    ASSERT_TRUE(w.objects.evidence_cells().empty());
+    std::optional<ExplorationGoal> goal;
+    for (const double yaw : c.yaws) {
+      w.pose.yaw_rad = yaw;
+      w.refresh();
+      goal = bayes->choose(w.state());
+      ASSERT_TRUE(goal);
+      if (goal->reason != "recheck") bayes->goal_done();
+    }
+    if (!c.recheck) {
+      EXPECT_NE(goal->reason, "recheck") << c.at.x_m << " " << c.yaws.back();
+      continue;
+    }
+    EXPECT_EQ(goal->reason, "recheck") << c.yaws.size();
+    EXPECT_LE((goal->p_W - object).norm(), po.view_distance_m + 0.15);
+    // Kept until reached, then not again.
+    const auto again = bayes->choose(w.state());
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->cell, goal->cell);
+    bayes->goal_done();
+    const auto after = bayes->choose(w.state());
+    ASSERT_TRUE(after);
+    EXPECT_NE(after->reason, "recheck");
   }
 }
 

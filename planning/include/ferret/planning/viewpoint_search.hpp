@@ -22,7 +22,11 @@
 // reachable pose within the view distance of the strongest evidence (where one frame's
 // confidence passes lambda2), facing it, as the oracle does with the truth; evidence
 // nearer than evidence_view_min_m, or inside the IR fan ahead (where CDOS's frontier
-// cells lead straight at it), or no such pose, leaves the choice to CDOS's curiosity. Without evidence the chosen viewpoint is kept while it still holds
+// cells lead straight at it), or no such pose, leaves the choice to CDOS's curiosity.
+// Evidence that later frames dismiss is looked at once more from the view distance when
+// the robot would next turn to a new view, if it is then farther than 1.5 view
+// distances from it (a few misses from afar would otherwise leave the place as searched
+// as any); while its camera faces unsearched ground it drives on as CDOS does. Without evidence the chosen viewpoint is kept while it still holds
 // keep_fraction of the mass it was chosen for; once reached it is not chosen again, and
 // what its view did not show holds no mass from then on (hidden by what G has not seen).
 
@@ -133,6 +137,9 @@ class ViewpointSearchPolicy final : public ExplorationPolicy {
   std::optional<ExplorationGoal> committed_;
   double committed_mass_ = 0.0;
   double view_distance_m_ = 0.95;
+  std::optional<Eigen::Vector2d> last_evidence_W_;  ///< the strongest evidence of the last choice that had some
+  std::optional<ExplorationGoal> recheck_;          ///< a view of dismissed evidence, kept until reached
+  std::vector<Eigen::Vector2d> rechecked_W_;        ///< evidence looked at once more: not again
   std::vector<Eigen::Vector2d> directions_;  ///< the rays' unit directions (ray_directions)
   /// Viewpoints reached or given up. What a view still holds there is mass the camera
   /// cannot reach from it (behind a wall G has not seen, which the view's unknown
