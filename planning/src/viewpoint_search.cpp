@@ -18,6 +18,12 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 double direction_rad(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
 
+// True when p_W lies within range_m of the robot and within half of fov_rad of its heading.
+bool in_sector(const Pose2& X_WG, const Eigen::Vector2d& p_W, double fov_rad, double range_m) {
+  const Eigen::Vector2d to = p_W - X_WG.position();
+  return to.norm() <= range_m && std::abs(wrap_angle_rad(direction_rad(to) - X_WG.yaw_rad)) <= 0.5 * fov_rad;
+}
+
 // Along the ray from p in the unit direction u, the distance to where it leaves the map.
 double distance_to_edge_m(const GridGeometry& g, const Eigen::Vector2d& p, const Eigen::Vector2d& u) {
   const double c = u.x(), s = u.y();
@@ -280,10 +286,8 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     const auto evidence = collect_evidence(s.objects);
     const EvidenceCell& strongest = strongest_evidence(evidence);
     last_evidence_W_ = strongest.p_W;
-    const Eigen::Vector2d to = strongest.p_W - s.X_WG.position();
-    const bool ahead = to.norm() <= s.ir_range_m &&
-                       std::abs(wrap_angle_rad(direction_rad(to) - s.X_WG.yaw_rad)) <= 0.5 * s.ir_fov_rad;
-    if (!ahead && to.norm() >= options_.evidence_view_min_m)
+    const bool ahead = in_sector(s.X_WG, strongest.p_W, s.ir_fov_rad, s.ir_range_m);
+    if (!ahead && (strongest.p_W - s.X_WG.position()).norm() >= options_.evidence_view_min_m)
       if (auto goal = viewing_goal(s.grid, s.tracker, s.paths, strongest.p_W, view_distance_m_)) {
         goal->reason = "evidence";
         return goal;
@@ -311,10 +315,8 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
   // frames may see the object again; once they looked from near, it is done.
   if (last_evidence_W_) {
     const Eigen::Vector2d at = *last_evidence_W_;
-    const Eigen::Vector2d to = at - s.X_WG.position();
-    const bool far = to.norm() > 1.5 * view_distance_m_;
-    const bool in_view = to.norm() <= options_.camera_range_m &&
-                         std::abs(wrap_angle_rad(direction_rad(to) - s.X_WG.yaw_rad)) <= 0.5 * options_.camera_fov_rad;
+    const bool far = (at - s.X_WG.position()).norm() > 1.5 * view_distance_m_;
+    const bool in_view = in_sector(s.X_WG, at, options_.camera_fov_rad, options_.camera_range_m);
     if (!in_view || !far) last_evidence_W_.reset();
     const bool rechecked = std::any_of(rechecked_W_.begin(), rechecked_W_.end(),
                                        [&](const Eigen::Vector2d& r) { return (r - at).norm() < 0.5; });
