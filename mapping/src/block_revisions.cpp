@@ -1,6 +1,7 @@
 #include "ferret/mapping/block_revisions.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 
 namespace ferret {
@@ -15,6 +16,11 @@ BlockRevisions::BlockRevisions(const GridGeometry& geometry, int block_cells)
   blocks_x_ = (width_cells_ + block_cells_ - 1) / block_cells_;
   blocks_y_ = (height_cells_ + block_cells_ - 1) / block_cells_;
   blocks_.assign(static_cast<std::size_t>(blocks_x_) * static_cast<std::size_t>(blocks_y_), 0);
+}
+
+std::uint64_t BlockRevisions::Lineage::next() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
 }
 
 bool BlockRevisions::unchanged_since(std::uint64_t revision, Cell lo, Cell hi) const {

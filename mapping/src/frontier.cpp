@@ -90,14 +90,17 @@ FrontierSets FrontierTracker::extract(std::span<const float> path_distance_m, co
         std::abs(wrap_angle_rad(std::atan2(d.y(), d.x()) - X_WS.yaw_rad)) <= ir_fov_rad / 2)
       out.visible.push_back(c);
   }
-  // Cluster F_g: flood fill over 8-neighbours that are members too.
-  std::vector<std::uint8_t> member_flag(geometry_.size(), 0), seen(geometry_.size(), 0);
-  for (const std::size_t idx : members) member_flag[idx] = 1;
+  // Cluster F_g: flood fill over 8-neighbours that are members too. The marks (1 a
+  // member, 2 a member seen) are cleared again through the members, so a call costs
+  // what the frontier holds, not the grid's size.
+  std::vector<std::uint8_t>& mark = cluster_marks_;
+  if (mark.size() != geometry_.size()) mark.assign(geometry_.size(), 0);
+  for (const std::size_t idx : members) mark[idx] = 1;
   std::vector<std::size_t> stack;
   for (const std::size_t seed : members) {
-    if (seen[seed]) continue;
+    if (mark[seed] == 2) continue;
     FrontierCluster cluster;
-    seen[seed] = 1;
+    mark[seed] = 2;
     stack.push_back(seed);
     while (!stack.empty()) {
       const std::size_t idx = stack.back();
@@ -109,8 +112,8 @@ FrontierSets FrontierTracker::extract(std::span<const float> path_distance_m, co
         const Cell n{c.i + kDi[k], c.j + kDj[k]};
         if (!geometry_.contains(n)) continue;
         const std::size_t nidx = geometry_.index(n);
-        if (member_flag[nidx] && !seen[nidx]) {
-          seen[nidx] = 1;
+        if (mark[nidx] == 1) {
+          mark[nidx] = 2;
           stack.push_back(nidx);
         }
       }
@@ -126,6 +129,7 @@ FrontierSets FrontierTracker::extract(std::span<const float> path_distance_m, co
     }
     out.clusters.push_back(std::move(cluster));
   }
+  for (const std::size_t idx : members) mark[idx] = 0;
   return out;
 }
 

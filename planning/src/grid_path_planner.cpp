@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace ferret {
 namespace {
@@ -15,102 +18,152 @@ constexpr int kDj[8] = {0, 0, 1, -1, 1, -1, 1, -1};
 
 GridPathPlanner::GridPathPlanner(GridGeometry geometry)
     : geometry_(geometry),
+      padded_width_(static_cast<std::size_t>(std::max(0, geometry.width)) + 2),
       cost_(geometry.size(), -1),
       parent_(geometry.size(), -1),
       distance_m_(geometry.size(), kUnreachable),
-      crossable_(geometry.size(), 0),
-      band_(geometry.size(), 0),
-      seen_(geometry.size(), 0) {}
+      cross_(padded_width_ * (static_cast<std::size_t>(std::max(0, geometry.height)) + 2), 0),
+      seen_(geometry.size(), 0) {
+  // Queue entries hold 32-bit indices.
+  if (cross_.size() > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("GridPathPlanner: grid of " + std::to_string(geometry.size()) +
+                                " cells is too large");
+}
 
-bool GridPathPlanner::crossable(std::size_t idx) const { return crossable_[idx] != 0; }
+void GridPathPlanner::set_crossable(const IrGrid& grid, Traversal traversal,
+                                    std::span<const std::uint8_t> blocked, Cell c) {
+  const std::size_t idx = geometry_.index(c);
+  bool ok = traversal == Traversal::kKnownFree
+                ? grid.traversable(idx)
+                : grid.label_at(idx) != GridLabel::kOccupied && !grid.near_occupied(idx);
+  if (ok && !blocked.empty() && blocked[idx]) ok = false;
+  cross_[padded(c)] = ok ? 1 : 0;
+}
+
+void GridPathPlanner::refresh_crossable(const IrGrid& grid, Traversal traversal,
+                                        std::span<const std::uint8_t> blocked) {
+  const BlockRevisions& revisions = grid.label_revisions();
+  // Whether a cell may be crossed depends on the labels within the clearance of it
+  // (near_occupied): a block is looked at again when a block within that reach changed.
+  const bool same = crossable_from_.valid && crossable_from_.lineage == revisions.lineage() &&
+                    crossable_from_.traversal == traversal && blocked.empty();
+  const int reach = static_cast<int>(std::ceil(grid.options().clearance_m / geometry_.resolution_m)) + 1;
+  const int b = revisions.block_cells();
+  for (int j0 = 0; j0 < geometry_.height; j0 += b)
+    for (int i0 = 0; i0 < geometry_.width; i0 += b) {
+      const int i1 = std::min(i0 + b, geometry_.width) - 1, j1 = std::min(j0 + b, geometry_.height) - 1;
+      if (same && revisions.unchanged_since(crossable_from_.revision, {i0 - reach, j0 - reach},
+                                            {i1 + reach, j1 + reach}))
+        continue;
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) set_crossable(grid, traversal, blocked, {i, j});
+    }
+  // A field with blocked cells is not kept: the next one may block others.
+  crossable_from_ = {revisions.lineage(), revisions.revision(), traversal, blocked.empty()};
+}
 
 void GridPathPlanner::compute(const IrGrid& grid, Cell start, Traversal traversal,
                               double escape_radius_m, std::span<const std::uint8_t> blocked) {
+  const GridGeometry& gg = grid.geometry();
+  if (gg.width != geometry_.width || gg.height != geometry_.height)
+    throw std::invalid_argument("GridPathPlanner: the grid's size differs from the planner's");
   start_ = start;
-  std::fill(cost_.begin(), cost_.end(), -1);
-  std::fill(distance_m_.begin(), distance_m_.end(), kUnreachable);
-  const std::size_t n = geometry_.size();
-  for (std::size_t idx = 0; idx < n; ++idx) {
-    bool ok = traversal == Traversal::kKnownFree
-                  ? grid.traversable(idx)
-                  : grid.label_at(idx) != GridLabel::kOccupied && !grid.near_occupied(idx);
-    if (ok && !blocked.empty() && blocked[idx]) ok = false;
-    crossable_[idx] = ok ? 1 : 0;
+  for (const std::size_t idx : reached_) {
+    cost_[idx] = -1;
+    distance_m_[idx] = kUnreachable;
   }
+  reached_.clear();
+  for (const std::size_t p : band_cells_) cross_[p] = 0;  // band cells are never crossable
+  band_cells_.clear();
+  refresh_crossable(grid, traversal, blocked);
   // The escape band: cells inside the clearance band but not occupied (known free for
   // kKnownFree), connected to the start through such cells and within escape_radius_m.
   // They may be crossed, at a penalty, but are never goals (their distance stays
   // kUnreachable), so paths leave the band by the shortest way and do not hug walls.
-  std::fill(band_.begin(), band_.end(), 0);
   if (escape_radius_m > 0 && geometry_.contains(start)) {
     const double r2 = std::pow(escape_radius_m / geometry_.resolution_m, 2);
-    auto band_ok = [&](std::size_t idx) {
-      if (crossable_[idx]) return false;
+    auto band_ok = [&](Cell c, std::size_t idx) {
+      if (cross_[padded(c)] == 1) return false;
       const GridLabel label = grid.label_at(idx);
       const bool ok = traversal == Traversal::kKnownFree ? label == GridLabel::kFree
                                                          : label != GridLabel::kOccupied;
       return ok && (blocked.empty() || !blocked[idx]);
     };
+    auto mark_band = [&](Cell c) {
+      const std::size_t p = padded(c);
+      cross_[p] = 2;
+      band_cells_.push_back(p);
+    };
     // Flood from the start through crossable and band cells (the robot may stand on
     // a small traversable island inside the band).
-    std::vector<std::size_t> stack;
-    std::vector<std::uint8_t>& seen = seen_;
-    std::fill(seen.begin(), seen.end(), 0);
+    for (const std::size_t idx : seen_cells_) seen_[idx] = 0;
+    seen_cells_.clear();
+    std::vector<Cell> stack;
     const std::size_t s0 = geometry_.index(start);
-    seen[s0] = 1;
-    if (band_ok(s0)) band_[s0] = 1;
-    stack.push_back(s0);
+    seen_[s0] = 1;
+    seen_cells_.push_back(s0);
+    if (band_ok(start, s0)) mark_band(start);
+    stack.push_back(start);
     while (!stack.empty()) {
-      const Cell c = geometry_.cell_of_index(stack.back());
+      const Cell c = stack.back();
       stack.pop_back();
       for (int k = 0; k < 8; ++k) {
         const Cell nb{c.i + kDi[k], c.j + kDj[k]};
         if (!geometry_.contains(nb)) continue;
         const double di = nb.i - start.i, dj = nb.j - start.j;
         const std::size_t nidx = geometry_.index(nb);
-        if (seen[nidx] || di * di + dj * dj > r2) continue;
-        const bool band = band_ok(nidx);
-        if (!band && !crossable_[nidx]) continue;
-        seen[nidx] = 1;
-        if (band) band_[nidx] = 1;
-        stack.push_back(nidx);
+        if (seen_[nidx] || di * di + dj * dj > r2) continue;
+        const bool band = band_ok(nb, nidx);
+        if (!band && cross_[padded(nb)] != 1) continue;
+        seen_[nidx] = 1;
+        seen_cells_.push_back(nidx);
+        if (band) mark_band(nb);
+        stack.push_back(nb);
       }
     }
-    for (std::size_t idx = 0; idx < n; ++idx)
-      if (band_[idx]) crossable_[idx] = 1;
   }
   if (!geometry_.contains(start)) return;
-  // Dial's algorithm: edge costs are at most kDiagonal, so kDiagonal + 1 rotating
-  // buckets hold every open cost.
-  std::array<std::vector<std::size_t>, kBuckets> buckets;
+  // Dial's algorithm: edge costs are at most kDiagonal + kBandPenalty, so that many
+  // plus one rotating buckets hold every open cost. Each entry carries the cell's index
+  // in the grid and in the padded layout, so neighbours are found by adding offsets.
+  struct Entry {
+    std::uint32_t grid, padded;
+  };
+  std::array<std::vector<Entry>, kBuckets> buckets;
+  std::array<std::ptrdiff_t, 8> grid_step{}, padded_step{};
+  const auto pw = static_cast<std::ptrdiff_t>(padded_width_);
+  for (int k = 0; k < 8; ++k) {
+    grid_step[k] = kDi[k] + static_cast<std::ptrdiff_t>(kDj[k]) * geometry_.width;
+    padded_step[k] = kDi[k] + kDj[k] * pw;
+  }
   const std::size_t s = geometry_.index(start);
   cost_[s] = 0;
   parent_[s] = -1;
-  buckets[0].push_back(s);
+  reached_.push_back(s);
+  buckets[0].push_back({static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(padded(start))});
   std::size_t open = 1;
   const double to_m = geometry_.resolution_m / kStraight;
+  const std::uint8_t* cross = cross_.data();
   for (int current = 0; open > 0; ++current) {
     auto& bucket = buckets[current % kBuckets];
     while (!bucket.empty()) {
-      const std::size_t idx = bucket.back();
+      const Entry e = bucket.back();
       bucket.pop_back();
       --open;
-      if (cost_[idx] != current) continue;  // stale entry
-      if (!band_[idx]) distance_m_[idx] = static_cast<float>(current * to_m);
-      const Cell c = geometry_.cell_of_index(idx);
+      if (cost_[e.grid] != current) continue;  // stale entry
+      if (cross[e.padded] != 2) distance_m_[e.grid] = static_cast<float>(current * to_m);
       for (int k = 0; k < 8; ++k) {
-        const Cell nb{c.i + kDi[k], c.j + kDj[k]};
-        if (!geometry_.contains(nb)) continue;
-        const std::size_t nidx = geometry_.index(nb);
-        if (!crossable_[nidx]) continue;
-        if (k >= 4 && (!crossable_[geometry_.index({c.i + kDi[k], c.j})] ||
-                       !crossable_[geometry_.index({c.i, c.j + kDj[k]})]))
+        const std::size_t np = static_cast<std::size_t>(e.padded + padded_step[k]);
+        if (!cross[np]) continue;
+        if (k >= 4 && (!cross[e.padded + kDi[k]] || !cross[e.padded + kDj[k] * pw]))
           continue;  // no corner cutting
-        const int nc = current + (k < 4 ? kStraight : kDiagonal) + (band_[nidx] ? kBandPenalty : 0);
+        const auto nidx = static_cast<std::size_t>(e.grid + grid_step[k]);
+        const int nc = current + (k < 4 ? kStraight : kDiagonal) + (cross[np] == 2 ? kBandPenalty : 0);
         if (cost_[nidx] >= 0 && cost_[nidx] <= nc) continue;
+        if (cost_[nidx] < 0) reached_.push_back(nidx);
         cost_[nidx] = nc;
-        parent_[nidx] = static_cast<std::int32_t>(idx);
-        buckets[nc % kBuckets].push_back(nidx);
+        parent_[nidx] = static_cast<std::int32_t>(e.grid);
+        buckets[nc % kBuckets].push_back({static_cast<std::uint32_t>(nidx), static_cast<std::uint32_t>(np)});
         ++open;
       }
     }
@@ -120,7 +173,7 @@ void GridPathPlanner::compute(const IrGrid& grid, Cell start, Traversal traversa
 bool GridPathPlanner::line_of_sight(Cell a, Cell b) const {
   bool clear = true;
   trace_ray(geometry_, geometry_.center(a), geometry_.center(b), [&](Cell c, double) {
-    clear = crossable_[geometry_.index(c)] != 0 || c == a;
+    clear = cross_[padded(c)] != 0 || c == a;
     return clear;
   });
   return clear;

@@ -31,11 +31,27 @@ class BlockRevisions {
   /// changed after `revision`.
   [[nodiscard]] bool unchanged_since(std::uint64_t revision, Cell lo, Cell hi) const;
   [[nodiscard]] int block_cells() const { return block_cells_; }
+  /// Unique to this object (a copy gets its own): a reader that keeps results for one
+  /// map tells by it that it is still looking at that map, not another one at the same
+  /// address whose revisions happen to be as high.
+  [[nodiscard]] std::uint64_t lineage() const { return lineage_.value; }
 
  private:
+  struct Lineage {
+    Lineage() : value(next()) {}
+    Lineage(const Lineage&) : value(next()) {}
+    Lineage& operator=(const Lineage&) {
+      value = next();
+      return *this;
+    }
+    static std::uint64_t next();
+    std::uint64_t value;
+  };
+
   int width_cells_, height_cells_, block_cells_, blocks_x_, blocks_y_;
   std::vector<std::uint64_t> blocks_;
   std::uint64_t revision_ = 0;
+  Lineage lineage_;
 };
 
 }  // namespace ferret

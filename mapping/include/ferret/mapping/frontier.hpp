@@ -82,6 +82,8 @@ class FrontierTracker {
   std::vector<std::int32_t> pos_;  ///< index into cells_, -1 if not a frontier
   std::vector<std::size_t> cells_;
   std::vector<std::uint8_t> blacklist_;
+  // extract()'s scratch, all zero between calls (so extract() is not thread-safe).
+  mutable std::vector<std::uint8_t> cluster_marks_;
 };
 
 }  // namespace ferret

@@ -27,7 +27,7 @@ class GridPathPlanner {
 
   explicit GridPathPlanner(GridGeometry geometry);
 
-  /// Computes the field from `start`. The robot may stand inside the clearance band of
+  /// Computes the field from `start` (`grid` must have this planner's geometry). The robot may stand inside the clearance band of
   /// a wall it has just seen and must be able to leave it: band cells connected to the
   /// start (within `escape_radius_m`) may be crossed at a penalty, but are never
   /// reachable as goals. Cells with `blocked[idx] != 0` are never crossed (may be empty).
@@ -48,17 +48,35 @@ class GridPathPlanner {
   [[nodiscard]] std::vector<Eigen::Vector2d> path_to(Cell goal) const;
 
  private:
-  [[nodiscard]] bool crossable(std::size_t idx) const;
+  /// Index of `c` in the padded layout of cross_ (a ring of never-crossable cells round
+  /// the grid, so neighbours need no bounds checks).
+  [[nodiscard]] std::size_t padded(Cell c) const {
+    return static_cast<std::size_t>(c.j + 1) * padded_width_ + static_cast<std::size_t>(c.i + 1);
+  }
   [[nodiscard]] bool line_of_sight(Cell a, Cell b) const;
+  void refresh_crossable(const IrGrid& grid, Traversal traversal, std::span<const std::uint8_t> blocked);
+  void set_crossable(const IrGrid& grid, Traversal traversal, std::span<const std::uint8_t> blocked, Cell c);
 
   GridGeometry geometry_;
+  std::size_t padded_width_;
   Cell start_;
+  // Per cell of the grid, reset through reached_ (the cells the last field reached), so a
+  // field costs what it reaches, not the grid's size.
   std::vector<std::int32_t> cost_;
   std::vector<std::int32_t> parent_;
   std::vector<float> distance_m_;
-  std::vector<std::uint8_t> crossable_;
-  std::vector<std::uint8_t> band_;
+  std::vector<std::size_t> reached_;
+  // Padded: 0 never crossed, 1 crossable, 2 the escape band (crossed at a penalty).
+  // Kept from field to field and refreshed where the grid's labels changed since.
+  std::vector<std::uint8_t> cross_;
+  std::vector<std::size_t> band_cells_;  // padded indices set to 2 by the last field
+  struct CrossableSource {
+    std::uint64_t lineage = 0, revision = 0;
+    Traversal traversal = Traversal::kKnownFree;
+    bool valid = false;
+  } crossable_from_;
   std::vector<std::uint8_t> seen_;
+  std::vector<std::size_t> seen_cells_;
 };
 
 }  // namespace ferret

@@ -1,0 +1,114 @@
+// The path field kept from cycle to cycle (which cells may be crossed is refreshed only
+// where the grid's labels changed) against a field computed by a new planner each time.
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "ferret/mapping/ir_grid.hpp"
+#include "ferret/planning/grid_path_planner.hpp"
+
+namespace ferret {
+namespace {
+
+void expect_same_field(const GridPathPlanner& kept, const GridPathPlanner& fresh, const GridGeometry& geo,
+                       int step) {
+  const auto a = kept.distances_m(), b = fresh.distances_m();
+  ASSERT_EQ(a.size(), b.size());
+  int differ = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) differ += a[k] == b[k] ? 0 : 1;
+  EXPECT_EQ(differ, 0) << "step " << step;
+  // The same paths too (the same parents, the same shortcuts over crossable cells).
+  for (std::size_t k = 0; k < a.size(); k += 97) {
+    const Cell c = geo.cell_of_index(k);
+    EXPECT_EQ(kept.path_to(c), fresh.path_to(c)) << "step " << step << " cell " << c.i << "," << c.j;
+  }
+}
+
+TEST(GridPathPlanner, AFieldKeptAcrossMapChangesEqualsOneComputedAfresh) {
+  // 70 x 50 cells: several 16-cell blocks, a clearance of 3 cells that reaches across
+  // their edges.
+  const GridGeometry geo{0.0, 0.0, 0.05, 70, 50};
+  IrGrid::Options o;
+  o.clearance_m = 0.15;
+  IrGrid g(geo, o);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> ui(0, geo.width - 1), uj(0, geo.height - 1);
+  for (int j = 0; j < geo.height; ++j)
+    for (int i = 0; i < geo.width; ++i)
+      if (ui(rng) < 60) g.update_cell({i, j}, false);  // most ground known free
+  GridPathPlanner kept(geo);
+  for (int step = 0; step < 60; ++step) {
+    // A few walls appear and some disappear (free rays through them), anywhere: also
+    // on block edges, where only the clearance reaches into the next block.
+    for (int n = 0; n < 6; ++n) {
+      const Cell c{ui(rng), uj(rng)};
+      const bool hit = n % 3 != 2;
+      for (int k = 0; k < 6; ++k) g.update_cell(c, hit);
+      g.update_cell({c.i, std::min(c.j + 1, geo.height - 1)}, hit);
+    }
+    const Cell start{ui(rng), uj(rng)};
+    const auto traversal = step % 7 == 6 ? GridPathPlanner::Traversal::kNotOccupied
+                                         : GridPathPlanner::Traversal::kKnownFree;
+    const double escape_m = step % 3 == 0 ? 0.0 : 0.3;
+    kept.compute(g, start, traversal, escape_m);
+    GridPathPlanner fresh(geo);
+    fresh.compute(g, start, traversal, escape_m);
+    expect_same_field(kept, fresh, geo, step);
+  }
+}
+
+TEST(GridPathPlanner, AnotherGridWithFewerRevisionsIsNotTakenForTheOneBefore) {
+  const GridGeometry geo{0.0, 0.0, 0.05, 40, 40};
+  IrGrid::Options o;
+  o.clearance_m = 0.1;
+  IrGrid open(geo, o), walled(geo, o);
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) {
+      open.update_cell({i, j}, false);
+    }
+  // `walled` ends at as many revisions as `open`: by its revisions alone it would pass
+  // for `open` unchanged.
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) walled.update_cell({i, j}, i == 20);
+  GridPathPlanner kept(geo);
+  kept.compute(open, {5, 5}, GridPathPlanner::Traversal::kKnownFree);
+  EXPECT_TRUE(kept.reachable({35, 5}));
+  kept.compute(walled, {5, 5}, GridPathPlanner::Traversal::kKnownFree);
+  EXPECT_FALSE(kept.reachable({35, 5}));
+  // A copy is another grid too: a wall added to the copy only.
+  IrGrid copy = open;
+  kept.compute(open, {5, 5}, GridPathPlanner::Traversal::kKnownFree);
+  for (int j = 0; j < 40; ++j) copy.update_cell({20, j}, true);
+  kept.compute(copy, {5, 5}, GridPathPlanner::Traversal::kKnownFree);
+  GridPathPlanner fresh(geo);
+  fresh.compute(copy, {5, 5}, GridPathPlanner::Traversal::kKnownFree);
+  expect_same_field(kept, fresh, geo, 0);
+}
+
+TEST(GridPathPlanner, BlockedCellsHoldForTheirFieldOnly) {
+  const GridGeometry geo{0.0, 0.0, 0.05, 40, 20};
+  IrGrid::Options o;
+  o.clearance_m = 0.0;
+  IrGrid g(geo, o);
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 40; ++i) g.update_cell({i, j}, false);
+  std::vector<std::uint8_t> blocked(geo.size(), 0);
+  for (int j = 0; j < 20; ++j) blocked[geo.index({20, j})] = 1;
+  GridPathPlanner p(geo);
+  p.compute(g, {2, 2}, GridPathPlanner::Traversal::kKnownFree, 0.0, blocked);
+  EXPECT_FALSE(p.reachable({30, 2}));
+  p.compute(g, {2, 2}, GridPathPlanner::Traversal::kKnownFree);
+  EXPECT_NEAR(p.distance_m({30, 2}), 28 * 0.05, 1e-6);
+}
+
+TEST(GridPathPlanner, AGridOfAnotherSizeIsRefused) {
+  const GridGeometry geo{0.0, 0.0, 0.05, 40, 20}, other{0.0, 0.0, 0.05, 20, 40};
+  IrGrid g(other, IrGrid::Options{});
+  GridPathPlanner p(geo);
+  EXPECT_THROW(p.compute(g, {1, 1}, GridPathPlanner::Traversal::kKnownFree), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ferret
