@@ -59,7 +59,7 @@ TEST(GridPathPlanner, AFieldKeptAcrossMapChangesEqualsOneComputedAfresh) {
   }
 }
 
-TEST(GridPathPlanner, AnotherGridWithFewerRevisionsIsNotTakenForTheOneBefore) {
+TEST(GridPathPlanner, AnotherGridIsNotTakenForTheOneBefore) {
   const GridGeometry geo{0.0, 0.0, 0.05, 40, 40};
   IrGrid::Options o;
   o.clearance_m = 0.1;
@@ -85,6 +85,31 @@ TEST(GridPathPlanner, AnotherGridWithFewerRevisionsIsNotTakenForTheOneBefore) {
   GridPathPlanner fresh(geo);
   fresh.compute(copy, {5, 5}, GridPathPlanner::Traversal::kKnownFree);
   expect_same_field(kept, fresh, geo, 0);
+}
+
+TEST(GridPathPlanner, AFieldFromTheSameCellHoldsUntilALabelChanges) {
+  const GridGeometry geo{0.0, 0.0, 0.05, 40, 20};
+  IrGrid::Options o;
+  o.clearance_m = 0.0;
+  IrGrid g(geo, o);
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 40; ++i) g.update_cell({i, j}, false);
+  GridPathPlanner p(geo);
+  p.compute(g, {2, 10}, GridPathPlanner::Traversal::kKnownFree);
+  EXPECT_NEAR(p.distance_m({30, 10}), 28 * 0.05, 1e-6);
+  g.update_cell({20, 10}, false);  // a miss on free ground: no label changes
+  p.compute(g, {2, 10}, GridPathPlanner::Traversal::kKnownFree);
+  EXPECT_NEAR(p.distance_m({30, 10}), 28 * 0.05, 1e-6);
+  for (int j = 0; j < 19; ++j) g.update_cell({20, j}, true);  // a wall, open at the top
+  p.compute(g, {2, 10}, GridPathPlanner::Traversal::kKnownFree);
+  GridPathPlanner fresh(geo);
+  fresh.compute(g, {2, 10}, GridPathPlanner::Traversal::kKnownFree);
+  EXPECT_GT(p.distance_m({30, 10}), 1.5);
+  expect_same_field(p, fresh, geo, 0);
+  // The same cell with another escape radius or traversal is another field.
+  p.compute(g, {2, 10}, GridPathPlanner::Traversal::kNotOccupied, 0.2);
+  fresh.compute(g, {2, 10}, GridPathPlanner::Traversal::kNotOccupied, 0.2);
+  expect_same_field(p, fresh, geo, 1);
 }
 
 TEST(GridPathPlanner, BlockedCellsHoldForTheirFieldOnly) {
