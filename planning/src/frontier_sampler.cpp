@@ -52,10 +52,10 @@ FrontierCandidates rapid_weights(const ExplorationState& s, double max_velocity_
   FrontierCandidates out;
   out.geometry = s.grid.geometry();
   const Eigen::Vector2d p = s.X_WG.position();
-  if (!s.frontiers.visible.empty()) {
+  if (!s.frontier_sets().visible.empty()) {
     Eigen::Vector2d v = s.v_W;
     if (v.norm() < 0.05) v = 0.05 * Eigen::Vector2d(std::cos(s.X_WG.yaw_rad), std::sin(s.X_WG.yaw_rad));
-    for (const Cell& c : s.frontiers.visible) {
+    for (const Cell& c : s.frontier_sets().visible) {
       const Eigen::Vector2d to = out.geometry.center(c) - p;
       const Eigen::Vector2d u = to.norm() > 1e-9 ? Eigen::Vector2d(to.normalized()) : Eigen::Vector2d(v.normalized());
       out.cells.push_back(c);
@@ -63,7 +63,7 @@ FrontierCandidates rapid_weights(const ExplorationState& s, double max_velocity_
     }
     out.rule = "rapid";
   } else {
-    for (const Cell& c : s.frontiers.global) {
+    for (const Cell& c : s.frontier_sets().global) {
       out.cells.push_back(c);
       out.weights.push_back(std::exp(-static_cast<double>(s.paths.distance_m(c)) / 1.0));
     }
@@ -88,7 +88,7 @@ FrontierCandidates rapid_candidates(const ExplorationState& s, double max_veloci
 FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOptions& options,
                                    double max_velocity_mps, bool global) {
   const auto evidence = collect_evidence(s.objects);
-  const std::vector<Cell>& set = global ? s.frontiers.global : s.frontiers.visible;
+  const std::vector<Cell>& set = global ? s.frontier_sets().global : s.frontier_sets().visible;
   if (!evidence.empty() && !set.empty()) {
     const auto scored = score_frontiers(set, s.grid.geometry(), s.X_WG.position(), evidence, options);
     double best = 0.0;

@@ -11,7 +11,6 @@ namespace ferret {
 namespace {
 constexpr int kStraight = 5, kDiagonal = 7;
 constexpr int kBandPenalty = 10;  // per cell stepped into the escape band
-constexpr int kBuckets = kDiagonal + kBandPenalty + 1;
 constexpr int kDi[8] = {1, -1, 0, 0, 1, 1, -1, -1};
 constexpr int kDj[8] = {0, 0, 1, -1, 1, -1, 1, -1};
 }  // namespace
@@ -24,6 +23,10 @@ GridPathPlanner::GridPathPlanner(GridGeometry geometry)
       distance_m_(geometry.size(), kUnreachable),
       cross_(padded_width_ * (static_cast<std::size_t>(std::max(0, geometry.height)) + 2), 0),
       seen_(geometry.size(), 0) {
+  for (int k = 0; k < 8; ++k) {
+    grid_step_[k] = kDi[k] + static_cast<std::ptrdiff_t>(kDj[k]) * geometry_.width;
+    padded_step_[k] = kDi[k] + kDj[k] * static_cast<std::ptrdiff_t>(padded_width_);
+  }
   // Queue entries hold 32-bit indices.
   if (cross_.size() > std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("GridPathPlanner: grid of " + std::to_string(geometry.size()) +
@@ -122,52 +125,50 @@ void GridPathPlanner::compute(const IrGrid& grid, Cell start, Traversal traversa
       }
     }
   }
+  for (auto& bucket : buckets_) bucket.clear();  // what the last field left open
+  open_ = 0;
+  current_ = 0;
   if (!geometry_.contains(start)) return;
-  // Dial's algorithm: edge costs are at most kDiagonal + kBandPenalty, so that many
-  // plus one rotating buckets hold every open cost. Each entry carries the cell's index
-  // in the grid and in the padded layout, so neighbours are found by adding offsets.
-  struct Entry {
-    std::uint32_t grid, padded;
-  };
-  std::array<std::vector<Entry>, kBuckets> buckets;
-  std::array<std::ptrdiff_t, 8> grid_step{}, padded_step{};
-  const auto pw = static_cast<std::ptrdiff_t>(padded_width_);
-  for (int k = 0; k < 8; ++k) {
-    grid_step[k] = kDi[k] + static_cast<std::ptrdiff_t>(kDj[k]) * geometry_.width;
-    padded_step[k] = kDi[k] + kDj[k] * pw;
-  }
   const std::size_t s = geometry_.index(start);
   cost_[s] = 0;
   parent_[s] = -1;
   reached_.push_back(s);
-  buckets[0].push_back({static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(padded(start))});
-  std::size_t open = 1;
+  buckets_[0].push_back({static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(padded(start))});
+  open_ = 1;
+}
+
+// Dial's algorithm: edge costs are at most kDiagonal + kBandPenalty, so that many plus
+// one rotating buckets hold every open cost. Each entry carries the cell's index in the
+// grid and in the padded layout, so neighbours are found by adding offsets.
+void GridPathPlanner::expand_bucket() const {
+  static_assert(kBuckets == kDiagonal + kBandPenalty + 1);
+  auto& bucket = buckets_[static_cast<std::size_t>(current_ % kBuckets)];
   const double to_m = geometry_.resolution_m / kStraight;
   const std::uint8_t* cross = cross_.data();
-  for (int current = 0; open > 0; ++current) {
-    auto& bucket = buckets[current % kBuckets];
-    while (!bucket.empty()) {
-      const Entry e = bucket.back();
-      bucket.pop_back();
-      --open;
-      if (cost_[e.grid] != current) continue;  // stale entry
-      if (cross[e.padded] != 2) distance_m_[e.grid] = static_cast<float>(current * to_m);
-      for (int k = 0; k < 8; ++k) {
-        const std::size_t np = static_cast<std::size_t>(e.padded + padded_step[k]);
-        if (!cross[np]) continue;
-        if (k >= 4 && (!cross[e.padded + kDi[k]] || !cross[e.padded + kDj[k] * pw]))
-          continue;  // no corner cutting
-        const auto nidx = static_cast<std::size_t>(e.grid + grid_step[k]);
-        const int nc = current + (k < 4 ? kStraight : kDiagonal) + (cross[np] == 2 ? kBandPenalty : 0);
-        if (cost_[nidx] >= 0 && cost_[nidx] <= nc) continue;
-        if (cost_[nidx] < 0) reached_.push_back(nidx);
-        cost_[nidx] = nc;
-        parent_[nidx] = static_cast<std::int32_t>(e.grid);
-        buckets[nc % kBuckets].push_back({static_cast<std::uint32_t>(nidx), static_cast<std::uint32_t>(np)});
-        ++open;
-      }
+  const auto pw = static_cast<std::ptrdiff_t>(padded_width_);
+  while (!bucket.empty()) {
+    const Entry e = bucket.back();
+    bucket.pop_back();
+    --open_;
+    if (cost_[e.grid] != current_) continue;  // stale entry
+    if (cross[e.padded] != 2) distance_m_[e.grid] = static_cast<float>(current_ * to_m);
+    for (int k = 0; k < 8; ++k) {
+      const std::size_t np = static_cast<std::size_t>(e.padded + padded_step_[k]);
+      if (!cross[np]) continue;
+      if (k >= 4 && (!cross[e.padded + kDi[k]] || !cross[e.padded + kDj[k] * pw]))
+        continue;  // no corner cutting
+      const auto nidx = static_cast<std::size_t>(e.grid + grid_step_[k]);
+      const int nc = current_ + (k < 4 ? kStraight : kDiagonal) + (cross[np] == 2 ? kBandPenalty : 0);
+      if (cost_[nidx] >= 0 && cost_[nidx] <= nc) continue;
+      if (cost_[nidx] < 0) reached_.push_back(nidx);
+      cost_[nidx] = nc;
+      parent_[nidx] = static_cast<std::int32_t>(e.grid);
+      buckets_[static_cast<std::size_t>(nc % kBuckets)].push_back(
+          {static_cast<std::uint32_t>(nidx), static_cast<std::uint32_t>(np)});
+      ++open_;
     }
   }
+  ++current_;
 }
 
 bool GridPathPlanner::line_of_sight(Cell a, Cell b) const {

@@ -46,7 +46,7 @@ std::optional<ExplorationGoal> NearestFrontierPolicy::choose(const ExplorationSt
   if (!committed_ || !still_a_goal(s, *committed_)) {
     committed_.reset();
     float best = kUnreachable;
-    for (const Cell& c : s.frontiers.global) {
+    for (const Cell& c : s.frontier_sets().global) {
       const float d = s.paths.distance_m(c);
       if (d < best) {
         best = d;
@@ -66,7 +66,7 @@ std::optional<ExplorationGoal> NearestFrontierPolicy::choose(const ExplorationSt
 
 std::optional<ExplorationGoal> RapidFrontierPolicy::choose_visible(const ExplorationState& s,
                                                                    double max_velocity_mps) {
-  if (s.frontiers.visible.empty()) return std::nullopt;
+  if (s.frontier_sets().visible.empty()) return std::nullopt;
   // At rest every direction asks the same change |v_max u|: a small velocity along
   // the heading makes the current heading break the tie.
   Eigen::Vector2d v = s.v_W;
@@ -75,7 +75,7 @@ std::optional<ExplorationGoal> RapidFrontierPolicy::choose_visible(const Explora
   const GridGeometry& g = s.grid.geometry();
   const Eigen::Vector2d p = s.X_WG.position();
   std::optional<ExplorationGoal> best;
-  for (const Cell& c : s.frontiers.visible) {
+  for (const Cell& c : s.frontier_sets().visible) {
     const Eigen::Vector2d to = g.center(c) - p;
     const double dist = to.norm();
     const Eigen::Vector2d u =
@@ -125,7 +125,7 @@ std::optional<ExplorationGoal> CdosPolicy::choose_fresh(const ExplorationState& 
   if (!literal_ && evidence.empty())
     return baseline_.choose(s);  // no evidence: choose as the baseline does
   const auto& candidates =
-      options_.cdos_candidates_global ? s.frontiers.global : s.frontiers.visible;
+      options_.cdos_candidates_global ? s.frontier_sets().global : s.frontier_sets().visible;
   if (candidates.empty()) return fallback_.choose(s);  // Algorithm 1: F_v empty -> nearest in F_g
   const GridGeometry& g = s.grid.geometry();
   const Eigen::Vector2d p = s.X_WG.position();

@@ -355,7 +355,7 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const Exp
       const Cell c{i, j};
       if (s.paths.reachable(c) && !s.tracker.blacklisted(c)) candidates.push_back(c);
     }
-  for (const auto* set : {&s.frontiers.visible, &s.frontiers.global}) {
+  for (const auto* set : {&s.frontier_sets().visible, &s.frontier_sets().global}) {
     const std::size_t n = set->size();
     const std::size_t limit = static_cast<std::size_t>(std::max(1, options_.max_frontier_candidates));
     const std::size_t step = std::max<std::size_t>(1, (n + limit - 1) / limit);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -56,6 +57,41 @@ TEST(GridPathPlanner, AFieldKeptAcrossMapChangesEqualsOneComputedAfresh) {
     GridPathPlanner fresh(geo);
     fresh.compute(g, start, traversal, escape_m);
     expect_same_field(kept, fresh, geo, step);
+  }
+}
+
+TEST(GridPathPlanner, QuestionsInAnyOrderGetTheWholeFieldsAnswers) {
+  // The field grows only as far as it is asked about: near cells first, far ones, an
+  // unreachable one, paths, in random order, each answer the whole field's.
+  const GridGeometry geo{0.0, 0.0, 0.05, 60, 45};
+  IrGrid::Options o;
+  o.clearance_m = 0.1;
+  IrGrid g(geo, o);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> ui(0, geo.width - 1), uj(0, geo.height - 1);
+  for (int j = 0; j < geo.height; ++j)
+    for (int i = 0; i < geo.width; ++i) g.update_cell({i, j}, ui(rng) < 2);  // scattered walls
+  for (int j = 0; j < geo.height; ++j) g.update_cell({40, j}, true);      // a wall cutting off x > 40
+  for (int round = 0; round < 20; ++round) {
+    const Cell start{ui(rng) % 38, uj(rng)};
+    const double escape_m = round % 2 == 0 ? 0.0 : 0.3;
+    GridPathPlanner whole(geo), asked(geo);
+    whole.compute(g, start, GridPathPlanner::Traversal::kKnownFree, escape_m);
+    const auto all = whole.distances_m();
+    asked.compute(g, start, GridPathPlanner::Traversal::kKnownFree, escape_m);
+    for (int q = 0; q < 40; ++q) {
+      // Mostly near the start, sometimes anywhere (also beyond the wall).
+      const Cell c = q % 4 != 3 ? Cell{std::clamp(start.i + ui(rng) % 9 - 4, 0, geo.width - 1),
+                                       std::clamp(start.j + uj(rng) % 9 - 4, 0, geo.height - 1)}
+                                : Cell{ui(rng), uj(rng)};
+      switch (q % 3) {
+        case 0: EXPECT_EQ(asked.distance_m(c), all[geo.index(c)]) << round << " " << q; break;
+        case 1: EXPECT_EQ(asked.reachable(c), all[geo.index(c)] != kUnreachable) << round << " " << q; break;
+        default: EXPECT_EQ(asked.path_to(c), whole.path_to(c)) << round << " " << q; break;
+      }
+    }
+    const auto rest = asked.distances_m();
+    EXPECT_TRUE(std::equal(rest.begin(), rest.end(), all.begin(), all.end())) << round;
   }
 }
 

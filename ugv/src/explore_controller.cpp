@@ -224,8 +224,17 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
     planner_->compute(*grid_, robot_cell, GridPathPlanner::Traversal::kKnownFree, escape_m_);
     const Pose2 X_WS = pose;  // sensors at the robot's origin, facing forward
     const UgvSensorGeometry& s = options_.sensors;
-    const FrontierSets sets =
-        tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m);
+    // The cycle's frontier sets, extracted when first asked for: which frontier cells
+    // are reachable needs the whole path field, and a policy keeping its goal does not
+    // ask. They are taken before anything of this cycle blacklists a cell, or the field
+    // is computed again, so they are what an extraction here would give.
+    FrontierSets sets;
+    bool sets_ready = false;
+    const auto fill_sets = [&] {
+      if (sets_ready) return;
+      sets = tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m);
+      sets_ready = true;
+    };
     const double v_mps = follower_.speed_mps();
     const Eigen::Vector2d v_W =
         v_mps * Eigen::Vector2d(std::cos(pose.yaw_rad), std::sin(pose.yaw_rad));
@@ -236,6 +245,7 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
       // A goal whose tether would be too long is never chosen again: the OMPL policies
       // ask before they choose (goal validity), the others are checked after.
       const auto reach = [&](Cell cell, const std::vector<Eigen::Vector2d>& path) {
+        fill_sets();  // before this cycle's first blacklisting
         if (within_reach(path)) return true;
         ++reach_rejections_;
         ++rejected_now;
@@ -244,13 +254,17 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
       };
       // The policy's choice, unless its tether would be too long: then the policy
       // chooses among the rest.
-      const auto choose = [&](const FrontierSets& first) -> std::optional<ExplorationGoal> {
-        FrontierSets current = first;
+      // `first` (when set) fills `sets` on demand; after a refusal the sets are taken
+      // again, with the refused goal blacklisted.
+      const auto choose = [&](const std::function<void()>& first) -> std::optional<ExplorationGoal> {
+        FrontierSets current;
+        if (!first) current = tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m);
         for (int k = 0; k < kMaxReachRejections; ++k) {
-          ExplorationState state{*grid_,    *objects_, *tracker_,    current,
+          ExplorationState state{*grid_,    *objects_, *tracker_,    k == 0 && first ? sets : current,
                                  *planner_, pose,      v_W,          s.ir_fov_rad,
                                  s.ir_range_m, oracle};
           if (tether_) state.within_reach = reach;
+          if (k == 0) state.fill_frontiers = first;
           auto g = policy_->choose(state);
           if (!g || !tether_) return g;
           if (reach(g->cell, g->path_W.empty() ? planner_->path_to(g->cell) : g->path_W)) return g;
@@ -260,15 +274,15 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
         }
         return std::nullopt;
       };
-      std::optional<ExplorationGoal> goal = choose(sets);
+      std::optional<ExplorationGoal> goal = choose(fill_sets);
       goal_is_revisit_ = false;
       if (!goal && tracker_->frontier_count() > 0) {
         // Nothing reachable: perhaps the robot is boxed in by the clearance of walls it
         // has just seen. Look again with the clearance waived further out.
+        fill_sets();  // the cycle's sets are the first field's
         planner_->compute(*grid_, robot_cell, GridPathPlanner::Traversal::kKnownFree,
                           kWideEscape_m);
-        goal = choose(
-            tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m));
+        goal = choose({});
       }
       if (!goal && rejected_now > 0 && unwinds_ < kMaxUnwinds) {
         // Goals are left, but the tether is wound round obstacles too far to reach them:
@@ -314,10 +328,12 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
         decide_now_ = true;  // (the follower keeps its last path until then)
       } else {
         follower_.set_path(std::move(path), goal_->heading_rad);
-        if (options_.record_decisions)
+        if (options_.record_decisions) {
+          fill_sets();
           decision_log_.push_back({t, pose, goal_->p_W, goal_->reason, goal_->score,
                                    sets.global.size(), sets.visible.size(),
                                    objects_->evidence_cells().size()});
+        }
       }
     }
   }

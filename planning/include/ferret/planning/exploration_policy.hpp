@@ -63,6 +63,17 @@ struct ExplorationState {
   /// caller may remember a refusal (the explore controller blacklists the cell until
   /// the tether is unwound). The others leave the check to the caller.
   std::function<bool(Cell cell, const std::vector<Eigen::Vector2d>& path_W)> within_reach{};
+  /// When set, fills `frontiers` the first time a policy asks for them (it must be
+  /// harmless to call again): which frontier cells are reachable needs the whole path
+  /// field, and a cycle that keeps its goal never asks (GridPathPlanner grows the field
+  /// only as far as it is asked about).
+  std::function<void()> fill_frontiers{};
+
+  /// The frontier sets; policies read them through this, never `frontiers` directly.
+  [[nodiscard]] const FrontierSets& frontier_sets() const {
+    if (fill_frontiers) fill_frontiers();
+    return frontiers;
+  }
 };
 
 struct PolicyOptions {

@@ -8,6 +8,8 @@
 // search runs with a bucket queue in time linear in the cells it reaches.
 
 #include <Eigen/Core>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -27,16 +29,30 @@ class GridPathPlanner {
 
   explicit GridPathPlanner(GridGeometry geometry);
 
-  /// Computes the field from `start` (`grid` must have this planner's geometry). The robot may stand inside the clearance band of
-  /// a wall it has just seen and must be able to leave it: band cells connected to the
-  /// start (within `escape_radius_m`) may be crossed at a penalty, but are never
-  /// reachable as goals. Cells with `blocked[idx] != 0` are never crossed (may be empty).
+  /// Sets up the field from `start` (`grid` must have this planner's geometry). The
+  /// robot may stand inside the clearance band of a wall it has just seen and must be
+  /// able to leave it: band cells connected to the start (within `escape_radius_m`) may
+  /// be crossed at a penalty, but are never reachable as goals. Cells with
+  /// `blocked[idx] != 0` are never crossed (may be empty).
+  ///
+  /// The field is grown as far as it is asked about, in the order a whole Dijkstra
+  /// would settle it: a distance, path or reachability question settles the cells up
+  /// to that cell's cost (an unreachable cell, everything), so a decision that only
+  /// looks near the robot costs what lies near it. The answers are those of the whole
+  /// field. Not for concurrent readers (asking grows the field).
   void compute(const IrGrid& grid, Cell start, Traversal traversal, double escape_radius_m = 0.0,
                std::span<const std::uint8_t> blocked = {});
 
-  /// Path distance in metres per cell, kUnreachable where unreachable.
-  [[nodiscard]] std::span<const float> distances_m() const { return distance_m_; }
-  [[nodiscard]] float distance_m(Cell c) const { return distance_m_[geometry_.index(c)]; }
+  /// Path distance in metres per cell, kUnreachable where unreachable (the whole field).
+  [[nodiscard]] std::span<const float> distances_m() const {
+    settle_all();
+    return distance_m_;
+  }
+  [[nodiscard]] float distance_m(Cell c) const {
+    const std::size_t idx = geometry_.index(c);
+    settle(idx);
+    return distance_m_[idx];
+  }
   [[nodiscard]] bool reachable(Cell c) const {
     return geometry_.contains(c) && distance_m(c) != kUnreachable;
   }
@@ -48,6 +64,19 @@ class GridPathPlanner {
   [[nodiscard]] std::vector<Eigen::Vector2d> path_to(Cell goal) const;
 
  private:
+  static constexpr int kBuckets = 18;  // the dearest step (a diagonal into the band) + 1
+  struct Entry {
+    std::uint32_t grid, padded;  // the cell's index in the grid and in the padded layout
+  };
+  /// Grows the field until the cell at `idx` has its final cost (or nothing is open).
+  void settle(std::size_t idx) const {
+    while (open_ > 0 && !(cost_[idx] >= 0 && cost_[idx] < current_)) expand_bucket();
+  }
+  void settle_all() const {
+    while (open_ > 0) expand_bucket();
+  }
+  /// Settles every open cell of cost current_, then moves on to the next cost.
+  void expand_bucket() const;
   /// Index of `c` in the padded layout of cross_ (a ring of never-crossable cells round
   /// the grid, so neighbours need no bounds checks).
   [[nodiscard]] std::size_t padded(Cell c) const {
@@ -62,10 +91,15 @@ class GridPathPlanner {
   Cell start_;
   // Per cell of the grid, reset through reached_ (the cells the last field reached), so a
   // field costs what it reaches, not the grid's size.
-  std::vector<std::int32_t> cost_;
-  std::vector<std::int32_t> parent_;
-  std::vector<float> distance_m_;
-  std::vector<std::size_t> reached_;
+  // The Dijkstra state, grown on demand by the const questions.
+  mutable std::vector<std::int32_t> cost_;
+  mutable std::vector<std::int32_t> parent_;
+  mutable std::vector<float> distance_m_;
+  mutable std::vector<std::size_t> reached_;
+  mutable std::array<std::vector<Entry>, kBuckets> buckets_;
+  mutable std::int32_t current_ = 0;
+  mutable std::size_t open_ = 0;
+  std::array<std::ptrdiff_t, 8> grid_step_{}, padded_step_{};
   // Padded: 0 never crossed, 1 crossable, 2 the escape band (crossed at a penalty).
   // Kept from field to field and refreshed where the grid's labels changed since.
   std::vector<std::uint8_t> cross_;
