@@ -2,12 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
@@ -26,9 +30,11 @@ struct Search {
 
 // The search on the small hidden space with a tether of `budget_m` on the floor,
 // until it has explored what the tether reaches (or `time_s` ran out).
-Search search(const std::string& planner, double budget_m, double time_s = 120.0) {
+Search search(const std::string& planner, double budget_m, double time_s = 120.0,
+              const std::string& method = "cdos") {
   const auto truth = test::small_hidden_space();
   ExplorationSettings settings;
+  settings.method = method;
   HiddenSpaceSim sim(truth, kBehindPartition, settings.sensors, 5);
   SimUgvOptions base_options;
   base_options.battery_endurance_s = std::numeric_limits<double>::infinity();
@@ -107,6 +113,58 @@ TEST(ExploreController, TheReachBoundCoversATetherRoundAnObstacleTheIrNeverSaw) 
   EXPECT_NEAR(truth.length_m(), std::hypot(2.8, 0.2) + 0.8 + std::hypot(0.2, 1.3), 1e-9);
   EXPECT_NEAR(controller.tether_length_m(), (p - entry.position()).norm(), 1e-9);  // straight
   EXPECT_GE(controller.reach_length_m(), truth.length_m());
+}
+
+// A policy that asks the tether about the farthest reachable frontier cell before it
+// reads the frontier sets (a refusal blacklists the cell), then drives to the nearest
+// frontier. The controller extracts the sets only when a policy asks for them; they
+// must still be the cycle's, taken before that blacklisting.
+struct ReachFirstCounts {
+  int refusals = 0, refused_cell_in_sets = 0;
+};
+ReachFirstCounts reach_first_counts;
+
+class ReachFirstPolicy : public ExplorationPolicy {
+ public:
+  [[nodiscard]] std::string_view name() const override { return "reach-first-probe"; }
+  [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& s) override {
+    const GridGeometry& g = s.grid.geometry();
+    if (s.within_reach) {
+      std::optional<Cell> far;
+      double far_m = -1.0;
+      for (const std::size_t idx : s.tracker.frontier_cells()) {
+        const Cell c = g.cell_of_index(idx);
+        if (s.tracker.blacklisted(c) || !s.paths.reachable(c) || s.paths.distance_m(c) <= far_m) continue;
+        far_m = s.paths.distance_m(c);
+        far = c;
+      }
+      if (far && !s.within_reach(*far, s.paths.path_to(*far))) {
+        ++reach_first_counts.refusals;
+        const auto& global = s.frontier_sets().global;
+        if (std::find(global.begin(), global.end(), *far) != global.end()) ++reach_first_counts.refused_cell_in_sets;
+      }
+    }
+    std::optional<ExplorationGoal> best;
+    for (const Cell& c : s.frontier_sets().global)
+      if (!s.tracker.blacklisted(c) && (!best || s.paths.distance_m(c) < best->score)) {
+        best = ExplorationGoal{};
+        best->cell = c;
+        best->p_W = g.center(c);
+        best->score = s.paths.distance_m(c);
+        best->reason = "probe";
+      }
+    return best;
+  }
+};
+
+TEST(ExploreController, APolicyAskingTheTetherFirstStillReadsTheCyclesFrontierSets) {
+  register_exploration_policy("reach-first-probe",
+                              [](const PolicyOptions&) { return std::make_unique<ReachFirstPolicy>(); });
+  reach_first_counts = {};
+  const Search run = search("grid", 2.0, 30.0, "reach-first-probe");
+  EXPECT_GT(run.decisions, 0);
+  EXPECT_GT(reach_first_counts.refusals, 0);  // the setting does refuse far frontiers
+  EXPECT_EQ(reach_first_counts.refused_cell_in_sets, reach_first_counts.refusals);
 }
 
 TEST(ExploreController, AnUnknownPlannerIsRefused) {
