@@ -307,7 +307,11 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
   // The camera searches what it faces at its next frame: while most of its view is
   // still unsearched (the start, a new room), there is no reason to turn away; CDOS
   // (the rapid rule without evidence) drives on into it.
-  if (fresh_view(s)) return cdos_.choose(s);
+  // At the entry the object map has the looks of one pose, and takes the next only from
+  // a new pose: CDOS's rule drives in until then, rather than the first frames' misses
+  // turning the robot away from the view it entered facing (an object in it that those
+  // frames missed is found by the next ones on the way in).
+  if (s.at_entry || fresh_view(s)) return cdos_.choose(s);
   // Evidence the frames dismissed before the robot came near it: when the robot would
   // turn to a new view and that place is out of the camera's view, it looks at it once
   // more, from the view distance (a few misses from afar do not make it searched).

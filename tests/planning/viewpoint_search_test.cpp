@@ -135,6 +135,30 @@ TEST(ViewpointSearch, ThePolicyFacesTheUnsearchedHalfOfTheRoom) {
   EXPECT_EQ(again->cell, goal->cell);
 }
 
+// At the entry the frames of one pose have searched the view; bayes still drives in by
+// CDOS's rule (the object map's next look comes only from a new pose), and chooses its
+// viewpoint once the robot has left the entry.
+TEST(ViewpointSearch, AtTheEntryItDrivesInByCdossRule) {
+  test::HalfSeenRoom w;
+  CameraFrame frame;
+  frame.view.X_WS = w.pose;  // facing +x, into the unknown half
+  frame.view.max_range_m = 4.0;
+  for (int k = -45; k <= 45; ++k) frame.view.beams.push_back({deg_to_rad(k), 4.0});
+  w.objects.integrate_frame(frame);
+  w.refresh();
+  const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
+  ExplorationState at_entry = w.state();
+  at_entry.at_entry = true;
+  const auto entering = make_exploration_policy("bayes", po)->choose(at_entry);
+  const auto cdos = make_exploration_policy("cdos", po)->choose(w.state());
+  ASSERT_TRUE(entering && cdos);
+  EXPECT_EQ(entering->cell, cdos->cell);
+  EXPECT_EQ(entering->reason, cdos->reason);
+  const auto left = make_exploration_policy("bayes", po)->choose(w.state());
+  ASSERT_TRUE(left);
+  EXPECT_EQ(left->reason, "viewpoint");  // the view it faces is searched: elsewhere
+}
+
 // One far detection of an object at `object_W`, seen from the robot's pose.
 void detect(test::HalfSeenRoom& w, const Eigen::Vector2d& object_W) {
   CameraFrame frame;

@@ -208,6 +208,7 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
     }
   }
 
+  if ((pose.position() - entry_W_).norm() >= objects_->options().min_move_m) left_entry_ = true;
   const bool periodic = tick % decide_every_ == 0;
   if (decide_now_ || periodic) tracker_->update(*grid_);
   cycle_ran_ = false;
@@ -265,6 +266,7 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
                                  s.ir_range_m, oracle};
           if (tether_) state.within_reach = reach;
           if (k == 0) state.fill_frontiers = first;
+          state.at_entry = !left_entry_;
           auto g = policy_->choose(state);
           if (!g || !tether_) return g;
           if (reach(g->cell, g->path_W.empty() ? planner_->path_to(g->cell) : g->path_W)) return g;

@@ -68,6 +68,10 @@ struct ExplorationState {
   /// field, and a cycle that keeps its goal never asks (GridPathPlanner grows the field
   /// only as far as it is asked about).
   std::function<void()> fill_frontiers{};
+  /// True while the robot has not yet moved the object map's min_move_m from where the
+  /// search started (the explore controller knows; a caller that does not, leaves it
+  /// false): the object map then holds the looks of that one pose only.
+  bool at_entry = false;
 
   /// The frontier sets; policies read them through this, never `frontiers` directly.
   [[nodiscard]] const FrontierSets& frontier_sets() const {

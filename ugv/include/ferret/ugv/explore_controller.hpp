@@ -183,6 +183,7 @@ class ExploreController {
   // The tether (with a budget): the driven path (every 5 cm) replayed over the corners
   // of G's occupied cells when they are refreshed, followed tick by tick in between.
   Eigen::Vector2d entry_W_ = Eigen::Vector2d::Zero();
+  bool left_entry_ = false;  ///< moved the object map's min_move_m from entry_W_ at some time
   std::vector<Eigen::Vector2d> driven_W_;
   std::vector<std::uint8_t> swept_;  ///< per cell of G: the robot drove over it
   std::unique_ptr<TautTether> tether_;        ///< the estimate (G's obstacles)
