@@ -50,7 +50,9 @@ class GridPathPlanner {
   }
   [[nodiscard]] float distance_m(Cell c) const {
     const std::size_t idx = geometry_.index(c);
-    settle(idx);
+    // Only the start and crossable cells (not the band) are ever given a distance: a
+    // question about a wall or unknown cell need not grow the field.
+    if (cross_[padded(c)] == 1 || c == start_) settle(idx);
     return distance_m_[idx];
   }
   [[nodiscard]] bool reachable(Cell c) const {
@@ -89,9 +91,9 @@ class GridPathPlanner {
   GridGeometry geometry_;
   std::size_t padded_width_;
   Cell start_;
-  // Per cell of the grid, reset through reached_ (the cells the last field reached), so a
-  // field costs what it reaches, not the grid's size.
-  // The Dijkstra state, grown on demand by the const questions.
+  // The Dijkstra state, per cell of the grid, grown on demand by the const questions and
+  // reset through reached_ (the cells the last field reached): a field costs what it
+  // reaches, not the grid's size.
   mutable std::vector<std::int32_t> cost_;
   mutable std::vector<std::int32_t> parent_;
   mutable std::vector<float> distance_m_;

@@ -26,7 +26,9 @@
 // Evidence that later frames dismiss is looked at once more from the view distance when
 // the robot would next turn to a new view, if it is then farther than 1.5 view
 // distances from it (a few misses from afar would otherwise leave the place as searched
-// as any); while its camera faces unsearched ground it drives on as CDOS does. Without evidence the chosen viewpoint is kept while it still holds
+// as any). While its camera faces unsearched ground, and at the entry until the robot
+// has moved the object map's min_move_m (ExplorationState::at_entry), it drives on as
+// CDOS does. Without evidence the chosen viewpoint is kept while it still holds
 // keep_fraction of the mass it was chosen for; once reached it is not chosen again, and
 // what its view did not show holds no mass from then on (hidden by what G has not seen).
 
