@@ -108,7 +108,7 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
       s.options.cell_size_m = v;
     else if (k == "min_clearance_m")
       s.options.min_clearance_m = v;
-    else if (k == "truth_radius_m") {
+    else if (k == "truth_radius_m" || k == "view_radius_m") {
     } else {
       std::fprintf(stderr, "unknown option %s\n", k.c_str());
       return 2;
@@ -117,6 +117,9 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
   }
   LandingSceneOptions so = scene_options(s.options);
   if (const auto r = set.find("truth_radius_m"); r != set.end()) so.footprint_radius_m = r->second;
+  // The view the truth asks for round a safe disc (to compare detectors whose margins
+  // need different views on the same frames).
+  if (const auto r = set.find("view_radius_m"); r != set.end()) so.view_radius_m = r->second;
   const LandingZoneDetector det(s.options);
   const Px4LandingBaseline base(Px4LandingBaseline::Options{});
   std::map<std::string, Tally> ours, px4;  // by height, and "all"

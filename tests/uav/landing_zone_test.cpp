@@ -174,6 +174,30 @@ TEST(LandingZone, TallPoleKeepsFootprintPlusClearanceFree) {
   EXPECT_TRUE(clearance);
 }
 
+TEST(LandingZone, AThinRodBesideTheDiscIsNotAveragedAwayInItsCells) {
+  // A rod 3 cm wide and 0.3 m tall, at an angle to the grid: it covers at most about
+  // 40 % of any 0.1 m cell, whose mean rises by 0.13 m at most, under the 0.15 m
+  // taller-than test; the clearance test's half-size cells see it.
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0.0, 0.0, 4.0});
+  const Eigen::Vector2d through(0.1, 0.0), along(std::cos(0.61), std::sin(0.61));
+  const Eigen::Vector2d normal(-along.y(), along.x());
+  const double half_width = 0.015, height = 0.3;
+  const auto rod_distance = [&](const Eigen::Vector2d& p) {
+    return std::abs((p - through).dot(normal)) - half_width;
+  };
+  const auto depth = render(
+      cam, X_WC,
+      [&](double x, double y) { return rod_distance({x, y}) <= 0.0 ? height : 0.0; }, 0.003, 13);
+  const auto det = detector();
+  const auto r = det.detect(depth, cam, X_WC);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  const double keep = det.options().footprint_radius_m + det.options().margin_m +
+                      det.options().min_clearance_m;
+  for (const auto& z : r.zones)
+    EXPECT_GE(rod_distance(z.center_m.head<2>()), keep - 0.01) << z.center_m.transpose();
+}
+
 TEST(LandingZone, NoReturnsMeansNoSafeZone) {
   const auto cam = test_camera();
   const DepthImageMm depth(cam.width_px, cam.height_px, 0);

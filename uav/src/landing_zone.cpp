@@ -148,16 +148,26 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   // Per cell: count and sums of the points (x, y relative to the grid origin, z minus a
   // reference height, to keep the sums well conditioned).
   const double z_ref = points.front().z();
-  std::vector<double> cnt(n_cells, 0.0), sx(n_cells, 0.0), sy(n_cells, 0.0), sz(n_cells, 0.0);
-  for (const auto& p : points) {
-    const int i = std::min(nx - 1, static_cast<int>((p.x() - lo.x()) / cell));
-    const int j = std::min(ny - 1, static_cast<int>((p.y() - lo.y()) / cell));
-    const std::size_t k = idx(i, j);
-    cnt[k] += 1.0;
-    sx[k] += p.x() - lo.x();
-    sy[k] += p.y() - lo.y();
-    sz[k] += p.z() - z_ref;
-  }
+  const auto bin = [&](double size, int n_x, int n_y, std::vector<double>& count,
+                       std::vector<double>& sum_x, std::vector<double>& sum_y,
+                       std::vector<double>& sum_z) {
+    const std::size_t n = static_cast<std::size_t>(n_x) * n_y;
+    count.assign(n, 0.0);
+    sum_x.assign(n, 0.0);
+    sum_y.assign(n, 0.0);
+    sum_z.assign(n, 0.0);
+    for (const auto& p : points) {
+      const int i = std::min(n_x - 1, static_cast<int>((p.x() - lo.x()) / size));
+      const int j = std::min(n_y - 1, static_cast<int>((p.y() - lo.y()) / size));
+      const std::size_t k = static_cast<std::size_t>(j) * n_x + i;
+      count[k] += 1.0;
+      sum_x[k] += p.x() - lo.x();
+      sum_y[k] += p.y() - lo.y();
+      sum_z[k] += p.z() - z_ref;
+    }
+  };
+  std::vector<double> cnt, sx, sy, sz;
+  bin(cell, nx, ny, cnt, sx, sy, sz);
   // A cell the image's edge runs through is seen only in part: what stands in its
   // unseen part is unknown, so the cell counts as unobserved.
   for (const auto& p : border) {
@@ -165,6 +175,18 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
     const int j = static_cast<int>(std::floor((p.y() - lo.y()) / cell));
     if (i >= 0 && j >= 0 && i < nx && j < ny) cnt[idx(i, j)] = 0.0;
   }
+  // The clearance test's grid: cells of half the size, aligned with the coarse ones (fine
+  // cell 2i and 2i + 1 make coarse cell i). Something taller beside the disc is judged
+  // in these: a pole or a block that covers part of a coarse cell at the ring's edge
+  // raises that cell's mean by only the part it covers, and slipped under the taller-than
+  // test (seeds 1-3 of the evaluation, with the margin off: six unsafe choices). A fine
+  // cell with too few returns of its own takes its coarse cell's mean.
+  const double fine = 0.5 * cell;
+  const int fnx = 2 * nx, fny = 2 * ny;
+  const auto fidx = [fnx](int i, int j) { return static_cast<std::size_t>(j) * fnx + i; };
+  const std::size_t n_fine = static_cast<std::size_t>(fnx) * fny;
+  std::vector<double> fcnt, fsx, fsy, fsz;
+  bin(fine, fnx, fny, fcnt, fsx, fsy, fsz);
   // Cell means; the plane is fitted to them (not to the points) so that a cell counts
   // once however close it is to the camera, and the depth noise averages out first.
   std::vector<double> obs(n_cells, 0.0), mx(n_cells, 0.0), my(n_cells, 0.0), mz(n_cells, 0.0);
@@ -183,6 +205,25 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
     yz[k] = my[k] * mz[k];
     zz[k] = mz[k] * mz[k];
   }
+  // Fine cells: their own mean with enough returns, else the coarse cell's; unobserved
+  // when the coarse cell is (too few returns, or the image's edge runs through it).
+  constexpr double kMinFinePoints = 4.0;
+  std::vector<double> fobs(n_fine, 0.0), fmx(n_fine, 0.0), fmy(n_fine, 0.0), fmz(n_fine, 0.0);
+  for (int j = 0; j < fny; ++j)
+    for (int i = 0; i < fnx; ++i) {
+      const std::size_t f = fidx(i, j), k = idx(i / 2, j / 2);
+      if (obs[k] <= 0.0) continue;
+      fobs[f] = 1.0;
+      if (fcnt[f] >= kMinFinePoints) {
+        fmx[f] = fsx[f] / fcnt[f];
+        fmy[f] = fsy[f] / fcnt[f];
+        fmz[f] = fsz[f] / fcnt[f];
+      } else {
+        fmx[f] = mx[k];
+        fmy[f] = my[k];
+        fmz[f] = mz[k];
+      }
+    }
   // Observed cells per window (summed-area table); the plane's sums are taken over
   // each disc's cells.
   Summed observed(nx, ny);
@@ -194,7 +235,7 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       static_cast<int>(std::ceil(radius / cell - 0.5));  // cells whose centre may lie in the disc
   const double ring_outer = radius + o.min_clearance_m;
   const double clearance_cap = o.min_clearance_m + 0.5;  // reported up to this
-  const int hc = static_cast<int>(std::ceil((radius + clearance_cap) / cell));
+  const int hc = static_cast<int>(std::ceil((radius + clearance_cap) / fine)) + 1;  // fine cells
   const int hr = static_cast<int>(std::ceil(ring_outer / cell));
   // Disc mask offsets: every cell that overlaps the disc (centre within radius + half a
   // cell diagonal), so that nothing under the footprint escapes the step test.
@@ -208,27 +249,44 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   const int h_window = std::max(h, hd);
   const double tan_max_slope = std::tan(deg_to_rad(o.max_slope_deg));
 
-  // Upper envelope for the clearance test: the highest cell mean in the clearance
-  // window of every cell, by two passes of a running maximum (rows, then columns).
+  // Upper envelope for the clearance test: the highest fine-cell mean in the clearance
+  // window of every fine cell, by two passes of a running maximum (rows, then columns).
   const double kLow = -std::numeric_limits<double>::infinity();
-  std::vector<double> top(n_cells, kLow);
-  for (std::size_t k = 0; k < n_cells; ++k)
-    if (obs[k] > 0.0) top[k] = mz[k];
-  std::vector<double> row_max(n_cells, kLow), win_max(n_cells, kLow);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
+  std::vector<double> top(n_fine, kLow);
+  for (std::size_t k = 0; k < n_fine; ++k)
+    if (fobs[k] > 0.0) top[k] = fmz[k];
+  std::vector<double> row_max(n_fine, kLow), win_max(n_fine, kLow);
+  for (int j = 0; j < fny; ++j)
+    for (int i = 0; i < fnx; ++i) {
       double m = kLow;
-      for (int d = std::max(0, i - hc); d <= std::min(nx - 1, i + hc); ++d)
-        m = std::max(m, top[idx(d, j)]);
-      row_max[idx(i, j)] = m;
+      for (int d = std::max(0, i - hc); d <= std::min(fnx - 1, i + hc); ++d)
+        m = std::max(m, top[fidx(d, j)]);
+      row_max[fidx(i, j)] = m;
     }
-  for (int i = 0; i < nx; ++i)
-    for (int j = 0; j < ny; ++j) {
+  for (int i = 0; i < fnx; ++i)
+    for (int j = 0; j < fny; ++j) {
       double m = kLow;
-      for (int d = std::max(0, j - hc); d <= std::min(ny - 1, j + hc); ++d)
-        m = std::max(m, row_max[idx(i, d)]);
-      win_max[idx(i, j)] = m;
+      for (int d = std::max(0, j - hc); d <= std::min(fny - 1, j + hc); ++d)
+        m = std::max(m, row_max[fidx(i, d)]);
+      win_max[fidx(i, j)] = m;
     }
+  // The clearance window's fine cells around a coarse cell's centre (a corner of four
+  // fine cells: offsets a in [-hc, hc - 1] from fine cell 2i), nearest first, each with
+  // the distance from the centre to the cell's nearest point.
+  struct FineOffset {
+    int di, dj;
+    double dist;
+  };
+  std::vector<FineOffset> ring;
+  for (int b = -hc; b < hc; ++b)
+    for (int a = -hc; a < hc; ++a) {
+      const double gx = fine * std::max(0.0, std::abs(a + 0.5) - 0.5);
+      const double gy = fine * std::max(0.0, std::abs(b + 0.5) - 0.5);
+      const double dist = std::hypot(gx, gy);
+      if (dist < radius + clearance_cap) ring.push_back({a, b, dist});
+    }
+  std::stable_sort(ring.begin(), ring.end(),
+                   [](const FineOffset& x, const FineOffset& y) { return x.dist < y.dist; });
 
   const Eigen::Vector2d nadir = X_WC.translation().head<2>();
   std::vector<LandingZone> safe;
@@ -348,29 +406,29 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       // within the required clearance, not observed: unknown is not free).
       z.clearance_m = clearance_cap;
       const double plane_low =
-          pl.at(cxl, cyl) - (std::abs(pl.a) + std::abs(pl.b)) * (hc + 1) * cell;
+          pl.at(cxl, cyl) - (std::abs(pl.a) + std::abs(pl.b)) * (hc + 1) * fine;
       const bool ring_observed =
           i - hr >= 0 && j - hr >= 0 && i + hr < nx && j + hr < ny &&
           observed.sum(i - hr, j - hr, i + hr, j + hr) >= (2.0 * hr + 1) * (2.0 * hr + 1);
-      if (!ring_observed || win_max[idx(i, j)] > plane_low + o.taller_than_m) {
+      // (The fine cell at 2i, 2j is one of the four that meet at the centre.)
+      if (!ring_observed || win_max[fidx(2 * i, 2 * j)] > plane_low + o.taller_than_m) {
         double nearest = radius + clearance_cap;
-        for (int dj = -hc; dj <= hc; ++dj)
-          for (int di = -hc; di <= hc; ++di) {
-            // Distance from the disc's centre to the nearest point of the cell.
-            const double gx = std::max(0.0, std::abs(di) * cell - 0.5 * cell);
-            const double gy = std::max(0.0, std::abs(dj) * cell - 0.5 * cell);
-            const double dist = std::hypot(gx, gy);
-            if (dist >= nearest) continue;
-            const int ci = i + di, cj = j + dj;
-            const bool inside = ci >= 0 && cj >= 0 && ci < nx && cj < ny;
-            const bool seen = inside && obs[idx(ci, cj)] > 0.0;
-            if (!seen) {
-              if (dist < ring_outer) nearest = dist;
-              continue;
+        for (const FineOffset& f : ring) {
+          const int ci = 2 * i + f.di, cj = 2 * j + f.dj;
+          const bool inside = ci >= 0 && cj >= 0 && ci < fnx && cj < fny;
+          if (!inside || fobs[fidx(ci, cj)] <= 0.0) {
+            if (f.dist < ring_outer) {
+              nearest = f.dist;
+              break;
             }
-            const std::size_t k = idx(ci, cj);
-            if (mz[k] > pl.at(mx[k], my[k]) + o.taller_than_m) nearest = dist;
+            continue;
           }
+          const std::size_t k = fidx(ci, cj);
+          if (fmz[k] > pl.at(fmx[k], fmy[k]) + o.taller_than_m) {
+            nearest = f.dist;
+            break;
+          }
+        }
         z.clearance_m = std::max(0.0, nearest - radius);
       }
       if (z.clearance_m < o.min_clearance_m) {

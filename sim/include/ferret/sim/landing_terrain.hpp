@@ -99,7 +99,7 @@ struct LandingSceneOptions {
   double footprint_radius_m = 0.49;              ///< ground truth's disc
   /// How much around a zone's centre must be in view for the detector to judge it
   /// (its disc plus margin plus clearance).
-  double view_radius_m = 0.89;
+  double view_radius_m = 0.84;
   LandingCriteria criteria;
   double max_tilt_rad = deg_to_rad(3.0);  ///< hover roll and pitch, uniform in +-
 };

@@ -6,7 +6,8 @@
 // candidate discs centred on every cell, of the UAV's footprint radius plus a margin
 // -> per disc: least-squares plane z = a x + b y + c through the disc's cell means, slope,
 // roughness (residual RMS), largest step (peak-to-peak deviation of the cell means
-// from the plane), clearance from anything taller around it; a disc with an
+// from the plane), clearance from anything taller around it (judged in cells of half
+// the size, so that a pole covering part of a cell is not averaged away); a disc with an
 // unobserved cell is not safe (unknown is not free). Safe discs are ranked by their
 // safety margin and their distance to the hidden space's opening.
 //
@@ -69,7 +70,11 @@ class LandingZoneDetector {
     /// The UAV's footprint: a disc that covers it at any heading
     /// (RobotDescription::circumscribed_radius_m; the M100's is 0.49 m).
     double footprint_radius_m = 0.49;
-    double margin_m = 0.10;  ///< added to the footprint radius
+    /// Added to the footprint radius, for the disc's tests and the start of its clearance
+    /// ring: half a cell, so that a feature reaching over the footprint's rim from
+    /// outside covers a whole cell of the disc (a partly covered cell's mean holds only
+    /// part of it).
+    double margin_m = 0.05;
     double max_slope_deg = 14.0;
     double max_roughness_m = 0.04;
     double max_step_m = 0.08;
