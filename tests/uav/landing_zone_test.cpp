@@ -279,6 +279,20 @@ TEST(LandingZone, BadOptionsAndAFrameOfTheWrongSizeAreInputErrors) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "size");
   }
+  // Ground 9.9 m below a 65 degree camera spans 12.6 x 9.4 m: 1.2 million cells of
+  // 1 cm, more than a frame may (the clearance grid would hold four times as many).
+  o = {};
+  o.cell_size_m = 0.01;
+  const DepthImageMm far(cam.width_px, cam.height_px, 9900);
+  try {
+    (void)LandingZoneDetector(o).detect(far, cam, downward({0, 0, 10}));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "extent");
+  }
+  // At 2 cm the same frame is 0.3 million cells: answered.
+  o.cell_size_m = 0.02;
+  EXPECT_NO_THROW((void)LandingZoneDetector(o).detect(far, cam, downward({0, 0, 10})));
 }
 
 // The PX4 rule on a hand-checked case: a 0.3 m step at x = 1.0 m, on a cell boundary of
