@@ -18,8 +18,8 @@ namespace {
 
 // A frame's points never span more than this many cells (10 m of range and a fov of
 // 120 degrees: 0.12 million); beyond it the frame is bad input. The clearance grid has
-// four times as many, and the detector keeps 27 numbers a fine cell or less: at most
-// about 0.5 GB.
+// four times as many, and the detector keeps about 15 doubles for each of those (11 of
+// its own, 14 a coarse cell): at most about 0.5 GB.
 constexpr long kMaxGridCells = 1'000'000;
 
 // Summed-area table: S(i, j) = sum of v over cells [0, i) x [0, j).
