@@ -2,7 +2,12 @@
 // Benchmark), and with --compare the evaluation on generated terrains with ground
 // truth (docs/results/issue11_landing.md):
 //
-//   ferret_bench_landing_zone --compare [--terrains N] [--seed S]
+//   ferret_bench_landing_zone --compare [--terrains N] [--seed S] [--verbose] [--set NAME=V]...
+//
+// --verbose lists the frames missed and the truth-safe candidates rejected there; --set
+// changes a detector option for a study (margin_m, max_step_m, max_roughness_m,
+// max_slope_deg, taller_than_m, cell_size_m, min_clearance_m) or the truth's footprint
+// (truth_radius_m) or the view it asks for round a safe disc (view_radius_m).
 //
 // Each terrain is seen from the M100's depth camera (role depth_camera; its field of
 // view at 640 x 480) at 2, 3 and 4 m; SensorSimulator renders the D415-like frame.
