@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -27,18 +28,26 @@ void expect_same_field(const GridPathPlanner& kept, const GridPathPlanner& fresh
   }
 }
 
+// A grid with that clearance, every cell given to `label` once, row by row.
+IrGrid labelled_grid(const GridGeometry& geo, double clearance_m,
+                     const std::function<void(IrGrid&, Cell)>& label) {
+  IrGrid::Options o;
+  o.clearance_m = clearance_m;
+  IrGrid g(geo, o);
+  for (int j = 0; j < geo.height; ++j)
+    for (int i = 0; i < geo.width; ++i) label(g, {i, j});
+  return g;
+}
+
 TEST(GridPathPlanner, AFieldKeptAcrossMapChangesEqualsOneComputedAfresh) {
   // 70 x 50 cells: several 16-cell blocks, a clearance of 3 cells that reaches across
   // their edges.
   const GridGeometry geo{0.0, 0.0, 0.05, 70, 50};
-  IrGrid::Options o;
-  o.clearance_m = 0.15;
-  IrGrid g(geo, o);
   std::mt19937 rng(5);
   std::uniform_int_distribution<int> ui(0, geo.width - 1), uj(0, geo.height - 1);
-  for (int j = 0; j < geo.height; ++j)
-    for (int i = 0; i < geo.width; ++i)
-      if (ui(rng) < 60) g.update_cell({i, j}, false);  // most ground known free
+  IrGrid g = labelled_grid(geo, 0.15, [&](IrGrid& grid, Cell c) {
+    if (ui(rng) < 60) grid.update_cell(c, false);  // most ground known free
+  });
   GridPathPlanner kept(geo);
   for (int step = 0; step < 60; ++step) {
     // A few walls appear and some disappear (free rays through them), anywhere: also
@@ -64,13 +73,11 @@ TEST(GridPathPlanner, QuestionsInAnyOrderGetTheWholeFieldsAnswers) {
   // The field grows only as far as it is asked about: near cells first, far ones, an
   // unreachable one, paths, in random order, each answer the whole field's.
   const GridGeometry geo{0.0, 0.0, 0.05, 60, 45};
-  IrGrid::Options o;
-  o.clearance_m = 0.1;
-  IrGrid g(geo, o);
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> ui(0, geo.width - 1), uj(0, geo.height - 1);
-  for (int j = 0; j < geo.height; ++j)
-    for (int i = 0; i < geo.width; ++i) g.update_cell({i, j}, ui(rng) < 2);  // scattered walls
+  IrGrid g = labelled_grid(geo, 0.1, [&](IrGrid& grid, Cell c) {
+    grid.update_cell(c, ui(rng) < 2);  // scattered walls
+  });
   for (int j = 0; j < geo.height; ++j) g.update_cell({40, j}, true);      // a wall cutting off x > 40
   for (int round = 0; round < 20; ++round) {
     const Cell start{ui(rng) % 38, uj(rng)};

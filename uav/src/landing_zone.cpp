@@ -147,36 +147,6 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
                      fmt::format("{} x {} cells", nx, ny));
   const auto idx = [nx](int i, int j) { return static_cast<std::size_t>(j) * nx + i; };
   const std::size_t n_cells = static_cast<std::size_t>(nx) * ny;
-  // Per cell: count and sums of the points (x, y relative to the grid origin, z minus a
-  // reference height, to keep the sums well conditioned).
-  const double z_ref = points.front().z();
-  const auto bin = [&](double size, int n_x, int n_y, std::vector<double>& count,
-                       std::vector<double>& sum_x, std::vector<double>& sum_y,
-                       std::vector<double>& sum_z) {
-    const std::size_t n = static_cast<std::size_t>(n_x) * n_y;
-    count.assign(n, 0.0);
-    sum_x.assign(n, 0.0);
-    sum_y.assign(n, 0.0);
-    sum_z.assign(n, 0.0);
-    for (const auto& p : points) {
-      const int i = std::min(n_x - 1, static_cast<int>((p.x() - lo.x()) / size));
-      const int j = std::min(n_y - 1, static_cast<int>((p.y() - lo.y()) / size));
-      const std::size_t k = static_cast<std::size_t>(j) * n_x + i;
-      count[k] += 1.0;
-      sum_x[k] += p.x() - lo.x();
-      sum_y[k] += p.y() - lo.y();
-      sum_z[k] += p.z() - z_ref;
-    }
-  };
-  std::vector<double> cnt, sx, sy, sz;
-  bin(cell, nx, ny, cnt, sx, sy, sz);
-  // A cell the image's edge runs through is seen only in part: what stands in its
-  // unseen part is unknown, so the cell counts as unobserved.
-  for (const auto& p : border) {
-    const int i = static_cast<int>(std::floor((p.x() - lo.x()) / cell));
-    const int j = static_cast<int>(std::floor((p.y() - lo.y()) / cell));
-    if (i >= 0 && j >= 0 && i < nx && j < ny) cnt[idx(i, j)] = 0.0;
-  }
   // The clearance test's grid: cells of half the size, aligned with the coarse ones (fine
   // cell 2i and 2i + 1 make coarse cell i). Something taller beside the disc is judged
   // in these: a pole or a block that covers part of a coarse cell at the ring's edge
@@ -187,8 +157,37 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   const int fnx = 2 * nx, fny = 2 * ny;
   const auto fidx = [fnx](int i, int j) { return static_cast<std::size_t>(j) * fnx + i; };
   const std::size_t n_fine = static_cast<std::size_t>(fnx) * fny;
-  std::vector<double> fcnt, fsx, fsy, fsz;
-  bin(fine, fnx, fny, fcnt, fsx, fsy, fsz);
+  // Per fine cell: count and sums of the points (x, y relative to the grid origin, z
+  // minus a reference height, to keep the sums well conditioned). (x / fine is exactly
+  // twice x / cell, so a point's fine cell lies in its coarse cell.)
+  const double z_ref = points.front().z();
+  std::vector<double> fcnt(n_fine, 0.0), fsx(n_fine, 0.0), fsy(n_fine, 0.0), fsz(n_fine, 0.0);
+  for (const auto& p : points) {
+    const int i = std::min(fnx - 1, static_cast<int>((p.x() - lo.x()) / fine));
+    const int j = std::min(fny - 1, static_cast<int>((p.y() - lo.y()) / fine));
+    const std::size_t k = fidx(i, j);
+    fcnt[k] += 1.0;
+    fsx[k] += p.x() - lo.x();
+    fsy[k] += p.y() - lo.y();
+    fsz[k] += p.z() - z_ref;
+  }
+  // Per coarse cell: the sums of its four fine cells.
+  std::vector<double> cnt(n_cells, 0.0), sx(n_cells, 0.0), sy(n_cells, 0.0), sz(n_cells, 0.0);
+  for (int j = 0; j < fny; ++j)
+    for (int i = 0; i < fnx; ++i) {
+      const std::size_t f = fidx(i, j), k = idx(i / 2, j / 2);
+      cnt[k] += fcnt[f];
+      sx[k] += fsx[f];
+      sy[k] += fsy[f];
+      sz[k] += fsz[f];
+    }
+  // A cell the image's edge runs through is seen only in part: what stands in its
+  // unseen part is unknown, so the cell counts as unobserved.
+  for (const auto& p : border) {
+    const int i = static_cast<int>(std::floor((p.x() - lo.x()) / cell));
+    const int j = static_cast<int>(std::floor((p.y() - lo.y()) / cell));
+    if (i >= 0 && j >= 0 && i < nx && j < ny) cnt[idx(i, j)] = 0.0;
+  }
   // Cell means; the plane is fitted to them (not to the points) so that a cell counts
   // once however close it is to the camera, and the depth noise averages out first.
   std::vector<double> obs(n_cells, 0.0), mx(n_cells, 0.0), my(n_cells, 0.0), mz(n_cells, 0.0);
