@@ -83,6 +83,12 @@ void run(const Options& o) {
   std::printf("tether_limit_active_s: %.2f\nmax_released_m: %.3f (L = %.2f)\ncycles_above_L: %d\n",
               m.limit_active_s, m.max_released_m, c.limits.total_length_m, m.released_over_limit);
   if (mpc_controller) std::printf("mpc_fallback_cycles: %d\n", mpc_controller->fallback_count());
+  // The miniUGV's response as the MPC identified it by the end of the run.
+  const auto& identifier = mpc_controller ? mpc_controller->estimator().response_identifier
+                                          : std::optional<tether::UgvResponseIdentifier>();
+  if (identifier)
+    std::printf("identified_ugv_velocity_lag_s: %.2f\nidentified_ugv_tracking_time_s: %.2f\n",
+                identifier->best().velocity_lag_s, identifier->best().tracking_time_s);
   std::printf("step_time_median_us: %.1f\nstep_time_max_us: %.1f\n", m.step_time_median_us,
               m.step_time_max_us);
 
@@ -115,6 +121,9 @@ void run(const Options& o) {
                   {"duration_s", m.duration_s},
                   {"control_cycles", m.control_cycles}};
   if (mpc_controller) j["metrics"]["mpc_fallback_cycles"] = mpc_controller->fallback_count();
+  if (identifier)
+    j["identified_ugv_response"] = {{"velocity_lag_s", identifier->best().velocity_lag_s},
+                                    {"tracking_time_s", identifier->best().tracking_time_s}};
   files.write_text(stem + ".json", j.dump(2) + "\n");
   files.commit();
 }

@@ -8,18 +8,20 @@
 # both controllers' ranges in millimetres, over-tension events summed over the seeds
 # (MPC / baseline) and the MPC's cycles with l_t > L; then whether the targets hold
 # (ratio of means <= 0.8 obedient, <= 1.0 less obedient, 0 MPC events and cycles).
-#   examples/tether/compare_equal_information.sh [FERRET_BINARY] [MPC_SECTION] [LESS_OBEDIENT_CONTROL]
+#   examples/tether/compare_equal_information.sh [FERRET_BINARY] [MPC_SECTION] [LESS_OBEDIENT_CONTROL] [LESS_OBEDIENT_SIM]
 # MPC_SECTION is a YAML flow map added to every run's config as `mpc:`, e.g.
 #   examples/tether/compare_equal_information.sh build/release/apps/ferret '{ugv_velocity_error_mps: 0}'
 # LESS_OBEDIENT_CONTROL is one added as `control:` (both controllers) to the less obedient
 # settings only, e.g. the robot's true lag as a model: '{}' '{ugv_velocity_lag_s: 0.15}'.
+# LESS_OBEDIENT_SIM replaces the less obedient robot's `sim:` keys (the inside of the flow
+# map), e.g. another robot: '{}' '{}' 'ugv_velocity_lag_s: 0.25, ugv_tracking_time_s: 0.7'.
 set -euo pipefail
 ferret=${1:-build/release/apps/ferret}
 mpc=${2:-"{}"}
 less_control=${3:-"{}"}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-less_obedient="ugv_velocity_lag_s: 0.15, ugv_slip_noise_mps: 0.02, ugv_slip_time_s: 0.5, ugv_tracking_time_s: 1.0"
+less_obedient=${4:-"ugv_velocity_lag_s: 0.15, ugv_slip_noise_mps: 0.02, ugv_slip_time_s: 0.5, ugv_tracking_time_s: 1.0"}
 write_config() {  # name, sim keys, baseline keys, control section
   printf 'sim: {%s}\nbaseline: {%s}\nmpc: %s\ncontrol: %s\n' "$2" "$3" "$mpc" "$4" >"$out/$1.yaml"
 }

@@ -463,6 +463,7 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   if (const auto r = root.optional_child("control")) {
     r->allow_only({"slack_reference_m", "max_slack_m", "pose_filter_gain", "guard_n",
                    "max_tension_n", "max_speed_mps", "max_acceleration_mps2", "ugv_velocity_lag_s",
+                   "ugv_tracking_time_s", "identify_ugv_response",
                    "tension_fusion", "observer_pose_noise_m", "observer_tension_noise_n",
                    "observer_speed_noise_mps", "servo_time_constant_s"});
     ctl.slack_reference_m =
@@ -471,6 +472,10 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     ctl.pose_filter_gain = r->get_in_range_or("pose_filter_gain", 1e-3, 1.0, ctl.pose_filter_gain);
     ctl.ugv_velocity_lag_s =
         r->get_in_range_or("ugv_velocity_lag_s", 0.0, 5.0, ctl.ugv_velocity_lag_s);
+    ctl.ugv_tracking_time_s =
+        r->get_in_range_or("ugv_tracking_time_s", 0.0, 100.0, ctl.ugv_tracking_time_s);
+    ctl.ugv_response_identification.enabled =
+        r->get_or<bool>("identify_ugv_response", ctl.ugv_response_identification.enabled);
     ctl.limits.velocity_time_constant_s =
         r->get_in_range_or("servo_time_constant_s", 1e-4, 1.0, ctl.limits.velocity_time_constant_s);
     auto& obs = ctl.slack_observer;
@@ -496,7 +501,10 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
                    "weight_slack", "weight_command_rate", "weight_feedforward", "weight_terminal",
                    "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic",
                    "ugv_velocity_error_mps", "ugv_velocity_error_time_s",
-                   "ugv_velocity_error_window_s", "ugv_velocity_error_prior_log_odds"});
+                   "ugv_velocity_error_window_s", "ugv_velocity_error_prior_log_odds",
+                   "ugv_velocity_error_prior_log_odds_with_lag", "ugv_velocity_error_long_window_s",
+                   "identify_ugv_response", "ugv_response_window_s",
+                   "ugv_response_prior_log_odds"});
     auto& m = c.mpc;
     m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
     if (r->has("horizon") && r->get<double>("horizon") != m.horizon)
@@ -522,6 +530,15 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     e.window_s = r->get_in_range_or("ugv_velocity_error_window_s", 1e-3, 100.0, e.window_s);
     e.prior_log_odds =
         r->get_in_range_or("ugv_velocity_error_prior_log_odds", 0.0, 100.0, e.prior_log_odds);
+    e.prior_log_odds_with_lag = r->get_in_range_or("ugv_velocity_error_prior_log_odds_with_lag", 0.0,
+                                                   100.0, e.prior_log_odds_with_lag);
+    e.long_window_s =
+        r->get_in_range_or("ugv_velocity_error_long_window_s", 1e-3, 1e4, e.long_window_s);
+    auto& id = m.ugv_response_identification;
+    id.enabled = r->get_or<bool>("identify_ugv_response", id.enabled);
+    id.window_s = r->get_in_range_or("ugv_response_window_s", 1e-3, 1e4, id.window_s);
+    id.prior_log_odds =
+        r->get_in_range_or("ugv_response_prior_log_odds", 0.0, 1e4, id.prior_log_odds);
   }
   if (const auto r = root.optional_child("baseline")) {
     r->allow_only({"kp_per_s", "ki_per_s2", "kd", "feedforward_gain", "use_preview"});

@@ -28,7 +28,7 @@ double FeedForwardPid::step(const TetherObservation& obs) {
   const double dt = c.control_period_s;
   // Latency compensation with the desired velocity only: the classic feed-forward
   // (or, as an option, with the miniUGV's planned motion).
-  UgvMotion now = estimator_.pose_filter.update(obs.t_s - obs.ugv_age_s, obs.ugv);
+  UgvMotion now = estimator_.filter_pose(obs.t_s - obs.ugv_age_s, obs.ugv);
   if (options_.use_preview && !obs.ugv_preview.empty()) {
     now = planned_motion(now, obs.ugv_preview, obs.ugv_age_s);
   } else {

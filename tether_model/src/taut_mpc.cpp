@@ -10,9 +10,10 @@
 namespace ferret::tether {
 namespace {
 
-TautControlOptions with_velocity_error(TautControlOptions control,
-                                       const UgvVelocityErrorOptions& error) {
-  control.ugv_velocity_error = error;
+TautControlOptions with_own_estimation(TautControlOptions control,
+                                       const TautTetherMpc::Options& options) {
+  control.ugv_velocity_error = options.ugv_velocity_error;
+  control.ugv_response_identification = options.ugv_response_identification;
   return control;
 }
 
@@ -21,7 +22,7 @@ TautControlOptions with_velocity_error(TautControlOptions control,
 TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLengthModel> model)
     : options_(options),
       model_(std::move(model)),
-      estimator_(with_velocity_error(options.control, options.ugv_velocity_error)) {
+      estimator_(with_own_estimation(options.control, options)) {
   if (!model_) throw std::invalid_argument("TautTetherMpc: no required-length model");
   if (options_.horizon < 2) throw std::invalid_argument("TautTetherMpc: horizon must be >= 2");
   if (!(options_.prediction_dt_s > 0.0) || !(options_.control.control_period_s > 0.0))
@@ -131,7 +132,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // without, the desired acceleration is held for acceleration_time_s.
   const double ta = options_.acceleration_time_s;
   const bool preview = options_.use_preview && !obs.ugv_preview.empty();
-  const UgvMotion at_message = estimator_.pose_filter.update(obs.t_s - obs.ugv_age_s, obs.ugv);
+  const UgvMotion at_message = estimator_.filter_pose(obs.t_s - obs.ugv_age_s, obs.ugv);
   // The plan says nothing of the robot's velocity error; the filter's estimate (zero
   // unless estimated and past its gate) is added to it.
   const Eigen::Vector2d velocity_error = estimator_.pose_filter.velocity_error_mps();
@@ -141,8 +142,24 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     m.v_WG += velocity_error;
     return m;
   };
-  const UgvMotion now = preview ? planned(obs.ugv_age_s)
-                                : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
+  // With a response model the robot's motion is simulated from the desired motion
+  // (the plan, or the desired velocity and acceleration extrapolated as above).
+  std::vector<UgvMotion> response;
+  if (estimator_.pose_filter.models_response()) {
+    std::vector<double> times(N + 1);
+    for (int k = 0; k <= N; ++k) times[k] = obs.ugv_age_s + k * dt;
+    const UgvMotion desired = estimator_.pose_filter.desired_at_message();
+    if (preview) {
+      response = estimator_.pose_filter.response(
+          times, [&](double t) { return planned_motion(desired, obs.ugv_preview, t); });
+    } else {
+      response = estimator_.pose_filter.response(
+          times, [&](double t) { return desired.extrapolated(t, ctl.ugv_max_speed_mps, ta); });
+    }
+  }
+  const UgvMotion now = !response.empty() ? response[0]
+                        : preview         ? planned(obs.ugv_age_s)
+                                  : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
   const double required_now = model_->required_length_m(now.p_WG);
   // The observer's correction of the geometric slack (the pose error the tension
   // reveals, or a snag's measured stretch) shifts every prediction: the tether
@@ -150,13 +167,22 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   const double slack =
       estimator_.slack_observer.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
   const double bias = (obs.released_m - required_now) - slack;
+  // The observer's model offset (a snag's length held) is given back at its decay rate
+  // while the line does not pull: the prediction knows it will shrink.
+  const auto& tension = ctl.slack_estimator.tension;
+  const bool pulling = obs.winch_tension_n - tension.hanging_weight_n > ctl.slack_estimator.guard_n;
+  const double offset = pulling ? 0.0 : estimator_.slack_observer.model_offset_m();
+  const double offset_decay = ctl.slack_observer.model_offset_decay_mps;
   for (int k = 0; k < N; ++k) {
     const UgvMotion future =
-        preview ? planned(obs.ugv_age_s + (k + 1) * dt)
-                : now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps,
-                                   std::max(0.0, ta - obs.ugv_age_s));
-    required_[k] = model_->required_length_m(future.p_WG) + bias;
-    required_rate_[k] = required_length_rate_mps(*model_, future);
+        !response.empty() ? response[k + 1]
+        : preview         ? planned(obs.ugv_age_s + (k + 1) * dt)
+                  : now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps,
+                                     std::max(0.0, ta - obs.ugv_age_s));
+    const double given_back = std::min(offset, offset_decay * (k + 1) * dt);
+    required_[k] = model_->required_length_m(future.p_WG) + bias - given_back;
+    required_rate_[k] = required_length_rate_mps(*model_, future) -
+                        (given_back < offset ? offset_decay : 0.0);
   }
   // While the pull is above the guard the line may be caught on a corner (a snag):
   // then the winch side ends at the pin and cannot get shorter, whatever the miniUGV
@@ -164,8 +190,7 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // otherwise slack predicted beyond the pin (past s_max, which no winch can take in)
   // would make the MPC hold the stretch against it. Growth is still followed, so an
   // ordinary stretch behind a miniUGV driving away is paid out as before.
-  const auto& tension = ctl.slack_estimator.tension;
-  if (obs.winch_tension_n - tension.hanging_weight_n > ctl.slack_estimator.guard_n) {
+  if (pulling) {
     for (int k = 0; k < N; ++k) {
       required_[k] = std::max(required_[k], obs.released_m - slack);
       required_rate_[k] = std::max(required_rate_[k], 0.0);

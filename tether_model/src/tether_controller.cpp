@@ -125,7 +125,9 @@ UgvPositionFilter::UgvPositionFilter(double gain, double velocity_lag_s,
   if (error_options_.sigma_mps > 0.0) {
     if (!std::isfinite(error_options_.sigma_mps) || !(error_options_.time_s > 0.0) ||
         !(pose_noise_m >= 0.0) || !(period_s > 0.0) || !(gain > 0.0) ||
-        !(error_options_.window_s > 0.0) || !std::isfinite(error_options_.prior_log_odds))
+        !(error_options_.window_s > 0.0) || !std::isfinite(error_options_.prior_log_odds) ||
+        !std::isfinite(error_options_.prior_log_odds_with_lag) ||
+        !(error_options_.long_window_s > 0.0))
       throw std::invalid_argument("UgvPositionFilter: bad velocity-error options");
     // The random-walk position noise whose steady-state Kalman gain is `gain` (a
     // cycle of period_s): P- = g r / (1 - g) = P+ + q with P+ = g r. Noise-free
@@ -140,9 +142,11 @@ UgvPositionFilter::UgvPositionFilter(double gain, double velocity_lag_s,
 
 void UgvPositionFilter::reset() {
   initialised_ = false;
+  innovation_.setZero();
   error_.setZero();
   P_ = P0_;
   log_odds_ = 0.0;
+  long_log_odds_ = 0.0;
   weight_ = 0.0;
 }
 
@@ -156,9 +160,16 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
       error_.setZero();
       P_ = P0_;
       log_odds_ = 0.0;
+      long_log_odds_ = 0.0;
       weight_ = 0.0;
     }
     kalman_p_WG_ = obedient_p_WG_ = measured.p_WG;
+    if (!initialised_ || t_msg_s < t_s_) {
+      desired_p_WG_ = measured.p_WG;
+    } else {
+      const double dt = t_msg_s - t_s_;
+      desired_p_WG_ += estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
+    }
     initialised_ = true;
     t_s_ = t_msg_s;
     estimate_ = measured;
@@ -168,11 +179,13 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
   // Predict with the previous desired motion, then correct with the measurement.
   Eigen::Vector2d plain;
   if (lag_s_ > 0.0) {
-    // v' = (v_d - v) / lag with v_d held: exact over dt.
-    const double decay = std::exp(-dt / lag_s_);
-    plain = estimate_.p_WG + estimate_.v_WG * dt +
-            (velocity_ - estimate_.v_WG) * lag_s_ * (1.0 - decay);
-    velocity_ = estimate_.v_WG + (velocity_ - estimate_.v_WG) * decay;
+    // v' = (v_c - v) / lag, the command v_c the desired velocity less the path
+    // follower's pull back onto the desired path, changing at the desired acceleration
+    // less the follower's reaction to the velocity error.
+    Eigen::Vector2d rate = estimate_.a_WG;
+    if (tracking_time_s_ > 0.0) rate -= (velocity_ - estimate_.v_WG) / tracking_time_s_;
+    plain = estimate_.p_WG;
+    lagged_velocity_step(plain, velocity_, commanded_velocity(), rate, lag_s_, dt);
   } else {
     plain = estimate_.p_WG + estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
   }
@@ -181,6 +194,7 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
   // believed (w e of the previous message; without the error filter w = 0 and this
   // is the filter as it always was, to the bit).
   const Eigen::Vector2d predicted = plain + weight_ * error_ * dt;
+  innovation_ = measured.p_WG - predicted;
   if (kalman) {
     // Position and velocity error e per axis (both axes share the covariance P):
     // e' = -e / T + noise, p' = v_model + e, exact over dt. Its own position state, so
@@ -210,37 +224,147 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
              0.5 * std::min(fixed_innovation[i] * fixed_innovation[i] / S_fixed, 25.0) +
              0.5 * std::log(S_fixed);
     log_odds_ = std::exp(-dt / error_options_.window_s) * log_odds_ + llr;
-    weight_ = 1.0 / (1.0 + std::exp(error_options_.prior_log_odds - log_odds_));
+    // Over a long memory the same evidence says whether the robot keeps deviating.
+    long_log_odds_ = std::exp(-dt / error_options_.long_window_s) * long_log_odds_ + llr;
+    const bool disobedient = lag_s_ > 0.0 || long_log_odds_ > error_options_.prior_log_odds;
+    const double prior =
+        disobedient ? error_options_.prior_log_odds_with_lag : error_options_.prior_log_odds;
+    weight_ = 1.0 / (1.0 + std::exp(prior - log_odds_));
     kalman_p_WG_ = kf_predicted + K[0] * innovation;
     error_ += K[1] * innovation;
     const Eigen::Matrix2d P = P_ - K * P_.row(0);
     P_ = 0.5 * (P + P.transpose());
   }
+  // The desired path moves on with the previous message's desired motion.
+  desired_p_WG_ += estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
   estimate_ = measured;
   estimate_.p_WG = predicted + gain_ * (measured.p_WG - predicted);
   t_s_ = t_msg_s;
   return output();
 }
 
+UgvMotion UgvPositionFilter::desired_at_message() const {
+  UgvMotion d = estimate_;
+  d.p_WG = desired_p_WG_;
+  return d;
+}
+
+Eigen::Vector2d UgvPositionFilter::commanded_velocity() const {
+  Eigen::Vector2d v = estimate_.v_WG;
+  if (tracking_time_s_ > 0.0) v -= (estimate_.p_WG - desired_p_WG_) / tracking_time_s_;
+  return v;
+}
+
+void UgvPositionFilter::set_response_model(double velocity_lag_s, double tracking_time_s) {
+  if (!(velocity_lag_s >= 0.0) || !(tracking_time_s >= 0.0) || !std::isfinite(velocity_lag_s) ||
+      !std::isfinite(tracking_time_s))
+    throw std::invalid_argument("UgvPositionFilter: lag and tracking time must be finite and >= 0");
+  // A filter that starts to model a lag starts from the velocity the old model had.
+  if (lag_s_ == 0.0 && velocity_lag_s > 0.0 && initialised_) velocity_ = estimate_.v_WG;
+  lag_s_ = velocity_lag_s;
+  tracking_time_s_ = tracking_time_s;
+}
+
 UgvMotion UgvPositionFilter::output() const {
   UgvMotion out = estimate_;
   if (lag_s_ > 0.0) {
     out.v_WG = velocity_;
-    out.a_WG = (estimate_.v_WG - velocity_) / lag_s_;
+    out.a_WG = (commanded_velocity() - velocity_) / lag_s_;
   }
   if (weight_ > 0.0) out.v_WG += weight_ * error_;
   return out;
+}
+
+UgvResponseIdentifier::UgvResponseIdentifier(const UgvResponseIdentificationOptions& options,
+                                             double gain, double pose_noise_m)
+    : options_(options) {
+  const auto bad = [](double x) { return !(x >= 0.0) || !std::isfinite(x); };
+  if (!(options_.window_s > 0.0) || !std::isfinite(options_.window_s) ||
+      !std::isfinite(options_.prior_log_odds) || !(gain > 0.0 && gain <= 1.0))
+    throw std::invalid_argument("UgvResponseIdentifier: window must be > 0, prior finite");
+  for (const double x : options_.lags_s)
+    if (bad(x) || x == 0.0) throw std::invalid_argument("UgvResponseIdentifier: lags must be > 0");
+  for (const double x : options_.tracking_times_s)
+    if (bad(x)) throw std::invalid_argument("UgvResponseIdentifier: tracking times must be >= 0");
+  // The fixed-gain filter's steady-state innovation variance, r / (1 - g).
+  innovation_var_m2_ = std::pow(std::max(pose_noise_m, 1e-4), 2) / (1.0 - std::min(gain, 0.999));
+  settle_messages_ = static_cast<int>(std::ceil(3.0 / gain));
+  models_.push_back({});
+  for (const double lag : options_.lags_s)
+    for (const double tracking : options_.tracking_times_s) models_.push_back({lag, tracking});
+  for (const auto& m : models_) {
+    filters_.emplace_back(gain);
+    filters_.back().set_response_model(m.velocity_lag_s, m.tracking_time_s);
+  }
+  reset();
+}
+
+void UgvResponseIdentifier::reset() {
+  for (auto& f : filters_) f.reset();
+  score_.assign(models_.size(), 0.0);
+  started_ = false;
+  messages_ = 0;
+  best_ = 0;
+}
+
+UgvResponseIdentifier::Model UgvResponseIdentifier::update(double t_msg_s,
+                                                           const UgvMotion& measured) {
+  if (started_ && t_msg_s < t_s_) reset();  // time ran backwards: start again
+  const double forget = started_ ? std::exp(-(t_msg_s - t_s_) / options_.window_s) : 1.0;
+  started_ = true;
+  t_s_ = t_msg_s;
+  // Until the fixed-gain filters have forgotten their first, noisy position (a few of
+  // their time constants), their innovations say more about that than about the model.
+  const bool settled = messages_ >= settle_messages_;
+  if (!settled) ++messages_;
+  for (std::size_t i = 0; i < filters_.size(); ++i) {
+    filters_[i].update(t_msg_s, measured);
+    if (!settled) continue;
+    const Eigen::Vector2d& nu = filters_[i].innovation_m();
+    double s = 0.0;
+    for (int a = 0; a < 2; ++a) s += std::min(nu[a] * nu[a] / innovation_var_m2_, 25.0);
+    score_[i] = forget * score_[i] + s;
+  }
+  // Log-likelihood -score / 2; the obedient robot gets the prior.
+  best_ = 0;
+  double best_ll = -0.5 * score_[0] + options_.prior_log_odds;
+  for (std::size_t i = 1; i < score_.size(); ++i)
+    if (-0.5 * score_[i] > best_ll) {
+      best_ll = -0.5 * score_[i];
+      best_ = i;
+    }
+  return models_[best_];
+}
+
+double UgvResponseIdentifier::best_log_odds() const {
+  return 0.5 * (score_[0] - score_[best_]);
 }
 
 TetherStateEstimator::TetherStateEstimator(const TautControlOptions& options)
     : pose_filter(options.pose_filter_gain, options.ugv_velocity_lag_s, options.ugv_velocity_error,
                   options.slack_observer.pose_noise_m, options.control_period_s),
       slack_observer(options.slack_estimator, options.slack_observer, options.pose_filter_gain,
-                     options.control_period_s) {}
+                     options.control_period_s),
+      fixed_model_{options.ugv_velocity_lag_s, options.ugv_tracking_time_s} {
+  pose_filter.set_response_model(options.ugv_velocity_lag_s, options.ugv_tracking_time_s);
+  if (options.ugv_response_identification.enabled)
+    response_identifier.emplace(options.ugv_response_identification, options.pose_filter_gain,
+                                options.slack_observer.pose_noise_m);
+}
 
 void TetherStateEstimator::reset() {
   pose_filter.reset();
+  pose_filter.set_response_model(fixed_model_.velocity_lag_s, fixed_model_.tracking_time_s);
   slack_observer.reset();
+  if (response_identifier) response_identifier->reset();
+}
+
+UgvMotion TetherStateEstimator::filter_pose(double t_msg_s, const UgvMotion& measured) {
+  if (response_identifier) {
+    const auto m = response_identifier->update(t_msg_s, measured);
+    pose_filter.set_response_model(m.velocity_lag_s, m.tracking_time_s);
+  }
+  return pose_filter.update(t_msg_s, measured);
 }
 
 std::unique_ptr<TetherController> make_tether_controller(
@@ -249,9 +373,10 @@ std::unique_ptr<TetherController> make_tether_controller(
   if (name == "mpc") {
     TautTetherMpc::Options o;
     o.control = options;
-    // The velocity-error filter as the common options have it (off by default): the
-    // mission's winch has not been re-measured with it (docs/tether.md).
+    // The velocity-error filter and the response identification as the common options
+    // have them (off by default; the mission's winch turns them on).
     o.ugv_velocity_error = options.ugv_velocity_error;
+    o.ugv_response_identification = options.ugv_response_identification;
     return std::make_unique<TautTetherMpc>(o, std::move(model));
   }
   if (name == "baseline") {

@@ -6,7 +6,10 @@
 // link (with its age). Both output a spool velocity command (positive pays out).
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -123,6 +126,12 @@ struct UgvVelocityErrorOptions {
   /// Log-odds against the velocity-error filter before any evidence (> 0: the
   /// obedient filter is kept on a tie).
   double prior_log_odds = 2.0;
+  /// The prior while the filter models a lag (a robot known not to do exactly what it
+  /// says is more likely to deviate from its model too).
+  double prior_log_odds_with_lag = 2.0;
+  /// Memory of the same evidence over which a robot that keeps deviating (log-odds
+  /// above prior_log_odds) is also given prior_log_odds_with_lag.
+  double long_window_s = 20.0;
 };
 
 /// Smooths the miniUGV's reported position with its own desired motion: each message
@@ -155,6 +164,21 @@ class UgvPositionFilter {
   /// acceleration; with a velocity error, the mixture above)
   UgvMotion update(double t_msg_s, const UgvMotion& measured);
   void reset();
+  /// The robot's response model: the velocity loop's lag (0: the robot follows its
+  /// desired motion exactly) and its path follower's time constant (0: none), which
+  /// steers it back onto the desired path integrated from its desired motion.
+  void set_response_model(double velocity_lag_s, double tracking_time_s);
+  /// Whether the filter models the robot's response (a lag > 0).
+  [[nodiscard]] bool models_response() const { return lag_s_ > 0.0; }
+  /// The desired motion at the last message, its position on the integrated desired path.
+  [[nodiscard]] UgvMotion desired_at_message() const;
+  /// The robot's motion at `times_s` after the last message (ascending, >= 0): the
+  /// response model from the filtered state, driven by the desired motion `desired`
+  /// returns for a time after the message (position on the desired path, velocity),
+  /// plus the velocity error as believed. Needs a lag (models_response()).
+  template <class DesiredMotion>
+  [[nodiscard]] std::vector<UgvMotion> response(const std::vector<double>& times_s,
+                                                const DesiredMotion& desired) const;
   /// The velocity error as output: w e (zero without the error filter).
   [[nodiscard]] Eigen::Vector2d velocity_error_mps() const { return weight_ * error_; }
   /// The Kalman filter's velocity error and its variance (per axis).
@@ -162,11 +186,20 @@ class UgvPositionFilter {
   [[nodiscard]] double velocity_error_variance() const { return P_(1, 1); }
   /// Posterior weight of the velocity-error filter (0 without it).
   [[nodiscard]] double velocity_error_weight() const { return weight_; }
+  /// The last message's position innovation of the fixed-gain filter (before its
+  /// correction; zero for the first message).
+  [[nodiscard]] const Eigen::Vector2d& innovation_m() const { return innovation_; }
 
  private:
   [[nodiscard]] UgvMotion output() const;
+  /// What the robot's velocity loop is asked for: the desired velocity less the path
+  /// follower's correction.
+  [[nodiscard]] Eigen::Vector2d commanded_velocity() const;
   double gain_;
   double lag_s_;
+  double tracking_time_s_ = 0.0;
+  Eigen::Vector2d desired_p_WG_ = Eigen::Vector2d::Zero();  ///< desired path, integrated
+  Eigen::Vector2d innovation_ = Eigen::Vector2d::Zero();
   UgvVelocityErrorOptions error_options_;
   double r_m2_ = 1e-4, q_p_m2_per_s_ = 0.0;
   bool initialised_ = false;
@@ -178,7 +211,99 @@ class UgvPositionFilter {
   Eigen::Vector2d obedient_p_WG_ = Eigen::Vector2d::Zero();  ///< the obedient filter's
   Eigen::Matrix2d P_ = Eigen::Matrix2d::Zero(), P0_ = Eigen::Matrix2d::Zero();
   double log_odds_ = 0.0;  ///< evidence for the Kalman filter (without the prior)
+  double long_log_odds_ = 0.0;  ///< the same over long_window_s
   double weight_ = 0.0;
+};
+
+/// One step `h` of a first-order velocity lag `lag_s` (> 0) whose command changes
+/// linearly, `c0 + c1 s`: exact for that command.
+inline void lagged_velocity_step(Eigen::Vector2d& p, Eigen::Vector2d& v, const Eigen::Vector2d& c0,
+                                 const Eigen::Vector2d& c1, double lag_s, double h) {
+  const double decay = std::exp(-h / lag_s);
+  const Eigen::Vector2d transient = v - c0 + c1 * lag_s;
+  p += c0 * h + c1 * (0.5 * h * h - lag_s * h) + transient * lag_s * (1.0 - decay);
+  v = c0 + c1 * (h - lag_s) + transient * decay;
+}
+
+template <class DesiredMotion>
+std::vector<UgvMotion> UgvPositionFilter::response(const std::vector<double>& times_s,
+                                                   const DesiredMotion& desired) const {
+  std::vector<UgvMotion> out;
+  out.reserve(times_s.size());
+  constexpr double kStepS = 0.005;
+  const Eigen::Vector2d error = weight_ * error_;
+  Eigen::Vector2d p = estimate_.p_WG, v = velocity_;
+  double t = 0.0;
+  for (const double target : times_s) {
+    while (t < target - 1e-12) {
+      const double h = std::min(kStepS, target - t);
+      // The command at the step's start and its rate (the desired velocity's change
+      // over the step, less the path follower's reaction to the velocity error).
+      const UgvMotion d = desired(t), d_next = desired(t + h);
+      Eigen::Vector2d command = d.v_WG, rate = (d_next.v_WG - d.v_WG) / h;
+      if (tracking_time_s_ > 0.0) {
+        command -= (p - d.p_WG) / tracking_time_s_;
+        rate -= (v - d.v_WG) / tracking_time_s_;
+      }
+      lagged_velocity_step(p, v, command, rate, lag_s_, h);
+      t += h;
+    }
+    UgvMotion m;
+    m.p_WG = p + error * t;
+    m.v_WG = v + error;
+    out.push_back(m);
+  }
+  return out;
+}
+
+/// Which response model the miniUGV follows, identified online from its messages: a
+/// bank of fixed-gain filters, one a hypothesis (the obedient robot, and every pair of
+/// a velocity lag and a path follower's time constant), each scored by the squared
+/// innovations of its position predictions (normalised, capped at 25 per axis) with
+/// exponential forgetting over `window_s`. A robot's response is a property of the
+/// robot, not of a moment, so the memory is long; the obedient hypothesis wins ties by
+/// `prior_log_odds`. Scoring starts after 3 / gain messages, when the filters have
+/// forgotten their first position. Off by default (both controllers as published); the
+/// MPC turns it on.
+struct UgvResponseIdentificationOptions {
+  bool enabled = false;
+  std::array<double, 6> lags_s = {0.05, 0.1, 0.15, 0.2, 0.3, 0.5};
+  /// Path follower time constants; 0: the robot does not steer back onto its path.
+  std::array<double, 5> tracking_times_s = {0.0, 0.5, 1.0, 2.0, 4.0};
+  double window_s = 20.0;
+  double prior_log_odds = 4.0;
+};
+
+class UgvResponseIdentifier {
+ public:
+  struct Model {
+    double velocity_lag_s = 0.0;  ///< 0: obedient
+    double tracking_time_s = 0.0;
+    bool operator==(const Model&) const = default;
+  };
+  /// Throws std::invalid_argument for negative or non-finite hypotheses, a window <= 0.
+  UgvResponseIdentifier(const UgvResponseIdentificationOptions& options, double gain,
+                        double pose_noise_m);
+  /// Scores every hypothesis on one message; returns the most likely model.
+  Model update(double t_msg_s, const UgvMotion& measured);
+  void reset();
+  [[nodiscard]] const Model& best() const { return models_[best_]; }
+  /// Log-likelihood of the best model over the obedient one (without the prior).
+  [[nodiscard]] double best_log_odds() const;
+  /// Every hypothesis ([0] the obedient robot) and its log-likelihood (without the prior).
+  [[nodiscard]] const std::vector<Model>& models() const { return models_; }
+  [[nodiscard]] double log_likelihood(std::size_t i) const { return -0.5 * score_.at(i); }
+
+ private:
+  UgvResponseIdentificationOptions options_;
+  double innovation_var_m2_;
+  std::vector<Model> models_;  ///< [0] obedient
+  std::vector<UgvPositionFilter> filters_;
+  std::vector<double> score_;  ///< sum of normalised squared innovations, forgotten
+  double t_s_ = 0.0;
+  bool started_ = false;
+  int messages_ = 0, settle_messages_ = 0;  ///< scored only after settle_messages_
+  std::size_t best_ = 0;
 };
 
 class TetherController {
@@ -236,9 +361,16 @@ struct TautControlOptions {
   /// The miniUGV's velocity-loop time constant as the filter models it (0: it
   /// follows its desired motion exactly).
   double ugv_velocity_lag_s = 0.0;
+  /// The time constant of the miniUGV's path follower as the filter models it (0: none;
+  /// only with a lag).
+  double ugv_tracking_time_s = 0.0;
   /// The pose filter's velocity-error state (default off: both controllers as
   /// published; the MPC turns it on with TautTetherMpc::Options::ugv_velocity_error).
   UgvVelocityErrorOptions ugv_velocity_error;
+  /// Online identification of the miniUGV's response model, which then replaces
+  /// ugv_velocity_lag_s / ugv_tracking_time_s (default off; the MPC turns it on with
+  /// TautTetherMpc::Options::ugv_response_identification).
+  UgvResponseIdentificationOptions ugv_response_identification;
   ReelInGuard reel_in_guard;  ///< off by default
 };
 
@@ -247,9 +379,15 @@ struct TautControlOptions {
 struct TetherStateEstimator {
   explicit TetherStateEstimator(const TautControlOptions& options);
   void reset();
+  /// The message through the response identification (when on) and the pose filter.
+  UgvMotion filter_pose(double t_msg_s, const UgvMotion& measured);
 
   UgvPositionFilter pose_filter;
   SlackObserver slack_observer;
+  std::optional<UgvResponseIdentifier> response_identifier;  ///< when identification is on
+
+ private:
+  UgvResponseIdentifier::Model fixed_model_;
 };
 
 /// Named factory: "mpc" or "baseline". Throws std::invalid_argument for another name.
