@@ -3,9 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <cstdint>
-
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 
@@ -648,7 +647,6 @@ TEST(TetherSim, TheVelocityErrorFilterMakesTheMpcRobustToALaggingMiniUgv) {
   const double obedient_trusting = run(true, false, true).reachable_slack_rms_m;
   EXPECT_LT(obedient_robust, 1.03 * obedient_trusting);
 }
-
 
 // The same robot on the built-in scenario's rest-to-rest legs, where the velocity-error
 // filter alone left the MPC 20 % behind the baseline: with the robot's response

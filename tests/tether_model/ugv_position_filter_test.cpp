@@ -123,7 +123,6 @@ TEST(UgvPositionFilter, AnObedientRobotKeepsThePlainFilter) {
   EXPECT_LT(weight, 0.5);
 }
 
-
 // The response model's prediction against the robot's equations integrated finely: a
 // robot at rest on its path told to drive 0.5 m/s, velocity lag lambda, path follower T
 // (v' = (v_d - (p - p_d) / T - v) / lambda). Without a path follower the prediction is
@@ -177,8 +176,7 @@ UgvResponseIdentifier identify(double lambda, double T, std::uint64_t seed, doub
   UgvResponseIdentifier identifier(options, 0.05, noise_m);
   Rng rng(seed);
   const double h = 1e-3, cruise = 0.4, accel = 1.0;
-  // The desired motion along x: legs of 1.2 m out and back with a dwell between.
-  // A trapezoid of 1.2 m: accelerate, cruise, decelerate, then dwell 1 s.
+  // Along x, out and back: trapezoids of 1.2 m (accelerate, cruise, decelerate), 1 s dwell.
   const double ramp = cruise / accel, drive = 1.2 / cruise + ramp, period = 2.0 * (drive + 1.0);
   const auto desired_v = [&](double t, double* a) {
     const double u = std::fmod(t, period);
@@ -208,7 +206,6 @@ UgvResponseIdentifier identify(double lambda, double T, std::uint64_t seed, doub
       m.a_WG = {a, 0.0};
       (void)identifier.update(t, m);
     }
-
     if (lambda > 0.0) {
       const double command = vd - (T > 0.0 ? (p - pd) / T : 0.0);
       const double decay = std::exp(-h / lambda);

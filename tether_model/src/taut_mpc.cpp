@@ -167,22 +167,20 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   const double slack =
       estimator_.slack_observer.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
   const double bias = (obs.released_m - required_now) - slack;
-  // The observer's model offset (a snag's length held) is given back at its decay rate
-  // while the line does not pull: the prediction knows it will shrink.
-  const auto& tension = ctl.slack_estimator.tension;
-  const bool pulling = obs.winch_tension_n - tension.hanging_weight_n > ctl.slack_estimator.guard_n;
-  const double offset = pulling ? 0.0 : estimator_.slack_observer.model_offset_m();
-  const double offset_decay = ctl.slack_observer.model_offset_decay_mps;
+  // The observer's model offset (a snag's length held) is given back while the line
+  // does not pull: the prediction knows it will shrink.
+  const auto& observer = estimator_.slack_observer;
   for (int k = 0; k < N; ++k) {
     const UgvMotion future =
         !response.empty() ? response[k + 1]
         : preview         ? planned(obs.ugv_age_s + (k + 1) * dt)
                   : now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps,
                                      std::max(0.0, ta - obs.ugv_age_s));
-    const double given_back = std::min(offset, offset_decay * (k + 1) * dt);
-    required_[k] = model_->required_length_m(future.p_WG) + bias - given_back;
-    required_rate_[k] = required_length_rate_mps(*model_, future) -
-                        (given_back < offset ? offset_decay : 0.0);
+    const double ahead_s = (k + 1) * dt;
+    required_[k] = model_->required_length_m(future.p_WG) + bias -
+                   (observer.model_offset_m() - observer.model_offset_after_m(ahead_s));
+    required_rate_[k] =
+        required_length_rate_mps(*model_, future) + observer.model_offset_rate_mps(ahead_s);
   }
   // While the pull is above the guard the line may be caught on a corner (a snag):
   // then the winch side ends at the pin and cannot get shorter, whatever the miniUGV
@@ -190,7 +188,8 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // otherwise slack predicted beyond the pin (past s_max, which no winch can take in)
   // would make the MPC hold the stretch against it. Growth is still followed, so an
   // ordinary stretch behind a miniUGV driving away is paid out as before.
-  if (pulling) {
+  const auto& tension = ctl.slack_estimator.tension;
+  if (obs.winch_tension_n - tension.hanging_weight_n > ctl.slack_estimator.guard_n) {
     for (int k = 0; k < N; ++k) {
       required_[k] = std::max(required_[k], obs.released_m - slack);
       required_rate_[k] = std::max(required_rate_[k], 0.0);

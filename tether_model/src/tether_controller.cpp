@@ -81,6 +81,7 @@ void SlackObserver::reset() {
   bias_m_ = 0.0;
   variance_m2_ = steady_m2_;
   offset_m_ = 0.0;
+  pulling_ = false;
 }
 
 double SlackObserver::estimate_m(double released_m, double required_m, double winch_tension_n) {
@@ -90,7 +91,8 @@ double SlackObserver::estimate_m(double released_m, double required_m, double wi
   bias_m_ *= decay_;
   variance_m2_ = decay_ * decay_ * variance_m2_ + process_m2_;
   const double pull = winch_tension_n - estimator_.tension.hanging_weight_n;
-  if (pull <= estimator_.guard_n) {
+  pulling_ = pull > estimator_.guard_n;
+  if (!pulling_) {
     // Stretch x = -s = b - g ~ N(m, P); the winch measures y = k max(0, x) + noise.
     const double k = estimator_.tension.stiffness_npm(released_m);
     const double m = bias_m_ - geometric, sd = std::sqrt(variance_m2_);

@@ -30,15 +30,12 @@ class TautTetherMpc final : public TetherController {
     /// the velocity the MPC predicts with (over the latency and the horizon; with a
     /// preview, to the planned velocity): the MPC's own pose filter replaces
     /// control.ugv_velocity_error with this. sigma_mps 0 turns it off.
-    UgvVelocityErrorOptions ugv_velocity_error{0.05, 0.5, 0.5, 6.0, 0.0, 20.0};
+    UgvVelocityErrorOptions ugv_velocity_error = UgvVelocityErrorOptions::estimated();
     /// The miniUGV's response model (velocity lag, path follower) identified online
     /// from its messages; the prediction then simulates it. Replaces
     /// control.ugv_response_identification.
-    UgvResponseIdentificationOptions ugv_response_identification = [] {
-      UgvResponseIdentificationOptions o;
-      o.enabled = true;
-      return o;
-    }();
+    UgvResponseIdentificationOptions ugv_response_identification =
+        UgvResponseIdentificationOptions::on();
     double weight_slack = 100.0;         ///< on (slack - reference)^2 per step, 1/m^2
     double weight_command_rate = 2.0;    ///< on (delta command)^2, (s/m)^2
     double weight_feedforward = 0.05;    ///< on (command - required-length rate)^2

@@ -99,6 +99,14 @@ class SlackObserver {
   [[nodiscard]] double bias_m() const { return bias_m_; }
   /// How much longer than the model the tether was found to be (>= 0).
   [[nodiscard]] double model_offset_m() const { return offset_m_; }
+  /// The model offset `ahead_s` after the last cycle, and its rate then: given back at
+  /// model_offset_decay_mps unless the last cycle's line was pulling (then held).
+  [[nodiscard]] double model_offset_after_m(double ahead_s) const {
+    return pulling_ ? offset_m_ : std::max(0.0, offset_m_ - options_.model_offset_decay_mps * ahead_s);
+  }
+  [[nodiscard]] double model_offset_rate_mps(double ahead_s) const {
+    return model_offset_after_m(ahead_s) > 0.0 && !pulling_ ? -options_.model_offset_decay_mps : 0.0;
+  }
   [[nodiscard]] double bias_variance_m2() const { return variance_m2_; }
   /// Largest |b| the observer accepts as pose error (larger: not pose noise).
   [[nodiscard]] double max_bias_m() const;
@@ -111,6 +119,7 @@ class SlackObserver {
   double steady_m2_ = 0.0;     ///< variance of b without tension information
   double bias_m_ = 0.0, variance_m2_ = 0.0;
   double offset_m_ = 0.0;
+  bool pulling_ = false;  ///< the last cycle's pull was above the guard
   double control_period_s_ = 0.02;
 };
 
@@ -132,6 +141,8 @@ struct UgvVelocityErrorOptions {
   /// Memory of the same evidence over which a robot that keeps deviating (log-odds
   /// above prior_log_odds) is also given prior_log_odds_with_lag.
   double long_window_s = 20.0;
+  /// The MPC's settings (docs/tether.md): a robot's error beside its identified response.
+  [[nodiscard]] static UgvVelocityErrorOptions estimated() { return {0.05, 0.5, 0.5, 6.0, 0.0, 20.0}; }
 };
 
 /// Smooths the miniUGV's reported position with its own desired motion: each message
@@ -234,12 +245,13 @@ std::vector<UgvMotion> UgvPositionFilter::response(const std::vector<double>& ti
   const Eigen::Vector2d error = weight_ * error_;
   Eigen::Vector2d p = estimate_.p_WG, v = velocity_;
   double t = 0.0;
+  UgvMotion d = desired(0.0);
   for (const double target : times_s) {
     while (t < target - 1e-12) {
       const double h = std::min(kStepS, target - t);
       // The command at the step's start and its rate (the desired velocity's change
       // over the step, less the path follower's reaction to the velocity error).
-      const UgvMotion d = desired(t), d_next = desired(t + h);
+      const UgvMotion d_next = desired(t + h);
       Eigen::Vector2d command = d.v_WG, rate = (d_next.v_WG - d.v_WG) / h;
       if (tracking_time_s_ > 0.0) {
         command -= (p - d.p_WG) / tracking_time_s_;
@@ -247,6 +259,7 @@ std::vector<UgvMotion> UgvPositionFilter::response(const std::vector<double>& ti
       }
       lagged_velocity_step(p, v, command, rate, lag_s_, h);
       t += h;
+      d = d_next;
     }
     UgvMotion m;
     m.p_WG = p + error * t;
@@ -272,6 +285,12 @@ struct UgvResponseIdentificationOptions {
   std::array<double, 5> tracking_times_s = {0.0, 0.5, 1.0, 2.0, 4.0};
   double window_s = 20.0;
   double prior_log_odds = 4.0;
+  /// The defaults, turned on (the MPC's and the mission's winch's).
+  [[nodiscard]] static UgvResponseIdentificationOptions on() {
+    UgvResponseIdentificationOptions o;
+    o.enabled = true;
+    return o;
+  }
 };
 
 class UgvResponseIdentifier {

@@ -113,8 +113,8 @@ struct UavMissionOptions {
     o.reel_in_guard.ugv_speed_mps = 0.8 * o.limits.max_speed_mps;
     // The MPC's estimation of a miniUGV that does not do exactly what it says
     // (docs/tether.md): its velocity error and its response model, identified online.
-    o.ugv_velocity_error = {0.05, 0.5, 0.5, 6.0, 0.0, 20.0};
-    o.ugv_response_identification.enabled = true;
+    o.ugv_velocity_error = tether::UgvVelocityErrorOptions::estimated();
+    o.ugv_response_identification = tether::UgvResponseIdentificationOptions::on();
     return o;
   }
   double retract_speed_mps = 0.4;
