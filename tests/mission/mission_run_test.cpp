@@ -243,10 +243,17 @@ TEST(MissionRun, AHoverReleaseFromTheMissionYamlNeverLands) {
 }
 
 TEST(MissionRun, HoveringOnALowBatteryRecallsTheMiniUgvInTime) {
-  // A 220 s battery: the kiln (a hover release: no landing zone by its opening) comes up
-  // when hovering through the miniUGV's whole search would eat the reserve. The UAV calls
-  // it back while the battery covers its return, the lift and the way home.
-  const MissionRunResult r = run(data_path("worlds/two_sites.yaml"), {}, 1, "hover", "grid", 220.0).result;
+  // A 220 s battery and a hover release (uav.release: hover; whether the survey finds a
+  // landing zone by the kiln's opening depends on where the marker put it): the kiln
+  // comes up when hovering through the miniUGV's whole search would eat the reserve.
+  // The UAV calls it back while the battery covers its return, the lift and the way home.
+  const RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), {});
+  const PlanningWorld world = load_planning_world(data_path("worlds/two_sites.yaml"));
+  const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), {});
+  MissionRunSettings s = mission_settings_for(uav, ugv, {}, *world.spec);
+  s.uav.release = "hover";
+  s.uav.flight_endurance_s = 220.0;
+  const MissionRunResult r = run_mission(world, uav, s, 1);
   expect_safe(r, {});
   EXPECT_EQ(r.outcome, UavMissionOutcome::kFlightBudget);
   const HiddenSpaceVisit* kiln = visit_of(r, 9);

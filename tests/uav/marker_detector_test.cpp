@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/random.hpp"
@@ -46,6 +47,37 @@ double rotation_error_rad(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 // at 3 m for a 0.2 m marker in the M100's camera (fronto-parallel views are the worst).
 double tilt_tolerance_rad(const CameraModel& camera, double size_m, double z_m) {
   return std::asin(std::min(1.0, 0.5 * z_m * z_m / (camera.fx_px * size_m * size_m))) + kDeg;
+}
+
+// Views of a random marker (id 0-49) as a flight meets them: distance, off-axis angle
+// either way, any roll, anywhere in the middle of the image; blur, noise, exposure.
+struct RandomViews {
+  std::pair<double, double> distance_m;
+  double max_off_axis_deg = 60.0;
+  std::pair<double, double> blur_px, noise, exposure_gain;
+};
+
+MarkerScene random_scene(Rng& rng, const MarkerDictionary& dictionary, const RandomViews& v) {
+  MarkerScene s;
+  s.dictionary = dictionary;
+  s.id = static_cast<int>(rng.uniform_int(0, 49));
+  const double d = rng.uniform(v.distance_m.first, v.distance_m.second);
+  const double off_axis = rng.uniform(0.0, v.max_off_axis_deg) * kDeg;
+  s.X_CM = test::marker_ahead(d, (rng.bernoulli(0.5) ? 1 : -1) * off_axis,
+                              rng.uniform(-M_PI, M_PI),
+                              {rng.uniform(-0.4, 0.4) * d, rng.uniform(-0.2, 0.2) * d});
+  s.blur_sigma_px = rng.uniform(v.blur_px.first, v.blur_px.second);
+  s.noise_sigma = rng.uniform(v.noise.first, v.noise.second);
+  s.exposure_gain = rng.uniform(v.exposure_gain.first, v.exposure_gain.second);
+  s.seed = rng.next_u64();
+  return s;
+}
+
+double shortest_side_px(const std::array<Eigen::Vector2d, 4>& corners) {
+  double shortest = 1e9;
+  for (int k = 0; k < 4; ++k)
+    shortest = std::min(shortest, (corners[k] - corners[(k + 1) % 4]).norm());
+  return shortest;
 }
 
 class BothDetectors : public ::testing::TestWithParam<MarkerDictionary> {};
@@ -228,6 +260,12 @@ TEST(MarkerDetector, BadOptionsAreInputErrors) {
   o = {};
   o.quad_decimate = 0.0;
   expect_field(o, "quad_decimate");
+  o = {};
+  o.aruco_candidate_blur_px = -1.0;
+  expect_field(o, "aruco_candidate_blur_px");
+  o = {};
+  o.aruco_threshold_constant = std::nan("");
+  expect_field(o, "aruco_threshold_constant");
 }
 
 TEST(MarkerDetector, FrameOfAnotherSizeThanTheCameraIsAnInputError) {
@@ -249,34 +287,45 @@ TEST_P(BothDetectors, DetectsEveryMarkerOfAtLeast20PxAndAtMost60DegOffAxis) {
   o.quad_decimate = 1.0;
   const auto det = make_marker_detector(o);
   Rng rng(derive_seed(11, {static_cast<std::uint64_t>(GetParam().family)}));
+  const RandomViews views{.distance_m = {0.5, 6.0}, .blur_px = {0.0, 1.0},
+                          .noise = {0.0, 4.0}, .exposure_gain = {0.7, 1.2}};
   int tried = 0, found = 0;
   while (tried < 60) {
-    MarkerScene s;
-    s.dictionary = GetParam();
-    s.id = static_cast<int>(rng.uniform_int(0, 49));
-    const double d = rng.uniform(0.5, 6.0);
-    const double off_axis = rng.uniform(0.0, 60.0) * kDeg;
-    s.X_CM =
-        test::marker_ahead(d, (rng.bernoulli(0.5) ? 1 : -1) * off_axis, rng.uniform(-M_PI, M_PI),
-                           {rng.uniform(-0.4, 0.4) * d, rng.uniform(-0.2, 0.2) * d});
-    s.blur_sigma_px = rng.uniform(0.0, 1.0);
-    s.noise_sigma = rng.uniform(0.0, 4.0);
-    s.exposure_gain = rng.uniform(0.7, 1.2);
-    s.seed = rng.next_u64();
+    const MarkerScene s = random_scene(rng, GetParam(), views);
     // Spans >= 20 px: the shortest side of the projected black square.
     const auto c = test::true_corners_px(camera, s);
-    double shortest = 1e9;
     bool inside = true;
-    for (int k = 0; k < 4; ++k) {
-      shortest = std::min(shortest, (c[k] - c[(k + 1) % 4]).norm());
-      inside = inside && camera.in_image(c[k], 4.0);
-    }
-    if (shortest < 20.0 || !inside) continue;
+    for (int k = 0; k < 4; ++k) inside = inside && camera.in_image(c[k], 4.0);
+    if (shortest_side_px(c) < 20.0 || !inside) continue;
     ++tried;
     const auto out = det->detect(test::render_marker_frame(camera, s), camera);
     if (out.size() == 1 && out[0].id == s.id) ++found;
   }
   EXPECT_EQ(found, tried);
+}
+
+// The hard end of the target (docs/results/issue11_markers.md): markers of 20-26 px
+// blurred by 1.1-1.5 px at any exposure. Of these 40 frames 34 are found; OpenCV's own
+// threshold settings with the margin read against one threshold between the darkest
+// and the brightest cell (the code before) found 27. (Blur keeps a white cell brighter
+// than its black neighbours, not above that threshold.)
+TEST(MarkerDetector, ArucoFindsSmallMarkersUnderHeavyBlur) {
+  const CameraModel camera = marker_camera();
+  const auto det = detector(aruco4x4());
+  Rng rng(7);
+  const RandomViews views{.distance_m = {6.0, 8.5}, .max_off_axis_deg = 40.0,
+                          .blur_px = {1.1, 1.5}, .noise = {1.0, 5.0}, .exposure_gain = {0.6, 1.4}};
+  int tried = 0, found = 0;
+  while (tried < 40) {
+    const MarkerScene s = random_scene(rng, aruco4x4(), views);
+    const double shortest = shortest_side_px(test::true_corners_px(camera, s));
+    if (shortest < 20.0 || shortest > 26.0) continue;
+    ++tried;
+    const auto out = det->detect(test::render_marker_frame(camera, s), camera);
+    for (const auto& m : out) EXPECT_EQ(m.id, s.id) << "a marker read as another";
+    if (out.size() == 1 && out[0].id == s.id) ++found;
+  }
+  EXPECT_GE(found, 31) << "of " << tried;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string_view>
+#include <utility>
 
 #include "ferret/core/error.hpp"
 #include "ferret/perception/marker_library.hpp"
@@ -29,6 +30,17 @@ class ArucoDetector final : public MarkerDetector {
     // accurate but costs hundreds of ms a frame.
     params_->cornerRefinementMethod = cv::aruco::CORNER_REFINE_NONE;
     params_->errorCorrectionRate = options.aruco_error_correction_rate;
+    // Small blurred markers (docs/results/issue11_markers.md): thresholds over 13 and
+    // 23 px only (OpenCV's 3 px window sees pixel noise, never a marker's cell), a
+    // lower threshold constant, and each cell read at its centre (30 % of the cell on
+    // each side ignored, not 13 %: at 3 px a cell, blur carries the neighbours in).
+    params_->adaptiveThreshWinSizeMin = 13;
+    params_->adaptiveThreshWinSizeMax = 23;
+    params_->adaptiveThreshWinSizeStep = 10;
+    params_->adaptiveThreshConstant = options.aruco_threshold_constant;
+    params_->perspectiveRemoveIgnoredMarginPerCell = 0.3;
+    // A marker whose black square reaches the frame's last pixels is still whole.
+    params_->minDistanceToBorder = 0;
   }
 
   [[nodiscard]] const MarkerDetectorOptions& options() const override { return options_; }
@@ -44,7 +56,13 @@ class ArucoDetector final : public MarkerDetector {
     auto params = cv::makePtr<cv::aruco::DetectorParameters>(*params_);
     params->minMarkerPerimeterRate =
         4 * options_.min_marker_side_px / std::max(image.width_px, image.height_px);
-    cv::aruco::detectMarkers(frame, dictionary_, corners, ids, params);
+    if (options_.aruco_candidate_blur_px > 0) {
+      cv::Mat smoothed;
+      cv::GaussianBlur(frame, smoothed, cv::Size(3, 3), options_.aruco_candidate_blur_px);
+      cv::aruco::detectMarkers(smoothed, dictionary_, corners, ids, params);
+    } else {
+      cv::aruco::detectMarkers(frame, dictionary_, corners, ids, params);
+    }
     std::vector<MarkerDetection> out;
     for (std::size_t i = 0; i < ids.size(); ++i) {
       if (ids[i] < 0 || ids[i] >= dictionary_->bytesList.rows) continue;
@@ -150,11 +168,13 @@ class ArucoDetector final : public MarkerDetector {
   }
 
  private:
-  // The decode's margin: the marker rectified to 8 px a cell, each cell's central mean
-  // compared with the threshold halfway between the darkest and brightest cell, signed
-  // by what the decoded id's bit says; the least cell margin over the contrast. A
-  // true marker reads clearly on every cell; a pattern decoded by error correction or
-  // by luck has a cell on the wrong side or near the threshold.
+  // The decode's margin: the marker rectified to 8 px a cell, each cell's central mean;
+  // over every pair of neighbouring cells the decoded id says differ, the white one's
+  // mean less the black one's, over the contrast (brightest less darkest cell), and the
+  // least of these. Blur of a small marker pulls an isolated white cell far towards
+  // black, so a threshold between the darkest and brightest cell misreads it, but it
+  // stays brighter than its black neighbours. A pattern decoded by luck, or a marker
+  // half covered, has a pair the wrong way round or level.
   [[nodiscard]] double margin(const cv::Mat& frame, const std::vector<cv::Point2f>& corners,
                               int id) const {
     constexpr int kCellPx = 8;
@@ -181,15 +201,19 @@ class ArucoDetector final : public MarkerDetector {
       }
     const double contrast = hi - lo;
     if (contrast <= 0.0) return -1.0;
-    const double threshold = (hi + lo) / 2;
+    const auto white = [&](int x, int y) { return expected.at<std::uint8_t>(y, x) > 127; };
+    const auto at = [&](int x, int y) { return mean[static_cast<std::size_t>(y * cells + x)]; };
     double least = 1.0;
+    int pairs = 0;
     for (int y = 0; y < cells; ++y)
-      for (int x = 0; x < cells; ++x) {
-        const double sign = expected.at<std::uint8_t>(y, x) > 127 ? 1.0 : -1.0;
-        least = std::min(
-            least, sign * (mean[static_cast<std::size_t>(y * cells + x)] - threshold) / contrast);
-      }
-    return least;
+      for (int x = 0; x < cells; ++x)
+        for (const auto& [x2, y2] : {std::pair{x + 1, y}, std::pair{x, y + 1}}) {
+          if (x2 >= cells || y2 >= cells || white(x, y) == white(x2, y2)) continue;
+          const double brighter = white(x, y) ? at(x, y) - at(x2, y2) : at(x2, y2) - at(x, y);
+          least = std::min(least, brighter / contrast);
+          ++pairs;
+        }
+    return pairs > 0 ? least : -1.0;  // an all-black code is any dark square
   }
 
   MarkerDetectorOptions options_;

@@ -69,10 +69,23 @@ struct MarkerDetectorOptions {
   /// ArUco errorCorrectionRate: the share of the dictionary's correctable bits the
   /// decoder may correct (OpenCV's default 0.6).
   double aruco_error_correction_rate = 0.6;
-  /// ArUco: the least decode margin kept (MarkerDetection::decision_margin). 0.15
-  /// dropped small blurred markers whose weakest cell reads 0.08-0.15 of the contrast;
-  /// 0.08 keeps them (docs/results/issue11_markers.md).
+  /// ArUco: the least decode margin kept (MarkerDetection::decision_margin): over every
+  /// pair of neighbouring cells the decoded id says differ, the white cell's mean grey
+  /// level less the black one's, over the marker's contrast. Blur lowers an isolated
+  /// white cell of a small marker towards its black neighbours but never below them; a
+  /// wrong id, or a marker half covered, has a pair the wrong way round
+  /// (docs/results/issue11_markers.md).
   double aruco_min_margin = 0.08;
+  /// ArUco: Gaussian blur (pixels) of the frame the candidates are searched in (the
+  /// corners and the margin read the frame itself). The camera's pixel noise makes the
+  /// adaptive threshold fray into thousands of speckle contours at the low
+  /// aruco_threshold_constant; a 3x3 blur of 0.6 px removes them and costs a marker
+  /// already blurred by 1.3 px little. 0 = none.
+  double aruco_candidate_blur_px = 0.6;
+  /// ArUco adaptiveThreshConstant: how much darker than its 13 or 23 px neighbourhood a
+  /// pixel must be to count as black. OpenCV's 7 loses the black border of a marker of
+  /// 20-24 px blurred by 1.1-1.5 px at exposure 0.6-0.8.
+  double aruco_threshold_constant = 5.0;
   /// Detections whose pose fit is worse than this are dropped (a quad that is not a
   /// flat square seen through this camera).
   double max_reprojection_error_px = 3.0;
