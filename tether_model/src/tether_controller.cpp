@@ -145,6 +145,10 @@ UgvPositionFilter::UgvPositionFilter(double gain, double velocity_lag_s,
 void UgvPositionFilter::reset() {
   initialised_ = false;
   innovation_.setZero();
+  forget_velocity_error();
+}
+
+void UgvPositionFilter::forget_velocity_error() {
   error_.setZero();
   P_ = P0_;
   log_odds_ = 0.0;
@@ -152,26 +156,24 @@ void UgvPositionFilter::reset() {
   weight_ = 0.0;
 }
 
+void UgvPositionFilter::advance_desired_path(double dt) {
+  desired_p_WG_ += estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
+}
+
 UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
   const bool kalman = error_options_.sigma_mps > 0.0;
-  if (!initialised_ || gain_ >= 1.0 || t_msg_s < t_s_) {
-    // A raw position still gets the lag model's velocity when it has one.
-    const bool keep_velocity = initialised_ && lag_s_ > 0.0 && t_msg_s >= t_s_;
-    if (!keep_velocity) velocity_ = measured.v_WG;
-    if (!initialised_ || t_msg_s < t_s_) {
-      error_.setZero();
-      P_ = P0_;
-      log_odds_ = 0.0;
-      long_log_odds_ = 0.0;
-      weight_ = 0.0;
-    }
-    kalman_p_WG_ = obedient_p_WG_ = measured.p_WG;
-    if (!initialised_ || t_msg_s < t_s_) {
+  const bool restart = !initialised_ || t_msg_s < t_s_;
+  if (restart || gain_ >= 1.0) {
+    if (restart) {
+      forget_velocity_error();
+      velocity_ = measured.v_WG;
       desired_p_WG_ = measured.p_WG;
     } else {
-      const double dt = t_msg_s - t_s_;
-      desired_p_WG_ += estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
+      // A raw position still gets the lag model's velocity when it has one.
+      if (lag_s_ == 0.0) velocity_ = measured.v_WG;
+      advance_desired_path(t_msg_s - t_s_);
     }
+    kalman_p_WG_ = obedient_p_WG_ = measured.p_WG;
     initialised_ = true;
     t_s_ = t_msg_s;
     estimate_ = measured;
@@ -238,7 +240,7 @@ UgvMotion UgvPositionFilter::update(double t_msg_s, const UgvMotion& measured) {
     P_ = 0.5 * (P + P.transpose());
   }
   // The desired path moves on with the previous message's desired motion.
-  desired_p_WG_ += estimate_.v_WG * dt + 0.5 * estimate_.a_WG * dt * dt;
+  advance_desired_path(dt);
   estimate_ = measured;
   estimate_.p_WG = predicted + gain_ * (measured.p_WG - predicted);
   t_s_ = t_msg_s;

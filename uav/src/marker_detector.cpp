@@ -37,7 +37,7 @@ void MarkerDetectorOptions::check(const std::string& source) const {
   check_number(aruco_error_correction_rate, NumberRange::non_negative(1.0), source,
                "aruco_error_correction_rate");
   check_number(aruco_min_margin, NumberRange::non_negative(1.0), source, "aruco_min_margin");
-  check_number(aruco_candidate_blur_px, NumberRange::non_negative(10.0, "px"), source,
+  check_number(aruco_candidate_blur_px, NumberRange::non_negative(2.0, "px"), source,
                "aruco_candidate_blur_px");
   check_number(aruco_threshold_constant, NumberRange::non_negative(255.0), source,
                "aruco_threshold_constant");

@@ -206,6 +206,10 @@ class UgvPositionFilter {
   /// What the robot's velocity loop is asked for: the desired velocity less the path
   /// follower's correction.
   [[nodiscard]] Eigen::Vector2d commanded_velocity() const;
+  /// The velocity-error filter and its evidence back to their start.
+  void forget_velocity_error();
+  /// The integrated desired path moved on `dt` with the last message's desired motion.
+  void advance_desired_path(double dt);
   double gain_;
   double lag_s_;
   double tracking_time_s_ = 0.0;

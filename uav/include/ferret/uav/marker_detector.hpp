@@ -80,7 +80,7 @@ struct MarkerDetectorOptions {
   /// corners and the margin read the frame itself). The camera's pixel noise makes the
   /// adaptive threshold fray into thousands of speckle contours at the low
   /// aruco_threshold_constant; a 3x3 blur of 0.6 px removes them and costs a marker
-  /// already blurred by 1.3 px little. 0 = none.
+  /// already blurred by 1.3 px little. 0 = none; at most 2 (the kernel is 3x3).
   double aruco_candidate_blur_px = 0.6;
   /// ArUco adaptiveThreshConstant: how much darker than its 13 or 23 px neighbourhood a
   /// pixel must be to count as black. OpenCV's 7 loses the black border of a marker of
