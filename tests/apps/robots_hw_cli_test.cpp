@@ -120,7 +120,12 @@ TEST(RobotsOnHardware, TheMiniUgvSearchesWhereTheUavSetItDownAndHoldsWhileTheUav
   EXPECT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(first_line(result.err).rfind("backends: ugv.base: hw (" + mcu.port(), 0), 0u) << result.err;
   EXPECT_NE(result.out.find("searches: 1\n"), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("holds: 1\n"), std::string::npos) << result.out;
+  // It held at least once: while the UAV was silent. More holds are right too: a test
+  // thread starved past the 0.5 s timeout on a loaded machine is, to the robot, a silent
+  // UAV (a CI run under the sanitizer counted 2).
+  const auto holds_at = result.out.find("holds: ");
+  ASSERT_NE(holds_at, std::string::npos) << result.out;
+  EXPECT_GE(std::stoi(result.out.substr(holds_at + 7)), 1) << result.out;
   EXPECT_NE(result.out.find("miniUGV search 1: aborted"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("stopped: duration"), std::string::npos) << result.out;
 }
