@@ -344,6 +344,7 @@ TEST_P(RandomTetherScenario, TheMpcMeetsItsTargetsAndKeepsUpWithTheBaseline) {
   const auto b = run_tether_sim(scn, config.sim, pid).metrics;
   RecordProperty("mpc_slack_rms_mm", std::to_string(1e3 * m.slack_rms_m));
   RecordProperty("baseline_slack_rms_mm", std::to_string(1e3 * b.slack_rms_m));
+  RecordProperty("has_snag", r.has_snag() ? 1 : 0);
   SCOPED_TRACE("mpc: slack rms " + std::to_string(1e3 * m.slack_rms_m) + " mm, max " +
                std::to_string(1e3 * m.max_slack_m) + " mm, min " +
                std::to_string(1e3 * m.min_slack_m) + " mm, max tension " +

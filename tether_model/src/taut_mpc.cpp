@@ -189,7 +189,8 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // would make the MPC hold the stretch against it. Growth is still followed, so an
   // ordinary stretch behind a miniUGV driving away is paid out as before.
   const auto& tension = ctl.slack_estimator.tension;
-  if (obs.winch_tension_n - tension.hanging_weight_n > ctl.slack_estimator.guard_n) {
+  const bool pulling = obs.winch_tension_n - tension.hanging_weight_n > ctl.slack_estimator.guard_n;
+  if (pulling) {
     for (int k = 0; k < N; ++k) {
       required_[k] = std::max(required_[k], obs.released_m - slack);
       required_rate_[k] = std::max(required_rate_[k], 0.0);
@@ -209,6 +210,33 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     g[k] -= 2.0 * std::max(options_.weight_feedforward, 1e-6) * required_rate_[k];
   }
   g[0] -= 2.0 * options_.weight_command_rate * last_command_mps_;
+  // The rate penalty about the command that tracks the prediction exactly (docs/tether.md):
+  // it damps the corrections, not the feed-forward. On the command's change alone it
+  // smoothed the known plan symmetrically, paying out ahead of every acceleration of the
+  // required length. Only along the miniUGV's plan (without one, the prediction past the
+  // desired acceleration's 0.1 s is an assumption: following it undamped cost 2-3 %),
+  // as far as the robot is believed to follow its model (its velocity-error weight), and
+  // not while the line pulls or a model offset is held (the required length is then
+  // known to be wrong: undamped, it reeled in against a pin, 10.4 N, in a random snag).
+  if (options_.rate_penalty_about_required_rate && preview && !pulling && observer.model_offset_m() <= 0.0) {
+    // The required length's rate over each step, led by the servo's lag (u = v + tau v').
+    const double tau = ctl.limits.velocity_time_constant_s;
+    const double r_now = required_now + bias;
+    std::vector<double> f(static_cast<std::size_t>(N) + 1);
+    f[0] = required_length_rate_mps(*model_, now) + observer.model_offset_rate_mps(0.0);
+    for (int k = 0; k < N; ++k) f[k + 1] = (required_[k] - (k == 0 ? r_now : required_[k - 1])) / dt;
+    const double trust = 1.0 - estimator_.pose_filter.velocity_error_weight();
+    const auto tracking = [&](int k) {  // k in [0, N]
+      const int a = std::max(0, k - 1), b = std::min(N, k + 1);
+      return f[k] + tau * (f[b] - f[a]) / ((b - a) * dt);
+    };
+    for (int k = 0; k < N; ++k) {
+      const double d = trust * (tracking(k + 1) - tracking(k));
+      g[k] -= 2.0 * options_.weight_command_rate * d;
+      if (k > 0) g[k - 1] += 2.0 * options_.weight_command_rate * d;
+    }
+  }
+
   g[N] = options_.stretch_linear_weight;
   g[N + 1] = options_.soft_linear_weight;
   g[N + 2] = options_.length_linear_weight;
