@@ -158,14 +158,18 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
   apply_tether_run_config(
       write(dir, "o.yaml",
             "control: {tension_fusion: false, observer_pose_noise_m: 0.02, "
-            "servo_time_constant_s: 0.01}\n"
-            "mpc: {use_preview: false}\nbaseline: {use_preview: true}\n"
+            "servo_time_constant_s: 0.01, observer_model_offset_decay_mps: 0.3}\n"
+            "mpc: {use_preview: false, rate_penalty_about_required_rate: false}\n"
+            "baseline: {use_preview: true}\n"
             "sim: {ugv_preview_s: 0.4, ugv_preview_step_s: 0.1}\n"),
       observer);
   EXPECT_FALSE(observer.baseline.control.slack_observer.tension_fusion);
   EXPECT_EQ(observer.mpc.control.slack_observer.pose_noise_m, 0.02);
   EXPECT_EQ(observer.mpc.control.limits.velocity_time_constant_s, 0.01);
   EXPECT_FALSE(observer.mpc.use_preview);
+  EXPECT_FALSE(observer.mpc.rate_penalty_about_required_rate);
+  EXPECT_EQ(observer.baseline.control.slack_observer.model_offset_decay_mps, 0.3);
+  EXPECT_EQ(observer.mpc.control.slack_observer.model_offset_decay_mps, 0.3);
   EXPECT_TRUE(observer.baseline.use_preview);
   EXPECT_EQ(observer.sim.ugv_preview_s, 0.4);
   EXPECT_EQ(observer.sim.ugv_preview_step_s, 0.1);
@@ -249,6 +253,10 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
   check("control: {observer_tension_noise_n: 0}\n", "control.observer_tension_noise_n");
   check("sim: {ugv_preview_step_s: 0}\n", "sim.ugv_preview_step_s");
   check("mpc: {use_preview: maybe}\n", "mpc.use_preview");
+  check("mpc: {rate_penalty_about_required_rate: 2}\n", "mpc.rate_penalty_about_required_rate");
+  for (const char* bad : {".nan", "-0.1", ".inf", "11"})
+    check(std::string("control: {observer_model_offset_decay_mps: ") + bad + "}\n",
+          "control.observer_model_offset_decay_mps");
   for (const char* key : {"ugv_velocity_error_mps", "ugv_velocity_error_time_s",
                           "ugv_velocity_error_window_s", "ugv_velocity_error_prior_log_odds"}) {
     for (const char* bad : {".nan", "-0.1", ".inf", "fast"})
