@@ -38,9 +38,10 @@ class TautTetherMpc final : public TetherController {
         UgvResponseIdentificationOptions::on();
     double weight_slack = 100.0;         ///< on (slack - reference)^2 per step, 1/m^2
     double weight_command_rate = 2.0;    ///< on (delta command)^2, (s/m)^2
-    /// The command-rate penalty on (delta command - delta required-length rate)^2:
-    /// corrections are damped, the feed-forward is not smoothed. false: on
-    /// (delta command)^2, as before 2026-12-06.
+    /// Along the miniUGV's plan (a preview), the command-rate penalty is on the
+    /// command's change less that of the command tracking the prediction exactly:
+    /// corrections are damped, the feed-forward is not smoothed (docs/tether.md, the
+    /// MPC's cost). false: on the command's change alone, as before 2026-12-06.
     bool rate_penalty_about_required_rate = true;
     double weight_feedforward = 0.05;    ///< on (command - required-length rate)^2
     double weight_terminal = 5.0;        ///< extra slack weight on the last step (multiplier)
