@@ -501,7 +501,7 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   }
   if (const auto r = root.optional_child("mpc")) {
     r->allow_only({"horizon", "prediction_dt_s", "acceleration_time_s", "use_preview",
-                   "weight_slack", "weight_command_rate", "rate_penalty_about_required_rate",
+                   "weight_slack", "weight_command_rate", "rate_penalty_about_tracking_command",
                    "weight_feedforward", "weight_terminal",
                    "weight_soft_linear", "weight_stretch_linear", "weight_soft_quadratic",
                    "ugv_velocity_error_mps", "ugv_velocity_error_time_s",
@@ -517,8 +517,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     m.acceleration_time_s =
         r->get_in_range_or("acceleration_time_s", 0.0, 10.0, m.acceleration_time_s);
     m.use_preview = r->get_or<bool>("use_preview", m.use_preview);
-    m.rate_penalty_about_required_rate =
-        r->get_or<bool>("rate_penalty_about_required_rate", m.rate_penalty_about_required_rate);
+    m.rate_penalty_about_tracking_command =
+        r->get_or<bool>("rate_penalty_about_tracking_command", m.rate_penalty_about_tracking_command);
     m.weight_slack = r->get_in_range_or("weight_slack", 0.0, 1e6, m.weight_slack);
     m.weight_command_rate =
         r->get_in_range_or("weight_command_rate", 0.0, 1e6, m.weight_command_rate);

@@ -159,7 +159,7 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
       write(dir, "o.yaml",
             "control: {tension_fusion: false, observer_pose_noise_m: 0.02, "
             "servo_time_constant_s: 0.01, observer_model_offset_decay_mps: 0.3}\n"
-            "mpc: {use_preview: false, rate_penalty_about_required_rate: false}\n"
+            "mpc: {use_preview: false, rate_penalty_about_tracking_command: false}\n"
             "baseline: {use_preview: true}\n"
             "sim: {ugv_preview_s: 0.4, ugv_preview_step_s: 0.1}\n"),
       observer);
@@ -167,7 +167,7 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
   EXPECT_EQ(observer.mpc.control.slack_observer.pose_noise_m, 0.02);
   EXPECT_EQ(observer.mpc.control.limits.velocity_time_constant_s, 0.01);
   EXPECT_FALSE(observer.mpc.use_preview);
-  EXPECT_FALSE(observer.mpc.rate_penalty_about_required_rate);
+  EXPECT_FALSE(observer.mpc.rate_penalty_about_tracking_command);
   EXPECT_EQ(observer.baseline.control.slack_observer.model_offset_decay_mps, 0.3);
   EXPECT_EQ(observer.mpc.control.slack_observer.model_offset_decay_mps, 0.3);
   EXPECT_TRUE(observer.baseline.use_preview);
@@ -253,7 +253,7 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
   check("control: {observer_tension_noise_n: 0}\n", "control.observer_tension_noise_n");
   check("sim: {ugv_preview_step_s: 0}\n", "sim.ugv_preview_step_s");
   check("mpc: {use_preview: maybe}\n", "mpc.use_preview");
-  check("mpc: {rate_penalty_about_required_rate: 2}\n", "mpc.rate_penalty_about_required_rate");
+  check("mpc: {rate_penalty_about_tracking_command: 2}\n", "mpc.rate_penalty_about_tracking_command");
   for (const char* bad : {".nan", "-0.1", ".inf", "11"})
     check(std::string("control: {observer_model_offset_decay_mps: ") + bad + "}\n",
           "control.observer_model_offset_decay_mps");
@@ -563,7 +563,7 @@ TEST(TetherSim, ThePlanPreviewHelpsTheMpcItsRatePenaltyDampsOnlyCorrections) {
     auto config = TetherRunConfig::for_tether(15.0, 1.0);
     config.sim.pose_noise_m = 0.0;
     config.sim.ugv_preview_s = preview ? 0.5 : 0.0;
-    config.mpc.rate_penalty_about_required_rate = about_tracking_command;
+    config.mpc.rate_penalty_about_tracking_command = about_tracking_command;
     tether::TautTetherMpc mpc(config.mpc, model);
     const auto r = run_tether_sim(scn, config.sim, mpc);
     // Least squares of the slack on the required length's acceleration (and a constant)

@@ -117,6 +117,8 @@ void TautTetherMpc::build() {
   solver_.setup(H_, C);
   required_ = Eigen::VectorXd::Zero(N);
   required_rate_ = Eigen::VectorXd::Zero(N);
+  tracking_rate_ = Eigen::VectorXd::Zero(N + 1);
+  tracking_command_ = Eigen::VectorXd::Zero(N + 1);
 }
 
 double TautTetherMpc::step(const TetherObservation& obs) {
@@ -218,20 +220,22 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // as far as the robot is believed to follow its model (its velocity-error weight), and
   // not while the line pulls or a model offset is held (the required length is then
   // known to be wrong: undamped, it reeled in against a pin, 10.4 N, in a random snag).
-  if (options_.rate_penalty_about_required_rate && preview && !pulling && observer.model_offset_m() <= 0.0) {
-    // The required length's rate over each step, led by the servo's lag (u = v + tau v').
+  if (options_.rate_penalty_about_tracking_command && preview && !pulling && observer.model_offset_m() <= 0.0) {
+    // The required length's rate over each step (f), led by the servo's lag: the
+    // tracking command u* = f + tau f', scaled by how far the robot follows its model.
     const double tau = ctl.limits.velocity_time_constant_s;
     const double r_now = required_now + bias;
-    std::vector<double> f(static_cast<std::size_t>(N) + 1);
-    f[0] = required_length_rate_mps(*model_, now) + observer.model_offset_rate_mps(0.0);
-    for (int k = 0; k < N; ++k) f[k + 1] = (required_[k] - (k == 0 ? r_now : required_[k - 1])) / dt;
     const double trust = 1.0 - estimator_.pose_filter.velocity_error_weight();
-    const auto tracking = [&](int k) {  // k in [0, N]
+    tracking_rate_[0] = required_length_rate_mps(*model_, now) + observer.model_offset_rate_mps(0.0);
+    for (int k = 0; k < N; ++k)
+      tracking_rate_[k + 1] = (required_[k] - (k == 0 ? r_now : required_[k - 1])) / dt;
+    for (int k = 0; k <= N; ++k) {
       const int a = std::max(0, k - 1), b = std::min(N, k + 1);
-      return f[k] + tau * (f[b] - f[a]) / ((b - a) * dt);
-    };
+      tracking_command_[k] =
+          trust * (tracking_rate_[k] + tau * (tracking_rate_[b] - tracking_rate_[a]) / ((b - a) * dt));
+    }
     for (int k = 0; k < N; ++k) {
-      const double d = trust * (tracking(k + 1) - tracking(k));
+      const double d = tracking_command_[k + 1] - tracking_command_[k];
       g[k] -= 2.0 * options_.weight_command_rate * d;
       if (k > 0) g[k - 1] += 2.0 * options_.weight_command_rate * d;
     }

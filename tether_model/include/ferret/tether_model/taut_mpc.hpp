@@ -42,7 +42,7 @@ class TautTetherMpc final : public TetherController {
     /// command's change less that of the command tracking the prediction exactly:
     /// corrections are damped, the feed-forward is not smoothed (docs/tether.md, the
     /// MPC's cost). false: on the command's change alone, as before 2026-12-06.
-    bool rate_penalty_about_required_rate = true;
+    bool rate_penalty_about_tracking_command = true;
     double weight_feedforward = 0.05;    ///< on (command - required-length rate)^2
     double weight_terminal = 5.0;        ///< extra slack weight on the last step (multiplier)
     double soft_linear_weight = 2000.0;  ///< exact-penalty weight of the soft slack bounds
@@ -93,6 +93,9 @@ class TautTetherMpc final : public TetherController {
       row_box_ = 0, row_soft_ = 0, rows_ = 0;
   Eigen::VectorXd required_;
   Eigen::VectorXd required_rate_;
+  /// Along the plan: the required length's rate over each step, and the command that
+  /// tracks it exactly (N + 1 values from now; scratch of step()).
+  Eigen::VectorXd tracking_rate_, tracking_command_;
   QpResult last_;
   double last_command_mps_ = 0.0;
   Eigen::VectorXd last_free_l_;  ///< free response of l_t in the last step
