@@ -7,7 +7,8 @@
 // --verbose lists the frames missed and the truth-safe candidates rejected there; --set
 // changes a detector option for a study (margin_m, max_step_m, max_roughness_m,
 // max_slope_deg, taller_than_m, cell_size_m, min_clearance_m) or the truth's footprint
-// (truth_radius_m) or the view it asks for round a safe disc (view_radius_m).
+// (truth_radius_m) or the view it asks for round a safe disc (view_radius_m) or the
+// rendered frames' D415 model (depth_noise_per_m, depth_dropout).
 //
 // Each terrain is seen from the M100's depth camera (role depth_camera; its field of
 // view at 640 x 480) at 2, 3 and 4 m; SensorSimulator renders the D415-like frame.
@@ -113,7 +114,8 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
       s.options.cell_size_m = v;
     else if (k == "min_clearance_m")
       s.options.min_clearance_m = v;
-    else if (k == "truth_radius_m" || k == "view_radius_m") {
+    else if (k == "truth_radius_m" || k == "view_radius_m" || k == "depth_noise_per_m" ||
+             k == "depth_dropout") {
     } else {
       std::fprintf(stderr, "unknown option %s\n", k.c_str());
       return 2;
@@ -125,6 +127,11 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
   // The view the truth asks for round a safe disc (to compare detectors whose margins
   // need different views on the same frames).
   if (const auto r = set.find("view_radius_m"); r != set.end()) so.view_radius_m = r->second;
+  // The D415 model the frames are rendered with (its noise coefficient and dropout).
+  if (const auto r = set.find("depth_noise_per_m"); r != set.end())
+    so.depth.noise_coefficient_per_m = r->second;
+  if (const auto r = set.find("depth_dropout"); r != set.end())
+    so.depth.dropout_fraction = r->second;
   const LandingZoneDetector det(s.options);
   const Px4LandingBaseline base(Px4LandingBaseline::Options{});
   std::map<std::string, Tally> ours, px4;  // by height, and "all"

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "ferret/core/random.hpp"
@@ -154,6 +155,21 @@ double TerrainGroundTruth::surface_height(double x_m, double y_m) const {
   return at(i, j);
 }
 
+double TerrainGroundTruth::highest_within(const Eigen::Vector2d& center_m, double radius_m) const {
+  const int r = static_cast<int>(std::ceil(radius_m / cell_m_)) + 1;
+  const int ci = static_cast<int>(std::floor((center_m.x() - lo_.x()) / cell_m_));
+  const int cj = static_cast<int>(std::floor((center_m.y() - lo_.y()) / cell_m_));
+  double top = -std::numeric_limits<double>::infinity();
+  for (int j = std::max(0, cj - r); j <= std::min(ny_ - 1, cj + r); ++j)
+    for (int i = std::max(0, ci - r); i <= std::min(nx_ - 1, ci + r); ++i) {
+      const double x = lo_.x() + (i + 0.5) * cell_m_ - center_m.x();
+      const double y = lo_.y() + (j + 0.5) * cell_m_ - center_m.y();
+      // Every cell the disc touches.
+      if (std::hypot(x, y) <= radius_m + cell_m_ * std::sqrt(0.5)) top = std::max(top, at(i, j));
+    }
+  return top;
+}
+
 bool TerrainGroundTruth::is_safe(const Eigen::Vector2d& center_m, double radius_m,
                                  const LandingCriteria& criteria) const {
   const double outer = radius_m + criteria.min_clearance_m;
@@ -270,8 +286,11 @@ LandingScene landing_scene(std::uint64_t seed, int index, const CameraSensor& se
     const double yaw = rng.uniform(-kPi, kPi);
     f.X_WB = pose_from_xyz_rpy({c.x(), c.y(), truth.surface_height(c.x(), c.y()) + f.height_m},
                                roll, pitch, yaw);
+    if (truth.highest_within(c, options.footprint_radius_m) >
+        f.X_WB.translation().z() - options.hover_clearance_m)
+      continue;  // the UAV would be inside it (the draws above keep the other frames' poses)
     f.X_WC = optical_pose(f.X_WB, sensor);
-    f.depth = sim.render_depth(camera, f.X_WC, DepthFrameOptions{},
+    f.depth = sim.render_depth(camera, f.X_WC, options.depth,
                                derive_seed(seed, {0x1a4f, static_cast<std::uint64_t>(index), k}));
     f.safe_zone_in_view = truth.safe_zone_in_view(options.footprint_radius_m, options.view_radius_m,
                                                   options.criteria, camera, f.X_WC);

@@ -19,6 +19,7 @@
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/image.hpp"
+#include "ferret/sim/sensor_sim.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {
@@ -54,6 +55,9 @@ class TerrainGroundTruth {
   /// taller_than_m within min_clearance_m of its edge?
   [[nodiscard]] bool is_safe(const Eigen::Vector2d& center_m, double radius_m,
                              const LandingCriteria& criteria) const;
+
+  /// The highest surface within `radius_m` of `center_m` (x, y).
+  [[nodiscard]] double highest_within(const Eigen::Vector2d& center_m, double radius_m) const;
 
   /// Is the whole disc of `radius_m` visible in the camera (every point of its rim and
   /// its centre inside the image and not hidden behind a taller surface)?
@@ -95,13 +99,18 @@ struct LandingScene {
 
 /// What landing_scene needs to know about the UAV and the evaluation.
 struct LandingSceneOptions {
-  std::vector<double> heights_m{2.0, 3.0, 4.0};  ///< one frame at each
-  double footprint_radius_m = 0.49;              ///< ground truth's disc
+  /// One frame at each; a height at which the UAV's disc (footprint_radius_m round the
+  /// base) would reach within hover_clearance_m of something below it (a pole taller than
+  /// the height flown) is not flown, and that frame is not made.
+  std::vector<double> heights_m{2.0, 3.0, 4.0};
+  double hover_clearance_m = 0.3;
+  double footprint_radius_m = 0.49;  ///< ground truth's disc
   /// How much around a zone's centre must be in view for the detector to judge it
   /// (its disc plus margin plus clearance).
   double view_radius_m = 0.84;
   LandingCriteria criteria;
   double max_tilt_rad = deg_to_rad(3.0);  ///< hover roll and pitch, uniform in +-
+  DepthFrameOptions depth;                ///< the D415 model the frames are rendered with
 };
 
 /// Terrain `index` of family `seed`, with a frame at each height from the robot's
