@@ -188,14 +188,56 @@ TEST(LandingZone, AThinRodBesideTheDiscIsNotAveragedAwayInItsCells) {
   };
   const auto depth = render(
       cam, X_WC,
-      [&](double x, double y) { return rod_distance({x, y}) <= 0.0 ? height : 0.0; }, 0.003, 13);
+      [&](double x, double y) {
+        return rod_distance({x, y}) <= 0.0 ? height : 0.0;
+      },
+      0.003, 13);
   const auto det = detector();
   const auto r = det.detect(depth, cam, X_WC);
   ASSERT_FALSE(r.zones.empty()) << r.reason;
-  const double keep = det.options().footprint_radius_m + det.options().margin_m +
-                      det.options().min_clearance_m;
+  const double keep =
+      det.options().footprint_radius_m + det.options().margin_m + det.options().min_clearance_m;
   for (const auto& z : r.zones)
     EXPECT_GE(rod_distance(z.center_m.head<2>()), keep - 0.01) << z.center_m.transpose();
+}
+
+// A block's corner that just reaches into the clearance ring covers only part of any
+// half-size cell near it: a block 0.21 m tall must cover three quarters of a cell to
+// lift its mean over the 0.15 m taller-than test, and the first cell it covers that
+// much can lie a cell's diagonal beyond the corner (7 cm), more than the margin (5 cm).
+// The clearance windows overlap by half, which halves that distance. Whatever the
+// corner's place on the grid, no zone listed lets it within the footprint's clearance
+// (0.49 + 0.30 m of the zone's centre).
+TEST(LandingZone, ABlockCornerReachingIntoTheClearanceRingIsSeen) {
+  const auto cam = test_camera();
+  const auto det = detector();
+  const double keep = det.options().footprint_radius_m + det.options().min_clearance_m;
+  int zones = 0;
+  for (int k = 0; k < 10; ++k) {
+    const Pose3 X_WC = downward({0.0, 0.0, 3.0});
+    // A square of 0.8 m side turned 45 degrees (a corner pointing at -x), moved over the
+    // grid in steps of 1 cm.
+    const Eigen::Vector2d centre(0.75 + 0.01 * k, 0.003 * k);
+    const auto block_distance = [&](const Eigen::Vector2d& p) {
+      const Eigen::Vector2d d = p - centre;
+      const double u = (d.x() + d.y()) / std::sqrt(2.0), v = (d.y() - d.x()) / std::sqrt(2.0);
+      const Eigen::Vector2d out(std::max(0.0, std::abs(u) - 0.4), std::max(0.0, std::abs(v) - 0.4));
+      return out.norm();
+    };
+    const auto depth = render(
+        cam, X_WC,
+        [&](double x, double y) {
+          return block_distance({x, y}) <= 0.0 ? 0.21 : 0.0;
+        },
+        0.003, 17 + k);
+    const auto r = det.detect(depth, cam, X_WC);
+    for (const auto& z : r.zones) {
+      ++zones;
+      EXPECT_GE(block_distance(z.center_m.head<2>()), keep)
+          << "offset " << k << ": zone at " << z.center_m.head<2>().transpose();
+    }
+  }
+  EXPECT_GT(zones, 0);  // the far side of the frame holds zones
 }
 
 TEST(LandingZone, NoReturnsMeansNoSafeZone) {
@@ -280,18 +322,21 @@ TEST(LandingZone, BadOptionsAndAFrameOfTheWrongSizeAreInputErrors) {
     EXPECT_EQ(e.field(), "size");
   }
   // Ground 9.9 m below a 65 degree camera spans 12.6 x 9.4 m: 1.2 million cells of
-  // 1 cm, more than a frame may (the clearance grid would hold four times as many).
+  // 1 cm and 0.3 million of 2 cm, more than a frame may (250,000: the clearance grid
+  // would hold sixteen times as many).
   o = {};
-  o.cell_size_m = 0.01;
   const DepthImageMm far(cam.width_px, cam.height_px, 9900);
-  try {
-    (void)LandingZoneDetector(o).detect(far, cam, downward({0, 0, 10}));
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "extent");
+  for (const double cell_m : {0.01, 0.02}) {
+    o.cell_size_m = cell_m;
+    try {
+      (void)LandingZoneDetector(o).detect(far, cam, downward({0, 0, 10}));
+      FAIL() << "no error at " << cell_m << " m";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "extent");
+    }
   }
-  // At 2 cm the same frame is 0.3 million cells: answered.
-  o.cell_size_m = 0.02;
+  // At 3 cm the same frame is 0.13 million cells: answered.
+  o.cell_size_m = 0.03;
   EXPECT_NO_THROW((void)LandingZoneDetector(o).detect(far, cam, downward({0, 0, 10})));
 }
 

@@ -18,9 +18,36 @@ namespace {
 
 // A frame's points never span more than this many cells (10 m of range and a fov of
 // 120 degrees: 0.12 million); beyond it the frame is bad input. The clearance grid has
-// four times as many, and the detector keeps about 15 doubles for each of those (11 of
-// its own, 14 a coarse cell): at most about 0.5 GB.
-constexpr long kMaxGridCells = 1'000'000;
+// sixteen times as many, and the detector keeps 11 doubles for each of those (and 14 a
+// coarse cell): at most about 0.4 GB.
+constexpr long kMaxGridCells = 250'000;
+
+// out[t] = max of in over [t - r, t + r] (clipped to the line) along every line of a
+// grid: `lines` lines of `len` elements, element t of line l at l * line_stride + t *
+// stride. Van Herk's blocks of 2r + 1: a block's running maxima from its start and from
+// its end, so each element costs three comparisons whatever r is.
+void running_max(const std::vector<double>& in, std::vector<double>& out, int len, int lines,
+                 std::size_t stride, std::size_t line_stride, int r) {
+  const double kLow = -std::numeric_limits<double>::infinity();
+  const int w = 2 * r + 1;
+  const int n = ((len + 2 * r + w - 1) / w) * w;  // padded by r on each side, whole blocks
+  std::vector<double> g(static_cast<std::size_t>(n)), h(static_cast<std::size_t>(n));
+  for (int l = 0; l < lines; ++l) {
+    const std::size_t base = static_cast<std::size_t>(l) * line_stride;
+    const auto value = [&](int x) {  // padded coordinates
+      const int t = x - r;
+      return t >= 0 && t < len ? in[base + static_cast<std::size_t>(t) * stride] : kLow;
+    };
+    for (int b = 0; b < n; b += w) {
+      g[b] = value(b);
+      for (int x = b + 1; x < b + w; ++x) g[x] = std::max(g[x - 1], value(x));
+      h[b + w - 1] = value(b + w - 1);
+      for (int x = b + w - 2; x >= b; --x) h[x] = std::max(h[x + 1], value(x));
+    }
+    for (int t = 0; t < len; ++t)
+      out[base + static_cast<std::size_t>(t) * stride] = std::max(h[t], g[t + 2 * r]);
+  }
+}
 
 // Summed-area table: S(i, j) = sum of v over cells [0, i) x [0, j).
 class Summed {
@@ -110,9 +137,11 @@ void LandingZoneDetector::Options::check(const std::string& source) const {
     for (int k = 0; k < 3; ++k)
       check_number((*p_WE)[k], NumberRange::closed(-1e5, 1e5, "m"), source, "opening");
   check_number(max_zones, NumberRange::closed(1, 10000), source, "max_zones");
-  // Discs of more than 2 x 2 km of cells are not a landing-zone question.
-  if ((footprint_radius_m + margin_m + min_clearance_m) / cell_size_m > 1000.0)
-    throw InputError(source, "cell_size_m", "at most 1000 cells across a disc and its clearance",
+  // A disc and its clearance of more than 250 cells' radius (25 m at the default 0.1 m)
+  // is not a landing-zone question, and its clearance windows (16 a cell) would not fit.
+  if ((footprint_radius_m + margin_m + min_clearance_m) / cell_size_m > 250.0)
+    throw InputError(source, "cell_size_m",
+                     "at most 250 cells in the radius of a disc and its clearance",
                      fmt::format("{}", cell_size_m));
 }
 
@@ -147,39 +176,44 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
                      fmt::format("{} x {} cells", nx, ny));
   const auto idx = [nx](int i, int j) { return static_cast<std::size_t>(j) * nx + i; };
   const std::size_t n_cells = static_cast<std::size_t>(nx) * ny;
-  // The clearance test's grid: cells of half the size, aligned with the coarse ones (fine
-  // cell 2i and 2i + 1 make coarse cell i). Something taller beside the disc is judged
-  // in these: a pole or a block that covers part of a coarse cell at the ring's edge
-  // raises that cell's mean by only the part it covers, and slipped under the taller-than
-  // test (seeds 1-3 of the evaluation, with the margin off: six unsafe choices). A fine
-  // cell with too few returns of its own takes its coarse cell's mean.
-  const double fine = 0.5 * cell;
-  const int fnx = 2 * nx, fny = 2 * ny;
-  const auto fidx = [fnx](int i, int j) { return static_cast<std::size_t>(j) * fnx + i; };
-  const std::size_t n_fine = static_cast<std::size_t>(fnx) * fny;
-  // Per fine cell: count and sums of the points (x, y relative to the grid origin, z
-  // minus a reference height, to keep the sums well conditioned). (x / fine is exactly
-  // twice x / cell, so a point's fine cell lies in its coarse cell.)
+  // The clearance test's grid: windows of half a cell, at a quarter cell's stride
+  // (window p covers quarter cells p and p + 1; quarter cells 4i to 4i + 3 make coarse
+  // cell i). Something taller beside the disc is judged in these: a pole or a block that
+  // covers part of a cell at the ring's edge raises that cell's mean by only the part it
+  // covers, and slipped under the taller-than test in coarse cells (seeds 1-3 of the
+  // evaluation, with the margin off: six unsafe choices) and, at the ring's outer edge,
+  // in half-size cells side by side (a rubble corner 2 cm inside the truth's ring on a
+  // frame without noise). Overlapping windows halve how far beyond a thing's edge the
+  // first window it covers enough may lie. A window with too few returns of its own
+  // takes the highest mean of the coarse cells it touches.
+  const double quarter = 0.25 * cell;
+  const int qnx = 4 * nx, qny = 4 * ny;
+  const auto qidx = [qnx](int i, int j) { return static_cast<std::size_t>(j) * qnx + i; };
+  const std::size_t n_quarter = static_cast<std::size_t>(qnx) * qny;
+  // Per quarter cell: count and sums of the points (x, y relative to the grid origin, z
+  // minus a reference height, to keep the sums well conditioned). (x / quarter is exactly
+  // four times x / cell, so a point's quarter cell lies in its coarse cell.)
   const double z_ref = points.front().z();
-  std::vector<double> fcnt(n_fine, 0.0), fsx(n_fine, 0.0), fsy(n_fine, 0.0), fsz(n_fine, 0.0);
+  std::vector<double> qcnt(n_quarter, 0.0), qsx(n_quarter, 0.0), qsy(n_quarter, 0.0),
+      qsz(n_quarter, 0.0);
   for (const auto& p : points) {
-    const int i = std::min(fnx - 1, static_cast<int>((p.x() - lo.x()) / fine));
-    const int j = std::min(fny - 1, static_cast<int>((p.y() - lo.y()) / fine));
-    const std::size_t k = fidx(i, j);
-    fcnt[k] += 1.0;
-    fsx[k] += p.x() - lo.x();
-    fsy[k] += p.y() - lo.y();
-    fsz[k] += p.z() - z_ref;
+    const int i = std::min(qnx - 1, static_cast<int>((p.x() - lo.x()) / quarter));
+    const int j = std::min(qny - 1, static_cast<int>((p.y() - lo.y()) / quarter));
+    const std::size_t k = qidx(i, j);
+    qcnt[k] += 1.0;
+    qsx[k] += p.x() - lo.x();
+    qsy[k] += p.y() - lo.y();
+    qsz[k] += p.z() - z_ref;
   }
-  // Per coarse cell: the sums of its four fine cells.
+  // Per coarse cell: the sums of its sixteen quarter cells.
   std::vector<double> cnt(n_cells, 0.0), sx(n_cells, 0.0), sy(n_cells, 0.0), sz(n_cells, 0.0);
-  for (int j = 0; j < fny; ++j)
-    for (int i = 0; i < fnx; ++i) {
-      const std::size_t f = fidx(i, j), k = idx(i / 2, j / 2);
-      cnt[k] += fcnt[f];
-      sx[k] += fsx[f];
-      sy[k] += fsy[f];
-      sz[k] += fsz[f];
+  for (int j = 0; j < qny; ++j)
+    for (int i = 0; i < qnx; ++i) {
+      const std::size_t f = qidx(i, j), k = idx(i / 4, j / 4);
+      cnt[k] += qcnt[f];
+      sx[k] += qsx[f];
+      sy[k] += qsy[f];
+      sz[k] += qsz[f];
     }
   // A cell the image's edge runs through is seen only in part: what stands in its
   // unseen part is unknown, so the cell counts as unobserved.
@@ -206,23 +240,41 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
     yz[k] = my[k] * mz[k];
     zz[k] = mz[k] * mz[k];
   }
-  // Fine cells: their own mean with enough returns, else the coarse cell's; unobserved
-  // when the coarse cell is (too few returns, or the image's edge runs through it).
-  constexpr double kMinFinePoints = 4.0;
-  std::vector<double> fobs(n_fine, 0.0), fmx(n_fine, 0.0), fmy(n_fine, 0.0), fmz(n_fine, 0.0);
-  for (int j = 0; j < fny; ++j)
-    for (int i = 0; i < fnx; ++i) {
-      const std::size_t f = fidx(i, j), k = idx(i / 2, j / 2);
-      if (obs[k] <= 0.0) continue;
+  // Windows: their own mean with enough returns, else the highest of the coarse cells
+  // they touch; unobserved when a coarse cell they touch is (too few returns, or the
+  // image's edge runs through it). The last window of a row or column has no second
+  // quarter cell and stays unobserved.
+  constexpr double kMinWindowPoints = 4.0;
+  std::vector<double> fobs(n_quarter, 0.0), fmx(n_quarter, 0.0), fmy(n_quarter, 0.0),
+      fmz(n_quarter, 0.0);
+  for (int j = 0; j + 1 < qny; ++j)
+    for (int i = 0; i + 1 < qnx; ++i) {
+      const int ci0 = i / 4, ci1 = (i + 1) / 4, cj0 = j / 4, cj1 = (j + 1) / 4;
+      if (obs[idx(ci0, cj0)] <= 0.0 || obs[idx(ci1, cj0)] <= 0.0 || obs[idx(ci0, cj1)] <= 0.0 ||
+          obs[idx(ci1, cj1)] <= 0.0)
+        continue;
+      const std::size_t f = qidx(i, j);
       fobs[f] = 1.0;
-      if (fcnt[f] >= kMinFinePoints) {
-        fmx[f] = fsx[f] / fcnt[f];
-        fmy[f] = fsy[f] / fcnt[f];
-        fmz[f] = fsz[f] / fcnt[f];
+      double n = 0.0, wx = 0.0, wy = 0.0, wz = 0.0;
+      for (int b = 0; b < 2; ++b)
+        for (int a = 0; a < 2; ++a) {
+          const std::size_t q = qidx(i + a, j + b);
+          n += qcnt[q];
+          wx += qsx[q];
+          wy += qsy[q];
+          wz += qsz[q];
+        }
+      if (n >= kMinWindowPoints) {
+        fmx[f] = wx / n;
+        fmy[f] = wy / n;
+        fmz[f] = wz / n;
       } else {
-        fmx[f] = mx[k];
-        fmy[f] = my[k];
-        fmz[f] = mz[k];
+        std::size_t hk = idx(ci0, cj0);
+        for (const std::size_t k : {idx(ci1, cj0), idx(ci0, cj1), idx(ci1, cj1)})
+          if (mz[k] > mz[hk]) hk = k;
+        fmx[f] = mx[hk];
+        fmy[f] = my[hk];
+        fmz[f] = mz[hk];
       }
     }
   // Observed cells per window (summed-area table); the plane's sums are taken over
@@ -236,7 +288,8 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       static_cast<int>(std::ceil(radius / cell - 0.5));  // cells whose centre may lie in the disc
   const double ring_outer = radius + o.min_clearance_m;
   const double clearance_cap = o.min_clearance_m + 0.5;  // reported up to this
-  const int hc = static_cast<int>(std::ceil((radius + clearance_cap) / fine)) + 1;  // fine cells
+  // Windows (quarter cells) from a centre to the end of the clearance looked for.
+  const int hc = static_cast<int>(std::ceil((radius + clearance_cap) / quarter)) + 2;
   const int hr = static_cast<int>(std::ceil(ring_outer / cell));
   // Disc mask offsets: every cell that overlaps the disc (centre within radius + half a
   // cell diagonal), so that nothing under the footprint escapes the step test.
@@ -250,44 +303,34 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   const int h_window = std::max(h, hd);
   const double tan_max_slope = std::tan(deg_to_rad(o.max_slope_deg));
 
-  // Upper envelope for the clearance test: the highest fine-cell mean in the clearance
-  // window of every fine cell, by two passes of a running maximum (rows, then columns).
+  // Upper envelope for the clearance test: the highest window mean within hc windows of
+  // every window, by two passes of a running maximum (rows, then columns; van Herk's
+  // blocks, so the cost does not grow with hc).
   const double kLow = -std::numeric_limits<double>::infinity();
-  std::vector<double> top(n_fine, kLow);
-  for (std::size_t k = 0; k < n_fine; ++k)
+  std::vector<double> top(n_quarter, kLow);
+  for (std::size_t k = 0; k < n_quarter; ++k)
     if (fobs[k] > 0.0) top[k] = fmz[k];
-  std::vector<double> row_max(n_fine, kLow), win_max(n_fine, kLow);
-  for (int j = 0; j < fny; ++j)
-    for (int i = 0; i < fnx; ++i) {
-      double m = kLow;
-      for (int d = std::max(0, i - hc); d <= std::min(fnx - 1, i + hc); ++d)
-        m = std::max(m, top[fidx(d, j)]);
-      row_max[fidx(i, j)] = m;
-    }
-  for (int i = 0; i < fnx; ++i)
-    for (int j = 0; j < fny; ++j) {
-      double m = kLow;
-      for (int d = std::max(0, j - hc); d <= std::min(fny - 1, j + hc); ++d)
-        m = std::max(m, row_max[fidx(i, d)]);
-      win_max[fidx(i, j)] = m;
-    }
-  // The clearance window's fine cells around a coarse cell's centre (a corner of four
-  // fine cells: offsets a in [-hc, hc - 1] from fine cell 2i), nearest first, each with
-  // the distance from the centre to the cell's nearest point.
-  struct FineOffset {
+  std::vector<double> row_max(n_quarter, kLow), win_max(n_quarter, kLow);
+  running_max(top, row_max, qnx, qny, 1, static_cast<std::size_t>(qnx), hc);
+  running_max(row_max, win_max, qny, qnx, static_cast<std::size_t>(qnx), 1, hc);
+  // The clearance's windows around a coarse cell's centre (quarter boundary 4i + 2:
+  // window 4i + 2 + a covers [a, a + 2] quarter cells from it, for a in [-hc - 1,
+  // hc - 1], all within hc of window 4i + 1), nearest first, each with the distance from
+  // the centre to the window's nearest point.
+  struct WindowOffset {
     int di, dj;
     double dist;
   };
-  std::vector<FineOffset> ring;
-  for (int b = -hc; b < hc; ++b)
-    for (int a = -hc; a < hc; ++a) {
-      const double gx = fine * std::max(0.0, std::abs(a + 0.5) - 0.5);
-      const double gy = fine * std::max(0.0, std::abs(b + 0.5) - 0.5);
+  std::vector<WindowOffset> ring;
+  for (int b = -hc - 1; b < hc; ++b)
+    for (int a = -hc - 1; a < hc; ++a) {
+      const double gx = quarter * std::max({0, a, -a - 2});
+      const double gy = quarter * std::max({0, b, -b - 2});
       const double dist = std::hypot(gx, gy);
       if (dist < radius + clearance_cap) ring.push_back({a, b, dist});
     }
   std::stable_sort(ring.begin(), ring.end(),
-                   [](const FineOffset& x, const FineOffset& y) { return x.dist < y.dist; });
+                   [](const WindowOffset& x, const WindowOffset& y) { return x.dist < y.dist; });
 
   const Eigen::Vector2d nadir = X_WC.translation().head<2>();
   std::vector<LandingZone> safe;
@@ -407,24 +450,24 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       // within the required clearance, not observed: unknown is not free).
       z.clearance_m = clearance_cap;
       const double plane_low =
-          pl.at(cxl, cyl) - (std::abs(pl.a) + std::abs(pl.b)) * (hc + 1) * fine;
+          pl.at(cxl, cyl) - (std::abs(pl.a) + std::abs(pl.b)) * (hc + 2) * quarter;
       const bool ring_observed =
           i - hr >= 0 && j - hr >= 0 && i + hr < nx && j + hr < ny &&
           observed.sum(i - hr, j - hr, i + hr, j + hr) >= (2.0 * hr + 1) * (2.0 * hr + 1);
-      // (The fine cell at 2i, 2j is one of the four that meet at the centre.)
-      if (!ring_observed || win_max[fidx(2 * i, 2 * j)] > plane_low + o.taller_than_m) {
+      // (Window 4i + 1 is centred on the candidate.)
+      if (!ring_observed || win_max[qidx(4 * i + 1, 4 * j + 1)] > plane_low + o.taller_than_m) {
         double nearest = radius + clearance_cap;
-        for (const FineOffset& f : ring) {
-          const int ci = 2 * i + f.di, cj = 2 * j + f.dj;
-          const bool inside = ci >= 0 && cj >= 0 && ci < fnx && cj < fny;
-          if (!inside || fobs[fidx(ci, cj)] <= 0.0) {
+        for (const WindowOffset& f : ring) {
+          const int ci = 4 * i + 2 + f.di, cj = 4 * j + 2 + f.dj;
+          const bool inside = ci >= 0 && cj >= 0 && ci < qnx && cj < qny;
+          if (!inside || fobs[qidx(ci, cj)] <= 0.0) {
             if (f.dist < ring_outer) {
               nearest = f.dist;
               break;
             }
             continue;
           }
-          const std::size_t k = fidx(ci, cj);
+          const std::size_t k = qidx(ci, cj);
           if (fmz[k] > pl.at(fmx[k], fmy[k]) + o.taller_than_m) {
             nearest = f.dist;
             break;
