@@ -8,7 +8,8 @@
 // changes a detector option for a study (margin_m, max_step_m, max_roughness_m,
 // max_slope_deg, taller_than_m, cell_size_m, min_clearance_m) or the truth's footprint
 // (truth_radius_m) or the view it asks for round a safe disc (view_radius_m) or the
-// rendered frames' D415 model (depth_noise_per_m, depth_dropout).
+// rendered frames' D415 model (depth_noise_per_m, depth_dropout) or their size
+// (width_px, height_px: 640 x 480 unless set; the M100's URDF camera is 1280 x 720).
 //
 // Each terrain is seen from the M100's depth camera (role depth_camera; its field of
 // view at 640 x 480) at 2, 3 and 4 m; SensorSimulator renders the D415-like frame.
@@ -97,7 +98,12 @@ struct Tally {
 
 int compare(int terrains, std::uint64_t seed, bool verbose,
             const std::map<std::string, double>& set) {
-  Setup s = setup(640, 480);
+  // The frames' size (the camera's field of view kept): 640 x 480 unless set.
+  const auto size = [&](const char* key, int fallback) {
+    const auto it = set.find(key);
+    return it == set.end() ? fallback : static_cast<int>(it->second);
+  };
+  Setup s = setup(size("width_px", 640), size("height_px", 480));
   // Option overrides for studies (--set name=value), reported with the table.
   for (const auto& [k, v] : set) {
     if (k == "margin_m")
@@ -115,7 +121,7 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
     else if (k == "min_clearance_m")
       s.options.min_clearance_m = v;
     else if (k == "truth_radius_m" || k == "view_radius_m" || k == "depth_noise_per_m" ||
-             k == "depth_dropout") {
+             k == "depth_dropout" || k == "width_px" || k == "height_px") {
     } else {
       std::fprintf(stderr, "unknown option %s\n", k.c_str());
       return 2;
@@ -187,9 +193,9 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
       }
     }
   }
-  std::printf("terrains: %d (seed %llu), frames: %d, camera %s 640x480, footprint %.3f m\n\n",
+  std::printf("terrains: %d (seed %llu), frames: %d, camera %s %dx%d, footprint %.3f m\n\n",
               terrains, static_cast<unsigned long long>(seed), ours["all"].frames,
-              s.sensor.name.c_str(), so.footprint_radius_m);
+              s.sensor.name.c_str(), s.camera.width_px, s.camera.height_px, so.footprint_radius_m);
   std::printf(
       "| detector | height | frames | safe zone in view (truth) | zone found there | "
       "found where none | chosen zones unsafe | listed zones unsafe | ms/frame |\n");

@@ -185,5 +185,25 @@ TEST(LandingEvaluation, TheUavIsNotFlownInsideAPoleAndACornerInTheRingIsSeenWith
         << z.center_m.transpose();
 }
 
+// At the M100's own depth resolution (1280 x 720, the URDF's), terrain 36 of seed 1 at
+// 3 m: a rubble block 0.105 m high, 1 cm from the footprint's rim, covered the cells the
+// rim cuts only in part and measured 0.066 m (under the 0.08 m step limit); ferret
+// chose that zone. The step test's overlapping windows hold it whole.
+TEST(LandingEvaluation, ABlockAtTheFootprintsRimIsSeenAtTheUrdfsResolution) {
+  Evaluation e;
+  e.cam = CameraModel::from_fov(e.sensor.name, 1280, 720, e.sensor.horizontal_fov_rad);
+  const auto& [robot, sensor, cam, o, so] = e;
+  const auto scene = landing_scene(1, 36, sensor, cam, so);
+  ASSERT_EQ(scene.frames.size(), 3u);
+  const auto& f = scene.frames[1];
+  ASSERT_EQ(f.height_m, 3.0);
+  const auto r = LandingZoneDetector(o).detect(f.depth, cam, f.X_WC);
+  // (Now it finds none in this frame; any zone it lists must be safe.)
+  for (const auto& z : r.zones) {
+    EXPECT_TRUE(scene.truth.is_safe(z.center_m.head<2>(), so.footprint_radius_m, so.criteria))
+        << z.center_m.transpose();
+  }
+}
+
 }  // namespace
 }  // namespace ferret
