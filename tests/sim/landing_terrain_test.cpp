@@ -157,10 +157,11 @@ TEST(LandingEvaluation, TwentyTerrainsNoUnsafeChoiceAndFewerThanThePx4Rule) {
 // Two frames of the evaluation's family that once went wrong. Terrain 77 of seed 1 has
 // a 2.45 m pole beside its view centre: flown at 2 m the UAV would be inside it (its
 // camera within the pole's radius sees nothing of it), so that frame is not made.
-// Terrain 113 of seed 1, rendered without depth noise: a rubble corner reached 2 cm
-// into the truth's clearance ring at 3 m and covered too little of any half-size cell
-// to lift its mean over the taller-than test; ferret chose that zone. The frames'
-// noise had hidden it (it inflates the step test, so the zone fell on the step).
+// Terrain 113 of seed 1, rendered without depth noise: a rubble corner at the edge of
+// the truth's clearance ring at 3 m (0.789 m of 0.79) covered too little of any
+// half-size cell to lift its mean over the taller-than test; ferret chose that zone.
+// The frames' noise had hidden it (it inflates the step test, so the zone fell on the
+// step).
 TEST(LandingEvaluation, TheUavIsNotFlownInsideAPoleAndACornerInTheRingIsSeenWithoutNoise) {
   Evaluation e;
   e.so.depth.noise_coefficient_per_m = 0.0;

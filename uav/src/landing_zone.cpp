@@ -182,10 +182,10 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   // covers part of a cell at the ring's edge raises that cell's mean by only the part it
   // covers, and slipped under the taller-than test in coarse cells (seeds 1-3 of the
   // evaluation, with the margin off: six unsafe choices) and, at the ring's outer edge,
-  // in half-size cells side by side (a rubble corner 2 cm inside the truth's ring on a
-  // frame without noise). Overlapping windows halve how far beyond a thing's edge the
-  // first window it covers enough may lie. A window with too few returns of its own
-  // takes the highest mean of the coarse cells it touches.
+  // in half-size cells side by side (a rubble corner at the ring's edge, seen first 7 cm
+  // farther out, on a frame without noise). Overlapping windows halve how far beyond a
+  // thing's edge the first window it covers enough may lie. A window with too few returns
+  // of its own takes the highest mean of the coarse cells it touches.
   const double quarter = 0.25 * cell;
   const int qnx = 4 * nx, qny = 4 * ny;
   const auto qidx = [qnx](int i, int j) { return static_cast<std::size_t>(j) * qnx + i; };
