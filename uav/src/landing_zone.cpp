@@ -147,6 +147,23 @@ void LandingZoneDetector::Options::check(const std::string& source) const {
 
 LandingZoneDetector::LandingZoneDetector(Options options) : options_(std::move(options)) {
   options_.check("landing-zone options");
+  const double radius = options_.footprint_radius_m + options_.margin_m;
+  ring_ = window_offsets(0.25 * options_.cell_size_m, radius + options_.min_clearance_m + 0.5);
+  step_disc_ = window_offsets(0.5 * options_.cell_size_m, radius);
+}
+
+std::vector<LandingZoneDetector::WindowOffset> LandingZoneDetector::window_offsets(double unit,
+                                                                                   double limit) {
+  const int r = static_cast<int>(std::ceil(limit / unit)) + 1;
+  std::vector<WindowOffset> out;
+  for (int b = -r - 2; b <= r; ++b)
+    for (int a = -r - 2; a <= r; ++a) {
+      const double dist = unit * std::hypot(std::max({0, a, -a - 2}), std::max({0, b, -b - 2}));
+      if (dist < limit) out.push_back({a, b, dist});
+    }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const WindowOffset& x, const WindowOffset& y) { return x.dist < y.dist; });
+  return out;
 }
 
 LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const CameraModel& camera,
@@ -205,6 +222,22 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
     qsy[k] += p.y() - lo.y();
     qsz[k] += p.z() - z_ref;
   }
+  // A window of `size` x `size` quarter cells from (i0, j0): its count and sums.
+  struct WindowSum {
+    double n = 0.0, x = 0.0, y = 0.0, z = 0.0;
+  };
+  const auto window_sum = [&](int i0, int j0, int size) {
+    WindowSum w;
+    for (int j = j0; j < j0 + size; ++j)
+      for (int i = i0; i < i0 + size; ++i) {
+        const std::size_t k = qidx(i, j);
+        w.n += qcnt[k];
+        w.x += qsx[k];
+        w.y += qsy[k];
+        w.z += qsz[k];
+      }
+    return w;
+  };
   // Per coarse cell: the sums of its sixteen quarter cells.
   std::vector<double> cnt(n_cells, 0.0), sx(n_cells, 0.0), sy(n_cells, 0.0), sz(n_cells, 0.0);
   for (int j = 0; j < qny; ++j)
@@ -244,31 +277,27 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   // they touch; unobserved when a coarse cell they touch is (too few returns, or the
   // image's edge runs through it). The last window of a row or column has no second
   // quarter cell and stays unobserved.
+  // (A window sees only what its coarse cells see: all of them must be observed.)
+  const auto touches_unobserved = [&](int i0, int j0, int size) {
+    const int ci0 = i0 / 4, ci1 = (i0 + size - 1) / 4, cj0 = j0 / 4, cj1 = (j0 + size - 1) / 4;
+    return obs[idx(ci0, cj0)] <= 0.0 || obs[idx(ci1, cj0)] <= 0.0 || obs[idx(ci0, cj1)] <= 0.0 ||
+           obs[idx(ci1, cj1)] <= 0.0;
+  };
   constexpr double kMinWindowPoints = 4.0;
   std::vector<double> fobs(n_quarter, 0.0), fmx(n_quarter, 0.0), fmy(n_quarter, 0.0),
       fmz(n_quarter, 0.0);
   for (int j = 0; j + 1 < qny; ++j)
     for (int i = 0; i + 1 < qnx; ++i) {
-      const int ci0 = i / 4, ci1 = (i + 1) / 4, cj0 = j / 4, cj1 = (j + 1) / 4;
-      if (obs[idx(ci0, cj0)] <= 0.0 || obs[idx(ci1, cj0)] <= 0.0 || obs[idx(ci0, cj1)] <= 0.0 ||
-          obs[idx(ci1, cj1)] <= 0.0)
-        continue;
+      if (touches_unobserved(i, j, 2)) continue;
       const std::size_t f = qidx(i, j);
       fobs[f] = 1.0;
-      double n = 0.0, wx = 0.0, wy = 0.0, wz = 0.0;
-      for (int b = 0; b < 2; ++b)
-        for (int a = 0; a < 2; ++a) {
-          const std::size_t q = qidx(i + a, j + b);
-          n += qcnt[q];
-          wx += qsx[q];
-          wy += qsy[q];
-          wz += qsz[q];
-        }
-      if (n >= kMinWindowPoints) {
-        fmx[f] = wx / n;
-        fmy[f] = wy / n;
-        fmz[f] = wz / n;
+      const WindowSum w = window_sum(i, j, 2);
+      if (w.n >= kMinWindowPoints) {
+        fmx[f] = w.x / w.n;
+        fmy[f] = w.y / w.n;
+        fmz[f] = w.z / w.n;
       } else {
+        const int ci0 = i / 4, ci1 = (i + 1) / 4, cj0 = j / 4, cj1 = (j + 1) / 4;
         std::size_t hk = idx(ci0, cj0);
         for (const std::size_t k : {idx(ci1, cj0), idx(ci0, cj1), idx(ci1, cj1)})
           if (mz[k] > mz[hk]) hk = k;
@@ -310,40 +339,21 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   // measured 0.066 m in the cells (a 1280 x 720 frame of the evaluation), where the
   // margin was to show it whole. Some window that overlaps the disc holds a straight
   // edge whole. The plane is still fitted to the cells.
+  // (Offsets in step_disc_: a candidate's centre is half-cell boundary 2i + 1.)
   const int hnx = 2 * nx, hny = 2 * ny;
   const auto hidx = [hnx](int i, int j) { return static_cast<std::size_t>(j) * hnx + i; };
-  std::vector<Eigen::Vector2i> step_disc;
   const std::size_t n_half = static_cast<std::size_t>(hnx) * hny;
   std::vector<double> sobs(n_half, 0.0), smx(n_half, 0.0), smy(n_half, 0.0), smz(n_half, 0.0);
   for (int q = 0; q + 1 < hny; ++q)
     for (int p = 0; p + 1 < hnx; ++p) {
-      if (obs[idx(p / 2, q / 2)] <= 0.0 || obs[idx((p + 1) / 2, q / 2)] <= 0.0 ||
-          obs[idx(p / 2, (q + 1) / 2)] <= 0.0 || obs[idx((p + 1) / 2, (q + 1) / 2)] <= 0.0)
-        continue;
-      double n = 0.0, wx = 0.0, wy = 0.0, wz = 0.0;
-      for (int b = 2 * q; b < 2 * q + 4; ++b)
-        for (int a = 2 * p; a < 2 * p + 4; ++a) {
-          const std::size_t k = qidx(a, b);
-          n += qcnt[k];
-          wx += qsx[k];
-          wy += qsy[k];
-          wz += qsz[k];
-        }
-      if (n < o.min_points_per_cell) continue;  // its cells, all observed, stand for it
+      if (touches_unobserved(2 * p, 2 * q, 4)) continue;
+      const WindowSum w = window_sum(2 * p, 2 * q, 4);
+      if (w.n < o.min_points_per_cell) continue;  // its cells, all observed, stand for it
       const std::size_t k = hidx(p, q);
       sobs[k] = 1.0;
-      smx[k] = wx / n;
-      smy[k] = wy / n;
-      smz[k] = wz / n;
-    }
-  // Windows overlapping the disc round a candidate (its centre at half-cell boundary
-  // 2i + 1: window 2i + 1 + a covers [a, a + 2] half cells from it).
-  const int reach = static_cast<int>(std::ceil(radius / (0.5 * cell))) + 1;
-  for (int b = -reach - 2; b <= reach; ++b)
-    for (int a = -reach - 2; a <= reach; ++a) {
-      const double gx = 0.5 * cell * std::max({0, a, -a - 2});
-      const double gy = 0.5 * cell * std::max({0, b, -b - 2});
-      if (std::hypot(gx, gy) < radius) step_disc.emplace_back(a, b);
+      smx[k] = w.x / w.n;
+      smy[k] = w.y / w.n;
+      smz[k] = w.z / w.n;
     }
 
   // Upper envelope for the clearance test: the highest window mean within hc windows of
@@ -356,24 +366,8 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   std::vector<double> row_max(n_quarter, kLow), win_max(n_quarter, kLow);
   running_max(top, row_max, qnx, qny, 1, static_cast<std::size_t>(qnx), hc);
   running_max(row_max, win_max, qny, qnx, static_cast<std::size_t>(qnx), 1, hc);
-  // The clearance's windows around a coarse cell's centre (quarter boundary 4i + 2:
-  // window 4i + 2 + a covers [a, a + 2] quarter cells from it, for a in [-hc - 1,
-  // hc - 1], all within hc of window 4i + 1), nearest first, each with the distance from
-  // the centre to the window's nearest point.
-  struct WindowOffset {
-    int di, dj;
-    double dist;
-  };
-  std::vector<WindowOffset> ring;
-  for (int b = -hc - 1; b < hc; ++b)
-    for (int a = -hc - 1; a < hc; ++a) {
-      const double gx = quarter * std::max({0, a, -a - 2});
-      const double gy = quarter * std::max({0, b, -b - 2});
-      const double dist = std::hypot(gx, gy);
-      if (dist < radius + clearance_cap) ring.push_back({a, b, dist});
-    }
-  std::stable_sort(ring.begin(), ring.end(),
-                   [](const WindowOffset& x, const WindowOffset& y) { return x.dist < y.dist; });
+  // The clearance's windows (ring_) are offsets from a coarse cell's centre, quarter
+  // boundary 4i + 2; every one the walk below reaches lies within hc of window 4i + 1.
 
   const Eigen::Vector2d nadir = X_WC.translation().head<2>();
   std::vector<LandingZone> safe;
@@ -485,8 +479,8 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
         continue;
       }
       // (The cells' peak-to-peak above, and the windows' that overlap the disc.)
-      for (const auto& d : step_disc) {
-        const int p = 2 * i + 1 + d.x(), q = 2 * j + 1 + d.y();
+      for (const WindowOffset& d : step_disc_) {
+        const int p = 2 * i + 1 + d.di, q = 2 * j + 1 + d.dj;
         if (p < 0 || q < 0 || p >= hnx || q >= hny) continue;
         const std::size_t k = hidx(p, q);
         if (sobs[k] <= 0.0) continue;
@@ -510,7 +504,7 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       // (Window 4i + 1 is centred on the candidate.)
       if (!ring_observed || win_max[qidx(4 * i + 1, 4 * j + 1)] > plane_low + o.taller_than_m) {
         double nearest = radius + clearance_cap;
-        for (const WindowOffset& f : ring) {
+        for (const WindowOffset& f : ring_) {
           const int ci = 4 * i + 2 + f.di, cj = 4 * j + 2 + f.dj;
           const bool inside = ci >= 0 && cj >= 0 && ci < qnx && cj < qny;
           if (!inside || fobs[qidx(ci, cj)] <= 0.0) {

@@ -112,7 +112,20 @@ class LandingZoneDetector {
                                      const Pose3& X_WC) const;
 
  private:
+  /// A window two strides wide round a point on a stride boundary (window a covers
+  /// [a, a + 2] strides from it), with the distance from the point to its nearest point.
+  struct WindowOffset {
+    int di, dj;
+    double dist;
+  };
+  /// Every such window of stride `unit` that comes within `limit`, nearest first.
+  [[nodiscard]] static std::vector<WindowOffset> window_offsets(double unit, double limit);
+
   Options options_;
+  /// Fixed by the options, so made once: the clearance test's windows (a quarter cell's
+  /// stride) out to the clearance reported, and the step test's (half a cell's stride)
+  /// that overlap the disc.
+  std::vector<WindowOffset> ring_, step_disc_;
 };
 
 /// PX4-Avoidance's safe_landing_planner, as its source and parameter file publish it:
