@@ -1,6 +1,7 @@
-// `ferret detect landing DEPTH.png --robot URDF --pose x,y,z,roll,pitch,yaw [--opening
-// x,y,z] [--mission M] [--json] [-o overlay.png]`: landing zones in a depth frame of the
-// robot's depth camera (LandingZoneDetector; docs/perception.md, "Landing zones").
+// `ferret detect landing DEPTH.png [DEPTH.png ...] --robot URDF --pose
+// x,y,z,roll,pitch,yaw [--opening x,y,z] [--mission M] [--json] [-o overlay.png]`: landing
+// zones in a depth frame of the robot's depth camera, or in several frames of one hover
+// fused (LandingZoneDetector, fuse_depth_frames; docs/perception.md, "Landing zones").
 #include <fmt/format.h>
 
 #include <fstream>
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli_options.hpp"
 #include "cmd_detect.hpp"
@@ -24,8 +26,12 @@
 namespace ferret::cli {
 namespace {
 
+// Frames of one hover fused at most (a D415's two seconds at 30 Hz).
+constexpr std::size_t kMaxFrames = 64;
+
 struct LandingArgs {
-  std::string depth, robot, pose, opening, mission, out;
+  std::vector<std::string> depth;
+  std::string robot, pose, opening, mission, out;
   bool json = false;
 };
 
@@ -60,15 +66,26 @@ void run(const LandingArgs& a, const CLI::App* cmd) {
         throw InputError("--opening", "", "x,y,z within +-100000 m", a.opening);
     options.p_WE = Eigen::Vector3d(e[0], e[1], e[2]);
   }
-  const DepthImageMm depth = read_depth_png(a.depth);
-  if (depth.width_px != camera.width_px || depth.height_px != camera.height_px)
-    throw InputError(a.depth, "",
-                     fmt::format("a {} x {} px frame of the robot's depth camera '{}'",
-                                 camera.width_px, camera.height_px, sensor.name),
-                     fmt::format("{} x {} px", depth.width_px, depth.height_px));
+  if (a.depth.size() > kMaxFrames)
+    throw InputError("DEPTH", "", fmt::format("at most {} frames of one hover", kMaxFrames),
+                     fmt::format("{} frames", a.depth.size()));
+  std::vector<DepthImageMm> frames;
+  for (const std::string& path : a.depth) {
+    frames.push_back(read_depth_png(path));
+    const DepthImageMm& d = frames.back();
+    if (d.width_px != camera.width_px || d.height_px != camera.height_px)
+      throw InputError(path, "",
+                       fmt::format("a {} x {} px frame of the robot's depth camera '{}'",
+                                   camera.width_px, camera.height_px, sensor.name),
+                       fmt::format("{} x {} px", d.width_px, d.height_px));
+  }
 
   const Pose3 X_WB = pose_from_xyz_rpy({p[0], p[1], p[2]}, p[3], p[4], p[5]);
   const Pose3 X_WC = optical_pose(X_WB, sensor);
+  // Several frames are one hover's, all at --pose: fused pixel by pixel.
+  std::vector<PosedDepthFrame> posed;
+  for (const DepthImageMm& d : frames) posed.push_back({&d, X_WC});
+  const DepthImageMm depth = frames.size() == 1 ? frames.front() : fuse_depth_frames(posed, camera);
   const LandingZoneDetector detector(options);
   const LandingResult result = detector.detect(depth, camera, X_WC);
 
@@ -121,8 +138,11 @@ const CommandRegistration kDetectLanding{
       auto* sub = detect_group(app).add_subcommand(
           "landing",
           "Landing zones in a depth frame (16-bit PNG, mm along the optical axis, 0 = no "
-          "return) of the robot's depth camera");
-      sub->add_option("DEPTH", args->depth, "the depth frame (16-bit PNG of millimetres)")
+          "return) of the robot's depth camera, or in several frames of one hover fused");
+      sub->add_option("DEPTH", args->depth,
+                      "the depth frame (16-bit PNG of millimetres); several: frames of one "
+                      "hover at --pose, fused pixel by pixel before the zones are judged (at "
+                      "most 64)")
           ->required();
       add_robot_option(sub, args->robot, "m100");
       sub->add_option("--pose", args->pose,

@@ -294,6 +294,22 @@ LandingScene landing_scene(std::uint64_t seed, int index, const CameraSensor& se
                                derive_seed(seed, {0x1a4f, static_cast<std::uint64_t>(index), k}));
     f.safe_zone_in_view = truth.safe_zone_in_view(options.footprint_radius_m, options.view_radius_m,
                                                   options.criteria, camera, f.X_WC);
+    // The hover's further frames: drawn from their own stream, so that the first frame
+    // of every view is the same bytes whatever frames_per_view is.
+    Rng drift(derive_seed(seed, {0x1a50, static_cast<std::uint64_t>(index), k}));
+    for (int m = 1; m < options.frames_per_view; ++m) {
+      const double dm = options.hover_drift_m, dr = options.hover_drift_rad;
+      const Eigen::Vector3d d_m(drift.uniform(-dm, dm), drift.uniform(-dm, dm),
+                                drift.uniform(-dm, dm));
+      const double r = drift.uniform(-dr, dr), p = drift.uniform(-dr, dr),
+                   y = drift.uniform(-dr, dr);
+      const Pose3 X_WB = Eigen::Translation3d(d_m) * f.X_WB * pose_from_xyz_rpy({0, 0, 0}, r, p, y);
+      f.more_X_WC.push_back(optical_pose(X_WB, sensor));
+      f.more_depth.push_back(
+          sim.render_depth(camera, f.more_X_WC.back(), options.depth,
+                           derive_seed(seed, {0x1a51, static_cast<std::uint64_t>(index), k,
+                                              static_cast<std::uint64_t>(m)})));
+    }
     frames.push_back(std::move(f));
   }
   return {std::move(terrain), std::move(truth), std::move(frames)};

@@ -46,6 +46,14 @@ DepthImageMm flat_frame(double x, double y, double z, double yaw, double ground_
   return img;
 }
 
+// A path in single quotes, for the shell the CLI runs in.
+std::string quoted(const std::filesystem::path& p) {
+  std::string s(1, '\'');
+  s += p.string();
+  s += '\'';
+  return s;
+}
+
 std::string pose_arg(double x, double y, double z, double yaw) {
   return "--pose " + std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z) +
          ",0,0," + std::to_string(yaw);
@@ -133,6 +141,27 @@ TEST(DetectLandingCli, AnOpeningOutOfReachLeavesNoZone) {
               1.0 + 1e-9);
 }
 
+// Frames of one hover: fused pixel by pixel. One frame reads every depth 60 mm long,
+// the other 60 mm short: alone, each puts the ground about 6 cm off; fused, on it.
+TEST(DetectLandingCli, SeveralFramesOfOneHoverAreFused) {
+  TempDir dir;
+  DepthImageMm far = flat_frame(0, 0, 4.0, 0, 0.25), near = far;
+  for (auto& mm : far.data) mm = static_cast<std::uint16_t>(mm + 60);
+  for (auto& mm : near.data) mm = static_cast<std::uint16_t>(mm - 60);
+  write_bytes(dir.path() / "far.png", encode_png(far));
+  write_bytes(dir.path() / "near.png", encode_png(near));
+  const auto best_z = [&](const std::string& frames) {
+    const auto r = run_cli("detect landing " + frames + " " + pose_arg(0, 0, 4.0, 0) + " --json");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    return j["zones"].empty() ? std::nan("") : j["zones"][0]["center_m"][2].get<double>();
+  };
+  const std::string f = quoted(dir.path() / "far.png"), n = quoted(dir.path() / "near.png");
+  EXPECT_NEAR(best_z(f), 0.25 - 0.06, 0.01);
+  EXPECT_NEAR(best_z(n), 0.25 + 0.06, 0.01);
+  EXPECT_NEAR(best_z(f + " " + n), 0.25, 0.005);
+}
+
 // Bad input: exit 2, one line naming the file or option, and no overlay written.
 void expect_bad(const std::string& args, const std::filesystem::path& overlay,
                 const std::vector<std::string>& words) {
@@ -165,6 +194,25 @@ TEST(DetectLandingCli, AFrameOfAnotherSizeThanTheCameraIsBadInput) {
   write_bytes(depth, encode_png(DepthImageMm(640, 480, 3000)));
   expect_bad("detect landing '" + depth.string() + "' " + pose_arg(0, 0, 3, 0),
              dir.path() / "o.png", {"small.png", "1280 x 720", "640 x 480"});
+}
+
+TEST(DetectLandingCli, ABadSecondFrameIsNamedAndSixtyFiveFramesAreTooMany) {
+  TempDir dir;
+  const auto good = dir.path() / "good.png";
+  write_bytes(good, encode_png(flat_frame(0, 0, 4.0, 0, 0)));
+  const auto eight = dir.path() / "second_eight_bit.png";
+  write_bytes(eight, encode_png(GrayImage(1280, 720, 100)));
+  const auto small = dir.path() / "second_small.png";
+  write_bytes(small, encode_png(DepthImageMm(640, 480, 3000)));
+  const auto o = dir.path() / "o.png";
+  const std::string g = quoted(good) + " ";
+  expect_bad("detect landing " + g + quoted(eight) + " " + pose_arg(0, 0, 4, 0), o,
+             {"second_eight_bit.png", "8"});
+  expect_bad("detect landing " + g + quoted(small) + " " + pose_arg(0, 0, 4, 0), o,
+             {"second_small.png", "640 x 480"});
+  std::string many;
+  for (int k = 0; k < 65; ++k) many += g;
+  expect_bad("detect landing " + many + pose_arg(0, 0, 4, 0), o, {"DEPTH", "64", "65"});
 }
 
 TEST(DetectLandingCli, BadPosesAndOpeningsAreBadInput) {

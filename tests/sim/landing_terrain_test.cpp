@@ -206,5 +206,61 @@ TEST(LandingEvaluation, ABlockAtTheFootprintsRimIsSeenAtTheUrdfsResolution) {
   }
 }
 
+// A hover's further frames: drawn apart from the first, so the first frame is the same
+// bytes whatever frames_per_view is; each from a pose within the drift's bounds, with
+// noise of its own.
+TEST(LandingTerrain, AHoversFurtherFramesDriftWithinBoundsAndLeaveTheFirstAsItWas) {
+  Evaluation e;
+  e.cam = CameraModel::from_fov(e.sensor.name, 160, 120, e.sensor.horizontal_fov_rad);
+  const auto& [robot, sensor, cam, o, so] = e;
+  LandingSceneOptions three = so;
+  three.frames_per_view = 3;
+  const auto a = landing_scene(5, 4, sensor, cam, so), b = landing_scene(5, 4, sensor, cam, three);
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  for (std::size_t k = 0; k < a.frames.size(); ++k) {
+    const LandingFrame &fa = a.frames[k], &fb = b.frames[k];
+    EXPECT_EQ(fa.depth.data, fb.depth.data);
+    EXPECT_TRUE(fa.X_WC.isApprox(fb.X_WC));
+    EXPECT_TRUE(fa.more_depth.empty());
+    ASSERT_EQ(fb.more_depth.size(), 2u);
+    ASSERT_EQ(fb.more_X_WC.size(), 2u);
+    for (std::size_t m = 0; m < 2; ++m) {
+      EXPECT_NE(fb.more_depth[m].data, fb.depth.data);
+      // The base moves by up to 3 cm an axis and turns by up to 0.5 degrees an axis; the
+      // camera, 0.1-0.2 m from the base, moves with the turn by under 2 mm more.
+      const Eigen::Vector3d d = fb.more_X_WC[m].translation() - fb.X_WC.translation();
+      EXPECT_LE(d.cwiseAbs().maxCoeff(), three.hover_drift_m + 0.002) << d.transpose();
+      EXPECT_GT(d.norm(), 1e-4);
+      const double turn =
+          Eigen::AngleAxisd(fb.X_WC.linear().transpose() * fb.more_X_WC[m].linear()).angle();
+      EXPECT_LE(turn, std::sqrt(3.0) * three.hover_drift_rad + 1e-9);
+    }
+  }
+}
+
+// Terrain 18 of seed 5 (a 1.3 degree slope with steps and walls): in one frame at 3 m
+// the D415's noise lifts the step test over its limit everywhere the truth sees a safe
+// zone; the hover's eight frames fused find one, and every zone they list is safe.
+TEST(LandingEvaluation, EightFramesOfAHoverFindAZoneOneFrameMissesAndOnlySafeOnes) {
+  Evaluation e;
+  e.so.frames_per_view = 8;
+  const auto& [robot, sensor, cam, o, so] = e;
+  const auto scene = landing_scene(5, 18, sensor, cam, so);
+  ASSERT_EQ(scene.frames.size(), 3u);
+  const auto& f = scene.frames[1];
+  ASSERT_EQ(f.height_m, 3.0);
+  ASSERT_TRUE(f.safe_zone_in_view);
+  const LandingZoneDetector det(o);
+  EXPECT_TRUE(det.detect(f.depth, cam, f.X_WC).zones.empty());
+  std::vector<PosedDepthFrame> hover{{&f.depth, f.X_WC}};
+  for (std::size_t m = 0; m < f.more_depth.size(); ++m)
+    hover.push_back({&f.more_depth[m], f.more_X_WC[m]});
+  const LandingResult r = det.detect(hover, cam);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  for (const auto& z : r.zones)
+    EXPECT_TRUE(scene.truth.is_safe(z.center_m.head<2>(), so.footprint_radius_m, so.criteria))
+        << z.center_m.transpose();
+}
+
 }  // namespace
 }  // namespace ferret

@@ -201,6 +201,46 @@ TEST(LandingZone, AThinRodBesideTheDiscIsNotAveragedAwayInItsCells) {
     EXPECT_GE(rod_distance(z.center_m.head<2>()), keep - 0.01) << z.center_m.transpose();
 }
 
+// The same rod in a hover's eight frames, each from a pose up to 3 cm and half a degree
+// from the first: fused, a pixel by the rod averages the rod's top and the ground
+// behind it from frame to frame, and the rod's mean over a window is what it was. No
+// zone lets it within the clearance either.
+TEST(LandingZone, AThinRodBesideTheDiscIsSeenInAHoversDriftingFramesFused) {
+  const auto cam = test_camera();
+  const Eigen::Vector2d through(0.1, 0.0), along(std::cos(0.61), std::sin(0.61));
+  const Eigen::Vector2d normal(-along.y(), along.x());
+  const auto rod_distance = [&](const Eigen::Vector2d& p) {
+    return std::abs((p - through).dot(normal)) - 0.015;
+  };
+  const HeightField rod = [&](double x, double y) { return rod_distance({x, y}) <= 0.0 ? 0.3 : 0.0; };
+  Rng drift(5);
+  std::vector<DepthImageMm> frames;
+  std::vector<Pose3> poses;
+  for (std::uint64_t k = 0; k < 8; ++k) {
+    Pose3 X_WC = downward({0.0, 0.0, 4.0});
+    if (k > 0) {
+      X_WC.translation() += Eigen::Vector3d(drift.uniform(-0.03, 0.03), drift.uniform(-0.03, 0.03),
+                                            drift.uniform(-0.03, 0.03));
+      const double r = deg_to_rad(0.5);
+      X_WC.linear() = X_WC.linear() *
+                      (Eigen::AngleAxisd(drift.uniform(-r, r), Eigen::Vector3d::UnitX()) *
+                       Eigen::AngleAxisd(drift.uniform(-r, r), Eigen::Vector3d::UnitY()))
+                          .toRotationMatrix();
+    }
+    poses.push_back(X_WC);
+    frames.push_back(render(cam, X_WC, rod, 0.003, 13 + k));
+  }
+  std::vector<PosedDepthFrame> hover;
+  for (std::size_t k = 0; k < frames.size(); ++k) hover.push_back({&frames[k], poses[k]});
+  const auto det = detector();
+  const auto r = det.detect(hover, cam);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  const double keep =
+      det.options().footprint_radius_m + det.options().margin_m + det.options().min_clearance_m;
+  for (const auto& z : r.zones)
+    EXPECT_GE(rod_distance(z.center_m.head<2>()), keep - 0.01) << z.center_m.transpose();
+}
+
 // A block's corner that just reaches into the clearance ring covers only part of any
 // half-size cell near it: a block 0.21 m tall must cover three quarters of a cell to
 // lift its mean over the 0.15 m taller-than test, and the first cell it covers that
@@ -338,6 +378,103 @@ TEST(LandingZone, BadOptionsAndAFrameOfTheWrongSizeAreInputErrors) {
   // At 3 cm the same frame is 0.13 million cells: answered.
   o.cell_size_m = 0.03;
   EXPECT_NO_THROW((void)LandingZoneDetector(o).detect(far, cam, downward({0, 0, 10})));
+}
+
+TEST(FuseDepthFrames, FramesOfOnePoseAreAveragedPixelByPixel) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0, 0, 3});
+  DepthImageMm a(cam.width_px, cam.height_px, 1000), b(cam.width_px, cam.height_px, 1010);
+  a.at(5, 7) = 0;  // no return in one frame: the other's
+  a.at(9, 9) = 0;
+  b.at(9, 9) = 0;  // in neither: none
+  const DepthImageMm f = fuse_depth_frames({{&a, X_WC}, {&b, X_WC}}, cam);
+  EXPECT_EQ(f.at(0, 0), 1005);
+  EXPECT_EQ(f.at(cam.width_px - 1, cam.height_px - 1), 1005);
+  EXPECT_EQ(f.at(5, 7), 1010);
+  EXPECT_EQ(f.at(9, 9), 0);
+}
+
+TEST(FuseDepthFrames, AFrameFromAnotherPoseIsReprojectedIntoTheFirst) {
+  // Flat ground at z = 0: from 3 m every depth is 3000 mm, from 3.05 m 3050 mm. The
+  // second frame, 0.1 m along x and 5 cm higher, re-projected into the first, says
+  // 3000 mm wherever it lands (a pixel-by-pixel mean would say 3025), and fills a hole
+  // the first frame has where it sees the ground. (Seen from higher up, its returns lie
+  // a little farther apart than the first frame's pixels: 1.6 % of those get none.)
+  const auto cam = test_camera();
+  const Pose3 X_WA = downward({0, 0, 3}), X_WB = downward({0.1, 0, 3.05});
+  DepthImageMm a(cam.width_px, cam.height_px, 3000);
+  const DepthImageMm b(cam.width_px, cam.height_px, 3050);
+  for (int v = 100; v < 140; ++v)
+    for (int u = 140; u < 180; ++u) a.at(u, v) = 0;
+  const DepthImageMm f = fuse_depth_frames({{&a, X_WA}, {&b, X_WB}}, cam);
+  int filled = 0;
+  for (int v = 0; v < cam.height_px; ++v)
+    for (int u = 0; u < cam.width_px; ++u) {
+      const bool hole = u >= 140 && u < 180 && v >= 100 && v < 140;
+      if (hole && f.at(u, v) == 0) continue;
+      ASSERT_NEAR(f.at(u, v), 3000, 1) << u << ", " << v;
+      filled += hole;
+    }
+  EXPECT_GE(filled, 0.95 * 40 * 40);
+}
+
+// Eight frames of flat ground (z = 0) 3 m under a downward camera, each with its own
+// seeded depth noise, and the same frames posed for fusion.
+struct NoisyHover {
+  CameraModel cam = test_camera();
+  Pose3 X_WC = downward({0, 0, 3});
+  std::vector<DepthImageMm> frames;
+  std::vector<PosedDepthFrame> posed;
+  NoisyHover(double noise_m, std::uint64_t seed) {
+    for (std::uint64_t k = 0; k < 8; ++k)
+      frames.push_back(render(cam, X_WC, [](double, double) { return 0.0; }, noise_m, seed + k));
+    for (const auto& d : frames) posed.push_back({&d, X_WC});
+  }
+  NoisyHover(const NoisyHover&) = delete;  // posed points into frames
+  NoisyHover& operator=(const NoisyHover&) = delete;
+};
+
+TEST(FuseDepthFrames, EightNoisyFramesHaveANoiseOfTheSquareRootOfEight) {
+  const NoisyHover h(0.05, 100);
+  const auto& [cam, X_WC, frames, posed] = h;
+  const auto rms_mm = [&](const DepthImageMm& d) {
+    double s = 0.0;
+    for (const std::uint16_t mm : d.data) s += (mm - 3000.0) * (mm - 3000.0);
+    return std::sqrt(s / static_cast<double>(d.data.size()));
+  };
+  EXPECT_NEAR(rms_mm(frames.front()), 50.0, 2.0);
+  EXPECT_NEAR(rms_mm(fuse_depth_frames(posed, cam)), 50.0 / std::sqrt(8.0), 1.5);
+}
+
+TEST(FuseDepthFrames, NoisyFlatGroundRefusedInOneFrameIsAZoneInEightFused) {
+  // sigma 0.15 m a pixel at 3 m (a D415 at its datasheet bound about 4 m away): one
+  // frame's cell means differ by more than the step limit; eight frames' do not.
+  const NoisyHover h(0.15, 200);
+  const auto& [cam, X_WC, frames, posed] = h;
+  const LandingResult one = detector().detect(frames.front(), cam, X_WC);
+  EXPECT_TRUE(one.zones.empty()) << "best step " << one.zones.front().step_m;
+  const LandingResult eight = detector().detect(posed, cam);
+  ASSERT_FALSE(eight.zones.empty()) << eight.reason;
+  EXPECT_NEAR(eight.zones.front().center_m.z(), 0.0, 0.02);
+  EXPECT_LT(eight.zones.front().slope_deg, 2.0);
+}
+
+TEST(FuseDepthFrames, NoFramesANullFrameAndAFrameOfAnotherSizeAreInputErrors) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0, 0, 3});
+  const DepthImageMm ok(cam.width_px, cam.height_px, 3000), wrong(100, 100, 3000);
+  const auto field = [&](const std::vector<PosedDepthFrame>& frames) {
+    try {
+      (void)fuse_depth_frames(frames, cam);
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(field({}), "count");
+  EXPECT_EQ(field({{&ok, X_WC}, {nullptr, X_WC}}), "depth");
+  EXPECT_EQ(field({{&ok, X_WC}, {&wrong, X_WC}}), "size");
+  EXPECT_THROW((void)detector().detect(std::vector<PosedDepthFrame>{}, cam), InputError);
 }
 
 // The PX4 rule on a hand-checked case: a 0.3 m step at x = 1.0 m, on a cell boundary of

@@ -65,6 +65,7 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   o.search_area_m = {-20.5, -15.0, 20.0, 15.25};
   o.search_altitude_m = 4.75;
   o.confirm_detections = 3;
+  o.survey_frames = 12;
   o.no_landing_zone = "skip";
   o.battery_reserve_fraction = 0.1;  // 0.1 is not exact in binary: the text must round trip
   o.return_timeout_s = 412.5;
@@ -75,6 +76,7 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   EXPECT_EQ(given.size(), uav_mission_keys().size());  // the dump writes every key
   EXPECT_EQ(again.search_area_m, o.search_area_m);
   EXPECT_EQ(again.no_landing_zone, "skip");
+  EXPECT_EQ(again.survey_frames, 12);
   // Without the search area, the dump leaves it to the world.
   EXPECT_EQ(dump(o, false).find("search_area_m"), std::string::npos);
 }
@@ -88,6 +90,10 @@ TEST(UavMissionConfig, BadValuesNameTheFileAndTheField) {
       {"uav:\n  serach_altitude_m: 5\n", "uav.serach_altitude_m"},
       {"uav:\n  passes: two\n", "uav.passes"},
       {"uav:\n  passes: 3\n", "uav.passes"},
+      {"uav:\n  survey_frames: 0\n", "uav.survey_frames"},
+      {"uav:\n  survey_frames: 65\n", "uav.survey_frames"},
+      {"uav:\n  survey_frames: 2.5\n", "uav.survey_frames"},
+      {"uav:\n  survey_frames: 1e9\n", "uav.survey_frames"},
       {"uav:\n  search_altitude_m: .nan\n", "uav.search_altitude_m"},
       {"uav:\n  cruise_speed_mps: -1\n", "uav.cruise_speed_mps"},
       {"uav:\n  flight_endurance_s:\n", "uav.flight_endurance_s"},

@@ -166,6 +166,14 @@ std::vector<LandingZoneDetector::WindowOffset> LandingZoneDetector::window_offse
   return out;
 }
 
+LandingResult LandingZoneDetector::detect(const std::vector<PosedDepthFrame>& frames,
+                                          const CameraModel& camera) const {
+  if (frames.size() == 1 && frames.front().depth != nullptr)
+    return detect(*frames.front().depth, camera, frames.front().X_WC);
+  const DepthImageMm fused = fuse_depth_frames(frames, camera);
+  return detect(fused, camera, frames.front().X_WC);
+}
+
 LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const CameraModel& camera,
                                           const Pose3& X_WC) const {
   const Options& o = options_;

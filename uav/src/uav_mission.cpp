@@ -65,6 +65,8 @@ void UavMissionOptions::validate(const std::string& source) const {
   check_number(survey_standoff_m, NumberRange::non_negative(10.0, "m"), source, "uav.survey_standoff_m");
   if (survey_views < 1 || survey_views > 8)
     throw InputError(source, "uav.survey_views", "an integer in [1, 8]", std::to_string(survey_views));
+  if (survey_frames < 1 || survey_frames > 64)
+    throw InputError(source, "uav.survey_frames", "an integer in [1, 64]", std::to_string(survey_frames));
   if (release != "land" && release != "hover") throw InputError(source, "uav.release", "land or hover", release);
   if (no_landing_zone != "hover" && no_landing_zone != "skip")
     throw InputError(source, "uav.no_landing_zone", "hover or skip", no_landing_zone);
@@ -191,6 +193,7 @@ void UavMission::enter(UavMissionState next, const std::string& reason) {
   state_ = next;
   state_since_s_ = clock_.now_s();
   settled_since_s_ = -1.0;
+  survey_shots_.clear();  // a survey's frames are one hover's
 }
 
 void UavMission::finish(UavMissionOutcome outcome, const std::string& reason) {
@@ -467,11 +470,16 @@ void UavMission::tick() {
 
     case UavMissionState::kSurvey: {
       if (in_state_s > options_.survey_timeout_s) return choose_release("survey timed out");
-      const CameraShot<DepthImageMm> shot = hw_.cameras.depth_frame();
+      // The hover's frames, one a cycle, fused before the ground is judged.
+      survey_shots_.push_back(hw_.cameras.depth_frame());
+      if (static_cast<int>(survey_shots_.size()) < options_.survey_frames) return;
+      std::vector<PosedDepthFrame> frames;
+      for (const auto& shot : survey_shots_) frames.push_back({&shot.image, shot.X_WC});
       LandingZoneDetector::Options lo = options_.landing;
       lo.p_WE = current().opening.p_WE;
       lo.reach_m = options_.tether.entry_offset_m;
-      const LandingResult zones = LandingZoneDetector(lo).detect(shot.image, depth_camera_, shot.X_WC);
+      const LandingResult zones = LandingZoneDetector(lo).detect(frames, depth_camera_);
+      survey_shots_.clear();
       if (!zones.zones.empty()) {
         HiddenSpaceVisit& v = current();
         v.landing_zone = zones.zones.front();

@@ -41,10 +41,11 @@ constexpr std::array<std::pair<std::string_view, double Options::*>, 26> kNumber
     {"deliver_timeout_s", &Options::deliver_timeout_s},
     {"return_timeout_s", &Options::return_timeout_s},
 }};
-constexpr std::array<std::pair<std::string_view, int Options::*>, 3> kIntegers{{
+constexpr std::array<std::pair<std::string_view, int Options::*>, 4> kIntegers{{
     {"passes", &Options::passes},
     {"confirm_detections", &Options::confirm_detections},
     {"survey_views", &Options::survey_views},
+    {"survey_frames", &Options::survey_frames},
 }};
 constexpr std::array<std::pair<std::string_view, std::string Options::*>, 3> kChoices{{
     {"release", &Options::release},

@@ -89,6 +89,11 @@ struct LandingFrame {
   Pose3 X_WC = Pose3::Identity();  ///< the depth camera's optical frame
   DepthImageMm depth;
   bool safe_zone_in_view = false;
+  /// The hover's further frames (LandingSceneOptions::frames_per_view - 1), each from
+  /// the optical pose drifted within hover_drift_m and hover_drift_rad, with its own
+  /// noise; the truth is judged from X_WC.
+  std::vector<DepthImageMm> more_depth;
+  std::vector<Pose3> more_X_WC;
 };
 
 struct LandingScene {
@@ -111,6 +116,11 @@ struct LandingSceneOptions {
   LandingCriteria criteria;
   double max_tilt_rad = deg_to_rad(3.0);  ///< hover roll and pitch, uniform in +-
   DepthFrameOptions depth;                ///< the D415 model the frames are rendered with
+  /// Frames a hover takes at each height (1: the single frame, drawn as before).
+  int frames_per_view = 1;
+  /// How far the further frames of a hover drift from the first, uniform in +- per axis.
+  double hover_drift_m = 0.03;
+  double hover_drift_rad = deg_to_rad(0.5);
 };
 
 /// Terrain `index` of family `seed`, with a frame at each height from the robot's

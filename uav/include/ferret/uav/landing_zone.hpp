@@ -31,6 +31,23 @@ namespace ferret {
 struct RobotDescription;
 struct MissionConfig;
 
+/// One depth frame and the pose of the depth camera's optical frame it was taken from.
+struct PosedDepthFrame {
+  const DepthImageMm* depth = nullptr;
+  Pose3 X_WC = Pose3::Identity();
+};
+
+/// A hover's depth frames fused into one, at the first frame's pose (a temporal filter):
+/// every return of every frame is re-projected into the first frame's pixels, and a
+/// pixel's depth is the mean of the returns that land on it (0 where none does). The
+/// depth noise then falls with the square root of the frames. (Pooling the frames'
+/// points in the detector's cells would not do as well: a point's depth error also
+/// moves it sideways, up to a cell at 4 m, which smears a wall's top into the cells
+/// beside it however many frames are pooled.) Throws InputError for no frames or a
+/// frame of another size than the camera's.
+[[nodiscard]] DepthImageMm fuse_depth_frames(const std::vector<PosedDepthFrame>& frames,
+                                             const CameraModel& camera);
+
 /// Why a candidate disc is not a landing zone.
 enum class LandingReject {
   kNone,        ///< safe
@@ -110,6 +127,9 @@ class LandingZoneDetector {
   /// Throws InputError when the frame's size differs from the camera's.
   [[nodiscard]] LandingResult detect(const DepthImageMm& depth, const CameraModel& camera,
                                      const Pose3& X_WC) const;
+  /// Zones in a hover's frames, fused by fuse_depth_frames, at the first frame's pose.
+  [[nodiscard]] LandingResult detect(const std::vector<PosedDepthFrame>& frames,
+                                     const CameraModel& camera) const;
 
  private:
   /// A window two strides wide round a point on a stride boundary (window a covers
