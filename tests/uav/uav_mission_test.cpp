@@ -279,6 +279,28 @@ TEST(UavMission, LegsWithoutAPlanAreSkippedAndTheMissionStillEnds) {
   EXPECT_GE(m->plans_failed(), static_cast<int>(m->pattern().size()));
 }
 
+// The survey's hover: a dropped depth frame (0 x 0) does not count toward
+// uav.survey_frames, and the frames taken are judged together with their own poses.
+TEST(SurveyFrames, DroppedFramesAreNotCountedAndTheFramesKeepTheirPoses) {
+  SurveyFrames frames;
+  Pose3 a = Pose3::Identity(), b = Pose3::Identity();
+  a.translation() = Eigen::Vector3d(1, 2, 3);
+  b.translation() = Eigen::Vector3d(1.01, 2, 3);
+  EXPECT_FALSE(frames.add({DepthImageMm{}, a}, 2));
+  EXPECT_EQ(frames.size(), 0u);
+  EXPECT_FALSE(frames.add({DepthImageMm(4, 3, 1000), a}, 2));
+  EXPECT_FALSE(frames.add({DepthImageMm(4, 0, 0), b}, 2));
+  EXPECT_EQ(frames.size(), 1u);
+  EXPECT_TRUE(frames.add({DepthImageMm(4, 3, 1200), b}, 2));
+  const std::vector<PosedDepthFrame> posed = frames.posed();
+  ASSERT_EQ(posed.size(), 2u);
+  EXPECT_EQ(posed[0].depth->at(0, 0), 1000);
+  EXPECT_EQ(posed[1].depth->at(3, 2), 1200);
+  EXPECT_TRUE(posed[1].X_WC.isApprox(b));
+  frames.clear();
+  EXPECT_EQ(frames.size(), 0u);
+}
+
 TEST(UavMission, BadOptionsNameTheField) {
   const auto field_of = [](UavMissionOptions o) {
     try {

@@ -193,7 +193,7 @@ void UavMission::enter(UavMissionState next, const std::string& reason) {
   state_ = next;
   state_since_s_ = clock_.now_s();
   settled_since_s_ = -1.0;
-  survey_shots_.clear();  // a survey's frames are one hover's
+  survey_frames_.clear();  // a survey's frames are one hover's
 }
 
 void UavMission::finish(UavMissionOutcome outcome, const std::string& reason) {
@@ -471,15 +471,12 @@ void UavMission::tick() {
     case UavMissionState::kSurvey: {
       if (in_state_s > options_.survey_timeout_s) return choose_release("survey timed out");
       // The hover's frames, one a cycle, fused before the ground is judged.
-      survey_shots_.push_back(hw_.cameras.depth_frame());
-      if (static_cast<int>(survey_shots_.size()) < options_.survey_frames) return;
-      std::vector<PosedDepthFrame> frames;
-      for (const auto& shot : survey_shots_) frames.push_back({&shot.image, shot.X_WC});
+      if (!survey_frames_.add(hw_.cameras.depth_frame(), options_.survey_frames)) return;
       LandingZoneDetector::Options lo = options_.landing;
       lo.p_WE = current().opening.p_WE;
       lo.reach_m = options_.tether.entry_offset_m;
-      const LandingResult zones = LandingZoneDetector(lo).detect(frames, depth_camera_);
-      survey_shots_.clear();
+      const LandingResult zones = LandingZoneDetector(lo).detect(survey_frames_.posed(), depth_camera_);
+      survey_frames_.clear();
       if (!zones.zones.empty()) {
         HiddenSpaceVisit& v = current();
         v.landing_zone = zones.zones.front();

@@ -165,6 +165,29 @@ struct HiddenSpaceVisit {
   double max_released_m = 0.0;     ///< longest l_t while the miniUGV worked
 };
 
+/// A survey hover's depth frames, gathered one a control cycle and judged together. A
+/// dropped frame (0 x 0, the adapter's "no frame this time") is not counted: the hover
+/// waits for the next, within the survey's timeout.
+class SurveyFrames {
+ public:
+  /// Adds the frame unless it is a dropped one; true once `needed` frames are in.
+  bool add(CameraShot<DepthImageMm> shot, int needed) {
+    if (shot.image.width_px > 0 && shot.image.height_px > 0) shots_.push_back(std::move(shot));
+    return static_cast<int>(shots_.size()) >= needed;
+  }
+  /// The frames taken, for LandingZoneDetector::detect (valid until the next add or clear).
+  [[nodiscard]] std::vector<PosedDepthFrame> posed() const {
+    std::vector<PosedDepthFrame> out;
+    for (const auto& s : shots_) out.push_back({&s.image, s.X_WC});
+    return out;
+  }
+  [[nodiscard]] std::size_t size() const { return shots_.size(); }
+  void clear() { shots_.clear(); }
+
+ private:
+  std::vector<CameraShot<DepthImageMm>> shots_;
+};
+
 class UavMission {
  public:
   struct Hardware {
@@ -268,7 +291,7 @@ class UavMission {
   int current_ = -1;
   int survey_view_ = 0;
   /// The depth frames taken so far at this survey point (up to survey_frames).
-  std::vector<CameraShot<DepthImageMm>> survey_shots_;
+  SurveyFrames survey_frames_;
   double settled_since_s_ = -1.0;
   Eigen::Vector3d release_W_ = Eigen::Vector3d::Zero();
   bool carrying_ = false;
