@@ -181,7 +181,7 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
       auto t0 = std::chrono::steady_clock::now();
       const LandingResult a = det.detect(hover, s.camera);
       auto t1 = std::chrono::steady_clock::now();
-      const LandingResult b = base.detect(f.depth, s.camera, f.X_WC, f.X_WB.translation());
+      const LandingResult b = base.detect(hover, s.camera, f.X_WB.translation());
       auto t2 = std::chrono::steady_clock::now();
       const double ma = std::chrono::duration<double, std::milli>(t1 - t0).count();
       const double mb = std::chrono::duration<double, std::milli>(t2 - t1).count();

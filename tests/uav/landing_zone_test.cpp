@@ -212,7 +212,9 @@ TEST(LandingZone, AThinRodBesideTheDiscIsSeenInAHoversDriftingFramesFused) {
   const auto rod_distance = [&](const Eigen::Vector2d& p) {
     return std::abs((p - through).dot(normal)) - 0.015;
   };
-  const HeightField rod = [&](double x, double y) { return rod_distance({x, y}) <= 0.0 ? 0.3 : 0.0; };
+  const HeightField rod = [&](double x, double y) {
+    return rod_distance({x, y}) <= 0.0 ? 0.3 : 0.0;
+  };
   Rng drift(5);
   std::vector<DepthImageMm> frames;
   std::vector<Pose3> poses;
@@ -222,10 +224,10 @@ TEST(LandingZone, AThinRodBesideTheDiscIsSeenInAHoversDriftingFramesFused) {
       X_WC.translation() += Eigen::Vector3d(drift.uniform(-0.03, 0.03), drift.uniform(-0.03, 0.03),
                                             drift.uniform(-0.03, 0.03));
       const double r = deg_to_rad(0.5);
-      X_WC.linear() = X_WC.linear() *
-                      (Eigen::AngleAxisd(drift.uniform(-r, r), Eigen::Vector3d::UnitX()) *
-                       Eigen::AngleAxisd(drift.uniform(-r, r), Eigen::Vector3d::UnitY()))
-                          .toRotationMatrix();
+      X_WC.linear() =
+          X_WC.linear() * (Eigen::AngleAxisd(drift.uniform(-r, r), Eigen::Vector3d::UnitX()) *
+                           Eigen::AngleAxisd(drift.uniform(-r, r), Eigen::Vector3d::UnitY()))
+                              .toRotationMatrix();
     }
     poses.push_back(X_WC);
     frames.push_back(render(cam, X_WC, rod, 0.003, 13 + k));
@@ -427,7 +429,8 @@ struct NoisyHover {
   std::vector<PosedDepthFrame> posed;
   NoisyHover(double noise_m, std::uint64_t seed) {
     for (std::uint64_t k = 0; k < 8; ++k)
-      frames.push_back(render(cam, X_WC, [](double, double) { return 0.0; }, noise_m, seed + k));
+      frames.push_back(render(
+          cam, X_WC, [](double, double) { return 0.0; }, noise_m, seed + k));
     for (const auto& d : frames) posed.push_back({&d, X_WC});
   }
   NoisyHover(const NoisyHover&) = delete;  // posed points into frames
@@ -499,6 +502,29 @@ TEST(Px4LandingBaseline, KeepsCellsNextToAStepAsPublished) {
   // On the same frame ferret's detector keeps every zone a footprint from the step.
   const auto ours = detector().detect(depth, cam, X_WC);
   for (const auto& z : ours.zones) EXPECT_GE(std::abs(z.center_m.x() - 1.0), 0.49);
+}
+
+// The original's temporal low-pass over a hover's frames: the ground 3 m below in the
+// first frame and 2.5 m below in the second (it rose 0.5 m). With alpha 0.9 of
+// history the cells' mean is 0.9 * 0 + 0.1 * 0.5 = 0.05 m; with alpha 0, the last
+// frame's 0.5 m.
+TEST(Px4LandingBaseline, AHoversFramesGoThroughTheOriginalsLowPass) {
+  const auto cam = test_camera();
+  const Eigen::Vector3d p_WV(0.0, 0.0, 3.0);
+  const Pose3 X_WC = downward(p_WV);
+  const DepthImageMm low(cam.width_px, cam.height_px, 3000),
+      high(cam.width_px, cam.height_px, 2500);
+  const std::vector<PosedDepthFrame> hover{{&low, X_WC}, {&high, X_WC}};
+  Px4LandingBaseline::Options o;
+  const auto r = Px4LandingBaseline(o).detect(hover, cam, p_WV);
+  ASSERT_FALSE(r.zones.empty()) << r.reason;
+  EXPECT_NEAR(r.zones.front().center_m.z(), 0.05, 1e-6);
+  o.alpha = 0.0;
+  const auto last = Px4LandingBaseline(o).detect(hover, cam, p_WV);
+  ASSERT_FALSE(last.zones.empty()) << last.reason;
+  EXPECT_NEAR(last.zones.front().center_m.z(), 0.5, 1e-6);
+  EXPECT_THROW((void)Px4LandingBaseline(o).detect(std::vector<PosedDepthFrame>{}, cam, p_WV),
+               InputError);
 }
 
 TEST(Px4LandingBaseline, RejectsANoisyCellAboveTheStandardDeviationLimit) {

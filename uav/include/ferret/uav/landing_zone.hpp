@@ -153,10 +153,10 @@ class LandingZoneDetector {
 /// cell is landable with >= 100 points and a height standard deviation <= 0.2 m; a
 /// cell is then kept when its 11 x 11 neighbourhood (smoothing_size 5) holds more than
 /// 70 landable cells and at most 70 cells whose mean height differs from its own by
-/// more than 0.1 m. Empty cells have mean 0, as in the original grid. One frame, so the
-/// temporal low-pass (alpha) is not applied. The chosen zone is the landable cell
-/// nearest to the vehicle (its waypoint generator lands where it is when it can), or
-/// to the opening when one is given.
+/// more than 0.1 m. Empty cells have mean 0, as in the original grid. Over several
+/// frames the original's temporal low-pass (alpha) applies. The chosen zone is the
+/// landable cell nearest to the vehicle (its waypoint generator lands where it is when
+/// it can), or to the opening when one is given.
 class Px4LandingBaseline {
  public:
   struct Options {
@@ -168,6 +168,9 @@ class Px4LandingBaseline {
     double mean_diff_threshold_m = 0.1;
     int max_n_mean_diff_cells = 70;
     int min_n_land_cells = 70;
+    /// The history kept in the cells' mean and variance from frame to frame (the
+    /// original's temporal low-pass, `alpha`), over a hover's frames.
+    double alpha = 0.9;
     double min_depth_m = 0.3;
     double max_depth_m = 10.0;
     std::optional<Eigen::Vector3d> p_WE;
@@ -180,6 +183,11 @@ class Px4LandingBaseline {
   /// of the zones are not part of the rule and are left 0.
   [[nodiscard]] LandingResult detect(const DepthImageMm& depth, const CameraModel& camera,
                                      const Pose3& X_WC, const Eigen::Vector3d& p_WV) const;
+  /// A hover's frames at `p_WV`, through the original's temporal low-pass (alpha):
+  /// the same information ferret's detector gets from them. The low-pass starts from the
+  /// first frame, as if the grid had held that view before.
+  [[nodiscard]] LandingResult detect(const std::vector<PosedDepthFrame>& frames,
+                                     const CameraModel& camera, const Eigen::Vector3d& p_WV) const;
 
  private:
   Options options_;
