@@ -1,5 +1,6 @@
 #pragma once
-// Landing zones from one downward depth frame (docs/perception.md, "Landing zones").
+// Landing zones from a downward depth frame, or from a hover's frames fused into one
+// (docs/perception.md, "Landing zones").
 //
 // Pipeline: depth (mm along the optical axis, 0 = no return) -> points in the world
 // (X_WC) -> a height grid of cells (count, mean, and the sums of a plane fit) ->
