@@ -26,9 +26,6 @@
 namespace ferret::cli {
 namespace {
 
-// Frames of one hover fused at most (a D415's two seconds at 30 Hz).
-constexpr std::size_t kMaxFrames = 64;
-
 struct LandingArgs {
   std::vector<std::string> depth;
   std::string robot, pose, opening, mission, out;
@@ -66,8 +63,8 @@ void run(const LandingArgs& a, const CLI::App* cmd) {
         throw InputError("--opening", "", "x,y,z within +-100000 m", a.opening);
     options.p_WE = Eigen::Vector3d(e[0], e[1], e[2]);
   }
-  if (a.depth.size() > kMaxFrames)
-    throw InputError("DEPTH", "", fmt::format("at most {} frames of one hover", kMaxFrames),
+  if (a.depth.size() > static_cast<std::size_t>(kMaxHoverFrames))
+    throw InputError("DEPTH", "", fmt::format("at most {} frames of one hover", kMaxHoverFrames),
                      fmt::format("{} frames", a.depth.size()));
   std::vector<DepthImageMm> frames;
   for (const std::string& path : a.depth) {
@@ -82,10 +79,11 @@ void run(const LandingArgs& a, const CLI::App* cmd) {
 
   const Pose3 X_WB = pose_from_xyz_rpy({p[0], p[1], p[2]}, p[3], p[4], p[5]);
   const Pose3 X_WC = optical_pose(X_WB, sensor);
-  // Several frames are one hover's, all at --pose: fused pixel by pixel.
+  // Several frames are one hover's, all at --pose: fused pixel by pixel (one frame
+  // comes out as it went in), and the overlay shows what was judged.
   std::vector<PosedDepthFrame> posed;
   for (const DepthImageMm& d : frames) posed.push_back({&d, X_WC});
-  const DepthImageMm depth = frames.size() == 1 ? frames.front() : fuse_depth_frames(posed, camera);
+  const DepthImageMm depth = fuse_depth_frames(posed, camera);
   const LandingZoneDetector detector(options);
   const LandingResult result = detector.detect(depth, camera, X_WC);
 
@@ -142,7 +140,8 @@ const CommandRegistration kDetectLanding{
       sub->add_option("DEPTH", args->depth,
                       "the depth frame (16-bit PNG of millimetres); several: frames of one "
                       "hover at --pose, fused pixel by pixel before the zones are judged (at "
-                      "most 64)")
+                      "most " +
+                          std::to_string(kMaxHoverFrames) + ")")
           ->required();
       add_robot_option(sub, args->robot, "m100");
       sub->add_option("--pose", args->pose,

@@ -394,6 +394,8 @@ TEST(FuseDepthFrames, FramesOfOnePoseAreAveragedPixelByPixel) {
   EXPECT_EQ(f.at(cam.width_px - 1, cam.height_px - 1), 1005);
   EXPECT_EQ(f.at(5, 7), 1010);
   EXPECT_EQ(f.at(9, 9), 0);
+  // One frame comes out as it went in (the command line fuses whatever it is given).
+  EXPECT_EQ(fuse_depth_frames({{&a, X_WC}}, cam).data, a.data);
 }
 
 TEST(FuseDepthFrames, AFrameFromAnotherPoseIsReprojectedIntoTheFirst) {

@@ -75,16 +75,21 @@ std::vector<Eigen::Vector3d> depth_to_world_points(const DepthImageMm& depth,
   return points;
 }
 
+void require_frames(const std::vector<PosedDepthFrame>& frames) {
+  if (frames.empty()) throw InputError("depth frames", "count", "at least one frame", "none");
+  for (const PosedDepthFrame& f : frames)
+    if (f.depth == nullptr) throw InputError("depth frames", "depth", "a frame", "none");
+}
+
 }  // namespace ferret::internal
 
 namespace ferret {
 
 DepthImageMm fuse_depth_frames(const std::vector<PosedDepthFrame>& frames,
                                const CameraModel& camera) {
-  if (frames.empty()) throw InputError("depth frames", "count", "at least one frame", "none");
+  internal::require_frames(frames);
   const int w = camera.width_px, h = camera.height_px;
   for (const PosedDepthFrame& f : frames) {
-    if (f.depth == nullptr) throw InputError("depth frames", "depth", "a frame", "none");
     if (f.depth->width_px != w || f.depth->height_px != h)
       throw InputError("depth frames", "size", fmt::format("the camera's {} x {} px", w, h),
                        fmt::format("{} x {}", f.depth->width_px, f.depth->height_px));

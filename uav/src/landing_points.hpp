@@ -9,7 +9,14 @@
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/image.hpp"
 
+namespace ferret {
+struct PosedDepthFrame;
+}
+
 namespace ferret::internal {
+
+/// Throws InputError for no frames or a frame without its image.
+void require_frames(const std::vector<PosedDepthFrame>& frames);
 
 /// The points of every pixel with a return in [min_depth_m, max_depth_m], in W.
 /// Throws InputError when the frame's size is not the camera's. With `border`, the

@@ -55,7 +55,7 @@ LandingResult Px4LandingBaseline::detect(const std::vector<PosedDepthFrame>& fra
                                          const Eigen::Vector3d& p_WV) const {
   const Options& o = options_;
   LandingResult result;
-  if (frames.empty()) throw InputError("depth frames", "count", "at least one frame", "none");
+  internal::require_frames(frames);
   const int n = static_cast<int>(std::lround(o.grid_size_m / o.cell_size_m));
   // The grid is centred on the vehicle; points on or beyond its border are dropped.
   const Eigen::Vector2d lo = p_WV.head<2>() - Eigen::Vector2d::Constant(0.5 * o.grid_size_m);
@@ -67,7 +67,6 @@ LandingResult Px4LandingBaseline::detect(const std::vector<PosedDepthFrame>& fra
   Px4Cells grid;
   bool any_points = false;
   for (const PosedDepthFrame& f : frames) {
-    if (f.depth == nullptr) throw InputError("depth frames", "depth", "a frame", "none");
     const std::vector<Eigen::Vector3d> points =
         internal::depth_to_world_points(*f.depth, camera, f.X_WC, o.min_depth_m, o.max_depth_m);
     any_points = any_points || !points.empty();

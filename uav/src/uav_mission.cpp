@@ -65,8 +65,9 @@ void UavMissionOptions::validate(const std::string& source) const {
   check_number(survey_standoff_m, NumberRange::non_negative(10.0, "m"), source, "uav.survey_standoff_m");
   if (survey_views < 1 || survey_views > 8)
     throw InputError(source, "uav.survey_views", "an integer in [1, 8]", std::to_string(survey_views));
-  if (survey_frames < 1 || survey_frames > 64)
-    throw InputError(source, "uav.survey_frames", "an integer in [1, 64]", std::to_string(survey_frames));
+  if (survey_frames < 1 || survey_frames > kMaxHoverFrames)
+    throw InputError(source, "uav.survey_frames", "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
+                     std::to_string(survey_frames));
   if (release != "land" && release != "hover") throw InputError(source, "uav.release", "land or hover", release);
   if (no_landing_zone != "hover" && no_landing_zone != "skip")
     throw InputError(source, "uav.no_landing_zone", "hover or skip", no_landing_zone);

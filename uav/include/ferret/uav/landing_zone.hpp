@@ -38,14 +38,18 @@ struct PosedDepthFrame {
   Pose3 X_WC = Pose3::Identity();
 };
 
+/// The most frames of one hover fused (a D415's two seconds at 30 Hz): the mission's
+/// uav.survey_frames and `ferret detect landing` keep to it.
+inline constexpr int kMaxHoverFrames = 64;
+
 /// A hover's depth frames fused into one, at the first frame's pose (a temporal filter):
 /// every return of every frame is re-projected into the first frame's pixels, and a
 /// pixel's depth is the mean of the returns that land on it (0 where none does). The
 /// depth noise then falls with the square root of the frames. (Pooling the frames'
 /// points in the detector's cells would not do as well: a point's depth error also
 /// moves it sideways, up to a cell at 4 m, which smears a wall's top into the cells
-/// beside it however many frames are pooled.) Throws InputError for no frames or a
-/// frame of another size than the camera's.
+/// beside it however many frames are pooled.) Throws InputError for no frames, a frame
+/// without its image or a frame of another size than the camera's.
 [[nodiscard]] DepthImageMm fuse_depth_frames(const std::vector<PosedDepthFrame>& frames,
                                              const CameraModel& camera);
 
