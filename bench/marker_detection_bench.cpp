@@ -2,12 +2,14 @@
 // from the default world, from poses the UAV would fly.
 //
 //   build/<preset>/bench/ferret_bench_marker_detection            Google Benchmark timings
-//   ... --evaluate [--frames N] [--seed S]                         detection/pose table
-//   ... --false-positives N [--seed S]                             frames with no marker
+//   ... --evaluate [--frames N] [--seed S] [--markers LIST]        detection/pose table
+//   ... --false-positives N [--seed S] [--markers LIST]            frames with no marker
 //
-// The evaluation renders each pose twice, once with the world's markers as ArUco
-// DICT_4X4_50 and once as AprilTag tag36h11 (same ids, sizes, placement), with the same
-// seed, blur, noise and exposure, so the detectors meet the same views. Every number
+// LIST: the columns, family:dictionary separated by commas (default
+// apriltag:tag36h11,aruco:DICT_4X4_50). The evaluation renders each pose once per
+// column's dictionary (same ids, sizes, placement), with the same seed, blur, noise and
+// exposure, so the detectors meet the same views; the families' cells differ in size
+// (a tag36h11 marker is 8 cells across its black border, a 4x4 or tag16h5 one 6). Every number
 // follows from the seed (core/random.hpp). docs/results/issue11_markers.md has the
 // figures and the commands.
 
@@ -20,9 +22,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "ferret/core/error.hpp"
 #include "ferret/core/random.hpp"
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/perception/colour.hpp"
@@ -41,13 +45,16 @@ CameraModel m100_marker_camera() {
   return camera_model(load_robot(urdf).marker_camera(), urdf);
 }
 
-WorldSpec world_with(MarkerFamily family) {
+WorldSpec world_with(const MarkerDictionary& dictionary) {
   WorldSpec w = load_world(kSource + "/examples/worlds/default.yaml");
-  for (auto& h : w.hidden_spaces) {
-    h.marker.dictionary.family = family;
-    h.marker.dictionary.name = default_marker_dictionary(family);
-  }
+  for (auto& h : w.hidden_spaces) h.marker.dictionary = dictionary;
   return w;
+}
+WorldSpec world_with(MarkerFamily family) {
+  MarkerDictionary d;
+  d.family = family;
+  d.name = default_marker_dictionary(family);
+  return world_with(d);
 }
 
 // A camera looking from `p_W` towards `target_W`, rolled about its optical axis.
@@ -115,16 +122,20 @@ double percentile(std::vector<double> v, double q) {
 
 struct Column {
   std::string name;
-  MarkerFamily frames;  ///< which rendering it reads
+  MarkerDictionary dictionary;  ///< the markers it reads, rendered for it
   std::unique_ptr<MarkerDetector> detector;
+  std::unique_ptr<SensorSimulator> sim;
   // Eligible: the whole marker visible, >= 20 px, <= 60 deg off-axis.
   int eligible = 0, eligible_found = 0, false_detections = 0;
+  int duplicates = 0;  ///< detections of an id already detected in the same frame
   std::map<std::pair<int, int>, std::pair<int, int>> bins;  ///< (d bin, angle bin) -> (found, seen)
+  std::map<int, std::pair<int, int>> side_bins;  ///< side bin (<= 60 deg) -> (found, seen)
   std::vector<double> t_err_3m, r_err_3m_deg, entry_err_3m, entry_err_all, ms;
 };
 
 constexpr double kDistEdges[] = {1, 2, 3, 4, 6, 8, 10.01};
 constexpr double kAngleEdges[] = {0, 20, 40, 60, 75.01};
+constexpr double kSideEdges[] = {20, 24, 28, 32, 40, 60, 1e9};
 int bin_of(double v, const double* edges, int n) {
   for (int i = 0; i + 1 < n; ++i)
     if (v < edges[i + 1]) return i;
@@ -138,22 +149,43 @@ bool matches(const MarkerDetection& d, const VisibleMarker& m, double tol_px) {
   return sum / 4 < tol_px;
 }
 
-std::vector<Column> make_columns() {
+// "family:dictionary,..." -> one column each; exits 2 naming the bad entry.
+std::vector<Column> make_columns(const std::string& list) {
   std::vector<Column> c;
-  auto add = [&](std::string name, MarkerFamily frames, MarkerFamily family, const char* dict) {
-    MarkerDetectorOptions o;
-    o.dictionary.family = family;
-    o.dictionary.name = dict;
-    o.marker_size_m = 0.2;  // the default world's markers
-    Column col;
-    col.name = std::move(name);
-    col.frames = frames;
-    col.detector = make_marker_detector(o);
-    c.push_back(std::move(col));
-  };
-  add("apriltag tag36h11", MarkerFamily::kAprilTag, MarkerFamily::kAprilTag, "tag36h11");
-  add("aruco DICT_4X4_50", MarkerFamily::kAruco, MarkerFamily::kAruco, "DICT_4X4_50");
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t end = std::min(list.find(',', start), list.size());
+    const std::string item = list.substr(start, end - start);
+    start = end + 1;
+    const std::size_t colon = item.find(':');
+    try {
+      if (colon == std::string::npos) throw InputError("--markers", item, "family:dictionary");
+      MarkerDetectorOptions o;
+      o.dictionary.family = parse_marker_family(item.substr(0, colon), "--markers", item);
+      o.dictionary.name = item.substr(colon + 1);
+      o.marker_size_m = 0.2;  // the default world's markers
+      Column col;
+      col.name = fmt::format("{} {}", to_string(o.dictionary.family), o.dictionary.name);
+      col.dictionary = o.dictionary;
+      col.detector = make_marker_detector(o);
+      col.sim = std::make_unique<SensorSimulator>(world_with(o.dictionary));
+      c.push_back(std::move(col));
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "ferret_bench_marker_detection: %s\n", e.what());
+      std::exit(2);
+    }
+  }
   return c;
+}
+
+// A Markdown table's first two lines: `corner`, then one column a detector.
+std::string table_header(const std::string& corner, const std::vector<Column>& columns) {
+  std::string head = fmt::format("| {} |", corner), sep = "|---|";
+  for (const Column& c : columns) {
+    head += fmt::format(" {} |", c.name);
+    sep += "---|";
+  }
+  return head + "\n" + sep + "\n";
 }
 
 template <typename F>
@@ -166,22 +198,24 @@ std::vector<MarkerDetection> timed(const MarkerDetector& det, const GrayImage& g
   return out;
 }
 
-int evaluate(int frames, std::uint64_t seed) {
+int evaluate(int frames, std::uint64_t seed, const std::string& markers) {
   const CameraModel camera = m100_marker_camera();
   const WorldSpec aruco_world = world_with(MarkerFamily::kAruco);
-  const WorldSpec april_world = world_with(MarkerFamily::kAprilTag);
-  const SensorSimulator aruco_sim(aruco_world), april_sim(april_world);
-  std::vector<Column> columns = make_columns();
+  std::vector<Column> columns = make_columns(markers);
   Rng rng(seed);
   int ineligible = 0;
   for (int f = 0; f < frames; ++f) {
     const View v = sample_view(aruco_world, camera, rng);
-    const GrayImage aruco_frame = to_gray(aruco_sim.render_camera(camera, v.X_WC, v.frame, v.seed));
-    const GrayImage april_frame = to_gray(april_sim.render_camera(camera, v.X_WC, v.frame, v.seed));
     for (Column& c : columns) {
-      const bool april = c.frames == MarkerFamily::kAprilTag;
-      const auto visible = (april ? april_sim : aruco_sim).visible_markers(camera, v.X_WC);
-      const auto found = timed(*c.detector, april ? april_frame : aruco_frame, camera, c.ms, 0);
+      const auto visible = c.sim->visible_markers(camera, v.X_WC);
+      const GrayImage frame = to_gray(c.sim->render_camera(camera, v.X_WC, v.frame, v.seed));
+      const auto found = timed(*c.detector, frame, camera, c.ms, 0);
+      for (std::size_t i = 0; i < found.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+          if (found[j].id == found[i].id) {
+            ++c.duplicates;
+            break;
+          }
       for (const auto& d : found) {
         bool ok = false;
         for (const auto& m : visible) ok = ok || matches(d, m, 10.0);
@@ -204,6 +238,9 @@ int evaluate(int frames, std::uint64_t seed) {
         }
         const bool eligible = shortest >= 20.0 && angle_deg <= 60.0;
         if (eligible) {
+          auto& b = c.side_bins[bin_of(shortest, kSideEdges, 7)];
+          ++b.second;
+          if (hit) ++b.first;
           ++c.eligible;
           if (hit) ++c.eligible_found;
           if (!hit && std::getenv("FERRET_BENCH_MISSES"))
@@ -234,19 +271,7 @@ int evaluate(int frames, std::uint64_t seed) {
   std::fprintf(stderr, "\n");
   fmt::print("frames: {} (seed {}), camera {} {}x{} hfov {:.1f} deg\n\n", frames, seed, camera.name,
              camera.width_px, camera.height_px, rad_to_deg(camera.horizontal_fov_rad()));
-  fmt::print("| | {} |\n|---|{}\n",
-             fmt::join(
-                 [&] {
-                   std::vector<std::string> n;
-                   for (auto& c : columns) n.push_back(c.name);
-                   return n;
-                 }(),
-                 " | "),
-             [&] {
-               std::string sep;
-               for (std::size_t k = 0; k < columns.size(); ++k) sep += "---|";
-               return sep;
-             }());
+  fmt::print("{}", table_header("", columns));
   auto row = [&](const std::string& label, auto cell) {
     std::string line = fmt::format("| {} |", label);
     for (auto& c : columns) line += fmt::format(" {} |", cell(c));
@@ -257,6 +282,8 @@ int evaluate(int frames, std::uint64_t seed) {
                        100.0 * c.eligible_found / std::max(1, c.eligible));
   });
   row("false detections", [](Column& c) { return std::to_string(c.false_detections); });
+  row("duplicate detections (an id twice in a frame)",
+      [](Column& c) { return std::to_string(c.duplicates); });
   row("opening p_WE error median at 2.5-3.5 m", [](Column& c) {
     return fmt::format("{:.1f} mm (n {})", 1e3 * percentile(c.entry_err_3m, 0.5),
                        c.entry_err_3m.size());
@@ -296,6 +323,22 @@ int evaluate(int frames, std::uint64_t seed) {
       fmt::print("{}\n", line);
     }
   }
+  fmt::print(
+      "\nDetection rate by the marker's shortest side in the image (px), <= 60 deg off-axis, "
+      "wholly in view (found/seen):\n\n{}",
+      table_header("side \\ markers", columns));
+  for (int si = 0; si < 6; ++si) {
+    std::string line = si == 5 ? fmt::format("| >= {:g} |", kSideEdges[si])
+                               : fmt::format("| {:g}-{:g} |", kSideEdges[si], kSideEdges[si + 1]);
+    for (auto& c : columns) {
+      const auto it = c.side_bins.find(si);
+      line += it == c.side_bins.end() || it->second.second == 0
+                  ? " - |"
+                  : fmt::format(" {:.1f} % ({}/{}) |", 100.0 * it->second.first / it->second.second,
+                                it->second.first, it->second.second);
+    }
+    fmt::print("{}\n", line);
+  }
   fmt::print("\n(markers seen but not in the target's set: {} in the first column's frames)\n",
              ineligible);
   return 0;
@@ -303,11 +346,11 @@ int evaluate(int frames, std::uint64_t seed) {
 
 // Views over the whole site (any position inside the bounds, 0.5-8 m up, looking
 // 0-80 deg below the horizon) that show no marker: every detection is a false one.
-int false_positives(int frames, std::uint64_t seed) {
+int false_positives(int frames, std::uint64_t seed, const std::string& markers) {
   const CameraModel camera = m100_marker_camera();
   const WorldSpec aruco_world = world_with(MarkerFamily::kAruco);
   const SensorSimulator aruco_sim(aruco_world);
-  std::vector<Column> columns = make_columns();
+  std::vector<Column> columns = make_columns(markers);
   Rng rng(seed);
   int done = 0, skipped = 0;
   while (done < frames) {
@@ -349,9 +392,12 @@ int false_positives(int frames, std::uint64_t seed) {
 // Google Benchmark: one detector on one rendered 1280x720 frame (the marker at 3 m, or
 // no marker).
 void BM_Detect(benchmark::State& state, MarkerFamily family, bool with_marker,
-               double quad_decimate = 2.0) {
+               double quad_decimate = 2.0, const char* dictionary = nullptr) {
   const CameraModel camera = m100_marker_camera();
-  const WorldSpec world = world_with(family);
+  MarkerDictionary dict;
+  dict.family = family;
+  dict.name = dictionary ? dictionary : default_marker_dictionary(family);
+  const WorldSpec world = world_with(dict);
   const SensorSimulator sim(world);
   Rng rng(7);
   GrayImage frame;
@@ -364,8 +410,7 @@ void BM_Detect(benchmark::State& state, MarkerFamily family, bool with_marker,
     break;
   }
   MarkerDetectorOptions o;
-  o.dictionary.family = family;
-  o.dictionary.name = default_marker_dictionary(family);
+  o.dictionary = dict;
   o.marker_size_m = 0.2;
   o.quad_decimate = quad_decimate;
   const auto det = make_marker_detector(o);
@@ -389,6 +434,13 @@ BENCHMARK_CAPTURE(BM_Detect, apriltag_no_marker, MarkerFamily::kAprilTag, false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Detect, aruco_no_marker, MarkerFamily::kAruco, false)
     ->Unit(benchmark::kMillisecond);
+// AprilTag families with larger cells (docs/results/issue11_markers.md, by family).
+BENCHMARK_CAPTURE(BM_Detect, apriltag_tag25h9_marker_at_3m, MarkerFamily::kAprilTag, true, 2.0,
+                  "tag25h9")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Detect, apriltag_tag25h9_no_marker, MarkerFamily::kAprilTag, false, 2.0,
+                  "tag25h9")
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
@@ -396,6 +448,7 @@ int main(int argc, char** argv) {
   int frames = 2000, fp = 0;
   bool eval = false;
   std::uint64_t seed = 11;
+  std::string markers = "apriltag:tag36h11,aruco:DICT_4X4_50";
   std::vector<char*> rest{argv[0]};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -407,11 +460,13 @@ int main(int argc, char** argv) {
       fp = std::atoi(argv[++i]);
     else if (a == "--seed" && i + 1 < argc)
       seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (a == "--markers" && i + 1 < argc)
+      markers = argv[++i];
     else
       rest.push_back(argv[i]);
   }
-  if (fp > 0) return false_positives(fp, seed);
-  if (eval) return evaluate(frames, seed);
+  if (fp > 0) return false_positives(fp, seed, markers);
+  if (eval) return evaluate(frames, seed, markers);
   int n = static_cast<int>(rest.size());
   benchmark::Initialize(&n, rest.data());
   benchmark::RunSpecifiedBenchmarks();
