@@ -41,6 +41,15 @@ class ArucoDetector final : public MarkerDetector {
     params_->perspectiveRemoveIgnoredMarginPerCell = 0.3;
     // A marker whose black square reaches the frame's last pixels is still whole.
     params_->minDistanceToBorder = 0;
+    // OpenCV merges candidates whose corners are closer than this share of the
+    // perimeter and keeps the outer one. A printed marker's one-cell white margin in
+    // front of something darker outlines a square a cell outside the black one, its
+    // corners sqrt(2) cells off: 0.35 / cells of the perimeter, below OpenCV's 0.05 for
+    // a marker of 8 or more cells across (6x6, 7x7, AprilTag 36h11), which was then
+    // lost to its own margin. 0.3 / cells keeps the two apart and still merges the
+    // contours the threshold windows find along one edge (a pixel or two apart).
+    params_->minMarkerDistanceRate =
+        std::min(params_->minMarkerDistanceRate, 0.3 / (dictionary_->markerSize + 2));
   }
 
   [[nodiscard]] const MarkerDetectorOptions& options() const override { return options_; }
