@@ -127,6 +127,8 @@ def mission_seeds():
         "flight_controller: {backend: sim}}\n")
     put(t, "backends_bad.yaml", "ugv: {base: {backend: real, serial: {port: ''}}}\n"
         "uav: {flight_controller: {backend: hw, address: 'host:99999'}, winch: }\n")
+    put(t, "uav_marker.yaml", "uav:\n  marker: {family: apriltag, dictionary: tag25h9, size_m: 0.2}\n"
+        "  survey_frames: 8\n")
 
 
 def world_seeds():

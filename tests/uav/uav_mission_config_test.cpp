@@ -8,7 +8,10 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
+#include "ferret/mapping/world_spec.hpp"
 #include "ferret/sim/robot_backends.hpp"
+#include "ferret/uav/flight_planner.hpp"
+#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 namespace {
@@ -69,6 +72,10 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   o.no_landing_zone = "skip";
   o.battery_reserve_fraction = 0.1;  // 0.1 is not exact in binary: the text must round trip
   o.return_timeout_s = 412.5;
+  o.marker.dictionary.family = MarkerFamily::kAprilTag;
+  o.marker.dictionary.name = "tag25h9";
+  o.marker.marker_size_m = 0.175;
+  o.marker_from_mission = true;
   const std::string text = dump(o);
   UavMissionOptions again;
   const auto given = read_uav_mission_options(yaml::load_string(text, "dump"), "dump", again);
@@ -77,8 +84,13 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   EXPECT_EQ(again.search_area_m, o.search_area_m);
   EXPECT_EQ(again.no_landing_zone, "skip");
   EXPECT_EQ(again.survey_frames, 12);
-  // Without the search area, the dump leaves it to the world.
+  EXPECT_TRUE(again.marker_from_mission);
+  EXPECT_EQ(again.marker.dictionary.family, MarkerFamily::kAprilTag);
+  EXPECT_EQ(again.marker.dictionary.name, "tag25h9");
+  EXPECT_DOUBLE_EQ(again.marker.marker_size_m, 0.175);
+  // Without the search area, the dump leaves it to the world; so the marker, unless set.
   EXPECT_EQ(dump(o, false).find("search_area_m"), std::string::npos);
+  EXPECT_EQ(dump(UavMissionOptions{}).find("marker:"), std::string::npos);
 }
 
 TEST(UavMissionConfig, BadValuesNameTheFileAndTheField) {
@@ -105,6 +117,19 @@ TEST(UavMissionConfig, BadValuesNameTheFileAndTheField) {
       {"uav:\n  hover_standoff_m: 1.5\n", "uav.hover_standoff_m"},  // not below l_0 = 1 m
       {"uav:\n  passes: 1\n  passes: 2\n", "uav.passes"},
       {"uav: [1, 2]\n", "uav"},
+      {"uav:\n  marker: {family: ar, size_m: 0.2}\n", "uav.marker.family"},
+      {"uav:\n  marker: {family: aruco, dictionary: tag25h9, size_m: 0.2}\n",
+       "uav.marker.dictionary"},
+      {"uav:\n  marker: {family: apriltag, dictionary: DICT_4X4_50, size_m: 0.2}\n",
+       "uav.marker.dictionary"},
+      {"uav:\n  marker: {family: aruco}\n", "uav.marker.size_m"},
+      {"uav:\n  marker: {family: aruco, size_m: .inf}\n", "uav.marker.size_m"},
+      {"uav:\n  marker: {family: aruco, size_m: 0}\n", "uav.marker.size_m"},
+      {"uav:\n  marker: {family: aruco, size_m: 1e9}\n", "uav.marker.size_m"},
+      {"uav:\n  marker: {family: aruco, size_m: 0.2, id: 3}\n", "uav.marker.id"},
+      {"uav:\n  marker: {size_m: 0.2}\n", "uav.marker.family"},
+      {"uav:\n  marker:\n", "uav.marker"},
+      {"uav:\n  marker: DICT_4X4_50\n", "uav.marker"},
   };
   for (const Case& c : cases) {
     const std::string e = error_of(c.yaml);
@@ -112,6 +137,32 @@ TEST(UavMissionConfig, BadValuesNameTheFileAndTheField) {
     EXPECT_NE(e.find(c.field), std::string::npos) << c.yaml << " -> " << e;
   }
   EXPECT_EQ(error_of("uav:\n  release: land\n  winch: {backend: sim}\n"), "");
+}
+
+// The markers the UAV looks for: the family's default dictionary when none is named,
+// and what the file sets stays when the world is read afterwards (the mission starts
+// from the world's first marker otherwise).
+TEST(UavMissionConfig, TheMissionsMarkerIsReadAndTheWorldDoesNotReplaceIt) {
+  UavMissionOptions o;
+  const auto given = read_uav_mission_options(
+      uav_section("uav:\n  marker: {family: apriltag, size_m: 0.3}\n"), "m.yaml", o);
+  EXPECT_EQ(given, std::set<std::string>{"marker"});
+  EXPECT_TRUE(o.marker_from_mission);
+  EXPECT_EQ(o.marker.dictionary.family, MarkerFamily::kAprilTag);
+  EXPECT_EQ(o.marker.dictionary.name, "tag36h11");
+  EXPECT_DOUBLE_EQ(o.marker.marker_size_m, 0.3);
+
+  const WorldSpec world =
+      load_world(std::string(FERRET_SOURCE_DIR) + "/examples/worlds/default.yaml");
+  ASSERT_FALSE(world.hidden_spaces.empty());
+  ASSERT_EQ(world.hidden_spaces.front().marker.dictionary.name, "DICT_4X4_50");
+  fill_uav_mission_from_world(o, world, MissionConfig{});
+  EXPECT_EQ(o.marker.dictionary.name, "tag36h11");
+  EXPECT_DOUBLE_EQ(o.marker.marker_size_m, 0.3);
+  UavMissionOptions from_world;
+  fill_uav_mission_from_world(from_world, world, MissionConfig{});
+  EXPECT_EQ(from_world.marker.dictionary.name, "DICT_4X4_50");
+  EXPECT_DOUBLE_EQ(from_world.marker.marker_size_m, world.hidden_spaces.front().marker.size_m);
 }
 
 TEST(UavMissionConfig, TheBackendsReaderTakesTheMissionKeysAndStillRefusesTypos) {

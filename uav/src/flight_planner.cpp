@@ -71,7 +71,8 @@ FlightPlanner make_flight_planner(const PlanningWorld& world, const RobotDescrip
 void fill_uav_mission_from_world(UavMissionOptions& uo, const WorldSpec& spec, const MissionConfig& mission) {
   if (uo.openings.empty())
     for (const HiddenSpace& h : spec.hidden_spaces) uo.openings.push_back(opening_in_marker(h));
-  if (!spec.hidden_spaces.empty()) uo.marker = marker_detector_options(spec.hidden_spaces.front().marker);
+  if (!uo.marker_from_mission && !spec.hidden_spaces.empty())
+    uo.marker = marker_detector_options(spec.hidden_spaces.front().marker);
   if (spec.drop_zone) uo.drop_zone_W = spec.drop_zone->center_m;
   uo.tether = mission.tether;
 }

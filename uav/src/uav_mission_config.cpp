@@ -1,10 +1,13 @@
 #include "ferret/uav/uav_mission_config.hpp"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <utility>
 
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/core/yaml_emit.hpp"
+#include "ferret/perception/marker_family.hpp"
 
 namespace ferret {
 namespace {
@@ -53,6 +56,8 @@ constexpr std::array<std::pair<std::string_view, std::string Options::*>, 3> kCh
     {"winch_controller", &Options::winch_controller},
 }};
 constexpr std::string_view kSearchArea = "search_area_m";
+// The markers the UAV looks for, over the world's: {family, dictionary, size_m}.
+constexpr std::string_view kMarker = "marker";
 constexpr std::array<std::string_view, 2> kBackendKeys{"winch", "flight_controller"};
 
 template <std::size_t N>
@@ -62,12 +67,13 @@ constexpr auto all_keys(bool with_backends) {
   if (with_backends)
     for (const auto k : kBackendKeys) out[i++] = k;
   out[i++] = kSearchArea;
+  out[i++] = kMarker;
   for (const auto& [k, m] : kNumbers) out[i++] = k;
   for (const auto& [k, m] : kIntegers) out[i++] = k;
   for (const auto& [k, m] : kChoices) out[i++] = k;
   return out;
 }
-constexpr std::size_t kMissionKeyCount = 1 + kNumbers.size() + kIntegers.size() + kChoices.size();
+constexpr std::size_t kMissionKeyCount = 2 + kNumbers.size() + kIntegers.size() + kChoices.size();
 constexpr auto kMissionKeys = all_keys<kMissionKeyCount>(false);
 constexpr auto kSectionKeys = all_keys<kMissionKeyCount + kBackendKeys.size()>(true);
 
@@ -91,6 +97,22 @@ std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std
     note(kSearchArea);
   } else if (r.given_empty(kSearchArea)) {
     r.fail(kSearchArea, "a list of 4 values", "a key without a value");
+  }
+  if (r.has(kMarker)) {
+    const yaml::MapReader m = r.child(kMarker);
+    m.allow_only({"family", "dictionary", "size_m"});
+    MarkerDictionary& d = o.marker.dictionary;
+    d.family = parse_marker_family(m.get<std::string>("family"), source, m.field_path("family"));
+    d.name = m.get_or<std::string>("dictionary", default_marker_dictionary(d.family));
+    check_marker_dictionary(d, source, m.field_path("dictionary"));
+    o.marker.marker_size_m = m.get<double>("size_m");
+    if (!(o.marker.marker_size_m > 0.0 && o.marker.marker_size_m <= 100.0))
+      m.fail("size_m", "the black square's side in metres, in (0, 100]",
+             fmt::format("{}", o.marker.marker_size_m));
+    o.marker_from_mission = true;
+    note(kMarker);
+  } else if (r.given_empty(kMarker)) {
+    r.fail(kMarker, "a mapping {family, dictionary, size_m}", "a key without a value");
   }
   // get_or refuses `key:` without a value, and parses numbers finite (NaN, inf refused).
   const auto read = [&](const auto& table) {
@@ -117,6 +139,13 @@ void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& o, bool
   if (with_search_area)
     internal::emit_key_numbers(e, kSearchArea.data(),
                                std::array{o.search_area_m[0], o.search_area_m[1], o.search_area_m[2], o.search_area_m[3]});
+  if (o.marker_from_mission) {
+    e << YAML::Key << kMarker.data() << YAML::Value << YAML::Flow << YAML::BeginMap;
+    e << YAML::Key << "family" << YAML::Value << to_string(o.marker.dictionary.family);
+    e << YAML::Key << "dictionary" << YAML::Value << o.marker.dictionary.name;
+    internal::emit_key_number(e, "size_m", o.marker.marker_size_m);
+    e << YAML::EndMap;
+  }
   for (const auto& [key, member] : kNumbers) internal::emit_key_number(e, key.data(), o.*member);
   for (const auto& [key, member] : kIntegers) e << YAML::Key << key.data() << YAML::Value << o.*member;
   for (const auto& [key, member] : kChoices) e << YAML::Key << key.data() << YAML::Value << o.*member;

@@ -26,8 +26,9 @@ namespace ferret {
                                                 std::shared_ptr<const CollisionMap> map = nullptr);
 
 /// The UAV mission's options that come from the world the team describes: the markers
-/// it placed and their openings, the marker detector for them, the drop zone, and the
-/// mission's tether (the openings and the drop zone only where the options have none).
+/// it placed and their openings, the marker detector for them (unless the mission YAML
+/// set `uav.marker`), the drop zone, and the mission's tether (the openings and the drop
+/// zone only where the options have none).
 void fill_uav_mission_from_world(UavMissionOptions& options, const WorldSpec& world, const MissionConfig& mission);
 
 }  // namespace ferret

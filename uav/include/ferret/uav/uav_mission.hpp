@@ -83,7 +83,10 @@ struct UavMissionOptions {
   double braking_accel_mps2 = 1.6;
   /// The markers the team placed: where each one's opening lies in its frame.
   std::vector<OpeningInMarker> openings;
+  /// The markers' family, dictionary and size: the world's (its first hidden space's
+  /// marker) unless the mission YAML sets `uav.marker`.
   MarkerDetectorOptions marker;
+  bool marker_from_mission = false;  ///< `uav.marker` was set: the world's does not replace it
   /// Detections of the same marker needed before the UAV goes (a single frame can lie).
   int confirm_detections = 2;
   LandingZoneDetector::Options landing;
