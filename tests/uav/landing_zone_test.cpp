@@ -237,10 +237,47 @@ TEST(LandingZone, AThinRodBesideTheDiscIsSeenInAHoversDriftingFramesFused) {
   const auto det = detector();
   const auto r = det.detect(hover, cam);
   ASSERT_FALSE(r.zones.empty()) << r.reason;
-  const double keep =
-      det.options().footprint_radius_m + det.options().margin_m + det.options().min_clearance_m;
+  const LandingZoneDetector::Options& o = det.options_for_frames(hover.size());
+  const double keep = o.footprint_radius_m + o.margin_m + o.min_clearance_m;
   for (const auto& z : r.zones)
     EXPECT_GE(rod_distance(z.center_m.head<2>()), keep - 0.01) << z.center_m.transpose();
+}
+
+// A hover's frames fused are judged in smaller cells with a smaller margin (half a
+// cell): a corridor between two walls 1.72 m apart leaves 0.86 m on each side of its
+// middle, short of one frame's footprint + margin + clearance + its cells' slack
+// (0.49 + 0.05 + 0.30 m and up to a quarter cell) but enough for the hover's
+// (0.49 + 0.025 + 0.30 m). Every zone found still keeps the footprint and its
+// clearance off the walls.
+TEST(LandingZone, AHoversFinerCellsFitADiscBetweenWallsThatOneFramesDoNot) {
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0.0, 0.0, 3.0});
+  const double half_width = 0.86;
+  const HeightField corridor = [&](double x, double) {
+    return std::abs(x) >= half_width ? 1.0 : 0.0;
+  };
+  std::vector<DepthImageMm> frames;
+  for (std::uint64_t k = 0; k < 8; ++k)
+    frames.push_back(render(cam, X_WC, corridor, 0.003, 31 + k));
+  std::vector<PosedDepthFrame> hover;
+  for (const auto& f : frames) hover.push_back({&f, X_WC});
+  const auto det = detector();
+  EXPECT_DOUBLE_EQ(det.options_for_frames(1).cell_size_m, 0.10);
+  EXPECT_DOUBLE_EQ(det.options_for_frames(7).cell_size_m, 0.10);
+  EXPECT_DOUBLE_EQ(det.options_for_frames(8).cell_size_m, 0.05);
+  EXPECT_DOUBLE_EQ(det.options_for_frames(8).margin_m, 0.025);
+
+  const auto one = det.detect(std::vector<PosedDepthFrame>{hover.front()}, cam);
+  EXPECT_TRUE(one.zones.empty()) << one.zones.front().center_m.transpose();
+  const auto fused = det.detect(hover, cam);
+  ASSERT_FALSE(fused.zones.empty()) << fused.reason;
+  const double keep = det.options().footprint_radius_m + det.options().min_clearance_m;
+  for (const auto& z : fused.zones)
+    EXPECT_LE(std::abs(z.center_m.x()), half_width - keep) << z.center_m.transpose();
+  // Without the hover's cells the same fused frames give nothing either.
+  LandingZoneDetector::Options same = det.options();
+  same.hover_cell_size_m = 0.0;
+  EXPECT_TRUE(LandingZoneDetector(same).detect(hover, cam).zones.empty());
 }
 
 // A block's corner that just reaches into the clearance ring covers only part of any
@@ -355,6 +392,25 @@ TEST(LandingZone, BadOptionsAndAFrameOfTheWrongSizeAreInputErrors) {
   o = {};
   o.max_depth_m = 0.1;  // below min_depth_m
   EXPECT_THROW(LandingZoneDetector{o}, InputError);
+  // The hover's cells: a size (or 0), and a frame count within a hover's.
+  for (const double cell_m : {-0.05, std::nan(""), 0.001, 5.0}) {
+    o = {};
+    o.hover_cell_size_m = cell_m;
+    try {
+      const LandingZoneDetector d{o};
+      ADD_FAILURE() << "no error at " << cell_m;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "hover_cell_size_m") << cell_m;
+    }
+  }
+  for (const int frames : {0, kMaxHoverFrames + 1}) {
+    o = {};
+    o.hover_min_frames = frames;
+    EXPECT_THROW(LandingZoneDetector{o}, InputError) << frames;
+  }
+  o = {};
+  o.hover_cell_size_m = 0.0;  // a hover in one frame's cells
+  EXPECT_DOUBLE_EQ(LandingZoneDetector(o).options_for_frames(kMaxHoverFrames).cell_size_m, 0.10);
   const auto cam = test_camera();
   const DepthImageMm wrong(100, 100, 1000);
   try {

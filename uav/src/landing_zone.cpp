@@ -126,6 +126,11 @@ void LandingZoneDetector::Options::check(const std::string& source) const {
   check_number(min_clearance_m, NumberRange::non_negative(20.0, "m"), source, "min_clearance_m");
   check_number(taller_than_m, NumberRange::positive(10.0, "m"), source, "taller_than_m");
   check_number(cell_size_m, NumberRange::closed(0.01, 2.0, "m"), source, "cell_size_m");
+  if (hover_cell_size_m != 0.0)
+    check_number(hover_cell_size_m, NumberRange::closed(0.01, 2.0, "m"), source,
+                 "hover_cell_size_m");
+  check_number(hover_min_frames, NumberRange::closed(1, kMaxHoverFrames), source,
+               "hover_min_frames");
   check_number(min_points_per_cell, NumberRange::closed(1, 1e6), source, "min_points_per_cell");
   check_number(min_depth_m, NumberRange::non_negative(100.0, "m"), source, "min_depth_m");
   check_number(max_depth_m, NumberRange::positive(100.0, "m"), source, "max_depth_m");
@@ -139,10 +144,11 @@ void LandingZoneDetector::Options::check(const std::string& source) const {
   check_number(max_zones, NumberRange::closed(1, 10000), source, "max_zones");
   // A disc and its clearance of more than 250 cells' radius (25 m at the default 0.1 m)
   // is not a landing-zone question, and its clearance windows (16 a cell) would not fit.
-  if ((footprint_radius_m + margin_m + min_clearance_m) / cell_size_m > 250.0)
-    throw InputError(source, "cell_size_m",
-                     "at most 250 cells in the radius of a disc and its clearance",
-                     fmt::format("{}", cell_size_m));
+  for (const auto& [cell, field] :
+       {std::pair{cell_size_m, "cell_size_m"}, std::pair{hover_cell_size_m, "hover_cell_size_m"}})
+    if (cell > 0.0 && (footprint_radius_m + margin_m + min_clearance_m) / cell > 250.0)
+      throw InputError(source, field, "at most 250 cells in the radius of a disc and its clearance",
+                       fmt::format("{}", cell));
 }
 
 LandingZoneDetector::LandingZoneDetector(Options options) : options_(std::move(options)) {
@@ -150,6 +156,17 @@ LandingZoneDetector::LandingZoneDetector(Options options) : options_(std::move(o
   const double radius = options_.footprint_radius_m + options_.margin_m;
   ring_ = window_offsets(0.25 * options_.cell_size_m, radius + options_.min_clearance_m + 0.5);
   step_disc_ = window_offsets(0.5 * options_.cell_size_m, radius);
+  if (options_.hover_cell_size_m > 0.0 && options_.hover_cell_size_m != options_.cell_size_m) {
+    Options hover = options_;
+    hover.margin_m = options_.margin_m * options_.hover_cell_size_m / options_.cell_size_m;
+    hover.cell_size_m = options_.hover_cell_size_m;
+    hover.hover_cell_size_m = 0.0;
+    hover_ = std::make_shared<const LandingZoneDetector>(std::move(hover));
+  }
+}
+
+const LandingZoneDetector& LandingZoneDetector::for_frames(std::size_t frames) const {
+  return hover_ && frames >= static_cast<std::size_t>(options_.hover_min_frames) ? *hover_ : *this;
 }
 
 std::vector<LandingZoneDetector::WindowOffset> LandingZoneDetector::window_offsets(double unit,
@@ -168,10 +185,10 @@ std::vector<LandingZoneDetector::WindowOffset> LandingZoneDetector::window_offse
 
 LandingResult LandingZoneDetector::detect(const std::vector<PosedDepthFrame>& frames,
                                           const CameraModel& camera) const {
+  const LandingZoneDetector& judge = for_frames(frames.size());
   if (frames.size() == 1 && frames.front().depth != nullptr)
-    return detect(*frames.front().depth, camera, frames.front().X_WC);
-  const DepthImageMm fused = fuse_depth_frames(frames, camera);
-  return detect(fused, camera, frames.front().X_WC);
+    return judge.detect(*frames.front().depth, camera, frames.front().X_WC);
+  return judge.detect(fuse_depth_frames(frames, camera), camera, frames.front().X_WC);
 }
 
 LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const CameraModel& camera,
