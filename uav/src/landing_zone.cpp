@@ -188,7 +188,9 @@ LandingResult LandingZoneDetector::detect(const std::vector<PosedDepthFrame>& fr
   const LandingZoneDetector& judge = for_frames(frames.size());
   if (frames.size() == 1 && frames.front().depth != nullptr)
     return judge.detect(*frames.front().depth, camera, frames.front().X_WC);
-  return judge.detect(fuse_depth_frames(frames, camera), camera, frames.front().X_WC);
+  // Fused first: it refuses an empty list before front() is read.
+  const DepthImageMm fused = fuse_depth_frames(frames, camera);
+  return judge.detect(fused, camera, frames.front().X_WC);
 }
 
 LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const CameraModel& camera,
