@@ -5,9 +5,10 @@
 //   ferret_bench_landing_zone --compare [--terrains N] [--seed S] [--verbose] [--set NAME=V]...
 //
 // --verbose lists the frames missed and the truth-safe candidates rejected there; --set
-// changes a detector option for a study (margin_m, max_step_m, max_roughness_m,
-// max_slope_deg, taller_than_m, cell_size_m, min_clearance_m, hover_cell_size_m: 0 for
-// one frame's cells, hover_min_frames) or the truth's footprint
+// changes a detector option for a study (margin_m, max_step_m, step_allowance_m,
+// max_roughness_m, max_slope_deg, slope_sigmas, slope_allowance_deg, taller_than_m,
+// taller_allowance_m, cell_size_m, min_clearance_m, hover_cell_size_m: 0 for one frame's cells,
+// hover_min_frames) or the truth's footprint
 // (truth_radius_m) or the view it asks for round a safe disc (view_radius_m) or the
 // rendered frames' D415 model (depth_noise_per_m, depth_dropout) or their size
 // (width_px, height_px: 640 x 480 unless set; the M100's URDF camera is 1280 x 720) or
@@ -130,8 +131,16 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
       s.options.max_roughness_m = v;
     else if (k == "max_slope_deg")
       s.options.max_slope_deg = v;
+    else if (k == "slope_sigmas")
+      s.options.slope_sigmas = v;
+    else if (k == "slope_allowance_deg")
+      s.options.slope_allowance_deg = v;
+    else if (k == "step_allowance_m")
+      s.options.step_allowance_m = v;
     else if (k == "taller_than_m")
       s.options.taller_than_m = v;
+    else if (k == "taller_allowance_m")
+      s.options.taller_allowance_m = v;
     else if (k == "hover_cell_size_m")
       s.options.hover_cell_size_m = v;
     else if (k == "hover_min_frames")
@@ -165,17 +174,19 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
   if (const auto r = set.find("hover_drift_deg"); r != set.end())
     so.hover_drift_rad = deg_to_rad(r->second);
   const LandingZoneDetector det(s.options);
-  // The detector's own limits, for the "clearly safe" count: those it judges a hover of
-  // this many frames with (its margin is the hover cells' from hover_min_frames on).
+  // The "clearly safe" count: the limits one frame is judged by, whatever the hover (a
+  // degree under the slope limit, where one frame at 4 m needs three standard errors,
+  // and the one-frame cells' step and taller-than allowances), with the hover's own
+  // margin and clearance.
   // The truth's view round a safe disc stays the one-frame detector's, so that the
   // frames with a safe zone in view are the same whatever the hover.
   const LandingZoneDetector::Options& judged =
       det.options_for_frames(static_cast<std::size_t>(so.frames_per_view));
   LandingCriteria own;
-  own.max_slope_deg = judged.max_slope_deg;
-  own.max_step_m = judged.max_step_m;
+  own.max_slope_deg = s.options.max_slope_deg - 1.0;
+  own.max_step_m = s.options.max_step_m - s.options.step_allowance_m;
   own.min_clearance_m = judged.min_clearance_m;
-  own.taller_than_m = judged.taller_than_m;
+  own.taller_than_m = s.options.taller_than_m - s.options.taller_allowance_m;
   const double own_radius_m = judged.footprint_radius_m + judged.margin_m;
   const Px4LandingBaseline base(Px4LandingBaseline::Options{});
   std::map<std::string, Tally> ours, px4;  // by height, and "all"

@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
+#include <vector>
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/random.hpp"
@@ -408,6 +411,25 @@ TEST(LandingZone, BadOptionsAndAFrameOfTheWrongSizeAreInputErrors) {
     o.hover_min_frames = frames;
     EXPECT_THROW(LandingZoneDetector{o}, InputError) << frames;
   }
+  // The slope's, the step's and the taller-than's allowances: numbers in range, the
+  // step's and the taller-than's under what they are allowances of.
+  for (const auto& [field, set] : std::vector<std::pair<std::string, std::function<void(double)>>>{
+           {"slope_sigmas", [&](double v) { o.slope_sigmas = v; }},
+           {"slope_allowance_deg", [&](double v) { o.slope_allowance_deg = v; }},
+           {"step_allowance_m", [&](double v) { o.step_allowance_m = v; }},
+           {"taller_allowance_m", [&](double v) { o.taller_allowance_m = v; }}})
+    for (const double v : {-0.1, std::nan(""), 1e6, 0.20}) {
+      // 0.20: not under the step's 0.10 nor under the taller-than's 0.20.
+      if (field.find("slope") != std::string::npos && v == 0.20) continue;  // in range there
+      o = {};
+      set(v);
+      try {
+        const LandingZoneDetector d{o};
+        ADD_FAILURE() << "no error at " << field << " = " << v;
+      } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), field) << v;
+      }
+    }
   o = {};
   o.hover_cell_size_m = 0.0;  // a hover in one frame's cells
   EXPECT_DOUBLE_EQ(LandingZoneDetector(o).options_for_frames(kMaxHoverFrames).cell_size_m, 0.10);
@@ -485,10 +507,10 @@ struct NoisyHover {
   Pose3 X_WC = downward({0, 0, 3});
   std::vector<DepthImageMm> frames;
   std::vector<PosedDepthFrame> posed;
-  NoisyHover(double noise_m, std::uint64_t seed) {
-    for (std::uint64_t k = 0; k < 8; ++k)
-      frames.push_back(render(
-          cam, X_WC, [](double, double) { return 0.0; }, noise_m, seed + k));
+  NoisyHover(
+      double noise_m, std::uint64_t seed,
+      const HeightField& h = [](double, double) { return 0.0; }) {
+    for (std::uint64_t k = 0; k < 8; ++k) frames.push_back(render(cam, X_WC, h, noise_m, seed + k));
     for (const auto& d : frames) posed.push_back({&d, X_WC});
   }
   NoisyHover(const NoisyHover&) = delete;  // posed points into frames
@@ -518,6 +540,81 @@ TEST(FuseDepthFrames, NoisyFlatGroundRefusedInOneFrameIsAZoneInEightFused) {
   ASSERT_FALSE(eight.zones.empty()) << eight.reason;
   EXPECT_NEAR(eight.zones.front().center_m.z(), 0.0, 0.02);
   EXPECT_LT(eight.zones.front().slope_deg, 2.0);
+}
+
+TEST(LandingZone, AHoverLandsOnASlopeThatOneFrameLeavesToItsAllowance) {
+  // 14.4 degrees, under the M100's 15. One frame's 0.1 m cells keep a degree's
+  // allowance (a step beyond the rim tilts their plane); a hover's half-size cells half
+  // of it, and 8 frames fused leave the noise's three standard errors well under that.
+  const double g = std::tan(deg_to_rad(14.4));
+  const NoisyHover h(0.01, 300, [g](double x, double) { return g * x; });
+  const LandingResult one = detector().detect(h.frames.front(), h.cam, h.X_WC);
+  EXPECT_TRUE(one.zones.empty()) << one.zones.front().slope_deg;
+  EXPECT_NE(one.reason.find("slope"), std::string::npos) << one.reason;
+  const auto& hover = detector().options_for_frames(8);
+  EXPECT_DOUBLE_EQ(hover.slope_allowance_deg, 0.5);
+  EXPECT_DOUBLE_EQ(hover.step_allowance_m, 0.01);
+  EXPECT_DOUBLE_EQ(hover.taller_allowance_m, 0.025);
+  const LandingResult eight = detector().detect(h.posed, h.cam);
+  ASSERT_FALSE(eight.zones.empty()) << eight.reason;
+  for (const auto& z : eight.zones) {
+    EXPECT_NEAR(z.slope_deg, 14.4, 0.2);
+    EXPECT_LT(3.0 * z.slope_sigma_deg, 0.5);
+  }
+  // And 14.6 degrees is refused by the hover too: 14.6 + 0.5 > 15.
+  const double g2 = std::tan(deg_to_rad(14.6));
+  const NoisyHover steeper(0.01, 300, [g2](double x, double) { return g2 * x; });
+  EXPECT_TRUE(detector().detect(steeper.posed, steeper.cam).zones.empty());
+}
+
+TEST(LandingZone, ASlopesStandardErrorIsTheSpreadOfItsFitFromFrameToFrame) {
+  // One frame of a 10 degree slope with 5 cm of noise a pixel, 24 times: the slope
+  // fitted at a fixed place scatters by what slope_sigma_deg says (the tests that
+  // would refuse it switched off, so every candidate is listed).
+  auto o = LandingZoneDetector::Options{};
+  o.slope_sigmas = 0.0;
+  o.slope_allowance_deg = 0.0;
+  o.max_step_m = 5.0;
+  o.max_roughness_m = 5.0;
+  o.taller_than_m = 5.0;
+  o.max_zones = 10000;
+  const LandingZoneDetector det(o);
+  const auto cam = test_camera();
+  const Pose3 X_WC = downward({0.0, 0.0, 3.0});
+  const double g = std::tan(deg_to_rad(10.0));
+  const Eigen::Vector2d at(0.3, -0.2);
+  std::vector<double> slopes, sigmas;
+  for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+    const auto depth = render(
+        cam, X_WC, [g](double x, double) { return g * x; }, 0.05, 1000 + seed, 2.5);
+    const LandingResult r = det.detect(depth, cam, X_WC);
+    ASSERT_FALSE(r.zones.empty()) << r.reason;
+    const auto nearest = std::min_element(r.zones.begin(), r.zones.end(), [&](auto& a, auto& b) {
+      return (a.center_m.template head<2>() - at).norm() <
+             (b.center_m.template head<2>() - at).norm();
+    });
+    ASSERT_LT((nearest->center_m.head<2>() - at).norm(), 0.5);
+    slopes.push_back(nearest->slope_deg);
+    sigmas.push_back(nearest->slope_sigma_deg);
+  }
+  const double n = static_cast<double>(slopes.size());
+  double mean = 0.0, mean_sigma = 0.0;
+  for (std::size_t k = 0; k < slopes.size(); ++k) {
+    mean += slopes[k] / n;
+    mean_sigma += sigmas[k] / n;
+  }
+  double var = 0.0;
+  for (const double s : slopes) var += (s - mean) * (s - mean) / (n - 1.0);
+  EXPECT_NEAR(mean, 10.0, 0.3);
+  EXPECT_GT(mean_sigma, 0.02);  // not the noise-free fit's 0
+  EXPECT_GT(std::sqrt(var) / mean_sigma, 0.6) << std::sqrt(var) << " against " << mean_sigma;
+  EXPECT_LT(std::sqrt(var) / mean_sigma, 1.6) << std::sqrt(var) << " against " << mean_sigma;
+  // Without noise the fit is exact and claims so.
+  const auto clean = render(
+      cam, X_WC, [g](double x, double) { return g * x; }, 0.0, 1, 2.5);
+  const LandingResult r = det.detect(clean, cam, X_WC);
+  ASSERT_FALSE(r.zones.empty());
+  EXPECT_LT(r.zones.front().slope_sigma_deg, 0.02);
 }
 
 TEST(FuseDepthFrames, NoFramesANullFrameAndAFrameOfAnotherSizeAreInputErrors) {

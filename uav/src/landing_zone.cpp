@@ -121,10 +121,22 @@ void LandingZoneDetector::Options::check(const std::string& source) const {
   check_number(footprint_radius_m, NumberRange::positive(20.0, "m"), source, "footprint_radius_m");
   check_number(margin_m, NumberRange::non_negative(10.0, "m"), source, "margin_m");
   check_number(max_slope_deg, NumberRange::closed(0.0, 89.0, "deg"), source, "max_slope_deg");
+  check_number(slope_sigmas, NumberRange::closed(0.0, 10.0, ""), source, "slope_sigmas");
+  check_number(slope_allowance_deg, NumberRange::closed(0.0, 89.0, "deg"), source,
+               "slope_allowance_deg");
   check_number(max_roughness_m, NumberRange::positive(10.0, "m"), source, "max_roughness_m");
   check_number(max_step_m, NumberRange::positive(10.0, "m"), source, "max_step_m");
+  check_number(step_allowance_m, NumberRange::non_negative(10.0, "m"), source, "step_allowance_m");
+  if (step_allowance_m >= max_step_m)
+    throw InputError(source, "step_allowance_m", "less than max_step_m",
+                     fmt::format("{} >= {}", step_allowance_m, max_step_m));
   check_number(min_clearance_m, NumberRange::non_negative(20.0, "m"), source, "min_clearance_m");
   check_number(taller_than_m, NumberRange::positive(10.0, "m"), source, "taller_than_m");
+  check_number(taller_allowance_m, NumberRange::non_negative(10.0, "m"), source,
+               "taller_allowance_m");
+  if (taller_allowance_m >= taller_than_m)
+    throw InputError(source, "taller_allowance_m", "less than taller_than_m",
+                     fmt::format("{} >= {}", taller_allowance_m, taller_than_m));
   check_number(cell_size_m, NumberRange::closed(0.01, 2.0, "m"), source, "cell_size_m");
   if (hover_cell_size_m != 0.0)
     check_number(hover_cell_size_m, NumberRange::closed(0.01, 2.0, "m"), source,
@@ -158,7 +170,13 @@ LandingZoneDetector::LandingZoneDetector(Options options) : options_(std::move(o
   step_disc_ = window_offsets(0.5 * options_.cell_size_m, radius);
   if (options_.hover_cell_size_m > 0.0 && options_.hover_cell_size_m != options_.cell_size_m) {
     Options hover = options_;
-    hover.margin_m = options_.margin_m * options_.hover_cell_size_m / options_.cell_size_m;
+    const double ratio = options_.hover_cell_size_m / options_.cell_size_m;
+    hover.margin_m = options_.margin_m * ratio;
+    hover.step_allowance_m =
+        std::min(options_.step_allowance_m * ratio, 0.99 * options_.max_step_m);
+    hover.slope_allowance_deg = std::min(options_.slope_allowance_deg * ratio, 89.0);
+    hover.taller_allowance_m =
+        std::min(options_.taller_allowance_m * ratio, 0.99 * options_.taller_than_m);
     hover.cell_size_m = options_.hover_cell_size_m;
     hover.hover_cell_size_m = 0.0;
     hover_ = std::make_shared<const LandingZoneDetector>(std::move(hover));
@@ -357,7 +375,8 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
   int hd = 0;
   for (const auto& d : disc) hd = std::max({hd, std::abs(d.x()), std::abs(d.y())});
   const int h_window = std::max(h, hd);
-  const double tan_max_slope = std::tan(deg_to_rad(o.max_slope_deg));
+  const double max_step = o.max_step_m - o.step_allowance_m;
+  const double taller = o.taller_than_m - o.taller_allowance_m;
 
   // The step test's windows: a cell's size every half cell (window p covers half cells p
   // and p + 1, quarter cells 2p to 2p + 3), so that they overlap by half. A block that
@@ -472,14 +491,24 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       z.center_m.z() = z_ref + pl.at(cxl, cyl);
       const double grad = std::hypot(pl.a, pl.b);
       z.slope_deg = rad_to_deg(std::atan(grad));
-      z.roughness_m = std::sqrt(std::max(0.0, czz - pl.a * cxz - pl.b * cyz));
+      const double residual_var = std::max(0.0, czz - pl.a * cxz - pl.b * cyz);
+      z.roughness_m = std::sqrt(residual_var);
+      // The gradient's standard error from the residuals (taken as independent; real
+      // relief under the disc only widens it), along the direction the cells constrain
+      // least: the larger eigenvalue of the cells' inverse covariance.
+      const double inv_cov_max = 0.5 * (cxx + cyy + std::hypot(cxx - cyy, 2.0 * cxy)) / det;
+      const double grad_sigma =
+          std::sqrt(residual_var * nd / std::max(1.0, nd - 3.0) * inv_cov_max / nd);
+      z.slope_sigma_deg = rad_to_deg(grad_sigma / (1.0 + grad * grad));
       if (o.p_WE) {
         const Eigen::Vector2d winch = z.center_m.head<2>() + o.p_ZW_xy_m;
         z.distance_to_opening_m = (winch - o.p_WE->head<2>()).norm();
       } else {
         z.distance_to_opening_m = std::numeric_limits<double>::quiet_NaN();
       }
-      if (grad > tan_max_slope) {
+      const double slope_margin_deg =
+          std::max(o.slope_sigmas * z.slope_sigma_deg, o.slope_allowance_deg);
+      if (z.slope_deg + slope_margin_deg > o.max_slope_deg) {
         reject(z, LandingReject::kSlope, i, j);
         continue;
       }
@@ -516,7 +545,7 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
         rmax = std::max(rmax, r);
       }
       z.step_m = rmax - rmin;
-      if (z.step_m > o.max_step_m) {
+      if (z.step_m > max_step) {
         reject(z, LandingReject::kStep, i, j);
         continue;
       }
@@ -529,7 +558,7 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
           i - hr >= 0 && j - hr >= 0 && i + hr < nx && j + hr < ny &&
           observed.sum(i - hr, j - hr, i + hr, j + hr) >= (2.0 * hr + 1) * (2.0 * hr + 1);
       // (Window 4i + 1 is centred on the candidate.)
-      if (!ring_observed || win_max[qidx(4 * i + 1, 4 * j + 1)] > plane_low + o.taller_than_m) {
+      if (!ring_observed || win_max[qidx(4 * i + 1, 4 * j + 1)] > plane_low + taller) {
         double nearest = radius + clearance_cap;
         for (const WindowOffset& f : ring_) {
           const int ci = 4 * i + 2 + f.di, cj = 4 * j + 2 + f.dj;
@@ -542,7 +571,7 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
             continue;
           }
           const std::size_t k = qidx(ci, cj);
-          if (fmz[k] > pl.at(fmx[k], fmy[k]) + o.taller_than_m) {
+          if (fmz[k] > pl.at(fmx[k], fmy[k]) + taller) {
             nearest = f.dist;
             break;
           }
@@ -560,8 +589,8 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       // Safety margin: the tightest of the criteria, each as the fraction of its limit
       // left (clearance: of the extra clearance looked for beyond the minimum).
       double margin =
-          std::min({1.0 - z.slope_deg / std::max(o.max_slope_deg, 1e-9),
-                    1.0 - z.roughness_m / o.max_roughness_m, 1.0 - z.step_m / o.max_step_m,
+          std::min({1.0 - (z.slope_deg + slope_margin_deg) / std::max(o.max_slope_deg, 1e-9),
+                    1.0 - z.roughness_m / o.max_roughness_m, 1.0 - z.step_m / max_step,
                     (z.clearance_m - o.min_clearance_m) / (clearance_cap - o.min_clearance_m)});
       margin = std::clamp(margin, 0.0, 1.0);
       // Distance: to the opening within the reach when there is one (the miniUGV's

@@ -69,6 +69,8 @@ enum class LandingReject {
 struct LandingZone {
   Eigen::Vector3d center_m = Eigen::Vector3d::Zero();  ///< on the fitted plane, world frame
   double slope_deg = 0.0;
+  /// The slope's standard error, from the plane fit's residuals over the disc's cells.
+  double slope_sigma_deg = 0.0;
   double roughness_m = 0.0;  ///< RMS of the cell means about the plane
   double step_m = 0.0;       ///< peak-to-peak of the cell means about the plane
   double clearance_m = 0.0;  ///< from the disc's edge to the nearest taller cell (capped)
@@ -98,13 +100,32 @@ class LandingZoneDetector {
     /// outside covers a whole cell of the disc (a partly covered cell's mean holds only
     /// part of it).
     double margin_m = 0.05;
-    double max_slope_deg = 14.0;
+    /// The steepest plane the UAV lands on. A zone's fitted slope must lie under it by
+    /// `slope_sigmas` of its standard error (LandingZone::slope_sigma_deg), and by at
+    /// least `slope_allowance_deg` at `cell_size_m`. The noise: of a frame's hundreds of
+    /// candidates the one chosen is the one whose noise made it flattest, and the error
+    /// shrinks with the returns (a hover's frames fused, nearer ground). The allowance:
+    /// the disc's cells reach past the footprint's rim by up to a margin and a half
+    /// cell, and a step there tilts the plane they fit (a 15.2 degree slope with steps
+    /// was fitted at 14.4 from one frame's 0.1 m cells); it scales with the cell.
+    double max_slope_deg = 15.0;
+    double slope_sigmas = 3.0;
+    double slope_allowance_deg = 1.0;
     double max_roughness_m = 0.04;
-    double max_step_m = 0.08;
+    /// The highest step or bump the UAV's legs stand on, and what the measured step must
+    /// stay under it by at `cell_size_m`: a block narrower than the step test's windows
+    /// reads lower than it stands. The allowance scales with the cell (as the margin does),
+    /// so the hover's cells of half the size leave half of it.
+    double max_step_m = 0.10;
+    double step_allowance_m = 0.02;
     /// Free space required around the disc, from its edge, to anything taller than
-    /// the plane by more than `taller_than_m` (props, walls, poles).
+    /// the plane by `taller_than_m` or more (props, walls, poles).
     double min_clearance_m = 0.30;
-    double taller_than_m = 0.15;
+    double taller_than_m = 0.20;
+    /// How far under `taller_than_m` the clearance's windows judge a thing taller at
+    /// `cell_size_m`: a pole or a corner covering part of a window raises its mean by
+    /// only the part it covers. Scaled with the cell, as the step's allowance is.
+    double taller_allowance_m = 0.05;
     double cell_size_m = 0.10;
     /// The cells for a hover's frames fused (at least `hover_min_frames` of them): their
     /// mean's noise is a fraction of one frame's, so a cell can be smaller and still hold
