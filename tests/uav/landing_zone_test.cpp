@@ -551,11 +551,12 @@ TEST(LandingZone, AHoverLandsOnASlopeThatOneFrameLeavesToItsAllowance) {
   const LandingResult one = detector().detect(h.frames.front(), h.cam, h.X_WC);
   EXPECT_TRUE(one.zones.empty()) << one.zones.front().slope_deg;
   EXPECT_NE(one.reason.find("slope"), std::string::npos) << one.reason;
-  const auto& hover = detector().options_for_frames(8);
+  const LandingZoneDetector det = detector();  // the options below are its own
+  const auto& hover = det.options_for_frames(8);
   EXPECT_DOUBLE_EQ(hover.slope_allowance_deg, 0.5);
   EXPECT_DOUBLE_EQ(hover.step_allowance_m, 0.01);
   EXPECT_DOUBLE_EQ(hover.taller_allowance_m, 0.025);
-  const LandingResult eight = detector().detect(h.posed, h.cam);
+  const LandingResult eight = det.detect(h.posed, h.cam);
   ASSERT_FALSE(eight.zones.empty()) << eight.reason;
   for (const auto& z : eight.zones) {
     EXPECT_NEAR(z.slope_deg, 14.4, 0.2);
