@@ -174,16 +174,15 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
   if (const auto r = set.find("hover_drift_deg"); r != set.end())
     so.hover_drift_rad = deg_to_rad(r->second);
   const LandingZoneDetector det(s.options);
-  // The "clearly safe" count: the limits one frame is judged by, whatever the hover (a
-  // degree under the slope limit, where one frame at 4 m needs three standard errors,
-  // and the one-frame cells' step and taller-than allowances), with the hover's own
-  // margin and clearance.
+  // The "clearly safe" count: the limits one frame is judged by, whatever the hover (the
+  // one-frame cells' slope, step and taller-than allowances under the UAV's limits),
+  // with the hover's own margin and clearance.
   // The truth's view round a safe disc stays the one-frame detector's, so that the
   // frames with a safe zone in view are the same whatever the hover.
   const LandingZoneDetector::Options& judged =
       det.options_for_frames(static_cast<std::size_t>(so.frames_per_view));
   LandingCriteria own;
-  own.max_slope_deg = s.options.max_slope_deg - 1.0;
+  own.max_slope_deg = s.options.max_slope_deg - s.options.slope_allowance_deg;
   own.max_step_m = s.options.max_step_m - s.options.step_allowance_m;
   own.min_clearance_m = judged.min_clearance_m;
   own.taller_than_m = s.options.taller_than_m - s.options.taller_allowance_m;
