@@ -195,6 +195,22 @@ TEST(UavMission, TheLegSpacingFollowsTheMarkerCamera) {
   EXPECT_NEAR(m->leg_spacing_m(), expected, 1e-9);
 }
 
+TEST(UavMission, AMarkerOfSmallerCellsIsSearchedWithCloserLegs) {
+  // The decoder needs pixels a cell: tag36h11's black square holds 8 cells to a 4x4
+  // marker's 6, so it is read at 3/4 of the range and the legs close up to 3/4; a
+  // tag16h5 (6 cells, like 4x4) keeps the 4x4 spacing.
+  Rig rig;
+  UavMissionOptions o = small_area();
+  o.leg_spacing_m = 0.0;
+  const double aruco_4x4 = rig.mission(o)->leg_spacing_m();
+  o.marker.dictionary = {MarkerFamily::kAprilTag, "tag36h11"};
+  EXPECT_NEAR(rig.mission(o)->leg_spacing_m(), 0.75 * aruco_4x4, 1e-9);
+  o.marker.dictionary = {MarkerFamily::kAruco, "DICT_5X5_50"};
+  EXPECT_NEAR(rig.mission(o)->leg_spacing_m(), 6.0 / 7.0 * aruco_4x4, 1e-9);
+  o.marker.dictionary = {MarkerFamily::kAprilTag, "tag16h5"};
+  EXPECT_NEAR(rig.mission(o)->leg_spacing_m(), aruco_4x4, 1e-9);
+}
+
 TEST(UavMission, ATakeoffThatNeverClimbsTimesOut) {
   Rig rig;
   rig.flight.stuck = true;

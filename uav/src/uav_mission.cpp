@@ -6,6 +6,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/number.hpp"
+#include "ferret/perception/marker_family.hpp"
 #include "ferret/tether_model/required_length.hpp"
 
 namespace ferret {
@@ -128,6 +129,10 @@ class ReportedTetherLength final : public tether::RequiredLengthModel {
 
 namespace {
 
+// The cells across the black square of the marker min_marker_side_px was set for
+// (ArUco 4x4 with its border), which the search's range scales from.
+constexpr double kSearchMarkerCells = 6.0;
+
 double yaw_of(const Eigen::Vector3d& d) { return std::atan2(d.y(), d.x()); }
 
 // Legs of a boustrophedon over the area at height z: along x (legs stepping in y),
@@ -170,13 +175,18 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
 
   leg_spacing_m_ = options_.leg_spacing_m;
   if (leg_spacing_m_ <= 0.0) {
-    // A marker spans min_marker_side_px at d_max; it is decoded reliably up to about
-    // two thirds of that. Seen from a leg flying at it, it must lie within the camera's
-    // half-width at about half that range (a wall marker near the ground leaves the
-    // pitched camera's view when the UAV comes closer); every other leg flies each way,
-    // so legs are one reach apart.
+    // A 4x4 marker (6 cells across its black square) spans min_marker_side_px at
+    // d_max; it is decoded reliably up to about two thirds of that. What the decoder
+    // needs is pixels a cell, so a marker of more cells is read nearer: d_max is where
+    // the cells span min_marker_side_px / 6 px each (tag36h11's 8 cells: 3/4 of a 4x4
+    // marker's range; docs/mission.md). Seen from a leg flying at it, it must lie within
+    // the camera's half-width at about half that range (a wall marker near the ground
+    // leaves the pitched camera's view when the UAV comes closer); every other leg flies
+    // each way, so legs are one reach apart.
+    const int cells = marker_bitmap(options_.marker.dictionary, 0).black_square_cells;
     const double d_max_m = marker_camera_.fx_px * options_.marker.marker_size_m /
-                           std::max(1.0, options_.marker.min_marker_side_px);
+                           (std::max(1.0, options_.marker.min_marker_side_px) *
+                            std::max(1, cells) / kSearchMarkerCells);
     const double half_fov = std::atan2(0.5 * marker_camera_.width_px, marker_camera_.fx_px);
     leg_spacing_m_ = std::clamp(0.5 * d_max_m * std::tan(half_fov), 1.0, 50.0);
   }
