@@ -10,6 +10,7 @@ constexpr double kPositionTolerance_m = 0.1;
 constexpr double kViewpointTolerance_m = 0.04;
 constexpr double kHeadingTolerance_rad = 0.15;
 constexpr double kLookahead_m = 0.3;
+constexpr double kWaypointTolerance_m = 0.02;  // a precise waypoint reached (at most)
 
 }  // namespace
 
@@ -55,8 +56,11 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
   }
   if (precise_ > 0) {
     // Recovery after a blocked step: waypoint by waypoint, exactly along the segments
-    // (which cross only free cells), turning on the spot at each.
-    while ((path_[next_] - p).norm() < 0.02 && next_ + 1 < path_.size()) {
+    // (which cross only free cells), turning on the spot at each. A waypoint counts as
+    // reached within a quarter cell: a robot on a cell's edge is half a cell from its
+    // centre, and heading on from there would cut the neighbour the step was refused.
+    const double reached_m = std::min(kWaypointTolerance_m, 0.25 * grid.geometry().resolution_m);
+    while ((path_[next_] - p).norm() < reached_m && next_ + 1 < path_.size()) {
       ++next_;
       --precise_;
     }
