@@ -1,8 +1,11 @@
 #include "mission_setup.hpp"
 
+#include <fmt/format.h>
+
 #include "cli_options.hpp"
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/mapping/world_spec.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
 
@@ -18,6 +21,21 @@ void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o) {
                   "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM) (default: grid)");
   sub->add_option("--no-landing-zone", o.no_landing_zone,
                   "No safe landing zone by an opening: hover (lower from a hover) or skip (default: the mission YAML's uav.no_landing_zone, hover)");
+}
+
+void check_openings_admit(const WorldSpec& world, const std::string& source, const RobotDescription& ugv) {
+  // The miniUGV drives in along its x axis: its collision box's width (y) and height (z)
+  // must pass the opening, or it would be lowered to a space it cannot enter.
+  const Eigen::Vector3d size = ugv.bounding_box_B.sizes();
+  for (std::size_t i = 0; i < world.hidden_spaces.size(); ++i) {
+    const HiddenSpace& h = world.hidden_spaces[i];
+    if (h.opening_width_m >= size.y() && h.opening_height_m >= size.z()) continue;
+    throw InputError(source, "hidden_spaces[" + std::to_string(i) + "].opening (" + h.name + ")",
+                     fmt::format("an opening the miniUGV passes through: at least {:.3f} m wide and {:.3f} m "
+                                 "high (the collision box of {})",
+                                 size.y(), size.z(), ugv.source),
+                     fmt::format("{:.3f} m wide, {:.3f} m high", h.opening_width_m, h.opening_height_m));
+  }
 }
 
 MissionSetup load_mission_setup(const MissionSetupOptions& o) {
@@ -41,6 +59,7 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
     throw InputError(s.world_path.string(), "", "a world YAML (an OctoMap file names no hidden spaces or markers)");
   if (s.world.spec->hidden_spaces.empty())
     throw InputError(s.world_path.string(), "hidden_spaces", "at least one hidden space with a marker");
+  check_openings_admit(*s.world.spec, s.world_path.string(), s.ugv);
 
   MissionRunSettings& settings = s.settings;
   settings = mission_settings_for(s.uav, s.ugv, s.mission, *s.world.spec);

@@ -54,6 +54,26 @@ TEST(MissionCli, ABadMissionFileExits2NamingTheField) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(MissionCli, AMiniUgvWiderThanAnOpeningExits2NamingTheHiddenSpace) {
+  // The shipped miniUGV with its chassis 0.17 m wide: the default world's openings are
+  // 0.15 m wide, so it would be lowered to spaces it cannot enter.
+  std::ifstream in(fs::path(FERRET_SOURCE_DIR) / "urdf/models/miniugv.urdf");
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string chassis = "<box size=\"0.130 0.090 0.040\"/>";
+  ASSERT_NE(xml.find(chassis), std::string::npos);
+  for (std::size_t at; (at = xml.find(chassis)) != std::string::npos;)
+    xml.replace(at, chassis.size(), "<box size=\"0.130 0.170 0.040\"/>");
+  const fs::path urdf = fs::temp_directory_path() / "ferret_mission_cli_wide_ugv.urdf";
+  std::ofstream(urdf) << xml;
+  const fs::path out = fresh_dir("wide_ugv");
+  const auto r = run_cli("mission --robot-ugv " + urdf.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("default.yaml: hidden_spaces[0].opening (house_void)"));
+  EXPECT_THAT(r.err, HasSubstr("at least 0.170 m wide"));
+  EXPECT_THAT(r.err, HasSubstr("got 0.150 m wide, 0.070 m high"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(MissionCli, AnUnknownChoiceExits2) {
   const auto r = run_cli("mission --no-landing-zone crash");
   EXPECT_EQ(r.exit_code, 2);
