@@ -59,6 +59,12 @@ struct Options {
 
 nlohmann::json xyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
+int ugv_body_contacts(const MissionRunResult& r) {
+  int n = 0;
+  for (const UgvDeployment& d : r.deployments) n += d.result.body_contacts;
+  return n;
+}
+
 nlohmann::json report_json(const Options& o, const fs::path& world, const MissionRunResult& r) {
   nlohmann::json j;
   j["schema"] = "ferret.mission_report/1";
@@ -77,6 +83,7 @@ nlohmann::json report_json(const Options& o, const fs::path& world, const Missio
                   {"flown_m", r.flown_m},
                   {"battery_left", r.battery_left},
                   {"uav_collisions", r.uav_collisions},
+                  {"ugv_body_contacts", ugv_body_contacts(r)},
                   {"tether_max_released_m", r.max_released_m},
                   {"tether_required_over_length_steps", r.required_over_length},
                   {"tether_over_tension_events", r.over_tension_events},
@@ -123,6 +130,8 @@ nlohmann::json report_json(const Options& o, const fs::path& world, const Missio
                     {"grasp_attempts", u.grasp_attempts},
                     {"decisions", u.decisions},
                     {"object_held", u.object_held},
+                    {"body_contacts", u.body_contacts},
+                    {"deepest_contact_m", u.deepest_contact_m},
                     {"tether_model_max_m", u.max_tether_m},
                     {"tether_true_max_m", d.max_true_tether_m}});
   }
@@ -332,10 +341,10 @@ void run(const Options& o) {
   for (const HiddenSpaceVisit& v : r.visits) retrieved += v.object_retrieved ? 1 : 0;
   std::printf("outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu of %d\nobjects_retrieved: %d of %d\n"
               "objects_dropped: %d\nflown_m: %.1f\nbattery_left: %.3f\ntether_max_m: %.2f\n"
-              "tether_over_tension_events: %d\nuav_collisions: %d\n",
+              "tether_over_tension_events: %d\nuav_collisions: %d\nugv_body_contacts: %d\n",
               std::string(to_string(r.outcome)).c_str(), r.time_s, r.visits.size(), r.hidden_spaces_in_world,
               retrieved, r.objects_in_world, r.objects_dropped, r.flown_m, r.battery_left, r.max_released_m,
-              r.over_tension_events, r.uav_collisions);
+              r.over_tension_events, r.uav_collisions, ugv_body_contacts(r));
   for (const HiddenSpaceVisit& v : r.visits)
     std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, v.state.c_str(),
                 v.state == "serviced" ? (v.landed ? " (landed)" : " (hovered)") : "",
@@ -348,10 +357,10 @@ void run(const Options& o) {
   for (const auto& [state, t] : r.time_in_state) std::printf(" %s %.0f", state.c_str(), t);
   std::printf("\n");
   for (const UgvDeployment& d : r.deployments)
-    std::printf("  miniUGV in %s: %s in %.0f s, %.1f m driven, battery %.2f\n",
+    std::printf("  miniUGV in %s: %s in %.0f s, %.1f m driven, battery %.2f, %d body contacts (deepest %.3f m)\n",
                 d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(),
                 std::string(to_string(d.result.outcome)).c_str(), d.result.time_s, d.result.path_m,
-                d.result.battery_left);
+                d.result.battery_left, d.result.body_contacts, d.result.deepest_contact_m);
   if (!r.link_counters.empty()) std::printf("link: %s\n", r.link_counters.c_str());
   if (o.out.empty()) return;
 

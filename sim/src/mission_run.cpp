@@ -191,6 +191,10 @@ MissionRunSettings mission_settings_for(const RobotDescription& uav, const Robot
   // (not the truth slice's extent, which would tell it the space's size).
   const double reach_m = mission.tether.total_length_m - mission.tether.entry_offset_m;
   s.ugv.map_window_m = Eigen::Vector2d::Constant(2.0 * reach_m + 1.0);
+  // Body contacts are judged with the disc inside the URDF's collision box.
+  const Eigen::Vector3d body = ugv.bounding_box_B.sizes();
+  if (body.allFinite() && body.x() > 0.0 && body.y() > 0.0)
+    s.ugv.base.body_radius_m = 0.5 * std::min(body.x(), body.y());
   // Tethered, the miniUGV drives no faster than the winch pays out (less a margin for
   // the controller), or it drags the line taut: the spool's 0.6 m/s against 2 m/s.
   const double spool_mps = s.uav.winch_control.limits.max_speed_mps;

@@ -26,6 +26,26 @@ Eigen::Vector2d SimUgvBase::rear(const Pose2& pose) const {
          options_.rear_offset_m * Eigen::Vector2d(std::cos(pose.yaw_rad), std::sin(pose.yaw_rad));
 }
 
+double SimUgvBase::body_penetration_m(const Eigen::Vector2d& p) const {
+  const double r = options_.body_radius_m;
+  if (r <= 0.0) return 0.0;
+  const GridGeometry& g = sim_.truth().geometry;
+  const double half = 0.5 * g.resolution_m;
+  double nearest = r;
+  const Cell lo = g.cell_at(p.x() - r, p.y() - r), hi = g.cell_at(p.x() + r, p.y() + r);
+  for (int j = lo.j; j <= hi.j; ++j)
+    for (int i = lo.i; i <= hi.i; ++i) {
+      if (!sim_.blocks({i, j})) continue;
+      const Eigen::Vector2d c = g.center({i, j});
+      const Eigen::Vector2d gap(std::max(0.0, std::abs(p.x() - c.x()) - half),
+                                std::max(0.0, std::abs(p.y() - c.y()) - half));
+      nearest = std::min(nearest, gap.norm());
+    }
+  // The truth marks a cell by its centre: an obstacle's face lies within half a cell of
+  // the blocked cells' edge, so only what reaches further in is certainly a contact.
+  return std::max(0.0, r - nearest - half);
+}
+
 void SimUgvBase::step(double dt_s) {
   if (battery_ <= 0.0) command_ = {};  // a flat battery stops the wheels
   Pose2 next = integrate_unicycle(pose_, command_, dt_s);
@@ -45,6 +65,13 @@ void SimUgvBase::step(double dt_s) {
   if (held_) contact_ = true;
   if (contact_ && epm_on_ && options_.object_graspable) held_ = true;
   if (!epm_on_) held_ = false;
+  if (const double depth = body_penetration_m(next.position()); depth > 0.0) {
+    if (!in_contact_) ++contacts_;
+    in_contact_ = true;
+    deepest_contact_m_ = std::max(deepest_contact_m_, depth);
+  } else {
+    in_contact_ = false;
+  }
   driven_m_ += (next.position() - pose_.position()).norm();
   v_mps_ = (next.position() - pose_.position()).norm() / dt_s * (command_.v_mps < 0 ? -1.0 : 1.0);
   pose_ = next;

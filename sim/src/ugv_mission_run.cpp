@@ -75,6 +75,8 @@ UgvMissionRunResult UgvMissionSim::result(const TransitionLog& log) const {
     result.path_m = base_->distance_driven_m();
     result.battery_left = base_->status().battery_fraction;
     result.object_held = base_->object_held();
+    result.body_contacts = base_->body_contacts();
+    result.deepest_contact_m = base_->deepest_contact_m();
     result.trajectory = trajectory_;
     return result;
   }
@@ -83,6 +85,8 @@ UgvMissionRunResult UgvMissionSim::result(const TransitionLog& log) const {
   result.path_m = base_->distance_driven_m();
   result.battery_left = base_->status().battery_fraction;
   result.object_held = base_->object_held();
+  result.body_contacts = base_->body_contacts();
+  result.deepest_contact_m = base_->deepest_contact_m();
   result.found_W = mission_->found_W();
   if (result.found_W && object_W_)
     result.found_right = (*result.found_W - *object_W_).norm() <= object_radius_m_;

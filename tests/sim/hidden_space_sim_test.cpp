@@ -4,20 +4,12 @@
 
 #include <cmath>
 
+#include "support/test_maps.hpp"
+
 namespace ferret {
 namespace {
 
-// A 4 x 3 m room at 0.05 m with walls all round and a wall segment at x = 2.5 m, y < 1.5 m.
-OccupancyMap2D room() {
-  OccupancyMap2D m;
-  m.geometry = {0.0, 0.0, 0.05, 80, 60};
-  m.cells.assign(m.geometry.size(), CellState::kFree);
-  for (int j = 0; j < 60; ++j)
-    for (int i = 0; i < 80; ++i)
-      if (i == 0 || j == 0 || i == 79 || j == 59 || (i == 50 && j < 30))
-        m.cells[m.geometry.index({i, j})] = CellState::kOccupied;
-  return m;
-}
+OccupancyMap2D room() { return test::room_with_partition(); }
 
 TEST(HiddenSpaceSim, IrBeamsReturnAtTheWall) {
   const auto map = room();

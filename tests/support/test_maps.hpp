@@ -30,4 +30,17 @@ inline OccupancyMap2D small_hidden_space() {
   return m;
 }
 
+/// A 4 x 3 m room at 0.05 m with walls all round and a partition whose face is at
+/// x = 2.5 m (cells 2.5-2.55 m), for y < 1.5 m.
+inline OccupancyMap2D room_with_partition() {
+  OccupancyMap2D m;
+  m.geometry = {0.0, 0.0, 0.05, 80, 60};
+  m.cells.assign(m.geometry.size(), CellState::kFree);
+  for (int j = 0; j < 60; ++j)
+    for (int i = 0; i < 80; ++i)
+      if (i == 0 || j == 0 || i == 79 || j == 59 || (i == 50 && j < 30))
+        m.cells[m.geometry.index({i, j})] = CellState::kOccupied;
+  return m;
+}
+
 }  // namespace ferret::test

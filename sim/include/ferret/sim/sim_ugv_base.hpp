@@ -25,6 +25,11 @@ struct SimUgvOptions {
   double initial_battery_fraction = 1.0;
   /// An object the magnet cannot hold (not ferromagnetic): contact, but no grip.
   bool object_graspable = true;
+  /// The disc inside the body's footprint (half the miniUGV's 120 mm width): a blocking
+  /// truth cell nearer the centre than this, by more than half a cell (the truth's
+  /// raster), is a body contact. Counted, not stopped: the base does not model the
+  /// push (docs/mission.md, "Body contacts"). 0: not counted.
+  double body_radius_m = 0.06;
 };
 
 class SimUgvBase final : public UgvBase {
@@ -50,9 +55,15 @@ class SimUgvBase final : public UgvBase {
   [[nodiscard]] const Pose2& true_pose() const { return pose_; }
   [[nodiscard]] bool object_held() const { return held_; }
   [[nodiscard]] double distance_driven_m() const { return driven_m_; }
+  /// Body contacts so far (each stretch of steps in contact counts once), and how far
+  /// the deepest reached into the body disc beyond half a cell.
+  [[nodiscard]] int body_contacts() const { return contacts_; }
+  [[nodiscard]] double deepest_contact_m() const { return deepest_contact_m_; }
 
  private:
   [[nodiscard]] Eigen::Vector2d rear(const Pose2& pose) const;
+  /// How far a blocking truth cell reaches into the body disc at p (0: none).
+  [[nodiscard]] double body_penetration_m(const Eigen::Vector2d& p) const;
 
   HiddenSpaceSim& sim_;
   SimUgvOptions options_;
@@ -64,6 +75,9 @@ class SimUgvBase final : public UgvBase {
   bool held_ = false;
   double battery_ = 1.0;
   double driven_m_ = 0.0;
+  int contacts_ = 0;
+  bool in_contact_ = false;
+  double deepest_contact_m_ = 0.0;
 };
 
 }  // namespace ferret

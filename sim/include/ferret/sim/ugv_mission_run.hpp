@@ -47,6 +47,10 @@ struct UgvMissionRunResult {
   bool found_right = false;
   int grasp_attempts = 0;
   int decisions = 0;  ///< the search's decisions (goals chosen)
+  /// The simulated base's body contacts with the truth (SimUgvBase::body_contacts) and
+  /// the deepest, beyond the truth's half-cell raster.
+  int body_contacts = 0;
+  double deepest_contact_m = 0.0;
   double max_tether_m = 0.0;  ///< the controller's taut tether model, longest over the run
   UgvMissionState max_tether_state = UgvMissionState::kIdle;  ///< the state it was in then
   std::vector<Transition> transitions;
