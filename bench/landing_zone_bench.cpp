@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 #include <string>
 
 #include "ferret/sim/landing_terrain.hpp"
@@ -122,37 +123,30 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
   };
   Setup s = setup(size("width_px", 640), size("height_px", 480));
   // Option overrides for studies (--set name=value), reported with the table.
+  using Field = double LandingZoneDetector::Options::*;
+  static const std::map<std::string, Field> kDetectorFields = {
+      {"margin_m", &LandingZoneDetector::Options::margin_m},
+      {"max_step_m", &LandingZoneDetector::Options::max_step_m},
+      {"max_roughness_m", &LandingZoneDetector::Options::max_roughness_m},
+      {"max_slope_deg", &LandingZoneDetector::Options::max_slope_deg},
+      {"slope_sigmas", &LandingZoneDetector::Options::slope_sigmas},
+      {"slope_allowance_deg", &LandingZoneDetector::Options::slope_allowance_deg},
+      {"step_allowance_m", &LandingZoneDetector::Options::step_allowance_m},
+      {"taller_than_m", &LandingZoneDetector::Options::taller_than_m},
+      {"taller_allowance_m", &LandingZoneDetector::Options::taller_allowance_m},
+      {"hover_cell_size_m", &LandingZoneDetector::Options::hover_cell_size_m},
+      {"cell_size_m", &LandingZoneDetector::Options::cell_size_m},
+      {"min_clearance_m", &LandingZoneDetector::Options::min_clearance_m}};
+  // The scene's keys, read below.
+  static const std::set<std::string> kSceneKeys = {
+      "truth_radius_m", "view_radius_m", "depth_noise_per_m", "depth_dropout",  "width_px",
+      "height_px",      "frames",        "hover_drift_m",     "hover_drift_deg"};
   for (const auto& [k, v] : set) {
-    if (k == "margin_m")
-      s.options.margin_m = v;
-    else if (k == "max_step_m")
-      s.options.max_step_m = v;
-    else if (k == "max_roughness_m")
-      s.options.max_roughness_m = v;
-    else if (k == "max_slope_deg")
-      s.options.max_slope_deg = v;
-    else if (k == "slope_sigmas")
-      s.options.slope_sigmas = v;
-    else if (k == "slope_allowance_deg")
-      s.options.slope_allowance_deg = v;
-    else if (k == "step_allowance_m")
-      s.options.step_allowance_m = v;
-    else if (k == "taller_than_m")
-      s.options.taller_than_m = v;
-    else if (k == "taller_allowance_m")
-      s.options.taller_allowance_m = v;
-    else if (k == "hover_cell_size_m")
-      s.options.hover_cell_size_m = v;
-    else if (k == "hover_min_frames")
+    if (const auto f = kDetectorFields.find(k); f != kDetectorFields.end()) {
+      s.options.*(f->second) = v;
+    } else if (k == "hover_min_frames") {
       s.options.hover_min_frames = static_cast<int>(v);
-    else if (k == "cell_size_m")
-      s.options.cell_size_m = v;
-    else if (k == "min_clearance_m")
-      s.options.min_clearance_m = v;
-    else if (k == "truth_radius_m" || k == "view_radius_m" || k == "depth_noise_per_m" ||
-             k == "depth_dropout" || k == "width_px" || k == "height_px" || k == "frames" ||
-             k == "hover_drift_m" || k == "hover_drift_deg") {
-    } else {
+    } else if (!kSceneKeys.contains(k)) {
       std::fprintf(stderr, "unknown option %s\n", k.c_str());
       return 2;
     }

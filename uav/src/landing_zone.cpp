@@ -495,10 +495,10 @@ LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const Camer
       z.roughness_m = std::sqrt(residual_var);
       // The gradient's standard error from the residuals (taken as independent; real
       // relief under the disc only widens it), along the direction the cells constrain
-      // least: the larger eigenvalue of the cells' inverse covariance.
+      // least: sigma^2 (X^T X)^-1 with sigma^2 = nd residual_var / (nd - 3) and
+      // X^T X = nd cov, whose inverse's largest eigenvalue is inv_cov_max / nd.
       const double inv_cov_max = 0.5 * (cxx + cyy + std::hypot(cxx - cyy, 2.0 * cxy)) / det;
-      const double grad_sigma =
-          std::sqrt(residual_var * nd / std::max(1.0, nd - 3.0) * inv_cov_max / nd);
+      const double grad_sigma = std::sqrt(residual_var / std::max(1.0, nd - 3.0) * inv_cov_max);
       z.slope_sigma_deg = rad_to_deg(grad_sigma / (1.0 + grad * grad));
       if (o.p_WE) {
         const Eigen::Vector2d winch = z.center_m.head<2>() + o.p_ZW_xy_m;
