@@ -15,8 +15,9 @@ constexpr int kDi[8] = {1, -1, 0, 0, 1, 1, -1, -1};
 constexpr int kDj[8] = {0, 0, 1, -1, 1, -1, 1, -1};
 }  // namespace
 
-GridPathPlanner::GridPathPlanner(GridGeometry geometry)
+GridPathPlanner::GridPathPlanner(GridGeometry geometry, double body_radius_m)
     : geometry_(geometry),
+      body_radius_m_(std::isfinite(body_radius_m) ? std::max(0.0, body_radius_m) : 0.0),
       padded_width_(static_cast<std::size_t>(std::max(0, geometry.width)) + 2),
       cost_(geometry.size(), -1),
       parent_(geometry.size(), -1),
@@ -26,6 +27,13 @@ GridPathPlanner::GridPathPlanner(GridGeometry geometry)
   for (int k = 0; k < 8; ++k) {
     grid_step_[k] = kDi[k] + static_cast<std::ptrdiff_t>(kDj[k]) * geometry_.width;
     padded_step_[k] = kDi[k] + kDj[k] * static_cast<std::ptrdiff_t>(padded_width_);
+  }
+  if (body_radius_m_ > 0.0 && geometry_.resolution_m > 0.0) {
+    const double reach = body_radius_m_ / geometry_.resolution_m + 0.5;  // in cells
+    const int n = static_cast<int>(std::floor(reach));
+    for (int dj = -n; dj <= n; ++dj)
+      for (int di = -n; di <= n; ++di)
+        if (di * di + dj * dj <= reach * reach) body_offsets_.push_back({di, dj});
   }
   // Queue entries hold 32-bit indices.
   if (cross_.size() > std::numeric_limits<std::uint32_t>::max())
@@ -85,12 +93,20 @@ void GridPathPlanner::compute(const IrGrid& grid, Cell start, Traversal traversa
   // kUnreachable), so paths leave the band by the shortest way and do not hug walls.
   if (escape_radius_m > 0 && geometry_.contains(start)) {
     const double r2 = std::pow(escape_radius_m / geometry_.resolution_m, 2);
+    // A robot already touching a wall may back off through what touches it too, near it
+    // and never closer to the wall than it stands.
+    const double body_r2 = std::pow(body_radius_m_ / geometry_.resolution_m, 2);
+    const int start_gap2 = nearest_occupied2(grid, start);
     auto band_ok = [&](Cell c, std::size_t idx) {
       if (cross_[padded(c)] == 1) return false;
       const GridLabel label = grid.label_at(idx);
       const bool ok = traversal == Traversal::kKnownFree ? label == GridLabel::kFree
                                                          : label != GridLabel::kOccupied;
-      return ok && (blocked.empty() || !blocked[idx]);
+      if (!ok || (!blocked.empty() && blocked[idx])) return false;
+      const int gap2 = nearest_occupied2(grid, c);
+      if (gap2 == kNoneNear) return true;
+      const double di = c.i - start.i, dj = c.j - start.j;
+      return start_gap2 != kNoneNear && gap2 >= start_gap2 && di * di + dj * dj <= body_r2;
     };
     auto mark_band = [&](Cell c) {
       const std::size_t p = padded(c);
@@ -169,6 +185,16 @@ void GridPathPlanner::expand_bucket() const {
     }
   }
   ++current_;
+}
+
+int GridPathPlanner::nearest_occupied2(const IrGrid& grid, Cell c) const {
+  int best = kNoneNear;
+  for (const Cell& d : body_offsets_) {
+    const Cell n{c.i + d.i, c.j + d.j};
+    if (geometry_.contains(n) && grid.label(n) == GridLabel::kOccupied)
+      best = std::min(best, d.i * d.i + d.j * d.j);
+  }
+  return best;
 }
 
 bool GridPathPlanner::line_of_sight(Cell a, Cell b) const {

@@ -193,8 +193,11 @@ MissionRunSettings mission_settings_for(const RobotDescription& uav, const Robot
   s.ugv.map_window_m = Eigen::Vector2d::Constant(2.0 * reach_m + 1.0);
   // Body contacts are judged with the disc inside the URDF's collision box.
   const Eigen::Vector3d body = ugv.bounding_box_B.sizes();
-  if (body.allFinite() && body.x() > 0.0 && body.y() > 0.0)
+  if (body.allFinite() && body.x() > 0.0 && body.y() > 0.0) {
     s.ugv.base.body_radius_m = 0.5 * std::min(body.x(), body.y());
+    // The controllers keep the same disc off what G holds.
+    s.ugv.exploration.robot.body_radius_m = s.ugv.base.body_radius_m;
+  }
   // Tethered, the miniUGV drives no faster than the winch pays out (less a margin for
   // the controller), or it drags the line taut: the spool's 0.6 m/s against 2 m/s.
   const double spool_mps = s.uav.winch_control.limits.max_speed_mps;

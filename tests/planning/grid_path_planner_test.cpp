@@ -178,5 +178,72 @@ TEST(GridPathPlanner, AGridOfAnotherSizeIsRefused) {
   EXPECT_THROW(p.compute(g, {1, 1}, GridPathPlanner::Traversal::kKnownFree), std::invalid_argument);
 }
 
+// 2.5 cm cells, clearance 0.15 m, a wall along y = 0.75-0.775 m with a gap of four cells
+// (x 0.725-0.825 m, 10 cm: narrower than the miniUGV's 12 cm body).
+IrGrid wall_with_gap(const GridGeometry& geo) {
+  return labelled_grid(geo, 0.15, [](IrGrid& g, Cell c) {
+    const bool wall = c.j == 30 && (c.i < 29 || c.i > 32);
+    g.set_probability(c, wall ? 0.97 : 0.12);
+  });
+}
+
+// The squared distance in cells from `c` to the nearest occupied cell of `g`.
+int nearest_occupied2(const IrGrid& g, Cell c) {
+  int best = 1 << 30;
+  const GridGeometry& geo = g.geometry();
+  for (int j = 0; j < geo.height; ++j)
+    for (int i = 0; i < geo.width; ++i)
+      if (g.label({i, j}) == GridLabel::kOccupied)
+        best = std::min(best, (i - c.i) * (i - c.i) + (j - c.j) * (j - c.j));
+  return best;
+}
+
+TEST(GridPathPlanner, TheEscapeBandWaivesTheClearanceButNeverTheBody) {
+  GridGeometry geo;
+  geo.resolution_m = 0.025;
+  geo.width = geo.height = 60;
+  const IrGrid g = wall_with_gap(geo);
+  const Cell start = geo.cell_at(0.775, 0.65), goal = geo.cell_at(0.775, 1.0);
+  ASSERT_TRUE(g.traversable(geo.index(goal)));
+  // A point robot may squeeze through the 10 cm gap in the band (the old rule: the
+  // miniUGV's sides went through walls this way).
+  GridPathPlanner point(geo);
+  point.compute(g, start, GridPathPlanner::Traversal::kKnownFree, 1.0);
+  EXPECT_TRUE(point.reachable(goal));
+  // A 12 cm body may not: every cell of the gap has a wall cell within 6 cm and half a
+  // cell.
+  GridPathPlanner body(geo, 0.06);
+  body.compute(g, start, GridPathPlanner::Traversal::kKnownFree, 1.0);
+  EXPECT_FALSE(body.reachable(goal));
+  // It still leaves the band on its own side, keeping the body off the wall.
+  const Cell away = geo.cell_at(0.775, 0.3);
+  ASSERT_TRUE(body.reachable(away));
+  for (const auto& p : body.path_to(away))
+    EXPECT_GT(nearest_occupied2(g, geo.cell_at(p.x(), p.y())), 8);  // > 2.9 cells
+}
+
+TEST(GridPathPlanner, ABodyTouchingAWallBacksOffNeverCloser) {
+  GridGeometry geo;
+  geo.resolution_m = 0.025;
+  geo.width = geo.height = 60;
+  const IrGrid g = wall_with_gap(geo);
+  // Two cells below the wall (5 cm between centres): the body touches it.
+  const Cell start{10, 28};
+  ASSERT_LE(nearest_occupied2(g, start), 8);
+  GridPathPlanner body(geo, 0.06);
+  body.compute(g, start, GridPathPlanner::Traversal::kKnownFree, 1.0);
+  const Cell away{10, 10};
+  ASSERT_TRUE(body.reachable(away));
+  // Its path's cells lie no nearer the wall than the start, and the way runs straight
+  // off it (the shortest way out of the band).
+  const int start_gap2 = nearest_occupied2(g, start);
+  std::vector<Cell> cells;
+  for (const auto& p : body.path_to(away)) cells.push_back(geo.cell_at(p.x(), p.y()));
+  ASSERT_GE(cells.size(), 2u);
+  for (const Cell& c : cells) EXPECT_GE(nearest_occupied2(g, c), start_gap2);
+  // Along the wall, within the band, nothing is a goal, and the far side stays out of reach.
+  EXPECT_FALSE(body.reachable({10, 32}));
+}
+
 }  // namespace
 }  // namespace ferret

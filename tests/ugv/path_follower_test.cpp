@@ -2,18 +2,21 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace ferret {
 namespace {
 
-// 2.5 cm cells (the miniUGV's G in the shipped worlds), all known free but one.
-IrGrid free_grid_with_occupied(Cell occupied) {
+// 2.5 cm cells (the miniUGV's G in the shipped worlds), all known free but `occupied`.
+IrGrid free_grid_with_occupied(const std::vector<Cell>& occupied) {
   GridGeometry g;
   g.resolution_m = 0.025;
   g.width = 40;
   g.height = 40;
   IrGrid grid(g, IrGrid::Options{});
   grid.mark_free_disk({0.5, 0.5}, 1.0);
-  grid.set_probability(occupied, 0.97);
+  for (const Cell& c : occupied) grid.set_probability(c, 0.97);
   return grid;
 }
 
@@ -44,7 +47,7 @@ TEST(PathFollower, ARobotOnACellsEdgeGoesToItsCentreBeforeTheSegmentAndIsNotStuc
   // kiln, seed 2: the miniUGV stood 160 s at a shelf's corner with a path home, and the
   // return failed.)
   const Cell occupied{19, 20};
-  const IrGrid grid = free_grid_with_occupied(occupied);
+  const IrGrid grid = free_grid_with_occupied({occupied});
   ASSERT_EQ(grid.label(occupied), GridLabel::kOccupied);
   const Cell start = grid.geometry().cell_at(0.500, 0.505);
   ASSERT_EQ(start, (Cell{20, 20}));
@@ -60,7 +63,7 @@ TEST(PathFollower, ARobotOnACellsEdgeGoesToItsCentreBeforeTheSegmentAndIsNotStuc
 TEST(PathFollower, AFreePathIsFollowedToItsEndWithoutThePreciseRecovery) {
   // The same grid, a path clear of the occupied cell: reached, never near it.
   const Cell occupied{19, 19};
-  const IrGrid grid = free_grid_with_occupied(occupied);
+  const IrGrid grid = free_grid_with_occupied({occupied});
   PathFollower f(RobotOptions{});
   f.set_path({{0.6125, 0.6125}, {0.8125, 0.6125}, {0.8125, 0.8125}}, std::nullopt);
   const Drive d = drive(f, Pose2{0.6125, 0.6125, 0.0}, grid, occupied, 400);
@@ -68,6 +71,58 @@ TEST(PathFollower, AFreePathIsFollowedToItsEndWithoutThePreciseRecovery) {
   EXPECT_FALSE(d.entered_avoided);
   EXPECT_NEAR(d.end.x_m, 0.8125, 0.1);
   EXPECT_NEAR(d.end.y_m, 0.8125, 0.1);
+}
+
+// How far the occupied cells of `grid` reach into the disc of `r` round `p`.
+double body_depth_m(const IrGrid& grid, const Eigen::Vector2d& p, double r) {
+  const GridGeometry& g = grid.geometry();
+  double nearest = r;
+  for (int j = 0; j < g.height; ++j)
+    for (int i = 0; i < g.width; ++i) {
+      if (grid.label({i, j}) != GridLabel::kOccupied) continue;
+      const Eigen::Vector2d d = (g.center({i, j}) - p).cwiseAbs().array() - 0.5 * g.resolution_m;
+      nearest = std::min(nearest, d.cwiseMax(0.0).norm());
+    }
+  return r - nearest;
+}
+
+// An L-shaped path round a block: its segments keep 7.5 and 10 cm from the block, but
+// pure pursuit (0.3 m look-ahead) cuts the corner to within 2 cm of it.
+struct CornerDrive {
+  bool reached = false;
+  double deepest_m = 0.0;  // of a 12 cm wide body into the block
+};
+CornerDrive drive_round_block(double body_radius_m) {
+  std::vector<Cell> block;  // x 0.5-0.55 m, y 0.425-0.5 m
+  for (int i = 20; i <= 21; ++i)
+    for (int j = 17; j <= 19; ++j) block.push_back({i, j});
+  const IrGrid grid = free_grid_with_occupied(block);
+  RobotOptions o;
+  o.max_velocity_mps = 0.48;
+  o.body_radius_m = body_radius_m;
+  PathFollower f(o);
+  f.set_path({{0.2125, 0.3375}, {0.6625, 0.3375}, {0.6625, 0.8125}}, std::nullopt);
+  Pose2 pose{0.2125, 0.3375, 0.0};
+  CornerDrive out;
+  for (int k = 0; k < 2000 && !out.reached; ++k) {
+    pose = integrate_unicycle(pose, f.step(pose, grid, 0.05, out.reached), 0.05);
+    out.deepest_m = std::max(out.deepest_m, body_depth_m(grid, pose.position(), 0.06));
+  }
+  return out;
+}
+
+TEST(PathFollower, ABodyIsNeverSteppedIntoAnOccupiedCellWherePursuitCutsTheCorner) {
+  // Without a body the pursuit's cut brings a 12 cm body's side 2 cm or more into the
+  // block (the miniUGV's contacts on the shipped worlds; the point robot then stands
+  // in the pocket by the block until the controller plans again). With it, the follower
+  // stops at the cut, goes back round the corner's waypoint along the segments, and
+  // gets there.
+  const CornerDrive point = drive_round_block(0.0);
+  EXPECT_GT(point.deepest_m, 0.02);
+  const CornerDrive body = drive_round_block(0.06);
+  EXPECT_TRUE(body.reached);
+  // (The recovery may add up to a quarter cell along its segments.)
+  EXPECT_LE(body.deepest_m, 0.25 * 0.025);
 }
 
 }  // namespace

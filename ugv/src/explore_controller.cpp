@@ -41,7 +41,7 @@ ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& 
   object_options.object_radius_m = s.object_radius_m;
   objects_ = std::make_shared<ObjectMap>(geo_, object_options);
   tracker_ = std::make_unique<FrontierTracker>(geo_);
-  planner_ = std::make_unique<GridPathPlanner>(geo_);
+  planner_ = std::make_unique<GridPathPlanner>(geo_, options_.robot.body_radius_m);
 
   PolicyOptions policy_options =
       PolicyOptions::from(options_.mission, s.camera_range_m, options_.robot.max_velocity_mps);

@@ -101,7 +101,7 @@ MiniUgvMission::MiniUgvMission(UgvBase& base, const Clock& clock, const GridGeom
     options_.explore.tether_budget_m = tether.total_length_m - tether.entry_offset_m;
   }
   options_.validate("ugv mission options");
-  home_planner_ = std::make_unique<GridPathPlanner>(geo_);
+  home_planner_ = std::make_unique<GridPathPlanner>(geo_, options_.explore.robot.body_radius_m);
 }
 
 MiniUgvMission::~MiniUgvMission() = default;

@@ -12,6 +12,12 @@ constexpr double kHeadingTolerance_rad = 0.15;
 constexpr double kLookahead_m = 0.3;
 constexpr double kWaypointTolerance_m = 0.02;  // a precise waypoint reached (at most)
 
+/// Distance from `p` to the nearest point of cell `c`'s square.
+double distance_to_cell_m(const GridGeometry& g, Cell c, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d d = (g.center(c) - p).cwiseAbs().array() - 0.5 * g.resolution_m;
+  return d.cwiseMax(0.0).norm();
+}
+
 }  // namespace
 
 Pose2 integrate_unicycle(const Pose2& pose, const VelocityCommand& c, double dt_s) {
@@ -85,17 +91,45 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
   const GridGeometry& g = grid.geometry();
   const Cell c = g.cell_at(next.x(), next.y());
   const bool same_cell = c == g.cell_at(p.x(), p.y());  // a noisy hit may mark the robot's cell
-  if (!g.contains(c) || (grid.label(c) != GridLabel::kFree && !same_cell)) {
-    // Not known free (a corner cut, or space the IR has not seen): stop, and go on
-    // precisely from the centre of the current cell along the path's segments.
+  // Pure pursuit cuts the corners of the path (and swings wide after them), and a path
+  // planned before G saw an obstacle can run into it: never deeper into what G knows is
+  // occupied than the body already is. The recovery's first step, to the centre of the
+  // robot's own cell (at most a cell's half diagonal), is the planner's start and is let
+  // through, or a robot touching a wall could stand there for good.
+  const Cell here = g.cell_at(p.x(), p.y());
+  const bool to_own_centre = precise_ > 0 && (target - g.center(here)).norm() < 1e-9;
+  // (The recovery keeps exactly to segments between cells the planner let the body
+  // cross: along them the depth may grow by what the cells' raster hides.)
+  const double allowance_m = precise_ > 0 ? 0.25 * g.resolution_m : 1e-9;
+  const bool deeper = robot_.body_radius_m > 0.0 && v > 0.0 && !to_own_centre &&
+                      body_depth_m(next, grid) > body_depth_m(p, grid) + allowance_m;
+  if (!g.contains(c) || (grid.label(c) != GridLabel::kFree && !same_cell) || deeper) {
+    // Not known free (a corner cut, or space the IR has not seen), or the body would
+    // press into an obstacle: stop, and go on precisely from the centre of the current
+    // cell along the path's segments.
     v = 0.0;
-    const Eigen::Vector2d centre = g.center(g.cell_at(p.x(), p.y()));
+    // The look-ahead passes a waypoint 0.3 m before the robot does: a cut corner's
+    // waypoint is gone round exactly, not skipped.
+    if (precise_ == 0 && next_ >= 2 && (path_[next_ - 1] - p).norm() < kLookahead_m) --next_;
+    const Eigen::Vector2d centre = g.center(here);
     if ((path_[next_] - centre).norm() > 1e-9)
       path_.insert(path_.begin() + static_cast<std::ptrdiff_t>(next_), centre);
     precise_ = 3;
   }
   v_mps_ = v;
   return {v, w};
+}
+
+double PathFollower::body_depth_m(const Eigen::Vector2d& q, const IrGrid& grid) const {
+  const GridGeometry& g = grid.geometry();
+  const double r = robot_.body_radius_m;
+  const Cell lo = g.cell_at(q.x() - r, q.y() - r), hi = g.cell_at(q.x() + r, q.y() + r);
+  double nearest = r;
+  for (int j = lo.j; j <= hi.j; ++j)
+    for (int i = lo.i; i <= hi.i; ++i)
+      if (g.contains({i, j}) && grid.label({i, j}) == GridLabel::kOccupied)
+        nearest = std::min(nearest, distance_to_cell_m(g, {i, j}, q));
+  return r - nearest;
 }
 
 }  // namespace ferret

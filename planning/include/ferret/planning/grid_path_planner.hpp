@@ -27,7 +27,13 @@ class GridPathPlanner {
     kNotOccupied,  ///< also through unknown cells, still clear of occupied ones (the oracle)
   };
 
-  explicit GridPathPlanner(GridGeometry geometry);
+  /// `body_radius_m`: half the robot's width. The escape band (below) waives the
+  /// clearance's margin, never the body: a band cell with an occupied cell's centre
+  /// within body_radius_m plus half a cell of its own is not crossed, unless the start
+  /// is such a cell too and the band cell lies within body_radius_m of it and no nearer
+  /// the occupied cells (a robot already touching a wall backs off). 0: a point robot,
+  /// the whole clearance waived.
+  explicit GridPathPlanner(GridGeometry geometry, double body_radius_m = 0.0);
 
   /// Sets up the field from `start` (`grid` must have this planner's geometry). The
   /// robot may stand inside the clearance band of a wall it has just seen and must be
@@ -85,10 +91,16 @@ class GridPathPlanner {
     return static_cast<std::size_t>(c.j + 1) * padded_width_ + static_cast<std::size_t>(c.i + 1);
   }
   [[nodiscard]] bool line_of_sight(Cell a, Cell b) const;
+  /// The squared distance (in cells) from `c` to the nearest occupied cell of `grid`
+  /// within the body's reach, kNoneNear if there is none.
+  static constexpr int kNoneNear = 1 << 30;
+  [[nodiscard]] int nearest_occupied2(const IrGrid& grid, Cell c) const;
   void refresh_crossable(const IrGrid& grid, Traversal traversal, std::span<const std::uint8_t> blocked);
   void set_crossable(const IrGrid& grid, Traversal traversal, std::span<const std::uint8_t> blocked, Cell c);
 
   GridGeometry geometry_;
+  double body_radius_m_;
+  std::vector<Cell> body_offsets_;  // the cells within the body's reach of a cell
   std::size_t padded_width_;
   Cell start_;
   // The Dijkstra state, per cell of the grid, grown on demand by the const questions and

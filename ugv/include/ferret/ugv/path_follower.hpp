@@ -21,6 +21,10 @@ struct RobotOptions {
   /// Within this of the robot the clearance is waived, so that a robot that finds a
   /// wall (or a gap narrower than twice the clearance) around it can drive out.
   double escape_radius_m = 1.0;
+  /// Half the body's width (m): the follower never steps this disc deeper into an
+  /// occupied cell of G, and the planners keep it off them where they waive the
+  /// clearance. 0: a point robot (the paper's experiment).
+  double body_radius_m = 0.0;
 };
 
 struct VelocityCommand {
@@ -49,6 +53,9 @@ class PathFollower {
   [[nodiscard]] double speed_mps() const { return v_mps_; }
 
  private:
+  /// How far the occupied cells of G reach into the body's disc round `q` (0: none).
+  [[nodiscard]] double body_depth_m(const Eigen::Vector2d& q, const IrGrid& grid) const;
+
   RobotOptions robot_;
   std::vector<Eigen::Vector2d> path_;
   int precise_ = 0;           ///< waypoints left to follow precisely after a blocked step
