@@ -65,7 +65,19 @@ void SimUgvBase::step(double dt_s) {
   if (held_) contact_ = true;
   if (contact_ && epm_on_ && options_.object_graspable) held_ = true;
   if (!epm_on_) held_ = false;
-  if (const double depth = body_penetration_m(next.position()); depth > 0.0) {
+  // A wall stops the body (it still turns on the spot, and backs off): a step that
+  // would press it deeper into the truth is not taken. Each stretch of steps the body
+  // spends against a wall is one contact.
+  const double depth_now = body_penetration_m(pose_.position());
+  double depth = body_penetration_m(next.position());
+  bool blocked = false;
+  if (depth > 0.0 && depth > depth_now) {
+    next.x_m = pose_.x_m;
+    next.y_m = pose_.y_m;
+    depth = depth_now;
+    blocked = true;
+  }
+  if (blocked || depth > 0.0) {
     if (!in_contact_) ++contacts_;
     in_contact_ = true;
     deepest_contact_m_ = std::max(deepest_contact_m_, depth);

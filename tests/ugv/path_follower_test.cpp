@@ -125,5 +125,34 @@ TEST(PathFollower, ABodyIsNeverSteppedIntoAnOccupiedCellWherePursuitCutsTheCorne
   EXPECT_LE(body.deepest_m, 0.25 * 0.025);
 }
 
+TEST(PathFollower, ARobotPressedAgainstAWallPassesByItsCellsCentreWhenThatLiesDeeper) {
+  // A wall from x = 0.525 m; the robot stands at x = 0.476 m, on the edge of its cell,
+  // whose centre (0.4875) lies 1.15 cm deeper in the wall than the robot (its 12 cm
+  // body already touches). A step towards the wall is refused; then a path away from
+  // it, which the recovery would begin at that centre: a real base pinned against the
+  // wall could never get there, so the follower passes it by and drives off.
+  std::vector<Cell> wall;
+  for (int j = 0; j < 40; ++j) wall.push_back({21, j});
+  const IrGrid grid = free_grid_with_occupied(wall);
+  RobotOptions o;
+  o.body_radius_m = 0.06;
+  PathFollower f(o);
+  const Pose2 start{0.476, 0.4625, 0.0};
+  const Eigen::Vector2d centre = grid.geometry().center(grid.geometry().cell_at(0.476, 0.4625));
+  f.set_path({centre, {0.8, 0.4625}}, std::nullopt);
+  bool reached = false;
+  const VelocityCommand into = f.step(start, grid, 0.05, reached);
+  EXPECT_EQ(into.v_mps, 0.0);
+  f.set_path({centre, {0.2, 0.4625}}, std::nullopt);
+  // The base stops the body at the wall (as SimUgvBase does): it never goes deeper.
+  Pose2 pose = start;
+  for (int k = 0; k < 400 && !reached; ++k) {
+    const Pose2 next = integrate_unicycle(pose, f.step(pose, grid, 0.05, reached), 0.05);
+    pose = next.x_m > pose.x_m ? Pose2{pose.x_m, pose.y_m, next.yaw_rad} : next;
+  }
+  EXPECT_TRUE(reached);
+  EXPECT_NEAR(pose.x_m, 0.2, 0.1);
+}
+
 }  // namespace
 }  // namespace ferret

@@ -12,6 +12,10 @@ constexpr double kHeadingTolerance_rad = 0.15;
 constexpr double kLookahead_m = 0.3;
 constexpr double kWaypointTolerance_m = 0.02;  // a precise waypoint reached (at most)
 
+/// How much deeper into G's occupied cells the recovery's exact segments may take the
+/// body: a quarter cell.
+double precise_allowance_m(const GridGeometry& g) { return 0.25 * g.resolution_m; }
+
 /// Distance from `p` to the nearest point of cell `c`'s square.
 double distance_to_cell_m(const GridGeometry& g, Cell c, const Eigen::Vector2d& p) {
   const Eigen::Vector2d d = (g.center(c) - p).cwiseAbs().array() - 0.5 * g.resolution_m;
@@ -70,6 +74,16 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
       ++next_;
       --precise_;
     }
+    // Its first waypoint, the centre of the robot's own cell, is passed by when it lies
+    // deeper in a wall than the robot stands: a robot pressed against an obstacle
+    // cannot get there.
+    const GridGeometry& g = grid.geometry();
+    if (robot_.body_radius_m > 0.0 && next_ + 1 < path_.size() &&
+        (path_[next_] - g.center(g.cell_at(p.x(), p.y()))).norm() < 1e-9 &&
+        body_depth_m(path_[next_], grid) > body_depth_m(p, grid) + precise_allowance_m(g)) {
+      ++next_;
+      precise_ = std::max(0, precise_ - 1);
+    }
   } else {
     while (next_ + 1 < path_.size() && (path_[next_] - p).norm() < kLookahead_m) ++next_;
   }
@@ -93,15 +107,12 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
   const bool same_cell = c == g.cell_at(p.x(), p.y());  // a noisy hit may mark the robot's cell
   // Pure pursuit cuts the corners of the path (and swings wide after them), and a path
   // planned before G saw an obstacle can run into it: never deeper into what G knows is
-  // occupied than the body already is. The recovery's first step, to the centre of the
-  // robot's own cell (at most a cell's half diagonal), is the planner's start and is let
-  // through, or a robot touching a wall could stand there for good.
+  // occupied than the body already is. (The recovery keeps exactly to segments between
+  // cells the planner let the body cross: along them the depth may grow by what the
+  // cells' raster hides.)
   const Cell here = g.cell_at(p.x(), p.y());
-  const bool to_own_centre = precise_ > 0 && (target - g.center(here)).norm() < 1e-9;
-  // (The recovery keeps exactly to segments between cells the planner let the body
-  // cross: along them the depth may grow by what the cells' raster hides.)
-  const double allowance_m = precise_ > 0 ? 0.25 * g.resolution_m : 1e-9;
-  const bool deeper = robot_.body_radius_m > 0.0 && v > 0.0 && !to_own_centre &&
+  const double allowance_m = precise_ > 0 ? precise_allowance_m(g) : 1e-9;
+  const bool deeper = robot_.body_radius_m > 0.0 && v > 0.0 &&
                       body_depth_m(next, grid) > body_depth_m(p, grid) + allowance_m;
   if (!g.contains(c) || (grid.label(c) != GridLabel::kFree && !same_cell) || deeper) {
     // Not known free (a corner cut, or space the IR has not seen), or the body would

@@ -27,9 +27,11 @@ struct SimUgvOptions {
   bool object_graspable = true;
   /// The disc inside the body's footprint (half the miniUGV's 120 mm width): a blocking
   /// truth cell nearer the centre than this, by more than half a cell (the truth's
-  /// raster), is a body contact. Counted, not stopped: the base does not model the
-  /// push (docs/mission.md, "Body contacts"). 0: not counted.
-  double body_radius_m = 0.06;
+  /// raster), is a body contact, and the base does not take a step that presses the
+  /// body deeper (docs/mission.md, "Body contacts"). 0: a point, which nothing stops or
+  /// counts (the paper's experiment, whose controller plans for a point; the mission
+  /// sets it from the URDF).
+  double body_radius_m = 0.0;
 };
 
 class SimUgvBase final : public UgvBase {
@@ -55,8 +57,9 @@ class SimUgvBase final : public UgvBase {
   [[nodiscard]] const Pose2& true_pose() const { return pose_; }
   [[nodiscard]] bool object_held() const { return held_; }
   [[nodiscard]] double distance_driven_m() const { return driven_m_; }
-  /// Body contacts so far (each stretch of steps in contact counts once), and how far
-  /// the deepest reached into the body disc beyond half a cell.
+  /// Body contacts so far (each stretch of steps against a wall counts once), and how
+  /// far the deepest reached into the body disc beyond half a cell (0 unless the body
+  /// started in a wall: the base stops it at the face).
   [[nodiscard]] int body_contacts() const { return contacts_; }
   [[nodiscard]] double deepest_contact_m() const { return deepest_contact_m_; }
 
