@@ -27,23 +27,12 @@ Eigen::Vector2d SimUgvBase::rear(const Pose2& pose) const {
 }
 
 double SimUgvBase::body_penetration_m(const Eigen::Vector2d& p) const {
-  const double r = options_.body_radius_m;
-  if (r <= 0.0) return 0.0;
   const GridGeometry& g = sim_.truth().geometry;
-  const double half = 0.5 * g.resolution_m;
-  double nearest = r;
-  const Cell lo = g.cell_at(p.x() - r, p.y() - r), hi = g.cell_at(p.x() + r, p.y() + r);
-  for (int j = lo.j; j <= hi.j; ++j)
-    for (int i = lo.i; i <= hi.i; ++i) {
-      if (!sim_.blocks({i, j})) continue;
-      const Eigen::Vector2d c = g.center({i, j});
-      const Eigen::Vector2d gap(std::max(0.0, std::abs(p.x() - c.x()) - half),
-                                std::max(0.0, std::abs(p.y() - c.y()) - half));
-      nearest = std::min(nearest, gap.norm());
-    }
+  const double depth =
+      disc_depth_m(g, p, options_.body_radius_m, [this](Cell c) { return sim_.blocks(c); });
   // The truth marks a cell by its centre: an obstacle's face lies within half a cell of
   // the blocked cells' edge, so only what reaches further in is certainly a contact.
-  return std::max(0.0, r - nearest - half);
+  return std::max(0.0, depth - 0.5 * g.resolution_m);
 }
 
 void SimUgvBase::step(double dt_s) {

@@ -16,12 +16,6 @@ constexpr double kWaypointTolerance_m = 0.02;  // a precise waypoint reached (at
 /// body: a quarter cell.
 double precise_allowance_m(const GridGeometry& g) { return 0.25 * g.resolution_m; }
 
-/// Distance from `p` to the nearest point of cell `c`'s square.
-double distance_to_cell_m(const GridGeometry& g, Cell c, const Eigen::Vector2d& p) {
-  const Eigen::Vector2d d = (g.center(c) - p).cwiseAbs().array() - 0.5 * g.resolution_m;
-  return d.cwiseMax(0.0).norm();
-}
-
 }  // namespace
 
 Pose2 integrate_unicycle(const Pose2& pose, const VelocityCommand& c, double dt_s) {
@@ -135,14 +129,9 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
 
 double PathFollower::body_depth_m(const Eigen::Vector2d& q, const IrGrid& grid) const {
   const GridGeometry& g = grid.geometry();
-  const double r = robot_.body_radius_m;
-  const Cell lo = g.cell_at(q.x() - r, q.y() - r), hi = g.cell_at(q.x() + r, q.y() + r);
-  double nearest = r;
-  for (int j = lo.j; j <= hi.j; ++j)
-    for (int i = lo.i; i <= hi.i; ++i)
-      if (g.contains({i, j}) && grid.label({i, j}) == GridLabel::kOccupied)
-        nearest = std::min(nearest, distance_to_cell_m(g, {i, j}, q));
-  return r - nearest;
+  return disc_depth_m(g, q, robot_.body_radius_m, [&](Cell c) {
+    return g.contains(c) && grid.label(c) == GridLabel::kOccupied;
+  });
 }
 
 }  // namespace ferret

@@ -56,4 +56,25 @@ struct GridGeometry {
   }
 };
 
+/// How far the cells `blocked(c)` holds reach into the disc of `radius_m` round `p`:
+/// radius_m less the distance from p to the nearest such cell's square, 0 when none
+/// reaches in. `blocked` is asked about every cell the disc's bounding box touches,
+/// inside the grid or not.
+template <class Blocked>
+[[nodiscard]] double disc_depth_m(const GridGeometry& g, const Eigen::Vector2d& p, double radius_m,
+                                  Blocked&& blocked) {
+  if (!(radius_m > 0.0)) return 0.0;
+  const double half = 0.5 * g.resolution_m;
+  double nearest = radius_m;
+  const Cell lo = g.cell_at(p.x() - radius_m, p.y() - radius_m);
+  const Cell hi = g.cell_at(p.x() + radius_m, p.y() + radius_m);
+  for (int j = lo.j; j <= hi.j; ++j)
+    for (int i = lo.i; i <= hi.i; ++i) {
+      if (!blocked(Cell{i, j})) continue;
+      const Eigen::Vector2d gap = ((g.center({i, j}) - p).cwiseAbs().array() - half).cwiseMax(0.0);
+      nearest = std::min(nearest, gap.norm());
+    }
+  return radius_m - nearest;
+}
+
 }  // namespace ferret
