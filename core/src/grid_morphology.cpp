@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <deque>
 
 namespace ferret {
 namespace {
@@ -47,6 +48,41 @@ std::vector<std::uint8_t> open_square(const std::vector<std::uint8_t>& mask, int
   std::vector<std::uint8_t> opened = filter(filter(unit, width, height, r, true), width, height, r, false);
   for (std::size_t i = 0; i < opened.size(); ++i) opened[i] &= unit[i];
   return opened;
+}
+
+std::vector<std::uint8_t> grow_within(const std::vector<std::uint8_t>& seeds, const std::vector<std::uint8_t>& room,
+                                      int width, int height, double radius_cells) {
+  // Breadth-first from every seed at once, each cell carrying the seed it came from;
+  // a neighbour is taken when it is room and within the radius of that seed.
+  std::vector<std::uint8_t> grown(room.size(), 0);
+  std::vector<int> source(room.size(), -1);
+  std::deque<int> queue;
+  for (std::size_t i = 0; i < seeds.size(); ++i)
+    if (seeds[i]) {
+      source[i] = static_cast<int>(i);
+      queue.push_back(static_cast<int>(i));
+    }
+  const double r2 = radius_cells * radius_cells;
+  while (!queue.empty()) {
+    const int c = queue.front();
+    queue.pop_front();
+    const int ci = c % width, cj = c / width;
+    const int s = source[static_cast<std::size_t>(c)];
+    const int si = s % width, sj = s / width;
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int ni = ci + di, nj = cj + dj;
+        if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= width || nj >= height) continue;
+        const auto n = static_cast<std::size_t>(nj) * width + ni;
+        if (source[n] >= 0 || !room[n]) continue;
+        const double dx = ni - si, dy = nj - sj;
+        if (dx * dx + dy * dy > r2) continue;
+        source[n] = s;
+        grown[n] = 1;
+        queue.push_back(static_cast<int>(n));
+      }
+  }
+  return grown;
 }
 
 }  // namespace ferret

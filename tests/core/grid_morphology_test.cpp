@@ -81,5 +81,40 @@ TEST(GridMorphology, RandomMasksOpenAsTheDefinitionSays) {
   }
 }
 
+
+// grow_within: the room within the radius of a seed, reached through room only.
+TEST(GridMorphology, GrowingReachesRoomWithinTheRadiusOfItsSeedAndNoFurther) {
+  auto seeds = empty_mask(), room = empty_mask();
+  set(seeds, 5, 5, 5, 5);
+  set(room, 0, 0, kW - 1, kH - 1);
+  const auto g = grow_within(seeds, room, kW, kH, 2.0);
+  const auto at = [&](int i, int j) { return g[static_cast<std::size_t>(j) * kW + i]; };
+  EXPECT_EQ(at(5, 5), 0);  // the seed is not in it
+  EXPECT_EQ(at(7, 5), 1);  // 2 cells
+  EXPECT_EQ(at(5, 3), 1);
+  EXPECT_EQ(at(6, 6), 1);  // sqrt 2
+  EXPECT_EQ(at(8, 5), 0);  // 3 cells
+  EXPECT_EQ(at(7, 6), 0);  // sqrt 5 > 2
+  EXPECT_EQ(at(7, 7), 0);  // sqrt 8
+  // By hand: the 13 cells of the disc of radius 2 round a cell, less the seed.
+  int n = 0;
+  for (const auto c : g) n += c;
+  EXPECT_EQ(n, 12);
+}
+
+TEST(GridMorphology, GrowingDoesNotJumpAGapInTheRoom) {
+  auto seeds = empty_mask(), room = empty_mask();
+  set(seeds, 2, 0, 2, kH - 1);  // a face along a column
+  set(room, 3, 0, 5, kH - 1);   // three columns of room behind it...
+  set(room, 7, 0, 9, kH - 1);   // ...a column that is not, then room again
+  const auto g = grow_within(seeds, room, kW, kH, 6.0);
+  auto expected = empty_mask();
+  set(expected, 3, 0, 5, kH - 1);
+  EXPECT_EQ(g, expected);
+  // Radius 0: nothing grows; no seeds: nothing either.
+  EXPECT_EQ(grow_within(seeds, room, kW, kH, 0.0), empty_mask());
+  EXPECT_EQ(grow_within(empty_mask(), room, kW, kH, 6.0), empty_mask());
+}
+
 }  // namespace
 }  // namespace ferret

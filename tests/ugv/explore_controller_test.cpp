@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,38 +82,85 @@ TEST(ExploreController, TheOmplPlannerRepeatsGivenTheSeed) {
   }
 }
 
-// A path round a pillar the IR never saw (G stays unknown): the real tether wraps the
-// pillar; the estimate (G's obstacles only) lies straight and falls short of it; the
-// bound the reach check uses (unknown space too) does not.
-TEST(ExploreController, TheReachBoundCoversATetherRoundAnObstacleTheIrNeverSaw) {
-  const GridGeometry geo{0.0, 0.0, 0.05, 200, 200};
-  ExploreOptions options;
-  options.tether_budget_m = 100.0;
-  const Pose2 entry{2.0, 5.0, 0.0};
-  ExploreController controller(geo, entry, options);
-  // The pillar [4.8, 5.2]^2 as the truth has it (its convex corners).
+// The pillar [4.8, 5.2]^2 in a 10 m square, the entry west of it.
+const GridGeometry kPillarMap{0.0, 0.0, 0.05, 200, 200};
+const Pose2 kPillarEntry{2.0, 5.0, 0.0};
+
+struct PillarDrive {
+  TautTether truth;  ///< the real line: round the pillar's convex corners
+  Eigen::Vector2d p_W;
+  double t_s = 0.0;
+};
+
+// Drives the controller's tether from the entry along `legs` in 5 cm steps, 0.1 s
+// apart, the real line alongside.
+PillarDrive drive_round_pillar(ExploreController& controller, const std::vector<Eigen::Vector2d>& legs) {
   std::vector<TetherCorner> pillar;
   const std::array<std::pair<Eigen::Vector2d, std::uint8_t>, 4> corners{
       {{{4.8, 4.8}, 1u << 0}, {{5.2, 4.8}, 1u << 1}, {{5.2, 5.2}, 1u << 2}, {{4.8, 5.2}, 1u << 3}}};
   for (const auto& [p, q] : corners) pillar.push_back({p, q});
-  TautTether truth(TetherCorners::from_list(pillar), entry.position());
-  // Below the pillar, up its right side, and over it: 5 cm steps, 0.1 s apart.
-  const std::vector<Eigen::Vector2d> legs{{5.0, 3.5}, {8.0, 5.0}, {5.0, 6.5}};
-  Eigen::Vector2d p = entry.position();
-  double t = 0.0;
+  PillarDrive d{TautTether(TetherCorners::from_list(pillar), kPillarEntry.position()), kPillarEntry.position()};
   for (const auto& to : legs)
-    while ((to - p).norm() > 1e-9) {
-      const Eigen::Vector2d d = to - p;
-      p += d.norm() > 0.05 ? Eigen::Vector2d(0.05 * d.normalized()) : d;
-      t += 0.1;
-      controller.follow_tether({p.x(), p.y(), 0.0}, t);
-      truth.move_to(p);
+    while ((to - d.p_W).norm() > 1e-9) {
+      const Eigen::Vector2d step = to - d.p_W;
+      d.p_W += step.norm() > 0.05 ? Eigen::Vector2d(0.05 * step.normalized()) : step;
+      d.t_s += 0.1;
+      controller.follow_tether({d.p_W.x(), d.p_W.y(), 0.0}, d.t_s);
+      d.truth.move_to(d.p_W);
     }
-  ASSERT_FALSE(truth.wrap_points().empty());
+  return d;
+}
+
+// A path round a pillar the IR never saw (G stays unknown): the real tether wraps the
+// pillar; the estimate (G's obstacles only) lies straight and falls short of it; the
+// bound the reach check uses (unknown space too) does not.
+TEST(ExploreController, TheReachBoundCoversATetherRoundAnObstacleTheIrNeverSaw) {
+  ExploreOptions options;
+  options.tether_budget_m = 100.0;
+  ExploreController controller(kPillarMap, kPillarEntry, options);
+  // Below the pillar, up its right side, and over it.
+  const PillarDrive d = drive_round_pillar(controller, {{5.0, 3.5}, {8.0, 5.0}, {5.0, 6.5}});
+  ASSERT_FALSE(d.truth.wrap_points().empty());
   // By hand: (2,5) -> (4.8,4.8) -> (5.2,4.8) -> (5.2,5.2) -> (5,6.5).
-  EXPECT_NEAR(truth.length_m(), std::hypot(2.8, 0.2) + 0.8 + std::hypot(0.2, 1.3), 1e-9);
-  EXPECT_NEAR(controller.tether_length_m(), (p - entry.position()).norm(), 1e-9);  // straight
-  EXPECT_GE(controller.reach_length_m(), truth.length_m());
+  EXPECT_NEAR(d.truth.length_m(), std::hypot(2.8, 0.2) + 0.8 + std::hypot(0.2, 1.3), 1e-9);
+  EXPECT_NEAR(controller.tether_length_m(), (d.p_W - kPillarEntry.position()).norm(), 1e-9);  // straight
+  EXPECT_GE(controller.reach_length_m(), d.truth.length_m());
+}
+
+// The IR saw the pillar's near face only, and the robot drove round the pillar: the
+// real line wraps its body. Wrapped as seen (a shell one cell deep) the estimate falls
+// short by about twice the body's depth; taking the body 0.2 m behind the face into
+// the unknown space brings it nearer the truth, and never past the bound.
+TEST(ExploreController, TheEstimateWrapsTheBodyBehindAFaceTheIrSaw) {
+  struct Lengths {
+    double estimate_m, bound_m, truth_m;
+  };
+  const auto drive_round = [&](double depth_m) {
+    ExploreOptions options;
+    options.tether_budget_m = 100.0;
+    options.tether_obstacle_depth_m = depth_m;
+    ExploreController controller(kPillarMap, kPillarEntry, options);
+    // From below, the IR sees the face y = 4.8 (rays from (5, 3.5) up to it).
+    RangeScan scan;
+    scan.X_WS = {5.0, 3.5, std::numbers::pi / 2};
+    for (double b = -0.14; b <= 0.14; b += 0.01) scan.beams.push_back({b, 1.3 / std::cos(b)});
+    for (int k = 0; k < 5; ++k) controller.observe_scan(scan);
+    // Below the pillar, up its right side, over it and down its left side.
+    const PillarDrive d =
+        drive_round_pillar(controller, {{5.0, 3.5}, {8.0, 5.0}, {5.0, 6.5}, {3.5, 5.0}, {4.0, 3.8}});
+    controller.follow_tether({d.p_W.x(), d.p_W.y(), 0.0}, d.t_s + 10.0);  // a replay over G as it is
+    return Lengths{controller.tether_length_m(), controller.reach_length_m(), d.truth.length_m()};
+  };
+  const Lengths face = drive_round(0.0), body = drive_round(0.2);
+  // By hand, the truth wraps all four corners: (2,5) -> (4.8,4.8) -> (5.2,4.8) ->
+  // (5.2,5.2) -> (4.8,5.2) -> (4,3.8).
+  EXPECT_NEAR(face.truth_m, std::hypot(2.8, 0.2) + 3 * 0.4 + std::hypot(0.8, 1.4), 1e-9);
+  EXPECT_EQ(face.truth_m, body.truth_m);
+  EXPECT_LT(face.estimate_m, face.truth_m - 0.5);  // the shell: about twice 0.35 m short
+  EXPECT_GT(body.estimate_m, face.estimate_m + 0.3);
+  EXPECT_LT(std::abs(body.estimate_m - body.truth_m), 0.5 * std::abs(face.estimate_m - face.truth_m));
+  EXPECT_LE(body.estimate_m, body.bound_m + 1e-9);
+  EXPECT_GE(body.bound_m, body.truth_m);
 }
 
 // A policy that asks the tether about the farthest reachable frontier cell before it

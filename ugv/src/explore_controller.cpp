@@ -33,6 +33,8 @@ ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& 
   const std::string policy_name = policy_for_planner(options_.method, options_.planner);
   if (!has_exploration_policy(policy_name))
     throw std::invalid_argument("unknown exploration method: " + options_.method);
+  if (!(options_.tether_obstacle_depth_m >= 0.0 && options_.tether_obstacle_depth_m <= 10.0))
+    throw std::invalid_argument("ExploreOptions::tether_obstacle_depth_m: expected 0 to 10 m");
   const UgvSensorGeometry& s = options_.sensors;
   IrGrid::Options grid_options;
   grid_options.clearance_m = options_.robot.clearance_m;
@@ -98,7 +100,8 @@ void ExploreController::follow_tether(const Pose2& pose, double t_s) {
       t->move_to(p);
       return t;
     };
-    // The estimate wraps the obstacles G has seen. The bound also wraps unknown space
+    // The estimate wraps the obstacles G has seen, and their bodies behind the faces it
+    // saw (tether_obstacle_depth_m). The bound also wraps unknown space
     // wide enough to hide one: the real line can wrap an obstacle the IR never saw, so
     // the estimate can fall short of it, the bound hardly ever. Neither wraps a cell the
     // robot drove over (a later noisy hit there is no obstacle, and a driven path through
@@ -106,8 +109,17 @@ void ExploreController::follow_tether(const Pose2& pose, double t_s) {
     const auto occupied = [this](std::size_t i) {
       return grid_->label_at(i) == GridLabel::kOccupied && !swept_[i];
     };
-    tether_ = replay(TetherCorners::from_grid(geo_, [&](Cell c) { return occupied(geo_.index(c)); }));
     const std::vector<std::uint8_t> hidden = unknown_that_can_hide_obstacles();
+    // The estimate takes the obstacles' bodies behind their seen faces as far as
+    // tether_obstacle_depth_m reaches into that unknown space.
+    std::vector<std::uint8_t> seen(swept_.size());
+    for (std::size_t i = 0; i < seen.size(); ++i) seen[i] = occupied(i);
+    const std::vector<std::uint8_t> body =
+        grow_within(seen, hidden, geo_.width, geo_.height, options_.tether_obstacle_depth_m / geo_.resolution_m);
+    tether_ = replay(TetherCorners::from_grid(geo_, [&](Cell c) {
+      const std::size_t i = geo_.index(c);
+      return seen[i] != 0 || body[i] != 0;
+    }));
     reach_tether_ = replay(TetherCorners::from_grid(geo_, [&](Cell c) {
       const std::size_t i = geo_.index(c);
       return occupied(i) || hidden[i] != 0;

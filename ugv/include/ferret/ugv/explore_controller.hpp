@@ -65,6 +65,11 @@ struct ExploreOptions {
   /// planner's goal is checked after the policy chose it.
   std::optional<double> tether_budget_m;
   double tether_margin_m = 0.3;
+  /// How far an obstacle reaches behind a face G has seen, into unknown space the robot
+  /// has not driven over, for the tether's estimate (m). The IR sees an obstacle's face,
+  /// never its body: wrapped as seen, a one-cell shell, a line round it falls short by
+  /// about twice the body's depth. 0: only the cells seen (before 2026-12-07).
+  double tether_obstacle_depth_m = 0.2;
 };
 
 struct DecisionRecord {
@@ -116,8 +121,9 @@ class ExploreController {
   void follow_tether(const Pose2& pose, double t_s);
   /// The tether budget, if there is one.
   [[nodiscard]] std::optional<double> tether_budget_m() const { return options_.tether_budget_m; }
-  /// The taut tether's length now, as the obstacles in G wrap it (0 without a tether
-  /// budget): the best estimate, which the winch is told.
+  /// The taut tether's length now, as the obstacles in G wrap it, with their bodies
+  /// behind the faces seen (0 without a tether budget): the best estimate, which the
+  /// winch is told.
   [[nodiscard]] double tether_length_m() const;
   /// The taut tether's length with unknown space wrapping it too (but where the robot
   /// drove): an upper bound of the real line, which the reach check holds to the budget.
@@ -137,9 +143,9 @@ class ExploreController {
   /// one the IR never saw). Empty when the tether is straight already (or there is no
   /// tether model).
   [[nodiscard]] std::vector<Eigen::Vector2d> retrace_path(double enough_m = 0.0) const;
-  /// The way home along the tether as estimated (G's obstacles): its wrap points from
-  /// the robot's end back, each pushed `offset_m` off its corner (then the entry, not
-  /// included). Empty when the tether is straight (or there is no tether model). (The
+  /// The way home along the tether as estimated (G's obstacles, their bodies): its wrap
+  /// points from the robot's end back, each pushed `offset_m` off its corner (then the
+  /// entry, not included). Empty when the tether is straight (or there is no tether model). (The
   /// bound's wrap points include corners of unknown patches, whose offsets often fall
   /// in a wall's clearance band, and returns along them stalled.)
   [[nodiscard]] std::vector<Eigen::Vector2d> way_home_along_tether(double offset_m) const;
@@ -186,7 +192,7 @@ class ExploreController {
   bool left_entry_ = false;  ///< moved the object map's min_move_m from entry_W_ at some time
   std::vector<Eigen::Vector2d> driven_W_;
   std::vector<std::uint8_t> swept_;  ///< per cell of G: the robot drove over it
-  std::unique_ptr<TautTether> tether_;        ///< the estimate (G's obstacles)
+  std::unique_ptr<TautTether> tether_;        ///< the estimate (G's obstacles and their bodies)
   std::unique_ptr<TautTether> reach_tether_;  ///< the bound (and unknown space)
   double corners_refreshed_s_ = -1e9;
   int reach_rejections_ = 0;
