@@ -76,7 +76,7 @@ std::vector<std::uint8_t> grow_within(const std::vector<std::uint8_t>& seeds, co
         const auto n = static_cast<std::size_t>(nj) * width + ni;
         if (source[n] >= 0 || !room[n]) continue;
         const double dx = ni - si, dy = nj - sj;
-        if (dx * dx + dy * dy > r2) continue;
+        if (!(dx * dx + dy * dy <= r2)) continue;  // (a NaN radius grows nothing)
         source[n] = s;
         grown[n] = 1;
         queue.push_back(static_cast<int>(n));

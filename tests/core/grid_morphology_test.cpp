@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -114,6 +115,7 @@ TEST(GridMorphology, GrowingDoesNotJumpAGapInTheRoom) {
   // Radius 0: nothing grows; no seeds: nothing either.
   EXPECT_EQ(grow_within(seeds, room, kW, kH, 0.0), empty_mask());
   EXPECT_EQ(grow_within(empty_mask(), room, kW, kH, 6.0), empty_mask());
+  EXPECT_EQ(grow_within(seeds, room, kW, kH, std::numeric_limits<double>::quiet_NaN()), empty_mask());
 }
 
 }  // namespace
