@@ -135,9 +135,11 @@ TEST(RobotsOnHardware, TheUavTakesOffWithTheFlightAdapterAndTheWinchsServo) {
   test::FakeDynamixel servo;
   const std::string d = dir.path().string();
   // The adapter's port is known once it listens: the script puts it in the mission YAML.
+  // The servo's reply timeout is generous: the fake servo is a thread of this test, and
+  // a loaded machine under the sanitizer starved it past the default 3 x 30 ms once.
   write_file(dir, "uav.yaml.in",
              "uav:\n  winch:\n    backend: hw\n    serial: {port: " + servo.port() +
-                 "}\n  flight_controller:\n    backend: hw\n    address: 127.0.0.1:ADAPTER_PORT\n");
+                 ", timeout_ms: 500}\n  flight_controller:\n    backend: hw\n    address: 127.0.0.1:ADAPTER_PORT\n");
   const std::string script =
       "F='" + std::string(FERRET_CLI) + "'; D='" + d + "'\n"
       "timeout 300 \"$F\" flight-adapter serve --real-time --listen 127.0.0.1:0 --clients 1 --seed 2 "
