@@ -82,7 +82,6 @@ TEST(GridMorphology, RandomMasksOpenAsTheDefinitionSays) {
   }
 }
 
-
 // grow_within: the room within the radius of a seed, reached through room only.
 TEST(GridMorphology, GrowingReachesRoomWithinTheRadiusOfItsSeedAndNoFurther) {
   auto seeds = empty_mask(), room = empty_mask();

@@ -145,9 +145,9 @@ class ExploreController {
   [[nodiscard]] std::vector<Eigen::Vector2d> retrace_path(double enough_m = 0.0) const;
   /// The way home along the tether as estimated (G's obstacles, their bodies): its wrap
   /// points from the robot's end back, each pushed `offset_m` off its corner (then the
-  /// entry, not included). Empty when the tether is straight (or there is no tether model). (The
-  /// bound's wrap points include corners of unknown patches, whose offsets often fall
-  /// in a wall's clearance band, and returns along them stalled.)
+  /// entry, not included). Empty when the tether is straight (or there is no tether
+  /// model). (The bound's wrap points include corners of unknown patches, whose offsets
+  /// often fall in a wall's clearance band, and returns along them stalled.)
   [[nodiscard]] std::vector<Eigen::Vector2d> way_home_along_tether(double offset_m) const;
   [[nodiscard]] const Eigen::Vector2d& entry_W() const { return entry_W_; }
   /// Times the robot retraced its path to unwind a tether wound round obstacles.
