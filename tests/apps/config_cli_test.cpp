@@ -216,6 +216,8 @@ TEST(ConfigCli, BadMissionFiles) {
        "ugv_limits.max_velocity_mps"},
       {"inconsistent.yaml", "tether:\n  total_length_m: 1\n  entry_offset_m: 2\n",
        "tether.entry_offset_m"},
+      {"catch_not_bool.yaml", "tether:\n  catch_speed_limit: sometimes\n",
+       "tether.catch_speed_limit: expected true or false"},
       {"syntax.yaml", "tether: [1, 2\n", "valid YAML"},
   };
   for (const auto& c : cases) {

@@ -221,5 +221,39 @@ TEST(ExploreController, AnUnknownPlannerIsRefused) {
   EXPECT_THROW(ExploreController(test::small_hidden_space().geometry, kEntry, options), std::invalid_argument);
 }
 
+TEST(ExploreController, ABumpMarksTheCellsAtTheBodysFrontOccupiedAndNoOthers) {
+  // A 12 cm body facing +y in a free room of 2.5 cm cells: the cells it marks are those
+  // within a cell outside its disc and at most 60 degrees off its heading.
+  GridGeometry g;
+  g.resolution_m = 0.025;
+  g.width = 80;
+  g.height = 80;
+  ExploreOptions options;
+  options.robot.body_radius_m = 0.06;
+  const Pose2 pose{1.0, 1.0, std::numbers::pi / 2.0};
+  ExploreController controller(g, pose, options);
+  const int marked = controller.mark_bumped(pose);
+  EXPECT_GT(marked, 3);
+  int occupied = 0;
+  for (int j = 0; j < g.height; ++j)
+    for (int i = 0; i < g.width; ++i) {
+      if (controller.grid().label({i, j}) != GridLabel::kOccupied) continue;
+      ++occupied;
+      const Eigen::Vector2d d = g.center({i, j}) - pose.position();
+      EXPECT_GE(d.norm(), 0.06 - 0.0125 - 1e-9) << i << ", " << j;
+      EXPECT_LE(d.norm(), 0.06 + 0.025 + 1e-9) << i << ", " << j;
+      EXPECT_GE(d.y(), 0.5 * d.norm() - 1e-9) << i << ", " << j;  // within 60 degrees of +y
+    }
+  EXPECT_EQ(occupied, marked);
+  // The cell straight ahead of the body's front is among them, the one behind is not.
+  EXPECT_EQ(controller.grid().label(g.cell_at(1.0, 1.07)), GridLabel::kOccupied);
+  EXPECT_NE(controller.grid().label(g.cell_at(1.0, 0.93)), GridLabel::kOccupied);
+  // Marked again, nothing new; a point robot (the paper's) marks nothing.
+  EXPECT_EQ(controller.mark_bumped(pose), 0);
+  options.robot.body_radius_m = 0.0;
+  ExploreController point(g, pose, options);
+  EXPECT_EQ(point.mark_bumped(pose), 0);
+}
+
 }  // namespace
 }  // namespace ferret

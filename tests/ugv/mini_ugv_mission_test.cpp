@@ -12,7 +12,9 @@
 #include "ferret/core/clock.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/sim/sim_ugv_base.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
+#include "ferret/tether_model/line_catch.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
 #include "support/test_maps.hpp"
 
@@ -232,6 +234,55 @@ TEST(UgvMission, ARecallEndsTheSearchWithTheWayHomeAndIsLiftedOutAsRecalled) {
   EXPECT_EQ(sim.mission().outcome(), UgvMissionOutcome::kRecalled);
 }
 
+// Each tick of a mission on its line: the base's speed, and the limit a catch puts on it
+// where the line may be longer than its estimate by more than the limit's stretch.
+struct LineTick {
+  double speed_mps = 0.0, applied_mps = 0.0, due_mps = 0.0;
+};
+std::vector<LineTick> line_ticks(UgvMissionRunSettings s, const tether::LineCatchLimit& line,
+                                 UgvMissionRunResult& result) {
+  std::vector<LineTick> ticks;
+  const double l0_m = s.exploration.mission.tether.entry_offset_m;
+  s.on_tick = [&](double, const MiniUgvMission& m, const SimUgvBase& base) {
+    const ExploreController& e = m.explore_controller();
+    const double line_m = l0_m + e.tether_length_m();
+    const bool doubt = e.reach_length_m() - e.tether_length_m() > line.stretch_m(line_m);
+    ticks.push_back({std::abs(base.speed_mps()), m.line_speed_limit_mps(),
+                     doubt ? line.speed_mps(line_m) : std::numeric_limits<double>::infinity()});
+  };
+  result = run_ugv_mission(test::small_hidden_space(), kEntry, kBehindPartition, s, 5);
+  return ticks;
+}
+
+TEST(UgvMission, OnItsLineTheRobotDrivesNoFasterThanTheWinchCanFollowACatch) {
+  // The mission's limit (sim/mission_run.cpp): 8 N of pull on a 1 mm nylon line.
+  const tether::LineCatchLimit line{8.0, 1500.0, 0.065, 1.8};
+  UgvMissionRunResult free_run, held_run;
+  const auto free_ticks = line_ticks(settings(), line, free_run);
+  ASSERT_EQ(free_run.outcome, UgvMissionOutcome::kObjectRetrieved) << to_string(free_run.outcome);
+  // Without the limit the robot drives faster than a catch allows where its line may
+  // be longer than its estimate.
+  int over = 0;
+  for (const LineTick& t : free_ticks) over += t.speed_mps > t.due_mps + 0.01;
+  EXPECT_GT(over, 20);
+  UgvMissionRunSettings s = settings();
+  s.ugv.line_catch = line;
+  const auto ticks = line_ticks(s, line, held_run);
+  ASSERT_EQ(held_run.outcome, UgvMissionOutcome::kObjectRetrieved) << to_string(held_run.outcome);
+  int held = 0;
+  for (std::size_t k = 1; k < ticks.size(); ++k) {
+    // A tick's limit is the one due on the line and doubt the tick began with (the
+    // search updates its tether model after), and the base keeps to it.
+    const double applied = ticks[k].applied_mps;
+    EXPECT_TRUE(applied == ticks[k - 1].due_mps || applied == ticks[k].due_mps) << k;
+    EXPECT_LE(ticks[k].speed_mps, applied + 1e-9) << k;
+    held += std::isfinite(applied);
+  }
+  EXPECT_GT(held, 20);
+  EXPECT_LT(held, static_cast<int>(ticks.size()));  // not where the estimate is sure
+  EXPECT_GT(held_run.time_s, free_run.time_s);
+}
+
 TEST(UgvMission, SameSeedSameMission) {
   const auto map = test::small_hidden_space();
   const auto a = run_ugv_mission(map, kEntry, kBehindPartition, settings(), 9);
@@ -329,6 +380,77 @@ TEST(UgvMissionStates, AServoThatNeverClosesInTimesOutOfTrackAndTheTurnTimesOut)
   EXPECT_NE(r.transitions[2].reason.find("in time"), std::string::npos) << r.transitions[2].reason;
   EXPECT_NEAR(r.transitions[2].t_s - r.transitions[1].t_s, 2.0, 0.11);
   EXPECT_EQ(r.final_state, UgvMissionState::kDone);
+}
+
+// A room 3 x 2 m whose IR sees its walls but not a low kerb across it at x = 2 m (below
+// the beams): the base stops the 12 cm body at the kerb, as SimUgvBase stops it at a wall.
+class KerbBase final : public UgvBase {
+ public:
+  static constexpr double kKerb_m = 2.0, kRadius_m = 0.06, kTick_s = 0.05;
+  [[nodiscard]] std::string backend() const override { return "test"; }
+  [[nodiscard]] Pose2 odometry() const override { return pose_; }
+  [[nodiscard]] double speed_mps() const override { return v_mps_; }
+  [[nodiscard]] RangeScan ir_scan() override {
+    RangeScan s;
+    s.X_WS = pose_;
+    s.max_range_m = 4.0;
+    for (int k = -8; k <= 8; ++k) {  // to the room's walls, through the kerb
+      const double a = pose_.yaw_rad + 0.1 * k, c = std::cos(a), sn = std::sin(a);
+      double d = 4.0;
+      if (c > 1e-9) d = std::min(d, (3.0 - pose_.x_m) / c);
+      if (c < -1e-9) d = std::min(d, -pose_.x_m / c);
+      if (sn > 1e-9) d = std::min(d, (2.0 - pose_.y_m) / sn);
+      if (sn < -1e-9) d = std::min(d, -pose_.y_m / sn);
+      s.beams.push_back({0.1 * k, d});
+    }
+    return s;
+  }
+  [[nodiscard]] CameraFrame camera_frame(double time_s) override {
+    CameraFrame f;
+    f.time_s = time_s;
+    f.view = ir_scan();
+    return f;
+  }
+  void command_velocity(double v, double w) override {
+    const Pose2 next = integrate_unicycle(pose_, {v, w}, kTick_s);
+    const bool blocked = next.x_m + kRadius_m > kKerb_m && next.x_m > pose_.x_m;
+    pose_ = blocked ? Pose2{pose_.x_m, pose_.y_m, next.yaw_rad} : next;
+    v_mps_ = blocked ? 0.0 : v;
+    stalled_ticks_ = blocked && v > 0.0 ? stalled_ticks_ + 1 : 0;
+    longest_stall_ = std::max(longest_stall_, stalled_ticks_);
+  }
+  void set_epm(bool) override {}
+  [[nodiscard]] UgvStatus status() const override { return {0.9, false, false}; }
+  [[nodiscard]] int longest_stall_ticks() const { return longest_stall_; }
+
+ private:
+  Pose2 pose_{1.0, 1.0, 0.0};
+  double v_mps_ = 0.0;
+  int stalled_ticks_ = 0, longest_stall_ = 0;
+};
+
+TEST(UgvMissionStates, ABaseThatStandsStillWhenToldToDriveIsABumpAndTheRobotStopsPressing) {
+  KerbBase base;
+  SimClock clock;
+  TransitionLog log;
+  UgvMissionOptions o;
+  o.explore.robot.body_radius_m = KerbBase::kRadius_m;
+  o.explore.robot.max_velocity_mps = 0.3;
+  o.explore_timeout_s = 60.0;
+  const GridGeometry geo{0.0, 0.0, 0.025, 120, 80};
+  MiniUgvMission mission(base, clock, geo, o, &log);
+  mission.start();
+  for (int k = 1; k < 3000 && !mission.done() && !mission.wants_retraction(); ++k) {
+    mission.tick();
+    clock.set(k * mission.tick_s());
+  }
+  // The room beyond the kerb is a frontier the search drives for: it meets the kerb,
+  // the IR says nothing is there, and only the bump tells G.
+  EXPECT_GE(mission.bumps(), 1);
+  // Each stretch against the kerb ends within a few ticks of the bump (without it the
+  // follower, trusting G, pressed on until the search's stuck detection: 4 s, 80 ticks).
+  EXPECT_LE(base.longest_stall_ticks(), 12);
+  EXPECT_LT(base.odometry().x_m + KerbBase::kRadius_m, KerbBase::kKerb_m + 1e-9);
 }
 
 TEST(UgvMissionStates, StopAbortsFromAnyStateAndTicksAfterDoneDoNothing) {

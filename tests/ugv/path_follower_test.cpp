@@ -92,19 +92,19 @@ struct CornerDrive {
   bool reached = false;
   double deepest_m = 0.0;  // of a 12 cm wide body into the block
 };
-CornerDrive drive_round_block(double body_radius_m) {
+CornerDrive drive_round_block(double body_radius_m, double max_velocity_mps = 0.48) {
   std::vector<Cell> block;  // x 0.5-0.55 m, y 0.425-0.5 m
   for (int i = 20; i <= 21; ++i)
     for (int j = 17; j <= 19; ++j) block.push_back({i, j});
   const IrGrid grid = free_grid_with_occupied(block);
   RobotOptions o;
-  o.max_velocity_mps = 0.48;
+  o.max_velocity_mps = max_velocity_mps;
   o.body_radius_m = body_radius_m;
   PathFollower f(o);
   f.set_path({{0.2125, 0.3375}, {0.6625, 0.3375}, {0.6625, 0.8125}}, std::nullopt);
   Pose2 pose{0.2125, 0.3375, 0.0};
   CornerDrive out;
-  for (int k = 0; k < 2000 && !out.reached; ++k) {
+  for (int k = 0; k < 4000 && !out.reached; ++k) {
     pose = integrate_unicycle(pose, f.step(pose, grid, 0.05, out.reached), 0.05);
     out.deepest_m = std::max(out.deepest_m, body_depth_m(grid, pose.position(), 0.06));
   }
@@ -123,6 +123,19 @@ TEST(PathFollower, ABodyIsNeverSteppedIntoAnOccupiedCellWherePursuitCutsTheCorne
   EXPECT_TRUE(body.reached);
   // (The recovery may add up to a quarter cell along its segments.)
   EXPECT_LE(body.deepest_m, 0.25 * 0.025);
+}
+
+TEST(PathFollower, ASlowRobotsRecoveryDoesNotAddItsAllowanceAtEveryStep) {
+  // The same cut at half the speed and slower. The recovery's quarter cell was
+  // once counted from wherever the robot stood, so steps shorter than it each added it:
+  // the body went 4.7 cm (0.1 m/s) to 6.0 cm (0.05 m/s) into the block. Counted from
+  // the segment's ends it stays within a quarter cell. (This path is never re-planned,
+  // and the segment from the cut's cell back to the corner's waypoint crosses the
+  // block, so the robot stops there; the explore controller plans again.)
+  for (const double v_mps : {0.24, 0.1, 0.05, 0.02}) {
+    const CornerDrive slow = drive_round_block(0.06, v_mps);
+    EXPECT_LE(slow.deepest_m, 0.25 * 0.025) << v_mps << " m/s";
+  }
 }
 
 TEST(PathFollower, ARobotPressedAgainstAWallPassesByItsCellsCentreWhenThatLiesDeeper) {

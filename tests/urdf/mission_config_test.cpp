@@ -53,6 +53,8 @@ TEST(MissionConfig, PartialFileOverridesOnlyItsKeys) {
   const MissionConfig c = parse("tether: {total_length_m: 8}\nuav_limits: {max_velocity_mps: 3}\n");
   EXPECT_EQ(c.tether.total_length_m, 8.0);
   EXPECT_EQ(c.tether.entry_offset_m, 1.0);
+  EXPECT_TRUE(c.tether.catch_speed_limit);
+  EXPECT_FALSE(parse("tether: {catch_speed_limit: false}\n").tether.catch_speed_limit);
   EXPECT_EQ(c.uav_limits.max_velocity_mps, 3.0);
   EXPECT_EQ(c.uav_limits.max_yaw_rate_radps, 1.0);
 }
@@ -103,6 +105,7 @@ TEST(MissionConfig, OutOfRangeValues) {
   EXPECT_EQ(parse_error("ugv_limits: {max_velocity_mps: 0}\n").field(),
             "ugv_limits.max_velocity_mps");
   EXPECT_EQ(parse_error("tether: {total_length_m: -1}\n").field(), "tether.total_length_m");
+  EXPECT_EQ(parse_error("tether: {catch_speed_limit: 2}\n").field(), "tether.catch_speed_limit");
   EXPECT_EQ(parse_error("object_search: {eta_m: .nan}\n").field(), "object_search.eta_m");
   // Inconsistent pairs name the field that breaks the relation.
   EXPECT_EQ(parse_error("object_search: {conf_floor: 0.9, conf_cap: 0.8}\n").field(),

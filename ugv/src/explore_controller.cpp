@@ -78,6 +78,30 @@ ExploreController::~ExploreController() = default;
 
 void ExploreController::observe_scan(const RangeScan& scan) { grid_->integrate_scan(scan); }
 
+int ExploreController::mark_bumped(const Pose2& pose) {
+  const double r = options_.robot.body_radius_m;
+  if (!(r > 0.0)) return 0;
+  // The front rim: cells within a cell outside the disc, at most 60 degrees off the
+  // heading (a body pressed at its front or front corner).
+  const double res = geo_.resolution_m;
+  const Eigen::Vector2d p = pose.position();
+  const Eigen::Vector2d heading(std::cos(pose.yaw_rad), std::sin(pose.yaw_rad));
+  const Cell c0 = geo_.cell_at(p.x(), p.y());
+  const int n = static_cast<int>(std::ceil((r + res) / res)) + 1;
+  int marked = 0;
+  for (int dj = -n; dj <= n; ++dj)
+    for (int di = -n; di <= n; ++di) {
+      const Cell c{c0.i + di, c0.j + dj};
+      if (!geo_.contains(c) || grid_->label(c) == GridLabel::kOccupied) continue;
+      const Eigen::Vector2d d = geo_.center(c) - p;
+      const double dist = d.norm();
+      if (dist < r - 0.5 * res || dist > r + res || d.dot(heading) < 0.5 * dist) continue;
+      grid_->set_probability(c, 1.0);  // clamped to the grid's most certain occupied
+      ++marked;
+    }
+  return marked;
+}
+
 std::optional<Cell> ExploreController::observe_frame(const CameraFrame& frame) {
   objects_->integrate_frame(frame);
   return objects_->found_cell();

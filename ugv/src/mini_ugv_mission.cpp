@@ -79,6 +79,14 @@ void UgvMissionOptions::validate(const std::string& source) const {
   positive(battery_endurance_s, "ugv.battery_endurance_s", "s");
   check_number(battery_reserve_fraction, NumberRange::closed(0.0, 0.9), source,
                "ugv.battery_reserve_fraction");
+  check_number(line_catch.pull_budget_n, NumberRange::non_negative(1e4, "N"), source,
+               "ugv line_catch.pull_budget_n");
+  if (line_catch.on()) {
+    positive(line_catch.axial_stiffness_n, "ugv line_catch.axial_stiffness_n", "N");
+    check_number(line_catch.reaction_s, NumberRange::non_negative(10.0, "s"), source,
+                 "ugv line_catch.reaction_s");
+    positive(line_catch.spool_acceleration_mps2, "ugv line_catch.spool_acceleration_mps2", "m/s^2");
+  }
   if (explore.tether_budget_m)
     check_number(*explore.tether_budget_m, NumberRange::positive(1000.0, "m"), source,
                  "tether budget (tether.total_length_m - tether.entry_offset_m)");
@@ -127,6 +135,9 @@ void MiniUgvMission::start() {
   entry_W_ = pose.position();
   explore_ = std::make_unique<ExploreController>(geo_, pose, options_.explore);
   tick_ = explore_tick_ = 0;
+  last_pose_ = pose;
+  last_v_mps_ = 0.0;
+  stalled_ticks_ = 0;
   next_battery_check_s_ = clock_.now_s();
   enter(UgvMissionState::kExplore, "started at the entry");
   state_timeout_s_ = options_.explore_timeout_s;
@@ -212,6 +223,20 @@ std::vector<Eigen::Vector2d> MiniUgvMission::path_home(const Pose2& pose, int wi
   return path;
 }
 
+double MiniUgvMission::drive_home_s(double way_m) const {
+  const double top_mps = options_.explore.robot.max_velocity_mps;
+  if (!options_.explore.tether_budget_m || !options_.line_catch.on()) return way_m / top_mps;
+  // On the line's limit the last metres, on the shortest line, are the slowest; the
+  // line is l_0 and (about) the way still to go.
+  const double l0_m = options_.explore.mission.tether.entry_offset_m;
+  const int n = std::max(1, static_cast<int>(std::ceil(way_m / 0.05)));
+  const double dx_m = way_m / n;
+  double t_s = 0.0;
+  for (int k = 0; k < n; ++k)
+    t_s += dx_m / std::min(top_mps, options_.line_catch.speed_mps(l0_m + (k + 0.5) * dx_m));
+  return t_s;
+}
+
 bool MiniUgvMission::battery_calls_return(const Pose2& pose) {
   const double now = clock_.now_s();
   if (now < next_battery_check_s_) return false;
@@ -227,7 +252,7 @@ bool MiniUgvMission::battery_calls_return(const Pose2& pose) {
                      : (pose.position() - entry_W_).norm();
   // The return follows the tether (path_home): at least the tether's length.
   if (explore_->tether_budget_m()) way_m = std::max(way_m, explore_->reach_length_m());
-  const double return_s = way_m / (0.5 * options_.explore.robot.max_velocity_mps);
+  const double return_s = 2.0 * drive_home_s(way_m);
   const double needed = return_s / options_.battery_endurance_s + options_.battery_reserve_fraction;
   return base_.status().battery_fraction <= needed;
 }
@@ -254,7 +279,7 @@ void MiniUgvMission::begin_return(UgvMissionOutcome outcome, const std::string& 
   // Four times the drive at full speed, and a half turn on the spot at every corner
   // (a way home along the tether turns at each wrap point).
   state_timeout_s_ = std::max(options_.return_timeout_min_s,
-                              4.0 * length_m / options_.explore.robot.max_velocity_mps +
+                              4.0 * drive_home_s(length_m) +
                                   static_cast<double>(corners) * std::numbers::pi /
                                       options_.explore.robot.max_yaw_rate_radps);
   next_replan_s_ = clock_.now_s() + kReplanPeriod_s;
@@ -327,7 +352,34 @@ void MiniUgvMission::tick() {
   const Pose2 pose = base_.odometry();
   // The maps keep growing in every state: the way home is planned on them.
   explore_->observe_scan(base_.ir_scan());
+  // A bump: told to drive forwards, the base has not moved for a while. What holds the
+  // body goes into G (the IR may never have seen it: a low edge, a corner of the body's
+  // side, or a wall it saw a cell off), or the follower, which trusts G, drives into it
+  // again and again.
+  if (last_v_mps_ > kBumpMinSpeed_mps &&
+      (pose.position() - last_pose_.position()).norm() < 0.2 * last_v_mps_ * explore_->tick_s()) {
+    if (++stalled_ticks_ >= kBumpTicks) {
+      if (explore_->mark_bumped(pose) > 0) follower_.clear();
+      stalled_ticks_ = 0;
+      ++bumps_;
+    }
+  } else {
+    stalled_ticks_ = 0;
+  }
+  last_pose_ = pose;
   if (state_ != UgvMissionState::kExplore) explore_->follow_tether(pose, now);
+  // On its line, the robot drives no faster than the winch can follow a catch
+  // (tether::LineCatchLimit); the line is l_0 and the taut estimate from the entry. A
+  // line that can be longer than the estimate only by less than the stretch the limit
+  // allows (the bound, with unknown space, less the estimate) cannot pull more.
+  const double line_m =
+      options_.explore.mission.tether.entry_offset_m + explore_->tether_length_m();
+  const double doubt_m = explore_->reach_length_m() - explore_->tether_length_m();
+  line_speed_mps_ = options_.explore.tether_budget_m && doubt_m > options_.line_catch.stretch_m(line_m)
+                       ? options_.line_catch.speed_mps(line_m)
+                       : std::numeric_limits<double>::infinity();
+  explore_->set_speed_limit_mps(line_speed_mps_);
+  follower_.set_speed_limit_mps(line_speed_mps_);
   std::optional<CameraFrame> frame;
   if (explore_->frame_due(tick_)) frame = base_.camera_frame(now);
   ++tick_;
@@ -478,6 +530,9 @@ void MiniUgvMission::tick() {
     case UgvMissionState::kDone:
       break;
   }
+  // The servo's and the grasp's speeds too.
+  command.v_mps = std::clamp(command.v_mps, -line_speed_mps_, line_speed_mps_);
+  last_v_mps_ = state_ == UgvMissionState::kDone ? 0.0 : command.v_mps;
   if (state_ != UgvMissionState::kDone) base_.command_velocity(command.v_mps, command.w_radps);
 }
 

@@ -12,8 +12,10 @@ constexpr double kHeadingTolerance_rad = 0.15;
 constexpr double kLookahead_m = 0.3;
 constexpr double kWaypointTolerance_m = 0.02;  // a precise waypoint reached (at most)
 
-/// How much deeper into G's occupied cells the recovery's exact segments may take the
-/// body: a quarter cell.
+/// How much deeper into G's occupied cells than the recovery's segment's ends the body
+/// may go along it: a quarter cell (what the cells' raster hides). Counted from the
+/// segment's ends, not from where the robot stands, so that a slow robot's many small
+/// steps do not each add it.
 double precise_allowance_m(const GridGeometry& g) { return 0.25 * g.resolution_m; }
 
 }  // namespace
@@ -65,6 +67,7 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
     // centre, and heading on from there would cut the neighbour the step was refused.
     const double reached_m = std::min(kWaypointTolerance_m, 0.25 * grid.geometry().resolution_m);
     while ((path_[next_] - p).norm() < reached_m && next_ + 1 < path_.size()) {
+      begin_segment(p, grid);
       ++next_;
       --precise_;
     }
@@ -75,6 +78,7 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
     if (robot_.body_radius_m > 0.0 && next_ + 1 < path_.size() &&
         (path_[next_] - g.center(g.cell_at(p.x(), p.y()))).norm() < 1e-9 &&
         body_depth_m(path_[next_], grid) > body_depth_m(p, grid) + precise_allowance_m(g)) {
+      begin_segment(p, grid);
       ++next_;
       precise_ = std::max(0, precise_ - 1);
     }
@@ -87,7 +91,7 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
   const double w = std::clamp(4.0 * e, -robot_.max_yaw_rate_radps, robot_.max_yaw_rate_radps);
   double v_des = 0.0;
   if (std::abs(e) < (precise_ > 0 ? 0.03 : 0.6)) {
-    v_des = robot_.max_velocity_mps * std::cos(e);
+    v_des = std::min(robot_.max_velocity_mps, speed_limit_mps_) * std::cos(e);
     v_des = std::min(v_des,
                      std::sqrt(2.0 * robot_.max_acceleration_mps2 * to_goal));  // stop at the goal
     if (precise_ > 0) v_des = std::min(v_des, to.norm() / dt);  // land on the waypoint
@@ -105,14 +109,20 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
   // cells the planner let the body cross: along them the depth may grow by what the
   // cells' raster hides.)
   const Cell here = g.cell_at(p.x(), p.y());
-  const double allowance_m = precise_ > 0 ? precise_allowance_m(g) : 1e-9;
-  const bool deeper = robot_.body_radius_m > 0.0 && v > 0.0 &&
-                      body_depth_m(next, grid) > body_depth_m(p, grid) + allowance_m;
+  const double depth_here_m = robot_.body_radius_m > 0.0 ? body_depth_m(p, grid) : 0.0;
+  double deepest_m = depth_here_m + 1e-9;
+  if (precise_ > 0 && robot_.body_radius_m > 0.0)
+    deepest_m = std::max(deepest_m, segment_base_depth_m(grid) + precise_allowance_m(g));
+  const bool deeper = robot_.body_radius_m > 0.0 && v > 0.0 && body_depth_m(next, grid) > deepest_m;
   if (!g.contains(c) || (grid.label(c) != GridLabel::kFree && !same_cell) || deeper) {
     // Not known free (a corner cut, or space the IR has not seen), or the body would
     // press into an obstacle: stop, and go on precisely from the centre of the current
     // cell along the path's segments.
     v = 0.0;
+    // The new segment starts here; a recovery blocked again does not start it deeper
+    // than its last one allowed (else each block would add another allowance).
+    segment_start_depth_m_ =
+        precise_ > 0 ? std::min(depth_here_m, segment_base_depth_m(grid)) : depth_here_m;
     // The look-ahead passes a waypoint 0.3 m before the robot does: the corner the body
     // cut is gone round exactly, by its waypoint. (Only for the body's cut: a point
     // robot, the paper's experiment, recovers as it always has.)
@@ -125,6 +135,15 @@ VelocityCommand PathFollower::step(const Pose2& pose, const IrGrid& grid, double
   }
   v_mps_ = v;
   return {v, w};
+}
+
+double PathFollower::segment_base_depth_m(const IrGrid& grid) const {
+  return std::max(segment_start_depth_m_, body_depth_m(path_[next_], grid));
+}
+
+void PathFollower::begin_segment(const Eigen::Vector2d& p, const IrGrid& grid) {
+  if (robot_.body_radius_m > 0.0)
+    segment_start_depth_m_ = std::min(body_depth_m(p, grid), segment_base_depth_m(grid));
 }
 
 double PathFollower::body_depth_m(const Eigen::Vector2d& q, const IrGrid& grid) const {

@@ -114,13 +114,14 @@ MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string
     if (o.conf_floor > o.conf_cap) r->fail("conf_floor", "a value <= conf_cap");
   }
   if (const auto r = root.optional_child("tether")) {
-    r->allow_only({"total_length_m", "entry_offset_m"});
+    r->allow_only({"total_length_m", "entry_offset_m", "catch_speed_limit"});
     c.tether.total_length_m =
         r->get_in_range_or("total_length_m", 1e-3, kInf, c.tether.total_length_m);
     c.tether.entry_offset_m =
         r->get_in_range_or("entry_offset_m", 0.0, kInf, c.tether.entry_offset_m);
     if (c.tether.entry_offset_m >= c.tether.total_length_m)
       r->fail("entry_offset_m", "a value below tether.total_length_m");
+    c.tether.catch_speed_limit = r->get_or("catch_speed_limit", c.tether.catch_speed_limit);
   }
   if (const auto r = root.optional_child("ugv_limits")) read_limits(*r, c.ugv_limits);
   if (const auto r = root.optional_child("uav_limits")) read_limits(*r, c.uav_limits);
@@ -136,7 +137,7 @@ std::string mission_provenance_to_yaml(const MissionConfig& c) {
       {"curiosity", {"a", "b", "K"}},
       {"object_search",
        {"lambda1", "lambda2", "eta_m", "conf_floor", "conf_cap", "miss_likelihood"}},
-      {"tether", {"total_length_m", "entry_offset_m"}},
+      {"tether", {"total_length_m", "entry_offset_m", "catch_speed_limit"}},
       {"ugv_limits", {"max_velocity_mps", "max_acceleration_mps2", "max_yaw_rate_radps"}},
       {"uav_limits", {"max_velocity_mps", "max_acceleration_mps2", "max_yaw_rate_radps"}},
   };
@@ -175,7 +176,9 @@ std::string mission_config_to_yaml(const MissionConfig& c) {
   e << YAML::Key << "total_length_m" << YAML::Value
     << internal::yaml_number(c.tether.total_length_m);
   e << YAML::Key << "entry_offset_m" << YAML::Value
-    << internal::yaml_number(c.tether.entry_offset_m) << YAML::EndMap;
+    << internal::yaml_number(c.tether.entry_offset_m);
+  e << YAML::Key << "catch_speed_limit" << YAML::Value << c.tether.catch_speed_limit
+    << YAML::EndMap;
   emit_limits(e, "ugv_limits", c.ugv_limits);
   emit_limits(e, "uav_limits", c.uav_limits);
   if (!c.roles.empty()) {

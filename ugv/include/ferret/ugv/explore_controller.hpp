@@ -91,6 +91,11 @@ class ExploreController {
 
   /// Folds one IR scan into G.
   void observe_scan(const RangeScan& scan);
+  /// The base did not move as told at `pose`, driving forwards: something the IR has not
+  /// seen (or has seen in the wrong cell) holds the body. Marks the cells at the front
+  /// of the body's disc occupied in G, so the follower and the planners go round them.
+  /// Returns how many cells it marked (none for a point robot).
+  int mark_bumped(const Pose2& pose);
   /// Folds one camera frame into O; returns the cell that passed lambda2, if one did.
   std::optional<Cell> observe_frame(const CameraFrame& frame);
   /// Whether a camera frame is due at this tick (every camera_rate of the IR rate).
@@ -105,6 +110,8 @@ class ExploreController {
   Command decide(long tick, const Pose2& pose);
 
   [[nodiscard]] double tick_s() const { return dt_s_; }
+  /// A top speed below the robot's own for the paths it follows (the line's, say).
+  void set_speed_limit_mps(double v_mps) { follower_.set_speed_limit_mps(v_mps); }
   [[nodiscard]] const IrGrid& grid() const { return *grid_; }
   [[nodiscard]] const ObjectMap& objects() const { return *objects_; }
   [[nodiscard]] std::shared_ptr<const IrGrid> grid_ptr() const { return grid_; }

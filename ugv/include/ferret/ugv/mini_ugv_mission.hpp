@@ -13,6 +13,7 @@
 // The controller sees the UgvBase and the Clock only, never the simulator's truth.
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
+#include "ferret/tether_model/line_catch.hpp"
 #include "ferret/ugv/explore_controller.hpp"
 #include "ferret/ugv/ugv_base.hpp"
 
@@ -70,6 +72,10 @@ struct UgvMissionOptions {
   /// return estimate divides the way back by half the top speed.
   double battery_endurance_s = 18.0 * 60.0;
   double battery_reserve_fraction = 0.05;
+  /// On its tether, the robot's top speed is what the winch can follow should the line
+  /// catch on a corner no map holds (docs/mission.md, "The line's speed"); off by
+  /// default, the mission fills it from the winch.
+  tether::LineCatchLimit line_catch;
 
   /// Checks every value (finite, positive where it must be). Throws InputError naming
   /// the field with `source` as the file.
@@ -108,6 +114,10 @@ class MiniUgvMission {
   /// Where O confirmed the object, once it did.
   [[nodiscard]] std::optional<Eigen::Vector2d> found_W() const { return found_W_; }
   [[nodiscard]] const ExploreController& explore_controller() const { return *explore_; }
+  /// How often the base stood still when told to drive forwards (bumps into G).
+  [[nodiscard]] int bumps() const { return bumps_; }
+  /// The top speed the line allowed at the last tick (infinite: none).
+  [[nodiscard]] double line_speed_limit_mps() const { return line_speed_mps_; }
   [[nodiscard]] double tick_s() const { return explore_->tick_s(); }
   [[nodiscard]] const Eigen::Vector2d& entry_W() const { return entry_W_; }
   [[nodiscard]] int grasp_attempts() const { return grasp_attempt_; }
@@ -117,6 +127,8 @@ class MiniUgvMission {
   void finish(UgvMissionOutcome outcome, const std::string& reason);
   void begin_return(UgvMissionOutcome outcome, const std::string& reason);
   [[nodiscard]] bool battery_calls_return(const Pose2& pose);
+  /// Time to drive `way_m` home at the top speed (held to the line's limit, if on).
+  [[nodiscard]] double drive_home_s(double way_m) const;
   [[nodiscard]] VelocityCommand servo(const Pose2& pose, const CameraFrame* frame);
   [[nodiscard]] VelocityCommand guarded(const Pose2& pose, VelocityCommand c) const;
   /// The known-free way to the entry along the tether (through its wrap points);
@@ -126,6 +138,14 @@ class MiniUgvMission {
   UgvBase& base_;
   const Clock& clock_;
   GridGeometry geo_;
+  double line_speed_mps_ = std::numeric_limits<double>::infinity();
+  /// A bump: forwards at least this fast, yet stood still for kBumpTicks ticks.
+  static constexpr double kBumpMinSpeed_mps = 0.02;
+  static constexpr int kBumpTicks = 6;
+  double last_v_mps_ = 0.0;
+  Pose2 last_pose_;
+  int stalled_ticks_ = 0;
+  int bumps_ = 0;
   UgvMissionOptions options_;
   TransitionLog* log_;
   std::unique_ptr<ExploreController> explore_;

@@ -5,6 +5,7 @@
 // IR has not seen.
 
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -51,10 +52,19 @@ class PathFollower {
   VelocityCommand step(const Pose2& pose, const IrGrid& grid, double dt_s, bool& reached);
   /// The speed last commanded.
   [[nodiscard]] double speed_mps() const { return v_mps_; }
+  /// A top speed below the robot's own, from the next step on (the line's, say).
+  void set_speed_limit_mps(double v_mps) { speed_limit_mps_ = v_mps; }
 
  private:
   /// How far the occupied cells of G reach into the body's disc round `q` (0: none).
   [[nodiscard]] double body_depth_m(const Eigen::Vector2d& q, const IrGrid& grid) const;
+
+  /// The deeper of the recovery's current segment's ends: where the robot began it and
+  /// the waypoint it drives to.
+  [[nodiscard]] double segment_base_depth_m(const IrGrid& grid) const;
+  /// The robot at `p` is done with the segment to path_[next_]: the next one starts
+  /// here, no deeper than this one's ends.
+  void begin_segment(const Eigen::Vector2d& p, const IrGrid& grid);
 
   RobotOptions robot_;
   std::vector<Eigen::Vector2d> path_;
@@ -63,6 +73,8 @@ class PathFollower {
   double heading_rad_ = 0.0;
   std::size_t next_ = 0;
   double v_mps_ = 0.0;
+  double speed_limit_mps_ = std::numeric_limits<double>::infinity();
+  double segment_start_depth_m_ = 0.0;  ///< the body's depth where the segment began
 };
 
 }  // namespace ferret

@@ -37,6 +37,9 @@ struct ObjectSearchParams {
 struct TetherParams {
   double total_length_m = 15.0;  ///< L
   double entry_offset_m = 1.0;   ///< l_0: winch to the hidden-space entry point
+  /// The miniUGV drives no faster than the winch can follow should its line catch on a
+  /// corner its map does not hold (tether::LineCatchLimit; docs/mission.md).
+  bool catch_speed_limit = true;
 };
 
 /// Motion limits of one robot.
