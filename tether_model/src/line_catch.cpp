@@ -1,14 +1,16 @@
 #include "ferret/tether_model/line_catch.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "ferret/tether_model/tether_controller.hpp"
 
 namespace ferret::tether {
 
 double LineCatchLimit::stretch_m(double line_m) const {
-  // The same floor as TensionModel::stiffness_npm: a few cm of line is not a rigid rod.
-  return pull_budget_n * std::max(line_m, 0.1) / axial_stiffness_n;
+  TensionModel line;  // its spring rate, with its floor for a few cm of line
+  line.axial_stiffness_n = axial_stiffness_n;
+  return pull_budget_n / line.stiffness_npm(line_m);
 }
 
 double LineCatchLimit::speed_mps(double line_m) const {
