@@ -205,15 +205,8 @@ MissionRunSettings mission_settings_for(const RobotDescription& uav, const Robot
   // And no faster than the winch can follow a catch on a corner no map holds, before the
   // pull passes the tension limit less the hanging weight and the guard's threshold:
   // it notices after two control periods and the servo's lag.
-  if (mission.tether.catch_speed_limit) {
-    const tether::TautControlOptions& w = s.uav.winch_control;
-    const tether::TensionModel& line = w.slack_estimator.tension;
-    tether::LineCatchLimit& c = s.ugv.ugv.line_catch;
-    c.pull_budget_n = std::max(0.0, line.max_tension_n - line.hanging_weight_n - w.slack_estimator.guard_n);
-    c.axial_stiffness_n = line.axial_stiffness_n;
-    c.reaction_s = 2.0 * w.control_period_s + w.limits.velocity_time_constant_s;
-    c.spool_acceleration_mps2 = w.reel_in_guard.spool_acceleration_fraction * w.limits.max_acceleration_mps2;
-  }
+  if (mission.tether.catch_speed_limit)
+    s.ugv.ugv.line_catch = tether::LineCatchLimit::for_winch(s.uav.winch_control);
   // The winch's reel-in guard counts on the miniUGV's real limits.
   if (s.uav.winch_control.reel_in_guard.on()) {
     s.uav.winch_control.reel_in_guard.ugv_speed_mps = s.ugv.exploration.robot.max_velocity_mps;

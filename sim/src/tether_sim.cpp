@@ -508,7 +508,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
                    "ugv_velocity_error_window_s", "ugv_velocity_error_prior_log_odds",
                    "ugv_velocity_error_prior_log_odds_with_lag", "ugv_velocity_error_long_window_s",
                    "identify_ugv_response", "ugv_response_window_s",
-                   "ugv_response_prior_log_odds"});
+                   "ugv_response_prior_log_odds", "give_back_at_stopping_speed",
+                   "give_back_stiffness_factor"});
     auto& m = c.mpc;
     m.horizon = static_cast<int>(r->get_in_range_or("horizon", 2, 200, m.horizon));
     if (r->has("horizon") && r->get<double>("horizon") != m.horizon)
@@ -519,6 +520,10 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
     m.use_preview = r->get_or<bool>("use_preview", m.use_preview);
     m.rate_penalty_about_tracking_command =
         r->get_or<bool>("rate_penalty_about_tracking_command", m.rate_penalty_about_tracking_command);
+    m.give_back_at_stopping_speed =
+        r->get_or<bool>("give_back_at_stopping_speed", m.give_back_at_stopping_speed);
+    m.give_back_stiffness_factor =
+        r->get_in_range_or("give_back_stiffness_factor", 1.0, 100.0, m.give_back_stiffness_factor);
     m.weight_slack = r->get_in_range_or("weight_slack", 0.0, 1e6, m.weight_slack);
     m.weight_command_rate =
         r->get_in_range_or("weight_command_rate", 0.0, 1e6, m.weight_command_rate);

@@ -159,7 +159,8 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
       write(dir, "o.yaml",
             "control: {tension_fusion: false, observer_pose_noise_m: 0.02, "
             "servo_time_constant_s: 0.01, observer_model_offset_decay_mps: 0.3}\n"
-            "mpc: {use_preview: false, rate_penalty_about_tracking_command: false}\n"
+            "mpc: {use_preview: false, rate_penalty_about_tracking_command: false, "
+            "give_back_at_stopping_speed: false, give_back_stiffness_factor: 3}\n"
             "baseline: {use_preview: true}\n"
             "sim: {ugv_preview_s: 0.4, ugv_preview_step_s: 0.1}\n"),
       observer);
@@ -168,6 +169,8 @@ TEST(TetherRunConfig, YamlOverridesTheDefaultsAndRejectsUnknownKeys) {
   EXPECT_EQ(observer.mpc.control.limits.velocity_time_constant_s, 0.01);
   EXPECT_FALSE(observer.mpc.use_preview);
   EXPECT_FALSE(observer.mpc.rate_penalty_about_tracking_command);
+  EXPECT_FALSE(observer.mpc.give_back_at_stopping_speed);
+  EXPECT_EQ(observer.mpc.give_back_stiffness_factor, 3.0);
   EXPECT_EQ(observer.baseline.control.slack_observer.model_offset_decay_mps, 0.3);
   EXPECT_EQ(observer.mpc.control.slack_observer.model_offset_decay_mps, 0.3);
   EXPECT_TRUE(observer.baseline.use_preview);
@@ -254,6 +257,10 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
   check("sim: {ugv_preview_step_s: 0}\n", "sim.ugv_preview_step_s");
   check("mpc: {use_preview: maybe}\n", "mpc.use_preview");
   check("mpc: {rate_penalty_about_tracking_command: 2}\n", "mpc.rate_penalty_about_tracking_command");
+  check("mpc: {give_back_at_stopping_speed: soon}\n", "mpc.give_back_at_stopping_speed");
+  for (const char* bad : {".nan", "0.5", ".inf"})
+    check(std::string("mpc: {give_back_stiffness_factor: ") + bad + "}\n",
+          "mpc.give_back_stiffness_factor");
   for (const char* bad : {".nan", "-0.1", ".inf", "11"})
     check(std::string("control: {observer_model_offset_decay_mps: ") + bad + "}\n",
           "control.observer_model_offset_decay_mps");

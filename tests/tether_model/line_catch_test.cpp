@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "ferret/tether_model/tether_controller.hpp"
+
 namespace ferret::tether {
 namespace {
 
@@ -32,6 +34,19 @@ TEST(LineCatchLimit, OffWithoutABudgetAndInstantForAWinchWithoutLag) {
   // No reaction time: only the spool's acceleration, r = sqrt(2 a x).
   const LineCatchLimit instant{8.0, 1500.0, 0.0, 2.0};
   EXPECT_NEAR(instant.speed_mps(7.5), std::sqrt(2.0 * 2.0 * 0.04), 1e-12);
+}
+
+TEST(LineCatchLimit, TheWinchsLimitComesFromItsTensionLimitGuardAndServo) {
+  TautControlOptions w;
+  // 10 N less the 0.5 N hanging weight and the 1.5 N guard; two 20 ms periods and the
+  // servo's 25 ms; 0.9 of 2 m/s^2.
+  LineCatchLimit c = LineCatchLimit::for_winch(w);
+  EXPECT_DOUBLE_EQ(c.pull_budget_n, 8.0);
+  EXPECT_DOUBLE_EQ(c.axial_stiffness_n, 1500.0);
+  EXPECT_DOUBLE_EQ(c.reaction_s, 0.065);
+  EXPECT_DOUBLE_EQ(c.spool_acceleration_mps2, 1.8);
+  w.slack_estimator.tension.max_tension_n = 1.0;  // below the guard: no budget, no limit
+  EXPECT_FALSE(LineCatchLimit::for_winch(w).on());
 }
 
 }  // namespace

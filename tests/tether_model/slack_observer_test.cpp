@@ -110,6 +110,41 @@ TEST(SlackObserver, APullTheModelCannotExplainIsKeptAsAnOffsetAndForgottenSlowly
   EXPECT_EQ(obs.model_offset_m(), 0.0);
 }
 
+TEST(SlackObserver, AControllerMayGiveTheOffsetBackFasterButNeverSlowerThanItsOptions) {
+  SlackObserver obs = make_observer();
+  const double k = 1500.0 / 8.0, stretch = 5.0 / k;
+  (void)obs.estimate_m(8.0, 7.3, 0.5 + 5.0);
+  ASSERT_NEAR(obs.model_offset_m(), 0.7 + stretch, 1e-12);
+  // At 0.3 m/s: 6 mm a 20 ms cycle, and the prediction knows the rate.
+  obs.set_give_back_mps(0.3);
+  EXPECT_EQ(obs.give_back_mps(), 0.3);
+  (void)obs.estimate_m(8.0, 7.3, 0.5);
+  EXPECT_NEAR(obs.model_offset_m(), 0.7 + stretch - 0.006, 1e-12);
+  EXPECT_NEAR(obs.model_offset_after_m(0.1), obs.model_offset_m() - 0.03, 1e-12);
+  EXPECT_EQ(obs.model_offset_rate_mps(0.1), -0.3);
+  // Slower than the options', NaN or negative: the options' 0.1 m/s.
+  for (const double slow : {0.05, 0.0, -1.0, std::nan("")}) {
+    obs.set_give_back_mps(slow);
+    EXPECT_EQ(obs.give_back_mps(), 0.1) << slow;
+  }
+  const double before = obs.model_offset_m();
+  (void)obs.estimate_m(8.0, 7.3, 0.5);
+  EXPECT_NEAR(obs.model_offset_m(), before - 0.002, 1e-12);
+  // A pull holds it whatever the rate.
+  obs.set_give_back_mps(0.3);
+  (void)obs.estimate_m(8.0, 7.3, 0.5 + 5.0);
+  EXPECT_EQ(obs.model_offset_after_m(1.0), obs.model_offset_m());
+  // reset() forgets the faster rate.
+  obs.reset();
+  EXPECT_EQ(obs.give_back_mps(), 0.1);
+  // Options that never forget the offset are not overruled.
+  SlackObserver::Options never;
+  never.model_offset_decay_mps = 0.0;
+  SlackObserver keeps(SlackEstimator{}, never, 0.05, 0.02);
+  keeps.set_give_back_mps(0.3);
+  EXPECT_EQ(keeps.give_back_mps(), 0.0);
+}
+
 TEST(SlackObserver, RejectsBadOptions) {
   SlackObserver::Options o;
   EXPECT_THROW(SlackObserver(SlackEstimator{}, o, 0.0, 0.02), std::invalid_argument);

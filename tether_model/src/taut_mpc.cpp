@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "ferret/tether_model/line_catch.hpp"
+
 namespace ferret::tether {
 namespace {
 
@@ -25,6 +27,8 @@ TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLeng
       estimator_(with_own_estimation(options.control, options)) {
   if (!model_) throw std::invalid_argument("TautTetherMpc: no required-length model");
   if (options_.horizon < 2) throw std::invalid_argument("TautTetherMpc: horizon must be >= 2");
+  if (!(options_.give_back_stiffness_factor >= 1.0) || !std::isfinite(options_.give_back_stiffness_factor))
+    throw std::invalid_argument("TautTetherMpc: give_back_stiffness_factor must be >= 1");
   if (!(options_.prediction_dt_s > 0.0) || !(options_.control.control_period_s > 0.0))
     throw std::invalid_argument("TautTetherMpc: time steps must be > 0");
   if (!(options_.control.limits.velocity_time_constant_s > 0.0))
@@ -166,6 +170,13 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // The observer's correction of the geometric slack (the pose error the tension
   // reveals, or a snag's measured stretch) shifts every prediction: the tether
   // behaves as if it were that much longer.
+  if (options_.give_back_at_stopping_speed) {
+    LineCatchLimit stop = LineCatchLimit::for_winch(ctl);
+    stop.axial_stiffness_n *= options_.give_back_stiffness_factor;
+    // NaN says nothing: the doubt is assumed.
+    const bool no_doubt = obs.slack_margin_m <= stop.stretch_m(obs.released_m);
+    estimator_.slack_observer.set_give_back_mps(no_doubt ? stop.speed_mps(obs.released_m) : 0.0);
+  }
   const double slack =
       estimator_.slack_observer.estimate_m(obs.released_m, required_now, obs.winch_tension_n);
   const double bias = (obs.released_m - required_now) - slack;

@@ -81,6 +81,7 @@ void SlackObserver::reset() {
   bias_m_ = 0.0;
   variance_m2_ = steady_m2_;
   offset_m_ = 0.0;
+  give_back_mps_ = options_.model_offset_decay_mps;
   pulling_ = false;
 }
 
@@ -109,7 +110,7 @@ double SlackObserver::estimate_m(double released_m, double required_m, double wi
     bias_m_ += gain * (pull - k * mean_plus);
     variance_m2_ = std::max(variance_m2_ - gain * k * cov, 1e-12);
     bias_m_ = std::clamp(bias_m_, -max_bias_m(), max_bias_m());
-    offset_m_ = std::max(0.0, offset_m_ - options_.model_offset_decay_mps * control_period_s_);
+    offset_m_ = std::max(0.0, offset_m_ - give_back_mps_ * control_period_s_);
   } else {
     // Taut: the line is as long as it is stretched, x = pull / k past l_t, so the model
     // (with its bias) is short by g + x; the part the bias cannot hold is the offset.

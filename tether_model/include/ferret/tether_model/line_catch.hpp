@@ -7,12 +7,20 @@
 
 namespace ferret::tether {
 
+struct TautControlOptions;
+
 struct LineCatchLimit {
   /// The pull the stretch may add before the winch has caught up (N); 0: no limit.
   double pull_budget_n = 0.0;
   double axial_stiffness_n = 1500.0;     ///< EA of the line (N)
   double reaction_s = 0.065;             ///< from the catch to the spool speeding up
   double spool_acceleration_mps2 = 1.8;  ///< how fast the spool then speeds up
+
+  /// The winch's: the pull from the hanging weight up to the tension limit less the
+  /// guard's threshold (what the slack estimator calls a snag), noticed after two
+  /// control periods and the servo's lag, the spool then speeding up at the reel-in
+  /// guard's share of its acceleration.
+  [[nodiscard]] static LineCatchLimit for_winch(const TautControlOptions& winch);
 
   [[nodiscard]] bool on() const { return pull_budget_n > 0.0; }
   /// The stretch that pulls the budget on `line_m` of line: a line that may be at most

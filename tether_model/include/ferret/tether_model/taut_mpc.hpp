@@ -36,6 +36,15 @@ class TautTetherMpc final : public TetherController {
     /// control.ugv_response_identification.
     UgvResponseIdentificationOptions ugv_response_identification =
         UgvResponseIdentificationOptions::on();
+    /// A snag's length held as the observer's model offset is given back at the speed
+    /// from which the spool stops before the tension limit should the offset be real
+    /// (LineCatchLimit::for_winch, for a line `give_back_stiffness_factor` times as
+    /// stiff as modelled), while the miniUGV reports that its line cannot be longer than
+    /// its model by more than that limit's stretch (TetherObservation::slack_margin_m):
+    /// then the offset is a pin that has let go or holds still, not a corner the
+    /// model lacks. Otherwise, and with false, at the observer's own rate.
+    bool give_back_at_stopping_speed = true;
+    double give_back_stiffness_factor = 2.0;
     double weight_slack = 100.0;         ///< on (slack - reference)^2 per step, 1/m^2
     double weight_command_rate = 2.0;    ///< on (delta command)^2, (s/m)^2
     /// Along the miniUGV's plan (a preview), the command-rate penalty is on the

@@ -100,13 +100,21 @@ class SlackObserver {
   /// How much longer than the model the tether was found to be (>= 0).
   [[nodiscard]] double model_offset_m() const { return offset_m_; }
   /// The model offset `ahead_s` after the last cycle, and its rate then: given back at
-  /// model_offset_decay_mps unless the last cycle's line was pulling (then held).
+  /// give_back_mps() unless the last cycle's line was pulling (then held).
   [[nodiscard]] double model_offset_after_m(double ahead_s) const {
-    return pulling_ ? offset_m_ : std::max(0.0, offset_m_ - options_.model_offset_decay_mps * ahead_s);
+    return pulling_ ? offset_m_ : std::max(0.0, offset_m_ - give_back_mps_ * ahead_s);
   }
   [[nodiscard]] double model_offset_rate_mps(double ahead_s) const {
-    return model_offset_after_m(ahead_s) > 0.0 && !pulling_ ? -options_.model_offset_decay_mps : 0.0;
+    return model_offset_after_m(ahead_s) > 0.0 && !pulling_ ? -give_back_mps_ : 0.0;
   }
+  /// The rate the model offset is given back at from the next cycle on: never below
+  /// model_offset_decay_mps (NaN or less: that rate; and never when that is 0). A controller that knows the
+  /// offset cannot be a corner its model lacks gives it back faster (TautTetherMpc).
+  void set_give_back_mps(double rate_mps) {
+    const double base = options_.model_offset_decay_mps;
+    give_back_mps_ = base > 0.0 && rate_mps > base ? rate_mps : base;
+  }
+  [[nodiscard]] double give_back_mps() const { return give_back_mps_; }
   [[nodiscard]] double bias_variance_m2() const { return variance_m2_; }
   /// Largest |b| the observer accepts as pose error (larger: not pose noise).
   [[nodiscard]] double max_bias_m() const;
@@ -119,6 +127,7 @@ class SlackObserver {
   double steady_m2_ = 0.0;     ///< variance of b without tension information
   double bias_m_ = 0.0, variance_m2_ = 0.0;
   double offset_m_ = 0.0;
+  double give_back_mps_ = 0.0;  ///< the model offset's rate of decay (set_give_back_mps)
   bool pulling_ = false;  ///< the last cycle's pull was above the guard
   double control_period_s_ = 0.02;
 };
