@@ -11,10 +11,12 @@ namespace ferret::tether {
 LineCatchLimit LineCatchLimit::for_winch(const TautControlOptions& w) {
   const TensionModel& line = w.slack_estimator.tension;
   LineCatchLimit c;
-  c.pull_budget_n = std::max(0.0, line.max_tension_n - line.hanging_weight_n - w.slack_estimator.guard_n);
+  c.pull_budget_n =
+      std::max(0.0, line.max_tension_n - line.hanging_weight_n - w.slack_estimator.guard_n);
   c.axial_stiffness_n = line.axial_stiffness_n;
   c.reaction_s = 2.0 * w.control_period_s + w.limits.velocity_time_constant_s;
-  c.spool_acceleration_mps2 = w.reel_in_guard.spool_acceleration_fraction * w.limits.max_acceleration_mps2;
+  c.spool_acceleration_mps2 =
+      w.reel_in_guard.spool_acceleration_fraction * w.limits.max_acceleration_mps2;
   return c;
 }
 

@@ -27,7 +27,8 @@ TautTetherMpc::TautTetherMpc(Options options, std::shared_ptr<const RequiredLeng
       estimator_(with_own_estimation(options.control, options)) {
   if (!model_) throw std::invalid_argument("TautTetherMpc: no required-length model");
   if (options_.horizon < 2) throw std::invalid_argument("TautTetherMpc: horizon must be >= 2");
-  if (!(options_.give_back_stiffness_factor >= 1.0) || !std::isfinite(options_.give_back_stiffness_factor))
+  if (!(options_.give_back_stiffness_factor >= 1.0) ||
+      !std::isfinite(options_.give_back_stiffness_factor))
     throw std::invalid_argument("TautTetherMpc: give_back_stiffness_factor must be >= 1");
   if (!(options_.prediction_dt_s > 0.0) || !(options_.control.control_period_s > 0.0))
     throw std::invalid_argument("TautTetherMpc: time steps must be > 0");

@@ -108,8 +108,9 @@ class SlackObserver {
     return model_offset_after_m(ahead_s) > 0.0 && !pulling_ ? -give_back_mps_ : 0.0;
   }
   /// The rate the model offset is given back at from the next cycle on: never below
-  /// model_offset_decay_mps (NaN or less: that rate; and never when that is 0). A controller that knows the
-  /// offset cannot be a corner its model lacks gives it back faster (TautTetherMpc).
+  /// model_offset_decay_mps (NaN or less: that rate), and not at all when that is 0. A
+  /// controller that knows the offset cannot be a corner its model lacks gives it back
+  /// faster (TautTetherMpc).
   void set_give_back_mps(double rate_mps) {
     const double base = options_.model_offset_decay_mps;
     give_back_mps_ = base > 0.0 && rate_mps > base ? rate_mps : base;
