@@ -123,7 +123,7 @@ def mission_seeds():
         "uav:\n  winch:\n    backend: hw\n    serial: {port: /dev/ttyUSB0, baud: 57600, id: 1}\n"
         "    spool: {radius_m: 0.09, payout_direction: -1, max_speed_mps: 0.6}\n"
         "  flight_controller: {backend: hw, address: 192.168.1.20:14550}\n")
-    put(t, "backends_sim.yaml", "ugv: {base: {backend: sim}}\nuav: {winch: {backend: sim}, "
+    put(t, "backends_sim.yaml", "ugv: {base: {backend: sim, stall_time_s: 0.8}}\nuav: {winch: {backend: sim}, "
         "flight_controller: {backend: sim}}\n")
     put(t, "backends_bad.yaml", "ugv: {base: {backend: real, serial: {port: ''}}}\n"
         "uav: {flight_controller: {backend: hw, address: 'host:99999'}, winch: }\n")

@@ -72,6 +72,8 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   // does not (l_0 = 0: no hover release) is named in the mission file.
   settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
   settings.ugv.ugv.explore.planner = o.planner;
+  // How long the base may stand still when told to drive is the base's (ugv.base).
+  settings.ugv.ugv.bump_time_s = s.backends.ugv_base.stall_time_s;
   return s;
 }
 

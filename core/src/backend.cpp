@@ -16,9 +16,10 @@ Backend read_backend(const yaml::MapReader& section) {
   section.fail("backend", kExpected, yaml::internal::describe(section.node()["backend"]));
 }
 
-bool has_device_settings(const yaml::MapReader& section) {
-  const bool has_backend = section.node()["backend"].IsDefined();
-  return section.node().size() > (has_backend ? 1u : 0u);
+bool has_device_settings(const yaml::MapReader& section, std::initializer_list<const char*> common) {
+  std::size_t shared = section.node()["backend"].IsDefined() ? 1u : 0u;
+  for (const char* key : common) shared += section.node()[key].IsDefined() ? 1u : 0u;
+  return section.node().size() > shared;
 }
 
 }  // namespace ferret

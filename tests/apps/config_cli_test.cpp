@@ -218,6 +218,8 @@ TEST(ConfigCli, BadMissionFiles) {
        "tether.entry_offset_m"},
       {"catch_not_bool.yaml", "tether:\n  catch_speed_limit: sometimes\n",
        "tether.catch_speed_limit: expected true or false"},
+      {"stall_zero.yaml", "ugv:\n  base:\n    stall_time_s: 0\n",
+       "ugv.base.stall_time_s: expected a number in [0.05, 10]"},
       {"syntax.yaml", "tether: [1, 2\n", "valid YAML"},
   };
   for (const auto& c : cases) {
@@ -344,7 +346,8 @@ TEST(ConfigCli, EveryInterfaceSaysItsBackendSimByDefault) {
   const auto r = run_cli("config --dump --mission '" + dir / "mission.yaml" + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out,
-                       "backends:\n  ugv:\n    base:\n      backend: sim\n  uav:\n    winch:\n"
+                       "backends:\n  ugv:\n    base:\n      backend: sim\n      stall_time_s: 0.3\n"
+                       "  uav:\n    winch:\n"
                        "      backend: sim\n    flight_controller:\n      backend: sim\n"))
       << r.out;
 }

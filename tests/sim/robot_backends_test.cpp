@@ -99,7 +99,7 @@ TEST(RobotBackends, TheDumpReadsBackToTheSameSettings) {
   // Every interface says its backend, also when the file said nothing.
   const std::string defaults = robot_backends_to_yaml(parse(""));
   EXPECT_EQ(defaults,
-            "ugv:\n  base:\n    backend: sim\nuav:\n  winch:\n    backend: sim\n"
+            "ugv:\n  base:\n    backend: sim\n    stall_time_s: 0.3\nuav:\n  winch:\n    backend: sim\n"
             "  flight_controller:\n    backend: sim\n");
 }
 

@@ -384,9 +384,12 @@ TEST(UgvMissionStates, AServoThatNeverClosesInTimesOutOfTrackAndTheTurnTimesOut)
 
 // A room 3 x 2 m whose IR sees its walls but not a low kerb across it at x = 2 m (below
 // the beams): the base stops the 12 cm body at the kerb, as SimUgvBase stops it at a wall.
+// A sluggish base (start_delay_s) stands still for that long when told to drive from rest.
 class KerbBase final : public UgvBase {
  public:
   static constexpr double kKerb_m = 2.0, kRadius_m = 0.06, kTick_s = 0.05;
+  explicit KerbBase(double kerb_m = kKerb_m, double start_delay_s = 0.0)
+      : kerb_m_(kerb_m), start_delay_s_(start_delay_s) {}
   [[nodiscard]] std::string backend() const override { return "test"; }
   [[nodiscard]] Pose2 odometry() const override { return pose_; }
   [[nodiscard]] double speed_mps() const override { return v_mps_; }
@@ -412,8 +415,13 @@ class KerbBase final : public UgvBase {
     return f;
   }
   void command_velocity(double v, double w) override {
+    if (v > 0.0 && v_mps_ <= 0.0 && waited_s_ < start_delay_s_ - 1e-9) {
+      waited_s_ += kTick_s;  // from rest, nothing moves yet
+      return;
+    }
+    waited_s_ = 0.0;
     const Pose2 next = integrate_unicycle(pose_, {v, w}, kTick_s);
-    const bool blocked = next.x_m + kRadius_m > kKerb_m && next.x_m > pose_.x_m;
+    const bool blocked = next.x_m + kRadius_m > kerb_m_ && next.x_m > pose_.x_m;
     pose_ = blocked ? Pose2{pose_.x_m, pose_.y_m, next.yaw_rad} : next;
     v_mps_ = blocked ? 0.0 : v;
     stalled_ticks_ = blocked && v > 0.0 ? stalled_ticks_ + 1 : 0;
@@ -424,6 +432,7 @@ class KerbBase final : public UgvBase {
   [[nodiscard]] int longest_stall_ticks() const { return longest_stall_; }
 
  private:
+  double kerb_m_, start_delay_s_, waited_s_ = 0.0;
   Pose2 pose_{1.0, 1.0, 0.0};
   double v_mps_ = 0.0;
   int stalled_ticks_ = 0, longest_stall_ = 0;
@@ -451,6 +460,47 @@ TEST(UgvMissionStates, ABaseThatStandsStillWhenToldToDriveIsABumpAndTheRobotStop
   // follower, trusting G, pressed on until the search's stuck detection: 4 s, 80 ticks).
   EXPECT_LE(base.longest_stall_ticks(), 12);
   EXPECT_LT(base.odometry().x_m + KerbBase::kRadius_m, KerbBase::kKerb_m + 1e-9);
+}
+
+TEST(UgvMissionStates, ABaseSlowerToStartThanItsStallTimeIsNotABump) {
+  // The room without its kerb, and a base that starts 0.5 s after a command from rest:
+  // held to the default 0.3 s every start is a bump; given 0.8 s (the mission YAML's
+  // ugv.base.stall_time_s) none is. The kerb is still met with the longer time.
+  struct Run {
+    int bumps;
+    double x_m;
+  };
+  const auto run = [](double kerb_m, double bump_time_s) {
+    KerbBase base(kerb_m, 0.5);
+    SimClock clock;
+    UgvMissionOptions o;
+    o.explore.robot.body_radius_m = KerbBase::kRadius_m;
+    o.explore.robot.max_velocity_mps = 0.3;
+    o.explore_timeout_s = 60.0;
+    o.bump_time_s = bump_time_s;
+    MiniUgvMission mission(base, clock, {0.0, 0.0, 0.025, 120, 80}, o, nullptr);
+    mission.start();
+    for (int k = 1; k < 1200 && !mission.done() && !mission.wants_retraction(); ++k) {
+      mission.tick();
+      clock.set(k * mission.tick_s());
+    }
+    return Run{mission.bumps(), base.odometry().x_m};
+  };
+  EXPECT_GE(run(9.0, 0.3).bumps, 1);
+  EXPECT_EQ(run(9.0, 0.8).bumps, 0);
+  const Run kerb = run(KerbBase::kKerb_m, 0.8);
+  EXPECT_GE(kerb.bumps, 1);
+  EXPECT_LT(kerb.x_m + KerbBase::kRadius_m, KerbBase::kKerb_m + 1e-9);
+  UgvMissionOptions bad;
+  for (const double t : {0.0, 0.01, 11.0, std::nan("")}) {
+    bad.bump_time_s = t;
+    try {
+      bad.validate("mission.yaml");
+      ADD_FAILURE() << t;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "ugv.base.stall_time_s") << t;
+    }
+  }
 }
 
 TEST(UgvMissionStates, StopAbortsFromAnyStateAndTicksAfterDoneDoNothing) {

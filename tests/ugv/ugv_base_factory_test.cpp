@@ -59,5 +59,33 @@ TEST(UgvBaseFactory, TheBackendKeyAloneIsNotHardwareSettings) {
   EXPECT_THROW((void)parse("backend: hw\n"), InputError);  // hw needs its port and camera
 }
 
+TEST(UgvBaseFactory, TheStallTimeIsEveryBackendsAndChecked) {
+  EXPECT_EQ(parse("backend: sim\n").stall_time_s, 0.3);
+  // Not a device setting: the simulated base stays without hardware settings.
+  const UgvBaseConfig sim = parse("backend: sim\nstall_time_s: 0.8\n");
+  EXPECT_EQ(sim.stall_time_s, 0.8);
+  EXPECT_FALSE(sim.hw);
+  const UgvBaseConfig hw = parse(
+      "backend: hw\nstall_time_s: 1.5\nserial: {port: /dev/ttyAMA0}\ncamera: {device: '0'}\n");
+  EXPECT_EQ(hw.stall_time_s, 1.5);
+  ASSERT_TRUE(hw.hw);
+  EXPECT_EQ(hw.hw->serial.port, "/dev/ttyAMA0");
+  for (const char* bad : {"0", "0.01", "11", ".nan", ".inf", "-1", "soon", "[1]"}) {
+    try {
+      (void)parse(std::string("backend: sim\nstall_time_s: ") + bad + "\n");
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "ugv.base.stall_time_s") << bad;
+    }
+  }
+  // A sim section still refuses a key nobody reads.
+  try {
+    (void)parse("backend: sim\nstall_tme_s: 1\n");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "ugv.base.stall_tme_s");
+  }
+}
+
 }  // namespace
 }  // namespace ferret::ugv

@@ -77,7 +77,8 @@ HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& s
   HwUgvConfig c;
   c.source = source;
   const yaml::MapReader root(node, source, path);
-  root.allow_only({"backend", "serial", "link", "camera", "epm", "odometry"});
+  // stall_time_s is the mission's (ugv_base_factory.hpp), read for every backend.
+  root.allow_only({"backend", "stall_time_s", "serial", "link", "camera", "epm", "odometry"});
   (void)read_backend(root);  // checked here too; which one runs is ugv_base_config's choice
 
   // Required sections are asked for by name, so a missing one says which.

@@ -3,6 +3,7 @@
 // Each interface (UgvBase, Winch, FlightController) has a section in the mission YAML
 // whose `backend` key picks one, and a factory that builds it (docs/robots.md).
 
+#include <initializer_list>
 #include <string_view>
 
 #include "ferret/core/yaml_config.hpp"
@@ -21,8 +22,10 @@ enum class Backend {
 /// a value that is not a string.
 [[nodiscard]] Backend read_backend(const yaml::MapReader& section);
 
-/// True when the section holds more than its `backend` key: the real device's settings,
-/// which are checked whichever backend runs (switching a file to the simulator is one line).
-[[nodiscard]] bool has_device_settings(const yaml::MapReader& section);
+/// True when the section holds more than its `backend` key and the keys in `common` (what
+/// every backend reads): the real device's settings, which are checked whichever backend
+/// runs (switching a file to the simulator is one line).
+[[nodiscard]] bool has_device_settings(const yaml::MapReader& section,
+                                       std::initializer_list<const char*> common = {});
 
 }  // namespace ferret

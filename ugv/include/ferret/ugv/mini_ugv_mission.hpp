@@ -72,6 +72,10 @@ struct UgvMissionOptions {
   /// return estimate divides the way back by half the top speed.
   double battery_endurance_s = 18.0 * 60.0;
   double battery_reserve_fraction = 0.05;
+  /// A bump: told to drive forwards, the base has not moved for this long (the mission
+  /// YAML's ugv.base.stall_time_s). Longer than the base takes to move from rest on its
+  /// odometry, or every start is a bump.
+  double bump_time_s = 0.3;
   /// On its tether, the robot's top speed is what the winch can follow should the line
   /// catch on a corner no map holds (docs/mission.md, "The line's speed"); off by
   /// default, the mission fills it from the winch.
@@ -139,9 +143,9 @@ class MiniUgvMission {
   const Clock& clock_;
   GridGeometry geo_;
   double line_speed_mps_ = std::numeric_limits<double>::infinity();
-  /// A bump: forwards at least this fast, yet stood still for kBumpTicks ticks.
+  /// A bump: forwards at least this fast, yet stood still for
+  /// UgvMissionOptions::bump_time_s.
   static constexpr double kBumpMinSpeed_mps = 0.02;
-  static constexpr int kBumpTicks = 6;
   double last_v_mps_ = 0.0;
   Pose2 last_pose_;
   int stalled_ticks_ = 0;

@@ -27,6 +27,10 @@ namespace ferret::ugv {
 
 struct UgvBaseConfig {
   Backend backend = Backend::kSim;
+  /// How long the base may stand still when told to drive forwards before the mission
+  /// takes it to be held by something (a bump, UgvMissionOptions::bump_time_s): longer
+  /// than the base takes from a command to motion on its odometry, from rest. Any backend.
+  double stall_time_s = 0.3;
   /// The hardware settings: required with `backend: hw`; with `sim`, checked when the
   /// section has them (switching a robot's file to the simulator is one line), unused.
   std::optional<HwUgvConfig> hw;
@@ -34,7 +38,8 @@ struct UgvBaseConfig {
 
 /// Reads `ugv.base` (`node` may be undefined or null: all defaults, `sim`). Throws
 /// InputError naming the file and the field: a backend other than sim or hw, `hw`
-/// without serial.port or camera.device, and every error of hw_ugv_config_from_yaml.
+/// without serial.port or camera.device, a stall_time_s outside [0.05, 10] s, and every
+/// error of hw_ugv_config_from_yaml.
 [[nodiscard]] UgvBaseConfig ugv_base_config_from_yaml(const YAML::Node& node,
                                                       const std::string& source);
 /// The section as a mapping (backend first) that ugv_base_config_from_yaml reads back.
