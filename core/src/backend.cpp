@@ -16,7 +16,8 @@ Backend read_backend(const yaml::MapReader& section) {
   section.fail("backend", kExpected, yaml::internal::describe(section.node()["backend"]));
 }
 
-bool has_device_settings(const yaml::MapReader& section, std::initializer_list<const char*> common) {
+bool has_device_settings(const yaml::MapReader& section,
+                         std::initializer_list<const char*> common) {
   std::size_t shared = section.node()["backend"].IsDefined() ? 1u : 0u;
   for (const char* key : common) shared += section.node()[key].IsDefined() ? 1u : 0u;
   return section.node().size() > shared;

@@ -99,8 +99,8 @@ TEST(RobotBackends, TheDumpReadsBackToTheSameSettings) {
   // Every interface says its backend, also when the file said nothing.
   const std::string defaults = robot_backends_to_yaml(parse(""));
   EXPECT_EQ(defaults,
-            "ugv:\n  base:\n    backend: sim\n    stall_time_s: 0.3\nuav:\n  winch:\n    backend: sim\n"
-            "  flight_controller:\n    backend: sim\n");
+            "ugv:\n  base:\n    backend: sim\n    stall_time_s: 0.3\n"
+            "uav:\n  winch:\n    backend: sim\n  flight_controller:\n    backend: sim\n");
 }
 
 TEST(RobotBackends, SimulatedWithTheRobotsSettingsStillChecksThem) {

@@ -77,7 +77,8 @@ void UgvMissionOptions::validate(const std::string& source) const {
   positive(return_timeout_min_s, "ugv.return_timeout_min_s", "s");
   positive(retract_timeout_s, "ugv.retract_timeout_s", "s");
   positive(battery_endurance_s, "ugv.battery_endurance_s", "s");
-  check_number(bump_time_s, NumberRange::closed(0.05, 10.0, "s"), source, "ugv.base.stall_time_s");
+  check_number(bump_time_s, NumberRange::closed(0.05, 10.0, "s"), source,
+               "ugv.base.stall_time_s");
   check_number(battery_reserve_fraction, NumberRange::closed(0.0, 0.9), source,
                "ugv.battery_reserve_fraction");
   check_number(line_catch.pull_budget_n, NumberRange::non_negative(1e4, "N"), source,
