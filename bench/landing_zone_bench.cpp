@@ -13,7 +13,9 @@
 // rendered frames' D415 model (depth_noise_per_m, depth_dropout) or their size
 // (width_px, height_px: 640 x 480 unless set; the M100's URDF camera is 1280 x 720) or
 // the frames a hover fuses (frames: 1 unless set; each further frame drifted by up to
-// hover_drift_m = 0.03 and hover_drift_deg = 0.5 per axis).
+// hover_drift_m = 0.03 and hover_drift_deg = 0.5 per axis) and how long it looks when
+// they show no safe zone (frames_max: twice the frames, judged again, up to this many, as
+// the mission's uav.survey_frames_max; the PX4 rule sees the first `frames`).
 //
 // Besides the truth's "safe zone in view", the table counts the frames with a zone that
 // is safe with the detector's own limits and margin (by the exact solids, in view): what
@@ -24,6 +26,7 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -140,7 +143,7 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
   // The scene's keys, read below.
   static const std::set<std::string> kSceneKeys = {
       "truth_radius_m", "view_radius_m", "depth_noise_per_m", "depth_dropout",  "width_px",
-      "height_px",      "frames",        "hover_drift_m",     "hover_drift_deg"};
+      "height_px",      "frames",        "hover_drift_m",     "hover_drift_deg", "frames_max"};
   for (const auto& [k, v] : set) {
     if (const auto f = kDetectorFields.find(k); f != kDetectorFields.end()) {
       s.options.*(f->second) = v;
@@ -164,6 +167,13 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
     so.depth.dropout_fraction = r->second;
   if (const auto r = set.find("frames"); r != set.end())
     so.frames_per_view = std::max(1, static_cast<int>(r->second));
+  // A hover that finds nothing in `frames` looks longer, as the mission's survey does
+  // (uav.survey_frames_max): twice the frames each time, up to frames_max.
+  const int first_frames = so.frames_per_view;
+  if (const auto r = set.find("frames_max"); r != set.end())
+    so.frames_per_view = std::clamp(static_cast<int>(r->second), first_frames, kMaxHoverFrames);
+  const int most_frames = so.frames_per_view;
+  long frames_judged = 0;
   if (const auto r = set.find("hover_drift_m"); r != set.end()) so.hover_drift_m = r->second;
   if (const auto r = set.find("hover_drift_deg"); r != set.end())
     so.hover_drift_rad = deg_to_rad(r->second);
@@ -174,7 +184,7 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
   // The truth's view round a safe disc stays the one-frame detector's, so that the
   // frames with a safe zone in view are the same whatever the hover.
   const LandingZoneDetector::Options& judged =
-      det.options_for_frames(static_cast<std::size_t>(so.frames_per_view));
+      det.options_for_frames(static_cast<std::size_t>(first_frames));
   LandingCriteria own;
   own.max_slope_deg = s.options.max_slope_deg - s.options.slope_allowance_deg;
   own.max_step_m = s.options.max_step_m - s.options.step_allowance_m;
@@ -187,13 +197,26 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
     const LandingScene scene = landing_scene(seed, i, s.sensor, s.camera, so);
     for (const auto& f : scene.frames) {
       const std::string key = fmt::format("{:.0f} m", f.height_m);
-      std::vector<PosedDepthFrame> hover{{&f.depth, f.X_WC}};
+      std::vector<PosedDepthFrame> all{{&f.depth, f.X_WC}};
       for (std::size_t m = 0; m < f.more_depth.size(); ++m)
-        hover.push_back({&f.more_depth[m], f.more_X_WC[m]});
+        all.push_back({&f.more_depth[m], f.more_X_WC[m]});
+      const auto first = [&all](int n) {
+        return std::vector<PosedDepthFrame>(
+            all.begin(), all.begin() + std::min(static_cast<std::ptrdiff_t>(n),
+                                                static_cast<std::ptrdiff_t>(all.size())));
+      };
+      const std::vector<PosedDepthFrame> hover = first(first_frames);
       const bool clear =
           scene.truth.safe_zone_in_view(own_radius_m, so.view_radius_m, own, s.camera, f.X_WC);
       auto t0 = std::chrono::steady_clock::now();
-      const LandingResult a = det.detect(hover, s.camera);
+      LandingResult a = det.detect(hover, s.camera);
+      int taken = first_frames;
+      for (int next = hover_frames_after_miss(taken, most_frames); a.zones.empty() && next > taken;
+           next = hover_frames_after_miss(taken, most_frames)) {
+        taken = next;
+        a = det.detect(first(taken), s.camera);
+      }
+      frames_judged += taken;
       auto t1 = std::chrono::steady_clock::now();
       const LandingResult b = base.detect(hover, s.camera, f.X_WB.translation());
       auto t2 = std::chrono::steady_clock::now();
@@ -241,8 +264,10 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
     }
   }
   std::printf(
-      "terrains: %d (seed %llu), views: %d of %d frame(s), camera %s %dx%d, footprint %.3f m\n\n",
-      terrains, static_cast<unsigned long long>(seed), ours["all"].frames, so.frames_per_view,
+      "terrains: %d (seed %llu), views: %d of %d frame(s) (up to %d; %.2f judged a view), camera "
+      "%s %dx%d, footprint %.3f m\n\n",
+      terrains, static_cast<unsigned long long>(seed), ours["all"].frames, first_frames,
+      most_frames, static_cast<double>(frames_judged) / std::max(1, ours["all"].frames),
       s.sensor.name.c_str(), s.camera.width_px, s.camera.height_px, so.footprint_radius_m);
   std::printf(
       "| detector | height | views | safe zone in view (truth) | zone found there | "
@@ -300,6 +325,10 @@ int main(int argc, char** argv) {
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("landing_zone/ferret_hover8/1280x720", ferret::BM_Detector, 1280,
                                720, false, 8)
+      ->Unit(benchmark::kMillisecond);
+  // The most a survey hover judges (uav.survey_frames_max), fused and judged once.
+  benchmark::RegisterBenchmark("landing_zone/ferret_hover32/640x480", ferret::BM_Detector, 640, 480,
+                               false, 32)
       ->Unit(benchmark::kMillisecond);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

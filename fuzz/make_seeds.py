@@ -128,7 +128,7 @@ def mission_seeds():
     put(t, "backends_bad.yaml", "ugv: {base: {backend: real, serial: {port: ''}}}\n"
         "uav: {flight_controller: {backend: hw, address: 'host:99999'}, winch: }\n")
     put(t, "uav_marker.yaml", "uav:\n  marker: {family: apriltag, dictionary: tag25h9, size_m: 0.2}\n"
-        "  survey_frames: 8\n")
+        "  survey_frames: 8\n  survey_frames_max: 32\n")
 
 
 def world_seeds():

@@ -69,6 +69,7 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   o.search_altitude_m = 4.75;
   o.confirm_detections = 3;
   o.survey_frames = 12;
+  o.survey_frames_max = 24;
   o.no_landing_zone = "skip";
   o.battery_reserve_fraction = 0.1;  // 0.1 is not exact in binary: the text must round trip
   o.return_timeout_s = 412.5;
@@ -84,6 +85,7 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   EXPECT_EQ(again.search_area_m, o.search_area_m);
   EXPECT_EQ(again.no_landing_zone, "skip");
   EXPECT_EQ(again.survey_frames, 12);
+  EXPECT_EQ(again.survey_frames_max, 24);
   EXPECT_TRUE(again.marker_from_mission);
   EXPECT_EQ(again.marker.dictionary.family, MarkerFamily::kAprilTag);
   EXPECT_EQ(again.marker.dictionary.name, "tag25h9");
@@ -106,6 +108,9 @@ TEST(UavMissionConfig, BadValuesNameTheFileAndTheField) {
       {"uav:\n  survey_frames: 65\n", "uav.survey_frames"},
       {"uav:\n  survey_frames: 2.5\n", "uav.survey_frames"},
       {"uav:\n  survey_frames: 1e9\n", "uav.survey_frames"},
+      {"uav:\n  survey_frames_max: 0\n", "uav.survey_frames_max"},
+      {"uav:\n  survey_frames_max: 65\n", "uav.survey_frames_max"},
+      {"uav:\n  survey_frames_max: .inf\n", "uav.survey_frames_max"},
       {"uav:\n  search_altitude_m: .nan\n", "uav.search_altitude_m"},
       {"uav:\n  cruise_speed_mps: -1\n", "uav.cruise_speed_mps"},
       {"uav:\n  flight_endurance_s:\n", "uav.flight_endurance_s"},

@@ -69,6 +69,9 @@ void UavMissionOptions::validate(const std::string& source) const {
   if (survey_frames < 1 || survey_frames > kMaxHoverFrames)
     throw InputError(source, "uav.survey_frames", "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
                      std::to_string(survey_frames));
+  if (survey_frames_max < 1 || survey_frames_max > kMaxHoverFrames)
+    throw InputError(source, "uav.survey_frames_max", "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
+                     std::to_string(survey_frames_max));
   if (release != "land" && release != "hover") throw InputError(source, "uav.release", "land or hover", release);
   if (no_landing_zone != "hover" && no_landing_zone != "skip")
     throw InputError(source, "uav.no_landing_zone", "hover or skip", no_landing_zone);
@@ -205,6 +208,7 @@ void UavMission::enter(UavMissionState next, const std::string& reason) {
   state_since_s_ = clock_.now_s();
   settled_since_s_ = -1.0;
   survey_frames_.clear();  // a survey's frames are one hover's
+  survey_frames_needed_ = options_.survey_frames;
 }
 
 void UavMission::finish(UavMissionOutcome outcome, const std::string& reason) {
@@ -482,11 +486,19 @@ void UavMission::tick() {
     case UavMissionState::kSurvey: {
       if (in_state_s > options_.survey_timeout_s) return choose_release("survey timed out");
       // The hover's frames, one a cycle, fused before the ground is judged.
-      if (!survey_frames_.add(hw_.cameras.depth_frame(), options_.survey_frames)) return;
+      if (!survey_frames_.add(hw_.cameras.depth_frame(),
+                              std::max(survey_frames_needed_, options_.survey_frames)))
+        return;
       LandingZoneDetector::Options lo = options_.landing;
       lo.p_WE = current().opening.p_WE;
       lo.reach_m = options_.tether.entry_offset_m;
       const LandingResult zones = LandingZoneDetector(lo).detect(survey_frames_.posed(), depth_camera_);
+      const int taken = static_cast<int>(survey_frames_.size());
+      if (zones.zones.empty() && hover_frames_after_miss(taken, options_.survey_frames_max) > taken) {
+        // Nothing safe in these frames: keep them and look longer before the next view.
+        survey_frames_needed_ = hover_frames_after_miss(taken, options_.survey_frames_max);
+        return;
+      }
       survey_frames_.clear();
       if (!zones.zones.empty()) {
         HiddenSpaceVisit& v = current();
@@ -497,13 +509,16 @@ void UavMission::tick() {
         if (fly_to(release_W_, 1.0, false, v.opening.entry_yaw_rad))
           return enter(UavMissionState::kLand, "landing zone " + std::to_string(c.x()).substr(0, 6) + ", " +
                                                    std::to_string(c.y()).substr(0, 6) + " (slope " +
-                                                   std::to_string(v.landing_zone->slope_deg).substr(0, 4) + " deg)");
+                                                   std::to_string(v.landing_zone->slope_deg).substr(0, 4) + " deg, " +
+                                                   std::to_string(taken) + " frames)");
       }
       if (++survey_view_ < options_.survey_views) {
         start_survey_view();
-        return enter(UavMissionState::kApproach, "no safe landing zone in view (" + zones.reason + "), next view");
+        return enter(UavMissionState::kApproach, "no safe landing zone in view (" + zones.reason + ") in " +
+                                                     std::to_string(taken) + " frames, next view");
       }
-      return choose_release("no safe landing zone within reach of the opening");
+      return choose_release("no safe landing zone within reach of the opening (" + std::to_string(taken) +
+                            " frames a view)");
     }
 
     case UavMissionState::kLand: {

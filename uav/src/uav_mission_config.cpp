@@ -44,11 +44,12 @@ constexpr std::array<std::pair<std::string_view, double Options::*>, 26> kNumber
     {"deliver_timeout_s", &Options::deliver_timeout_s},
     {"return_timeout_s", &Options::return_timeout_s},
 }};
-constexpr std::array<std::pair<std::string_view, int Options::*>, 4> kIntegers{{
+constexpr std::array<std::pair<std::string_view, int Options::*>, 5> kIntegers{{
     {"passes", &Options::passes},
     {"confirm_detections", &Options::confirm_detections},
     {"survey_views", &Options::survey_views},
     {"survey_frames", &Options::survey_frames},
+    {"survey_frames_max", &Options::survey_frames_max},
 }};
 constexpr std::array<std::pair<std::string_view, std::string Options::*>, 3> kChoices{{
     {"release", &Options::release},

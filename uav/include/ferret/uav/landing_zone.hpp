@@ -43,6 +43,14 @@ struct PosedDepthFrame {
 /// uav.survey_frames and `ferret detect landing` keep to it.
 inline constexpr int kMaxHoverFrames = 64;
 
+/// A survey hover that judged `taken` frames and found no safe zone looks longer before it
+/// gives up: the frames to judge next (twice as many, at most `most`), or `taken` once
+/// `most` are in. A fused cell's noise falls with the square root of the frames, so a zone
+/// that 8 frames' noise hides shows in 16 or 32 (docs/perception.md).
+[[nodiscard]] constexpr int hover_frames_after_miss(int taken, int most) {
+  return taken >= most ? taken : (2 * taken < most ? 2 * taken : most);
+}
+
 /// A hover's depth frames fused into one, at the first frame's pose (a temporal filter):
 /// every return of every frame is re-projected into the first frame's pixels, and a
 /// pixel's depth is the mean of the returns that land on it (0 where none does). The

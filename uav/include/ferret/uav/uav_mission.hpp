@@ -97,6 +97,11 @@ struct UavMissionOptions {
   /// (fuse_depth_frames: the noise of a cell falls with their square root; 8 frames of a
   /// D415 at 30 Hz take 0.27 s).
   int survey_frames = 8;
+  /// A hover that finds no safe zone in its frames looks longer before it tries the next
+  /// view: twice the frames (all of them fused), again, up to this many
+  /// (hover_frames_after_miss; at most survey_frames: never). What 8 frames' noise hides
+  /// at 4 m, 16 or 32 show: 32 frames of a D415 at 30 Hz take 1.07 s.
+  int survey_frames_max = 32;
   /// How the miniUGV goes down: "land" (beside the opening, on a safe zone the depth
   /// frames show within l_0 of it; none: no_landing_zone decides) or "hover" (always from
   /// a hover over the opening, no survey: for ground the team knows is unsafe).
@@ -293,8 +298,10 @@ class UavMission {
   std::vector<HiddenSpaceVisit> visits_;
   int current_ = -1;
   int survey_view_ = 0;
-  /// The depth frames taken so far at this survey point (up to survey_frames).
+  /// The depth frames taken so far at this survey point, and how many it judges next
+  /// (survey_frames, more after a miss: survey_frames_max).
   SurveyFrames survey_frames_;
+  int survey_frames_needed_ = 0;
   double settled_since_s_ = -1.0;
   Eigen::Vector3d release_W_ = Eigen::Vector3d::Zero();
   bool carrying_ = false;
