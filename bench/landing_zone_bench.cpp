@@ -69,28 +69,76 @@ LandingSceneOptions scene_options(const LandingZoneDetector::Options& o) {
   return so;
 }
 
+// One view 3 m over a terrain with rubble and steps (index 1 of the family): a hover's
+// `frames` depth frames, posed, with the setup they were rendered by.
+struct BenchHover {
+  Setup s;
+  LandingScene scene;
+  std::vector<PosedDepthFrame> frames;  // into scene
+  BenchHover(int width, int height, int n)
+      : s(setup(width, height)), scene(landing_scene(1, 1, s.sensor, s.camera, options(s, n))) {
+    const LandingFrame& f = view();
+    frames.push_back({&f.depth, f.X_WC});
+    for (std::size_t m = 0; m < f.more_depth.size(); ++m)
+      frames.push_back({&f.more_depth[m], f.more_X_WC[m]});
+    // The ray table is built once per camera, not in the first iteration.
+    (void)LandingZoneDetector(s.options).detect(f.depth, s.camera, f.X_WC);
+  }
+  BenchHover(const BenchHover&) = delete;  // frames point into scene
+  BenchHover& operator=(const BenchHover&) = delete;
+  [[nodiscard]] const LandingFrame& view() const { return scene.frames.front(); }
+  static LandingSceneOptions options(const Setup& s, int n) {
+    auto so = scene_options(s.options);
+    so.heights_m = {3.0};
+    so.frames_per_view = n;
+    return so;
+  }
+};
+
 void BM_Detector(benchmark::State& state, int width, int height, bool px4, int frames = 1) {
-  const Setup s = setup(width, height);
-  auto so = scene_options(s.options);
-  so.heights_m = {3.0};
-  so.frames_per_view = frames;
-  // A terrain with rubble and steps in view (index 1 of the family).
-  const LandingScene scene = landing_scene(1, 1, s.sensor, s.camera, so);
-  const LandingFrame& f = scene.frames.front();
-  const LandingZoneDetector det(s.options);
+  const BenchHover h(width, height, frames);
+  const LandingFrame& f = h.view();
+  const LandingZoneDetector det(h.s.options);
   const Px4LandingBaseline base(Px4LandingBaseline::Options{});
-  std::vector<PosedDepthFrame> hover{{&f.depth, f.X_WC}};
-  for (std::size_t m = 0; m < f.more_depth.size(); ++m)
-    hover.push_back({&f.more_depth[m], f.more_X_WC[m]});
-  (void)det.detect(f.depth, s.camera, f.X_WC);  // the ray table is built once per camera
   for (auto _ : state) {
     if (px4)
-      benchmark::DoNotOptimize(base.detect(f.depth, s.camera, f.X_WC, f.X_WB.translation()));
+      benchmark::DoNotOptimize(base.detect(f.depth, h.s.camera, f.X_WC, f.X_WB.translation()));
     else if (frames > 1)
-      benchmark::DoNotOptimize(det.detect(hover, s.camera));  // fused, then judged
+      benchmark::DoNotOptimize(det.detect(h.frames, h.s.camera));  // fused, then judged
     else
-      benchmark::DoNotOptimize(det.detect(f.depth, s.camera, f.X_WC));
+      benchmark::DoNotOptimize(det.detect(f.depth, h.s.camera, f.X_WC));
   }
+}
+
+// A survey view that finds nothing (the mission's 8, 16, 32 and 64 frames judged, one
+// frame a control step): its frames fused again from the first at every judgment, as
+// fuse_depth_frames does, or fused as they come (DepthFrameFusion, the mission's). The
+// counter worst_step_ms is the longest control step's share: the frame it adds, and the
+// judgment when there is one.
+void BM_SurveyThatMisses(benchmark::State& state, bool as_they_come) {
+  const BenchHover h(640, 480, kMaxHoverFrames);
+  const LandingZoneDetector det(h.s.options);
+  using Clock = std::chrono::steady_clock;
+  double worst_step_ms = 0.0;
+  for (auto _ : state) {
+    DepthFrameFusion fusion(h.s.camera);
+    int judged_at = 8;  // the mission's uav.survey_frames
+    for (int n = 1; n <= kMaxHoverFrames; ++n) {
+      const auto began = Clock::now();
+      const bool judge = n == judged_at;
+      if (judge) judged_at = hover_frames_after_miss(n, kMaxHoverFrames);
+      if (as_they_come) {
+        fusion.add(*h.frames[n - 1].depth, h.frames[n - 1].X_WC);
+        if (judge) benchmark::DoNotOptimize(det.detect(fusion));
+      } else if (judge) {
+        const std::vector<PosedDepthFrame> taken(h.frames.begin(), h.frames.begin() + n);
+        benchmark::DoNotOptimize(det.detect(taken, h.s.camera));
+      }
+      worst_step_ms = std::max(
+          worst_step_ms, std::chrono::duration<double, std::milli>(Clock::now() - began).count());
+    }
+  }
+  state.counters["worst_step_ms"] = worst_step_ms;
 }
 
 struct Tally {
@@ -327,8 +375,16 @@ int main(int argc, char** argv) {
                                720, false, 8)
       ->Unit(benchmark::kMillisecond);
   // The most a survey hover judges (uav.survey_frames_max), fused and judged once.
-  benchmark::RegisterBenchmark("landing_zone/ferret_hover32/640x480", ferret::BM_Detector, 640, 480,
-                               false, 32)
+  benchmark::RegisterBenchmark("landing_zone/ferret_hover64/640x480", ferret::BM_Detector, 640, 480,
+                               false, ferret::kMaxHoverFrames)
+      ->Unit(benchmark::kMillisecond);
+  // A survey view that finds nothing in 8, 16, 32 or 64 frames: re-fused at every
+  // judgment, and fused as the frames come (the mission's).
+  benchmark::RegisterBenchmark("landing_zone/survey_miss_fused_again/640x480",
+                               ferret::BM_SurveyThatMisses, false)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("landing_zone/survey_miss_as_they_come/640x480",
+                               ferret::BM_SurveyThatMisses, true)
       ->Unit(benchmark::kMillisecond);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

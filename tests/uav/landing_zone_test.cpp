@@ -646,6 +646,55 @@ TEST(LandingZone, ASlopesStandardErrorIsTheSpreadOfItsFitFromFrameToFrame) {
   EXPECT_LT(r.zones.front().slope_sigma_deg, 0.02);
 }
 
+TEST(DepthFrameFusion, FusedAsTheyComeIsFuseDepthFramesBitForBitAndJudgedTheSame) {
+  // A drifting hover's noisy frames over a slope with a low wall: fused a frame at a time
+  // (the survey), then judged after 8 and 16, as fuse_depth_frames of all of them at once.
+  const auto cam = test_camera();
+  const HeightField ground = [](double x, double y) { return 0.1 * x + (y > 0.6 ? 0.3 : 0.0); };
+  std::vector<DepthImageMm> frames;
+  std::vector<PosedDepthFrame> posed;
+  for (int k = 0; k < 16; ++k)
+    frames.push_back(render(cam, downward({0.01 * k, -0.006 * k, 3.0 + 0.003 * k}), ground, 0.08,
+                            300 + static_cast<std::uint64_t>(k)));
+  for (int k = 0; k < 16; ++k)
+    posed.push_back({&frames[k], downward({0.01 * k, -0.006 * k, 3.0 + 0.003 * k})});
+  DepthFrameFusion fusion(cam);
+  for (int k = 0; k < 16; ++k) {
+    fusion.add(*posed[k].depth, posed[k].X_WC);
+    EXPECT_EQ(fusion.frames(), static_cast<std::size_t>(k + 1));
+    if (k + 1 != 8 && k + 1 != 16) continue;
+    const std::vector<PosedDepthFrame> first(posed.begin(), posed.begin() + k + 1);
+    EXPECT_EQ(fusion.fused().data, fuse_depth_frames(first, cam).data) << k + 1 << " frames";
+    EXPECT_TRUE(fusion.X_WC().isApprox(posed.front().X_WC));
+    const LandingResult at_once = detector().detect(first, cam);
+    const LandingResult as_they_came = detector().detect(fusion);
+    ASSERT_FALSE(at_once.zones.empty()) << at_once.reason;  // the slope's lower part is a zone
+    ASSERT_EQ(as_they_came.zones.size(), at_once.zones.size()) << k + 1 << " frames";
+    for (std::size_t i = 0; i < at_once.zones.size(); ++i)
+      EXPECT_EQ(as_they_came.zones[i].center_m, at_once.zones[i].center_m);
+    EXPECT_EQ(as_they_came.reason, at_once.reason);
+  }
+  // Cleared, the next frame starts a new hover at its own pose.
+  fusion.clear();
+  EXPECT_EQ(fusion.frames(), 0u);
+  fusion.add(frames[5], posed[5].X_WC);
+  EXPECT_EQ(fusion.fused().data, frames[5].data);
+  EXPECT_TRUE(fusion.X_WC().isApprox(posed[5].X_WC));
+  // A frame of another size is refused and not counted; nothing fused is an error.
+  const auto field = [](const auto& call) {
+    try {
+      call();
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(field([&] { fusion.add(DepthImageMm(100, 100, 3000), posed[0].X_WC); }), "size");
+  EXPECT_EQ(fusion.frames(), 1u);
+  EXPECT_EQ(field([&] { (void)DepthFrameFusion(cam).fused(); }), "count");
+  EXPECT_THROW((void)detector().detect(DepthFrameFusion(cam)), InputError);
+}
+
 TEST(FuseDepthFrames, NoFramesANullFrameAndAFrameOfAnotherSizeAreInputErrors) {
   const auto cam = test_camera();
   const Pose3 X_WC = downward({0, 0, 3});

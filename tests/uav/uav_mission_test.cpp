@@ -296,25 +296,31 @@ TEST(UavMission, LegsWithoutAPlanAreSkippedAndTheMissionStillEnds) {
 }
 
 // The survey's hover: a dropped depth frame (0 x 0) does not count toward
-// uav.survey_frames, and the frames taken are judged together with their own poses.
-TEST(SurveyFrames, DroppedFramesAreNotCountedAndTheFramesKeepTheirPoses) {
-  SurveyFrames frames;
+// uav.survey_frames, and the frames taken are fused with their own poses, at the first's.
+TEST(SurveyFrames, DroppedFramesAreNotCountedAndTheFramesAreFusedAtTheFirstPose) {
+  SurveyFrames frames(CameraModel::from_fov("depth", 4, 3, 1.0));
   Pose3 a = Pose3::Identity(), b = Pose3::Identity();
   a.translation() = Eigen::Vector3d(1, 2, 3);
-  b.translation() = Eigen::Vector3d(1.01, 2, 3);
+  b.translation() = Eigen::Vector3d(1.01, 2, 3);  // 1 cm: under a pixel at 1.2 m
   EXPECT_FALSE(frames.add({DepthImageMm{}, a}, 2));
   EXPECT_EQ(frames.size(), 0u);
   EXPECT_FALSE(frames.add({DepthImageMm(4, 3, 1000), a}, 2));
   EXPECT_FALSE(frames.add({DepthImageMm(4, 0, 0), b}, 2));
   EXPECT_EQ(frames.size(), 1u);
   EXPECT_TRUE(frames.add({DepthImageMm(4, 3, 1200), b}, 2));
-  const std::vector<PosedDepthFrame> posed = frames.posed();
-  ASSERT_EQ(posed.size(), 2u);
-  EXPECT_EQ(posed[0].depth->at(0, 0), 1000);
-  EXPECT_EQ(posed[1].depth->at(3, 2), 1200);
-  EXPECT_TRUE(posed[1].X_WC.isApprox(b));
+  EXPECT_EQ(frames.size(), 2u);
+  EXPECT_TRUE(frames.fused().X_WC().isApprox(a));
+  const DepthImageMm fused = frames.fused().fused();
+  EXPECT_EQ(fused.at(0, 0), 1100);
+  EXPECT_EQ(fused.at(2, 1), 1100);
+  // A frame of another size than the depth camera's is refused, and not counted.
+  EXPECT_THROW((void)frames.add({DepthImageMm(5, 3, 1000), a}, 3), InputError);
+  EXPECT_EQ(frames.size(), 2u);
   frames.clear();
   EXPECT_EQ(frames.size(), 0u);
+  EXPECT_TRUE(frames.add({DepthImageMm(4, 3, 1500), b}, 1));
+  EXPECT_TRUE(frames.fused().X_WC().isApprox(b));
+  EXPECT_EQ(frames.fused().fused().at(3, 2), 1500);
 }
 
 TEST(UavMission, BadOptionsNameTheField) {

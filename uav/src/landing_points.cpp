@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <utility>
 
 #include "ferret/core/error.hpp"
 #include "ferret/uav/landing_zone.hpp"
@@ -88,49 +89,65 @@ namespace ferret {
 DepthImageMm fuse_depth_frames(const std::vector<PosedDepthFrame>& frames,
                                const CameraModel& camera) {
   internal::require_frames(frames);
-  const int w = camera.width_px, h = camera.height_px;
-  for (const PosedDepthFrame& f : frames) {
-    if (f.depth->width_px != w || f.depth->height_px != h)
-      throw InputError("depth frames", "size", fmt::format("the camera's {} x {} px", w, h),
-                       fmt::format("{} x {}", f.depth->width_px, f.depth->height_px));
-  }
-  const auto ray_table = internal::rays_of(camera);
-  const std::vector<Eigen::Vector2f>& rays = *ray_table;
+  DepthFrameFusion fusion(camera);
+  for (const PosedDepthFrame& f : frames) fusion.add(*f.depth, f.X_WC);
+  return fusion.fused();
+}
+
+DepthFrameFusion::DepthFrameFusion(CameraModel camera) : camera_(std::move(camera)) {}
+
+void DepthFrameFusion::add(const DepthImageMm& depth, const Pose3& X_WC) {
+  const int w = camera_.width_px, h = camera_.height_px;
+  if (depth.width_px != w || depth.height_px != h)
+    throw InputError("depth frames", "size", fmt::format("the camera's {} x {} px", w, h),
+                     fmt::format("{} x {}", depth.width_px, depth.height_px));
   const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  std::vector<double> sum_m(n, 0.0);
-  std::vector<std::uint32_t> count(n, 0);
-  const Pose3 X_RW = frames.front().X_WC.inverse();  // R: the first frame's optical frame
-  for (const PosedDepthFrame& f : frames) {
-    const Pose3 X_RC = X_RW * f.X_WC;
-    const bool same_pose = X_RC.isApprox(Pose3::Identity(), 1e-12);
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint16_t mm = f.depth->data[i];
-      if (mm == 0) continue;
-      const double z = 1e-3 * mm;
-      std::size_t k = i;
-      double z_R = z;
-      if (!same_pose) {
-        const Eigen::Vector3d p_R = X_RC * Eigen::Vector3d(rays[i].x() * z, rays[i].y() * z, z);
-        const auto px = camera.project(p_R);
-        if (!px) continue;
-        if (!camera.in_image(*px)) continue;  // beyond the first frame's view
-        // The nearest pixel (non-negative after the test above, so truncation rounds;
-        // lround took a fifth of the time).
-        const auto u = static_cast<std::size_t>(px->x() + 0.5);
-        const auto v = static_cast<std::size_t>(px->y() + 0.5);
-        k = v * static_cast<std::size_t>(w) + u;
-        z_R = p_R.z();
-      }
-      sum_m[k] += z_R;
-      ++count[k];
-    }
+  if (frames_ == 0) {
+    if (!rays_) rays_ = internal::rays_of(camera_);
+    sum_m_.assign(n, 0.0);
+    count_.assign(n, 0);
+    X_WC_ = X_WC;
+    X_RW_ = X_WC.inverse();
   }
-  DepthImageMm out(w, h);
-  for (std::size_t k = 0; k < n; ++k)
-    if (count[k] > 0)
+  const std::vector<Eigen::Vector2f>& rays = *rays_;
+  const Pose3 X_RC = X_RW_ * X_WC;
+  const bool same_pose = X_RC.isApprox(Pose3::Identity(), 1e-12);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint16_t mm = depth.data[i];
+    if (mm == 0) continue;
+    const double z = 1e-3 * mm;
+    std::size_t k = i;
+    double z_R = z;
+    if (!same_pose) {
+      const Eigen::Vector3d p_R = X_RC * Eigen::Vector3d(rays[i].x() * z, rays[i].y() * z, z);
+      const auto px = camera_.project(p_R);
+      if (!px) continue;
+      if (!camera_.in_image(*px)) continue;  // beyond the first frame's view
+      // The nearest pixel (non-negative after the test above, so truncation rounds;
+      // lround took a fifth of the time).
+      const auto u = static_cast<std::size_t>(px->x() + 0.5);
+      const auto v = static_cast<std::size_t>(px->y() + 0.5);
+      k = v * static_cast<std::size_t>(w) + u;
+      z_R = p_R.z();
+    }
+    sum_m_[k] += z_R;
+    ++count_[k];
+  }
+  ++frames_;
+}
+
+DepthImageMm DepthFrameFusion::fused() const {
+  if (frames_ == 0) throw InputError("depth frames", "count", "at least one frame", "none");
+  DepthImageMm out(camera_.width_px, camera_.height_px);
+  for (std::size_t k = 0; k < count_.size(); ++k)
+    if (count_[k] > 0)
       out.data[k] = static_cast<std::uint16_t>(
-          std::clamp(std::floor(1000.0 * sum_m[k] / count[k] + 0.5), 1.0, 65535.0));
+          std::clamp(std::floor(1000.0 * sum_m_[k] / count_[k] + 0.5), 1.0, 65535.0));
   return out;
+}
+
+void DepthFrameFusion::clear() {
+  frames_ = 0;  // the sums are reset by the next first frame; the rays are the camera's
 }
 
 }  // namespace ferret

@@ -211,6 +211,10 @@ LandingResult LandingZoneDetector::detect(const std::vector<PosedDepthFrame>& fr
   return judge.detect(fused, camera, frames.front().X_WC);
 }
 
+LandingResult LandingZoneDetector::detect(const DepthFrameFusion& frames) const {
+  return for_frames(frames.frames()).detect(frames.fused(), frames.camera(), frames.X_WC());
+}
+
 LandingResult LandingZoneDetector::detect(const DepthImageMm& depth, const CameraModel& camera,
                                           const Pose3& X_WC) const {
   const Options& o = options_;

@@ -169,7 +169,8 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
       log_(log),
       landing_(options_.landing),
       modes_(tether::TetherModeSwitcher::Options::from_mission(options_.tether,
-                                                               options_.touchdown_height_m)) {
+                                                               options_.touchdown_height_m)),
+      survey_frames_(depth_camera_) {
   options_.validate("uav mission options");
   detector_ = make_marker_detector(options_.marker);
   options_.winch_control.limits.total_length_m = options_.tether.total_length_m;
@@ -486,17 +487,16 @@ void UavMission::tick() {
     case UavMissionState::kSurvey: {
       if (in_state_s > options_.survey_timeout_s) return choose_release("survey timed out");
       // The hover's frames, one a cycle, fused before the ground is judged.
-      if (!survey_frames_.add(hw_.cameras.depth_frame(),
-                              std::max(survey_frames_needed_, options_.survey_frames)))
-        return;
+      if (!survey_frames_.add(hw_.cameras.depth_frame(), survey_frames_needed_)) return;
       LandingZoneDetector::Options lo = options_.landing;
       lo.p_WE = current().opening.p_WE;
       lo.reach_m = options_.tether.entry_offset_m;
-      const LandingResult zones = LandingZoneDetector(lo).detect(survey_frames_.posed(), depth_camera_);
+      const LandingResult zones = LandingZoneDetector(lo).detect(survey_frames_.fused());
       const int taken = static_cast<int>(survey_frames_.size());
-      if (zones.zones.empty() && hover_frames_after_miss(taken, options_.survey_frames_max) > taken) {
+      const int longer = hover_frames_after_miss(taken, options_.survey_frames_max);
+      if (zones.zones.empty() && longer > taken) {
         // Nothing safe in these frames: keep them and look longer before the next view.
-        survey_frames_needed_ = hover_frames_after_miss(taken, options_.survey_frames_max);
+        survey_frames_needed_ = longer;
         return;
       }
       survey_frames_.clear();

@@ -19,6 +19,7 @@
 // safe_landing_planner, producing the same LandingResult so both run on one frame.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -61,6 +62,35 @@ inline constexpr int kMaxHoverFrames = 64;
 /// without its image or a frame of another size than the camera's.
 [[nodiscard]] DepthImageMm fuse_depth_frames(const std::vector<PosedDepthFrame>& frames,
                                              const CameraModel& camera);
+
+/// fuse_depth_frames a frame at a time, for a hover whose frames come one a control
+/// cycle: each frame is re-projected once, as it comes. A survey that judges 8, 16, 32
+/// and then 64 frames re-projects 64 frames, not 120, and no control step re-projects
+/// more than one (64 at once took a 0.36 s step). The same sums in the same order:
+/// fused() is fuse_depth_frames of the frames added, bit for bit.
+class DepthFrameFusion {
+ public:
+  explicit DepthFrameFusion(CameraModel camera);
+  /// Adds a frame taken from X_WC (the depth camera's optical frame in the world).
+  /// Throws InputError for a frame of another size than the camera's.
+  void add(const DepthImageMm& depth, const Pose3& X_WC);
+  [[nodiscard]] std::size_t frames() const { return frames_; }
+  /// The fused frame's pose: the first frame's.
+  [[nodiscard]] const Pose3& X_WC() const { return X_WC_; }
+  [[nodiscard]] const CameraModel& camera() const { return camera_; }
+  /// The mean depth of the returns that landed on each pixel (0 where none did).
+  /// Throws InputError when no frame was added.
+  [[nodiscard]] DepthImageMm fused() const;
+  void clear();
+
+ private:
+  CameraModel camera_;
+  std::shared_ptr<const std::vector<Eigen::Vector2f>> rays_;   // x/z, y/z per pixel
+  std::vector<double> sum_m_;                                  // per pixel of the first frame
+  std::vector<std::uint32_t> count_;                           // returns summed there
+  Pose3 X_WC_ = Pose3::Identity(), X_RW_ = Pose3::Identity();  // R: the first frame
+  std::size_t frames_ = 0;
+};
 
 /// Why a candidate disc is not a landing zone.
 enum class LandingReject {
@@ -176,6 +206,8 @@ class LandingZoneDetector {
   /// judged in the hover's cells (Options::hover_cell_size_m) from hover_min_frames on.
   [[nodiscard]] LandingResult detect(const std::vector<PosedDepthFrame>& frames,
                                      const CameraModel& camera) const;
+  /// The same, for frames fused as they came. Throws InputError when none were added.
+  [[nodiscard]] LandingResult detect(const DepthFrameFusion& frames) const;
   /// The options a hover of `frames` frames is judged with.
   [[nodiscard]] const Options& options_for_frames(std::size_t frames) const {
     return for_frames(frames).options();

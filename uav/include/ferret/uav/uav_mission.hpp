@@ -173,27 +173,26 @@ struct HiddenSpaceVisit {
   double max_released_m = 0.0;     ///< longest l_t while the miniUGV worked
 };
 
-/// A survey hover's depth frames, gathered one a control cycle and judged together. A
-/// dropped frame (0 x 0, the adapter's "no frame this time") is not counted: the hover
-/// waits for the next, within the survey's timeout.
+/// A survey hover's depth frames, gathered one a control cycle and fused as they come
+/// (DepthFrameFusion), to be judged together. A dropped frame (0 x 0, the adapter's "no
+/// frame this time") is not counted: the hover waits for the next, within the survey's
+/// timeout.
 class SurveyFrames {
  public:
-  /// Adds the frame unless it is a dropped one; true once `needed` frames are in.
-  bool add(CameraShot<DepthImageMm> shot, int needed) {
-    if (shot.image.width_px > 0 && shot.image.height_px > 0) shots_.push_back(std::move(shot));
-    return static_cast<int>(shots_.size()) >= needed;
+  explicit SurveyFrames(const CameraModel& depth_camera) : fusion_(depth_camera) {}
+  /// Adds the frame unless it is a dropped one; true once `needed` frames are in. Throws
+  /// InputError for a frame of another size than the camera's.
+  bool add(const CameraShot<DepthImageMm>& shot, int needed) {
+    if (shot.image.width_px > 0 && shot.image.height_px > 0) fusion_.add(shot.image, shot.X_WC);
+    return static_cast<int>(fusion_.frames()) >= needed;
   }
-  /// The frames taken, for LandingZoneDetector::detect (valid until the next add or clear).
-  [[nodiscard]] std::vector<PosedDepthFrame> posed() const {
-    std::vector<PosedDepthFrame> out;
-    for (const auto& s : shots_) out.push_back({&s.image, s.X_WC});
-    return out;
-  }
-  [[nodiscard]] std::size_t size() const { return shots_.size(); }
-  void clear() { shots_.clear(); }
+  /// The frames taken, fused, for LandingZoneDetector::detect.
+  [[nodiscard]] const DepthFrameFusion& fused() const { return fusion_; }
+  [[nodiscard]] std::size_t size() const { return fusion_.frames(); }
+  void clear() { fusion_.clear(); }
 
  private:
-  std::vector<CameraShot<DepthImageMm>> shots_;
+  DepthFrameFusion fusion_;
 };
 
 class UavMission {
