@@ -222,16 +222,18 @@ TEST(MissionRun, UnsafeGroundByAnOpeningHoversOrSkips) {
   const HiddenSpaceVisit* shed = visit_of(hover, 5);
   ASSERT_TRUE(shed);
   EXPECT_TRUE(shed->object_dropped);
-  // A survey hover that found nothing in 8 frames, then 16, looked on to
-  // uav.survey_frames_max (32) before the next view: the kiln's three views at least.
+  // A survey hover that found nothing in 8 frames, then 16, then 32, looked on to
+  // uav.survey_frames_max (64) before the next view: the kiln's three views at least.
   const auto said = [&](const std::string& words) {
     return std::count_if(hover.transitions.begin(), hover.transitions.end(), [&](const Transition& t) {
       return t.component == "uav" && t.from == "survey" && t.reason.find(words) != std::string::npos;
     });
   };
-  EXPECT_GE(said("in 32 frames, next view"), 2);  // views 1 and 2 of 3
-  EXPECT_EQ(said("(32 frames a view)"), 1);        // and the third
-  EXPECT_EQ(said("in 8 frames, next view") + said("in 16 frames, next view"), 0);
+  EXPECT_GE(said("in 64 frames, next view"), 2);  // views 1 and 2 of 3
+  EXPECT_EQ(said("(64 frames a view)"), 1);        // and the third
+  EXPECT_EQ(said("in 8 frames, next view") + said("in 16 frames, next view") +
+                said("in 32 frames, next view"),
+            0);
 
   const MissionRunResult skip = run(w, {}, 1, "skip").result;
   expect_safe(skip, {});
