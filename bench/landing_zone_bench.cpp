@@ -1,6 +1,6 @@
 // Landing zones: ms per depth frame of LandingZoneDetector and of the PX4 rule (Google
 // Benchmark), and with --compare the evaluation on generated terrains with ground
-// truth (docs/results/issue11_landing.md):
+// truth (docs/results/landing_zone.md):
 //
 //   ferret_bench_landing_zone --compare [--terrains N] [--seed S] [--verbose] [--set NAME=V]...
 //

@@ -10,7 +10,7 @@
 // column's dictionary (same ids, sizes, placement), with the same seed, blur, noise and
 // exposure, so the detectors meet the same views; the families' cells differ in size
 // (a tag36h11 marker is 8 cells across its black border, a 4x4 or tag16h5 one 6). Every number
-// follows from the seed (core/random.hpp). docs/results/issue11_markers.md has the
+// follows from the seed (core/random.hpp). docs/results/markers.md has the
 // figures and the commands.
 
 #include <benchmark/benchmark.h>
@@ -434,7 +434,7 @@ BENCHMARK_CAPTURE(BM_Detect, apriltag_no_marker, MarkerFamily::kAprilTag, false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Detect, aruco_no_marker, MarkerFamily::kAruco, false)
     ->Unit(benchmark::kMillisecond);
-// AprilTag families with larger cells (docs/results/issue11_markers.md, by family).
+// AprilTag families with larger cells (docs/results/markers.md, by family).
 BENCHMARK_CAPTURE(BM_Detect, apriltag_tag25h9_marker_at_3m, MarkerFamily::kAprilTag, true, 2.0,
                   "tag25h9")
     ->Unit(benchmark::kMillisecond);

@@ -1,7 +1,7 @@
 // The winch's reel-in guard: the slack a miniUGV driving off takes from a spool that is
 // still reeling in, against hand-computed areas, and both controllers in a closed loop
 // where a stopped miniUGV drives off while the winch takes in its slack (the mission
-// pulled 22.9 N that way: docs/results.md).
+// pulled 22.9 N that way: docs/mission.md).
 
 #include <gtest/gtest.h>
 

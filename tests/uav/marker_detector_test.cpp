@@ -334,7 +334,7 @@ TEST(MarkerDetector, ArucoFindsMarkersOfManyCellsInsideTheirWhiteMargin) {
   }
 }
 
-// The hard end of the target (docs/results/issue11_markers.md): markers of 20-26 px
+// The hard end of the target (docs/results/markers.md): markers of 20-26 px
 // blurred by 1.1-1.5 px at any exposure. Of these 40 frames 34 are found; OpenCV's own
 // threshold settings with the margin read against one threshold between the darkest
 // and the brightest cell (the code before) found 27. (Blur keeps a white cell brighter

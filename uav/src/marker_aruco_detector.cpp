@@ -30,7 +30,7 @@ class ArucoDetector final : public MarkerDetector {
     // accurate but costs hundreds of ms a frame.
     params_->cornerRefinementMethod = cv::aruco::CORNER_REFINE_NONE;
     params_->errorCorrectionRate = options.aruco_error_correction_rate;
-    // Small blurred markers (docs/results/issue11_markers.md): thresholds over 13 and
+    // Small blurred markers (docs/results/markers.md): thresholds over 13 and
     // 23 px only (OpenCV's 3 px window sees pixel noise, never a marker's cell), a
     // lower threshold constant, and each cell read at its centre (30 % of the cell on
     // each side ignored, not 13 %: at 3 px a cell, blur carries the neighbours in).

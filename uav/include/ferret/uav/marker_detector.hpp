@@ -43,7 +43,7 @@ struct MarkerDetectorOptions {
   /// Bits the AprilTag decoder may correct. tag36h11's codes are at least 11 bits
   /// apart, so one corrected bit still leaves a random pattern far from a valid code;
   /// with min_decision_margin 15 it recovers small blurred markers whose one cell
-  /// reads wrong (docs/results/issue11_markers.md).
+  /// reads wrong (docs/results/markers.md).
   int max_hamming = 1;
   /// The smallest marker side (black square, pixels) the detectors look for: shorter
   /// candidates are dropped before decoding, which is most of a textured frame's. The
@@ -55,7 +55,7 @@ struct MarkerDetectorOptions {
   /// AprilTag quad_decimate: the quad search runs on a frame this much smaller (the
   /// corners are then refined on the full frame). 1 costs about 60 ms a 1280x720
   /// textured frame on one core here, 2 about 3 ms, and finds the same markers of
-  /// 20 px and more on the simulator's frames (docs/results/issue11_markers.md).
+  /// 20 px and more on the simulator's frames (docs/results/markers.md).
   double quad_decimate = 2.0;
   /// AprilTag qtp.min_white_black_diff: the least grey-level difference between a
   /// candidate's dark and light side. The library's 5 lets every texture edge of an
@@ -74,7 +74,7 @@ struct MarkerDetectorOptions {
   /// level less the black one's, over the marker's contrast. Blur lowers an isolated
   /// white cell of a small marker towards its black neighbours but never below them; a
   /// wrong id, or a marker half covered, has a pair the wrong way round
-  /// (docs/results/issue11_markers.md).
+  /// (docs/results/markers.md).
   double aruco_min_margin = 0.08;
   /// ArUco: Gaussian blur (pixels) of the frame the candidates are searched in (the
   /// corners and the margin read the frame itself). The camera's pixel noise makes the
