@@ -7,7 +7,7 @@
 //
 // Then the same cycle on generated sparse hidden spaces of 12 x 8, 24 x 16 and 48 x 32 m
 // (ferret world generate-hidden --seed 1 --size W,H), the robot 1.2 m into the space
-// and an object seen in zone 2: how the cycle's cost grows with the space (issue 15).
+// and an object seen in zone 2: how the cycle's cost grows with the space.
 //
 // Prints Google Benchmark's table (15 repetitions, mean/median/stddev) and then the
 // median time of each method, the ratio cdos / rapid, and each size's over 12 x 8's.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mutation campaign against the ferret CLI (issue 10, "Every input survives").
+"""Mutation campaign against the ferret CLI ("Every input survives", docs/reliability.md).
 
 Builds hostile inputs by mutating the shipped examples and the numeric command-line
 options, runs every command that reads input on them, and classifies each run:

@@ -2,7 +2,7 @@
 // The miniUGV's hardware as its mission controller sees it: odometry, the IR scan,
 // the camera's detections, a velocity command, the electro-permanent magnet (EPM) and
 // a status. The simulator implements it (sim/sim_ugv_base.hpp); a robot's backend
-// implements it over its microcontroller (issue 13). Controllers take a UgvBase&, never
+// implements it over its microcontroller. Controllers take a UgvBase&, never
 // a concrete backend, so they cannot read ground truth.
 
 #include <cstdint>
