@@ -52,7 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     RecordingFlight flight;
     TinyCameras cameras;
     ferret::FlightAdapterService service(flight, cameras, "fuzz",
-                                         {[&](const Eigen::Vector3d& v, double w) { flight.take(v.sum() + w); }, {}});
+                                         {[&](const Eigen::Vector3d& v, double w) { flight.take(v.sum() + w); }});
     const StreamMessage reply = service.handle({text, {}});
     const auto r = nlohmann::json::parse(reply.header, nullptr, false);
     if (r.is_discarded() || !r.is_object() || !r.contains("ok") || !r["ok"].is_boolean()) std::abort();

@@ -1,8 +1,8 @@
 // The winch protocol's two parsers on arbitrary bytes (docs/robots.md, "The winch across
 // a process boundary"): the first byte picks the side.
-// - Even: a request to WinchService over a recording winch, its op read from the
-//   request as a server would. Every reply is a JSON object with a boolean "ok"; a
-//   refused request never reaches the winch; a velocity is finite and within 100 m/s.
+// - Even: a request to WinchService over a recording winch. Every reply is a JSON
+//   object with a boolean "ok"; a refused request never reaches the winch; a velocity
+//   is finite and within 100 m/s.
 // - Odd: the reply a server sends RemoteWinch to each call; only WinchProtocolError,
 //   and a state read is finite with a length >= 0.
 #include <cmath>
@@ -37,13 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (data[0] % 2 == 0) {
     RecordingWinch winch;
     ferret::WinchService service(winch);
-    const auto request = nlohmann::json::parse(text, nullptr, false);
-    std::string op = "winch_state";
-    if (!request.is_discarded() && request.is_object() && request.contains("op") && request["op"].is_string())
-      op = request["op"].get<std::string>();
-    const auto reply = service.handle(op, text);
-    if (!reply) return 0;
-    const auto r = nlohmann::json::parse(reply->header, nullptr, false);
+    const StreamMessage reply = service.handle({text, {}});
+    const auto r = nlohmann::json::parse(reply.header, nullptr, false);
     if (r.is_discarded() || !r.is_object() || !r.contains("ok") || !r["ok"].is_boolean()) std::abort();
     if (!r["ok"].get<bool>() && winch.commands != 0) std::abort();
     return 0;

@@ -19,7 +19,6 @@
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/dynamixel_bus.hpp"
-#include "ferret/tether_model/serial_port.hpp"
 #include "ferret/tether_model/winch_factory.hpp"
 #include "ferret/uav/adapter_flight_controller.hpp"
 #include "ferret/uav/flight_planner.hpp"

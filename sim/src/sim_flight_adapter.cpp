@@ -4,43 +4,39 @@
 #include <nlohmann/json.hpp>
 
 #include "ferret/core/clock.hpp"
-
 #include "ferret/core/transition_log.hpp"
+#include "ferret/link/json_dispatcher.hpp"
 #include "ferret/uav/flight_adapter_service.hpp"
 #include "mission_world.hpp"
 
 namespace ferret {
 
 struct SimFlightAdapter::Impl {
-  Impl(const PlanningWorld& world, const RobotDescription& uav_robot, const MissionRunSettings& settings,
-       std::uint64_t seed)
+  Impl(const PlanningWorld& world, const RobotDescription& uav_robot,
+       const MissionRunSettings& settings, std::uint64_t seed)
       : mission_world(world, uav_robot, every_frame(settings), seed, log),
-        service(mission_world.flight(), mission_world.cameras(), "sim",
-                FlightAdapterService::Hooks{
-                    [this](const Eigen::Vector3d& v_W, double yaw_rate_radps) {
-                      mission_world.flight().command_velocity(v_W, yaw_rate_radps);
-                    },
-                    [this](const std::string& op, const std::string& request) { return extension(op, request); }}) {}
+        service(
+            mission_world.flight(), mission_world.cameras(), "sim",
+            FlightAdapterService::Hooks{[this](const Eigen::Vector3d& v_W, double yaw_rate_radps) {
+              mission_world.flight().command_velocity(v_W, yaw_rate_radps);
+            }}) {
+    // Beyond protocol 1: the simulator's clock.
+    service.dispatcher().add("sim_advance", [this](const link::JsonRequest& r) -> link::JsonReply {
+      const nlohmann::json& j = r.fields;
+      const double seconds =
+          j.contains("seconds") && j["seconds"].is_number() ? j["seconds"].get<double>() : -1.0;
+      if (!(seconds >= 0.0 && seconds <= 3600.0))
+        throw link::RequestError("'seconds': expected a number in [0, 3600]");
+      const long steps = std::lround(seconds / internal::kDt);
+      for (long k = 0; k < steps; ++k) step_once();
+      return nlohmann::json{{"t_s", mission_world.clock().now_s()}};
+    });
+  }
 
   // A camera on a vehicle delivers every frame; so does the reference adapter.
   static MissionRunSettings every_frame(MissionRunSettings s) {
     s.render_markerless_frames = true;
     return s;
-  }
-
-  std::optional<link::StreamMessage> extension(const std::string& op, const std::string& request) {
-    using nlohmann::json;
-    if (op != "sim_advance") return std::nullopt;
-    const json r = json::parse(request, nullptr, false);
-    const double seconds = r.is_object() && r.contains("seconds") && r["seconds"].is_number()
-                               ? r["seconds"].get<double>()
-                               : -1.0;
-    if (!(seconds >= 0.0 && seconds <= 3600.0))
-      return link::StreamMessage{
-          json{{"ok", false}, {"op", op}, {"error", "'seconds': expected a number in [0, 3600]"}}.dump(), {}};
-    const long steps = std::lround(seconds / internal::kDt);
-    for (long k = 0; k < steps; ++k) step_once();
-    return link::StreamMessage{json{{"ok", true}, {"t_s", mission_world.clock().now_s()}}.dump(), {}};
   }
 
   void step_once() {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "ferret/core/error.hpp"
+#include "ferret/link/json_dispatcher.hpp"
 #include "ferret/link/lossy_channel.hpp"
 #include "ferret/uav/flight_adapter_service.hpp"
 #include "ferret/uav/remote_winch.hpp"
@@ -83,47 +84,48 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
   link::LossyChannel up(seeded(1)), down(seeded(2));  // UAV -> miniUGV, miniUGV -> UAV
 
   // The UAV's hardware: the flight adapter's ops, the winch's, and what lowering and
-  // lifting the miniUGV does to the world.
-  WinchService winch_service(sim.winch());
+  // lifting the miniUGV does to the world, on one connection.
   const auto lonely = [&] { return spaces.lonely() && !spaces.active(); };
   FlightAdapterService flight_service(
       sim.flight(), sim.cameras(), "sim",
-      FlightAdapterService::Hooks{
-          [&](const Eigen::Vector3d& v_W, double yaw_rate_radps) { sim.flight().command_velocity(v_W, yaw_rate_radps); },
-          [&](const std::string& op, const std::string& request) -> std::optional<StreamMessage> {
-            if (auto m = winch_service.handle(op, request)) return m;
-            if (op == "ugv_put_down") {
-              const json r = json::parse(request);
-              if (!r.contains("p_WE") || !r["p_WE"].is_array() || r["p_WE"].size() != 3)
-                throw std::runtime_error("'p_WE': expected an array of 3 numbers");
-              spaces.put_down({r["p_WE"][0].get<double>(), r["p_WE"][1].get<double>(), r["p_WE"][2].get<double>()},
-                              false);
-            } else if (op == "ugv_lift") {
-              (void)spaces.lift();
-            } else if (op == "ugv_release") {
-              spaces.release_object();
-            } else {
-              return std::nullopt;
-            }
-            return StreamMessage{dump({{"ok", true}, {"lonely", lonely()}}), {}};
-          }});
+      FlightAdapterService::Hooks{[&](const Eigen::Vector3d& v_W, double yaw_rate_radps) {
+        sim.flight().command_velocity(v_W, yaw_rate_radps);
+      }});
+  link::JsonDispatcher& uav_ops = flight_service.dispatcher();
+  add_winch_ops(uav_ops, sim.winch());
+  const auto set_down_reply = [&]() -> link::JsonReply { return json{{"lonely", lonely()}}; };
+  uav_ops.add("ugv_put_down", [&](const link::JsonRequest& r) -> link::JsonReply {
+    const json& j = r.fields;
+    if (!j.contains("p_WE") || !j["p_WE"].is_array() || j["p_WE"].size() != 3)
+      throw std::runtime_error("'p_WE': expected an array of 3 numbers");
+    spaces.put_down(
+        {j["p_WE"][0].get<double>(), j["p_WE"][1].get<double>(), j["p_WE"][2].get<double>()},
+        false);
+    return set_down_reply();
+  });
+  uav_ops.add("ugv_lift", [&](const link::JsonRequest&) {
+    (void)spaces.lift();
+    return set_down_reply();
+  });
+  uav_ops.add("ugv_release", [&](const link::JsonRequest&) {
+    spaces.release_object();
+    return set_down_reply();
+  });
   // The miniUGV's: its base, and where it was set down.
   ActiveBase active_base(spaces);
-  UgvBaseService base_service(
-      active_base, "sim", [&](const std::string& op, const std::string&) -> std::optional<StreamMessage> {
-        if (op != "ugv_deployment") return std::nullopt;
-        if (!spaces.active()) return StreamMessage{dump({{"ok", true}, {"set_down", false}}), {}};
-        const Pose2& p = spaces.start_pose();
-        const GridGeometry& g = spaces.truth_geometry();
-        return StreamMessage{dump({{"ok", true},
-                                   {"set_down", true},
-                                   {"start", {p.x_m, p.y_m, p.yaw_rad}},
-                                   {"seed", spaces.deployment_seed()},
-                                   {"map", {{"origin_m", {g.origin_x_m, g.origin_y_m}},
-                                            {"resolution_m", g.resolution_m},
-                                            {"cells", {g.width, g.height}}}}}),
-                             {}};
-      });
+  UgvBaseService base_service(active_base, "sim");
+  base_service.dispatcher().add("ugv_deployment", [&](const link::JsonRequest&) -> link::JsonReply {
+    if (!spaces.active()) return json{{"set_down", false}};
+    const Pose2& p = spaces.start_pose();
+    const GridGeometry& g = spaces.truth_geometry();
+    return json{{"set_down", true},
+                {"start", {p.x_m, p.y_m, p.yaw_rad}},
+                {"seed", spaces.deployment_seed()},
+                {"map",
+                 {{"origin_m", {g.origin_x_m, g.origin_y_m}},
+                  {"resolution_m", g.resolution_m},
+                  {"cells", {g.width, g.height}}}}};
+  });
   const auto serve_uav = [&](const StreamMessage& m) { return flight_service.handle(m); };
   const auto serve_ugv = [&](const StreamMessage& m) { return base_service.handle(m); };
 

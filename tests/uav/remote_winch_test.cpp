@@ -17,11 +17,7 @@ using nlohmann::json;
 class DirectChannel final : public link::RpcChannel {
  public:
   explicit DirectChannel(WinchService& s) : service_(s) {}
-  StreamMessage call(const std::string& request) override {
-    const json r = json::parse(request);
-    auto reply = service_.handle(r.at("op").get<std::string>(), request);
-    return reply ? *reply : StreamMessage{R"({"ok":false,"error":"unknown op"})", {}};
-  }
+  StreamMessage call(const std::string& request) override { return service_.handle({request, {}}); }
 
  private:
   WinchService& service_;
@@ -50,23 +46,26 @@ TEST(RemoteWinch, TheSimulatedWinchThroughTheProtocolIsTheWinchItself) {
   EXPECT_GT(remote.read_state().released_m, 0.2);  // it paid out, then reeled some in
 }
 
-TEST(RemoteWinch, TheServiceRefusesBadRequestsAndLeavesOtherOpsAlone) {
+TEST(RemoteWinch, TheServiceRefusesBadRequestsAndOtherOps) {
   tether::SimulatedWinch winch({});
   winch.set_torque_enabled(true);
   WinchService service(winch);
-  EXPECT_FALSE(service.handle("takeoff", R"({"op":"takeoff"})"));  // not the winch's
-  const auto refused = [&](const std::string& op, const std::string& request) {
-    const auto reply = service.handle(op, request);
-    ASSERT_TRUE(reply) << request;
-    const json r = json::parse(reply->header);
+  const auto refused = [&](const std::string& request) {
+    const json r = json::parse(service.handle({request, {}}).header);
     EXPECT_FALSE(r.at("ok").get<bool>()) << request;
-    EXPECT_FALSE(r.value("error", "").empty());
+    const std::string error = r.value("error", "");
+    EXPECT_FALSE(error.empty());
+    return error;
   };
-  refused("winch_velocity", R"({"op":"winch_velocity"})");
-  refused("winch_velocity", R"({"op":"winch_velocity","speed_mps":1e300})");
-  refused("winch_velocity", R"({"op":"winch_velocity","speed_mps":"fast"})");
-  refused("winch_torque", R"({"op":"winch_torque","enabled":1})");
-  refused("winch_state", "not json");
+  EXPECT_EQ(refused(R"({"op":"winch_velocity"})"), "'speed_mps': expected a number in [-100, 100]");
+  refused(R"({"op":"winch_velocity","speed_mps":1e300})");
+  refused(R"({"op":"winch_velocity","speed_mps":"fast"})");
+  EXPECT_EQ(refused(R"({"op":"winch_torque","enabled":1})"), "'enabled': expected a boolean");
+  EXPECT_EQ(refused("not json"), "the request is not a JSON object");
+  // Not the winch's: named, with the winch's ops.
+  EXPECT_EQ(refused(R"({"op":"takeoff"})"),
+            "'op': 'takeoff' is not an op of the winch protocol (known: winch_state, winch_torque, "
+            "winch_velocity)");
   winch.advance(1.0, 0.0);
   EXPECT_EQ(winch.read_state().released_m, 0.0);  // no command got through
 }

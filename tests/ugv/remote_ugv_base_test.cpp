@@ -10,6 +10,7 @@
 
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
+#include "ferret/link/json_dispatcher.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/ugv/mini_ugv_mission.hpp"
 #include "support/test_maps.hpp"
@@ -180,11 +181,10 @@ TEST(RemoteUgvBase, AMissionOverTheProtocolIsTheMissionInProcess) {
   ASSERT_EQ(reference.outcome, UgvMissionOutcome::kObjectRetrieved);
 
   UgvMissionSim world(map, entry, object, settings, seed);  // the base alone
-  UgvBaseService service(world.base(), "sim", [&](const std::string& op, const std::string& request)
-                                                  -> std::optional<StreamMessage> {
-    if (op != "sim_step") return std::nullopt;
-    world.step(json::parse(request).at("dt_s").get<double>());
-    return StreamMessage{R"({"ok":true})", {}};
+  UgvBaseService service(world.base(), "sim");
+  service.dispatcher().add("sim_step", [&](const link::JsonRequest& r) -> link::JsonReply {
+    world.step(r.fields.at("dt_s").get<double>());
+    return {};
   });
   link::MessageListener listener(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test", "listen");
   std::atomic<bool> stop{false};

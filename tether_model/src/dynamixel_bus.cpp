@@ -2,13 +2,15 @@
 
 #include <fmt/format.h>
 
-#include <array>
+#include <optional>
+
+#include "ferret/link/serial_framing.hpp"
 
 namespace ferret::tether {
 
-DynamixelBus::DynamixelBus(std::unique_ptr<SerialLink> link, Options options)
-    : link_(std::move(link)), options_(options) {
-  if (!link_) throw SerialError("Dynamixel bus: no serial link");
+DynamixelBus::DynamixelBus(std::unique_ptr<link::SerialPort> port, Options options)
+    : port_(std::move(port)), options_(options) {
+  if (!port_) throw SerialError("Dynamixel bus: no serial link");
 }
 
 dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction,
@@ -19,55 +21,45 @@ dxl::Packet DynamixelBus::transact(std::uint8_t id, std::uint8_t instruction,
   DynamixelError::Kind last_kind = DynamixelError::Kind::kTimeout;
   for (int attempt = 0; attempt <= options_.retries; ++attempt) {
     if (attempt > 0) ++retried_;
-    link_->discard_input();
-    link_->write(request);
-    std::vector<std::uint8_t> rx;
+    port_->discard_input();
+    port_->write(request);
+    link::FrameReader reader(dxl::frame_format());
     const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.timeout_ms);
-    bool retry = false;
-    while (!retry) {
-      const auto left =
-          std::chrono::ceil<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-      if (left.count() <= 0) {
+        link::FrameReader::Clock::now() + std::chrono::milliseconds(options_.timeout_ms);
+    while (true) {
+      const std::optional<link::FrameEvent> e = reader.read(*port_, deadline);
+      if (!e) {
         last_kind = DynamixelError::Kind::kTimeout;
         last_problem = fmt::format("no reply within {} ms", options_.timeout_ms);
         break;
       }
-      std::array<std::uint8_t, 256> chunk{};
-      const std::size_t n = link_->read_some(chunk, static_cast<int>(left.count()));
-      rx.insert(rx.end(), chunk.begin(), chunk.begin() + static_cast<long>(n));
-      while (true) {
-        const dxl::DecodeResult d = dxl::decode(rx);
-        rx.erase(rx.begin(), rx.begin() + static_cast<long>(d.consumed));
-        if (d.status == dxl::DecodeResult::Status::kIncomplete) break;
-        if (d.status != dxl::DecodeResult::Status::kPacket) {
-          last_kind = DynamixelError::Kind::kCorrupt;
-          last_problem = d.status == dxl::DecodeResult::Status::kBadCrc ? "a reply with a bad CRC"
-                                                                        : "a malformed reply";
-          retry = true;
-          break;
-        }
-        const dxl::Packet& p = d.packet;
-        // Half-duplex adapters echo our own request; skip anything that is not a status.
-        if (p.instruction != dxl::instruction::kStatus) continue;
-        if (p.id != id)
-          throw DynamixelError(
-              DynamixelError::Kind::kWrongDevice, 0,
-              fmt::format("Dynamixel on '{}': asked id {}, id {} answered", port(), id, p.id));
-        if (p.error != 0)
-          throw DynamixelError(
-              DynamixelError::Kind::kStatus, p.error,
-              fmt::format("Dynamixel id {} on '{}': {} (instruction 0x{:02X})", id, port(),
-                          dxl::describe_status_error(p.error), instruction));
-        if (p.params.size() != expected_params) {
-          last_kind = DynamixelError::Kind::kCorrupt;
-          last_problem = fmt::format("a reply with {} parameter bytes, expected {}",
-                                     p.params.size(), expected_params);
-          retry = true;
-          break;
-        }
-        return p;
+      const dxl::DecodeResult d = e->status == link::FrameScan::Status::kFrame
+                                      ? dxl::decode(e->bytes)
+                                      : dxl::DecodeResult{};
+      if (d.status != dxl::DecodeResult::Status::kPacket) {
+        last_kind = DynamixelError::Kind::kCorrupt;
+        last_problem = e->status == link::FrameScan::Status::kBadChecksum ? "a reply with a bad CRC"
+                                                                          : "a malformed reply";
+        break;
       }
+      const dxl::Packet& p = d.packet;
+      // Half-duplex adapters echo our own request; skip anything that is not a status.
+      if (p.instruction != dxl::instruction::kStatus) continue;
+      if (p.id != id)
+        throw DynamixelError(
+            DynamixelError::Kind::kWrongDevice, 0,
+            fmt::format("Dynamixel on '{}': asked id {}, id {} answered", port(), id, p.id));
+      if (p.error != 0)
+        throw DynamixelError(DynamixelError::Kind::kStatus, p.error,
+                             fmt::format("Dynamixel id {} on '{}': {} (instruction 0x{:02X})", id,
+                                         port(), dxl::describe_status_error(p.error), instruction));
+      if (p.params.size() != expected_params) {
+        last_kind = DynamixelError::Kind::kCorrupt;
+        last_problem = fmt::format("a reply with {} parameter bytes, expected {}", p.params.size(),
+                                   expected_params);
+        break;
+      }
+      return p;
     }
   }
   throw DynamixelError(

@@ -2,11 +2,13 @@
 
 #include <array>
 
+#include "ferret/link/serial_framing.hpp"
+
 namespace ferret::tether::dxl {
 
 namespace {
 constexpr std::array<std::uint8_t, 4> kHeader = {0xFF, 0xFF, 0xFD, 0x00};
-constexpr std::size_t kHeaderSize = 4, kPrefixSize = 7;  // header, id, length
+constexpr std::size_t kPrefixSize = 7;  // header, id, length
 
 constexpr std::array<std::uint16_t, 256> make_crc_table() {
   std::array<std::uint16_t, 256> table{};
@@ -78,53 +80,49 @@ std::vector<std::uint8_t> encode_status(std::uint8_t id, std::uint8_t error,
   return encode(id, payload);
 }
 
+const link::FrameFormat& frame_format() {
+  static const link::FrameFormat kFormat{
+      .sync = {kHeader.begin(), kHeader.end()},
+      .length_offset = 5,
+      .length_bytes = 2,
+      .overhead = kPrefixSize,
+      .checksum_from = 0,
+      .checksum = [](std::span<const std::uint8_t> bytes) { return crc16(bytes); },
+      // At least an instruction byte and the CRC.
+      .length_ok = [](std::span<const std::uint8_t>, std::size_t length) { return length >= 3; },
+      .after_bad_length = link::Resync::kPastSync,
+      // Stuffing keeps a header out of a packet: none can start inside a bad one.
+      .after_bad_checksum = link::Resync::kPastFrame,
+  };
+  return kFormat;
+}
+
 DecodeResult decode(std::span<const std::uint8_t> buffer) {
+  using Scan = link::FrameScan::Status;
   DecodeResult r;
-  // Skip to the first header.
-  std::size_t start = 0;
-  while (start + kHeaderSize <= buffer.size() &&
-         !(buffer[start] == 0xFF && buffer[start + 1] == 0xFF && buffer[start + 2] == 0xFD &&
-           buffer[start + 3] == 0x00))
-    ++start;
-  if (start + kHeaderSize > buffer.size()) {
-    // Keep a possible partial header at the end.
-    std::size_t keep = 0;
-    for (std::size_t k = std::min<std::size_t>(3, buffer.size()); k > 0; --k) {
-      if (std::equal(buffer.end() - static_cast<long>(k), buffer.end(), kHeader.begin())) {
-        keep = k;
-        break;
-      }
-    }
-    r.consumed = buffer.size() - keep;
-    return r;
+  const link::FrameScan scan = link::find_frame(buffer, frame_format());
+  r.consumed = scan.consumed;
+  switch (scan.status) {
+    case Scan::kIncomplete:
+      return r;
+    case Scan::kBadLength:
+      r.status = DecodeResult::Status::kMalformed;
+      return r;
+    case Scan::kBadChecksum:
+      r.status = DecodeResult::Status::kBadCrc;
+      return r;
+    case Scan::kFrame:
+      break;
   }
-  r.consumed = start;
-  if (buffer.size() < start + kPrefixSize) return r;
-  const std::size_t length = buffer[start + 5] | (static_cast<std::size_t>(buffer[start + 6]) << 8);
-  if (length < 3) {  // at least an instruction byte and the CRC
-    r.status = DecodeResult::Status::kMalformed;
-    r.consumed = start + kHeaderSize;
-    return r;
-  }
-  const std::size_t total = kPrefixSize + length;
-  if (buffer.size() < start + total) return r;
-  const auto packet = buffer.subspan(start, total);
-  const std::uint16_t expected = crc16(packet.first(total - 2));
-  const std::uint16_t got =
-      static_cast<std::uint16_t>(packet[total - 2] | (packet[total - 1] << 8));
-  if (expected != got) {
-    r.status = DecodeResult::Status::kBadCrc;
-    r.consumed = start + total;
-    return r;
-  }
-  const std::vector<std::uint8_t> body = unstuff(packet.subspan(kPrefixSize, length - 2));
+  const auto packet = buffer.subspan(scan.start, scan.size);
+  const std::vector<std::uint8_t> body =
+      unstuff(packet.subspan(kPrefixSize, scan.size - kPrefixSize - 2));
   r.packet.id = packet[4];
   r.packet.instruction = body[0];
   std::size_t first_param = 1;
   if (body[0] == instruction::kStatus) {
     if (body.size() < 2) {
       r.status = DecodeResult::Status::kMalformed;
-      r.consumed = start + total;
       return r;
     }
     r.packet.error = body[1];
@@ -132,7 +130,6 @@ DecodeResult decode(std::span<const std::uint8_t> buffer) {
   }
   r.packet.params.assign(body.begin() + static_cast<long>(first_param), body.end());
   r.status = DecodeResult::Status::kPacket;
-  r.consumed = start + total;
   return r;
 }
 

@@ -31,8 +31,8 @@ std::string dynamixel_model_name(std::uint16_t model) {
 DynamixelWinch::DynamixelWinch(Options options)
     : DynamixelWinch(options, open_serial_port(options.port, options.baud_rate)) {}
 
-DynamixelWinch::DynamixelWinch(Options options, std::unique_ptr<SerialLink> link)
-    : options_(std::move(options)), bus_(std::move(link), options_.bus) {
+DynamixelWinch::DynamixelWinch(Options options, std::unique_ptr<link::SerialPort> port)
+    : options_(std::move(options)), bus_(std::move(port), options_.bus) {
   if (!(options_.spool_radius_m > 0.0) ||
       (options_.payout_direction != 1 && options_.payout_direction != -1))
     throw SerialError("Dynamixel winch: spool radius must be > 0 and payout direction +1 or -1");

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ferret/core/error.hpp"
+#include "ferret/link/json_dispatcher.hpp"
 
 namespace ferret {
 namespace {
@@ -11,11 +12,7 @@ namespace {
 using link::StreamMessage;
 using nlohmann::json;
 
-std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
-
-StreamMessage refused(const std::string& op, const std::string& error) {
-  return {dump({{"ok", false}, {"op", op}, {"error", error}}), {}};
-}
+using link::dump_json;
 
 json parse_reply(const StreamMessage& m, const std::string& op) {
   json j = json::parse(m.header, nullptr, false);
@@ -38,38 +35,51 @@ double finite(const json& j, const char* key, const std::string& op) {
 
 }  // namespace
 
-std::optional<StreamMessage> WinchService::handle(const std::string& op, const std::string& request) {
-  if (op != "winch_torque" && op != "winch_velocity" && op != "winch_state") return std::nullopt;
-  const json r = json::parse(request, nullptr, false);
-  if (r.is_discarded() || !r.is_object()) return refused(op, "the request is not a JSON object");
-  try {
-    if (op == "winch_torque") {
-      if (!r.contains("enabled") || !r["enabled"].is_boolean()) return refused(op, "'enabled': expected a boolean");
-      winch_.set_torque_enabled(r["enabled"].get<bool>());
-      return StreamMessage{R"({"ok":true})", {}};
-    }
-    if (op == "winch_velocity") {
-      // A spool turns at metres a second; beyond 100 m/s it is a client bug.
-      if (!r.contains("speed_mps") || !r["speed_mps"].is_number() || !std::isfinite(r["speed_mps"].get<double>()) ||
-          std::abs(r["speed_mps"].get<double>()) > 100.0)
-        return refused(op, "'speed_mps': expected a number in [-100, 100]");
-      winch_.command_velocity_mps(r["speed_mps"].get<double>());
-      return StreamMessage{R"({"ok":true})", {}};
-    }
-    const tether::WinchState s = winch_.read_state();
-    return StreamMessage{
-        dump({{"ok", true}, {"released_m", s.released_m}, {"speed_mps", s.speed_mps}, {"tension_n", s.tension_n}}), {}};
-  } catch (const std::exception& e) {  // the winch's own error (a servo that does not answer)
-    return refused(op, e.what());
-  }
+void add_winch_ops(link::JsonDispatcher& dispatcher, tether::Winch& winch) {
+  using link::JsonReply;
+  using link::JsonRequest;
+  // A bad request is refused before it reaches the winch; the winch's own error (a
+  // servo that does not answer) is the dispatcher's refusal too.
+  dispatcher.add("winch_torque", [&winch](const JsonRequest& r) -> JsonReply {
+    winch.set_torque_enabled(link::request_bool(r.fields, "enabled"));
+    return {};
+  });
+  dispatcher.add("winch_velocity", [&winch](const JsonRequest& r) -> JsonReply {
+    // A spool turns at metres a second; beyond 100 m/s it is a client bug.
+    const json& j = r.fields;
+    if (!j.contains("speed_mps") || !j["speed_mps"].is_number() ||
+        !std::isfinite(j["speed_mps"].get<double>()) ||
+        std::abs(j["speed_mps"].get<double>()) > 100.0)
+      throw link::RequestError("'speed_mps': expected a number in [-100, 100]");
+    winch.command_velocity_mps(j["speed_mps"].get<double>());
+    return {};
+  });
+  dispatcher.add("winch_state", [&winch](const JsonRequest&) -> JsonReply {
+    const tether::WinchState s = winch.read_state();
+    return json{
+        {"released_m", s.released_m}, {"speed_mps", s.speed_mps}, {"tension_n", s.tension_n}};
+  });
+}
+
+WinchService::WinchService(tether::Winch& winch)
+    : dispatcher_(std::make_unique<link::JsonDispatcher>("the winch protocol")) {
+  add_winch_ops(*dispatcher_, winch);
+}
+
+WinchService::~WinchService() = default;
+
+StreamMessage WinchService::handle(const StreamMessage& request) const {
+  return dispatcher_->handle(request);
 }
 
 void RemoteWinch::set_torque_enabled(bool enabled) {
-  (void)parse_reply(channel_.call(dump({{"op", "winch_torque"}, {"enabled", enabled}})), "winch_torque");
+  (void)parse_reply(channel_.call(dump_json({{"op", "winch_torque"}, {"enabled", enabled}})),
+                    "winch_torque");
 }
 
 void RemoteWinch::command_velocity_mps(double speed_mps) {
-  (void)parse_reply(channel_.call(dump({{"op", "winch_velocity"}, {"speed_mps", speed_mps}})), "winch_velocity");
+  (void)parse_reply(channel_.call(dump_json({{"op", "winch_velocity"}, {"speed_mps", speed_mps}})),
+                    "winch_velocity");
 }
 
 tether::WinchState RemoteWinch::read_state() {

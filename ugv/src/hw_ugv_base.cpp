@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "ferret/core/error.hpp"
+#include "ferret/link/serial_port.hpp"
 #include "ferret/perception/camera_model.hpp"
-#include "ferret/tether_model/serial_port.hpp"
 #include "gpio_line.hpp"
 #include "hw_camera.hpp"
 
@@ -107,7 +107,7 @@ struct HwUgvBase::Impl {
   std::optional<CameraModel> camera_model;
   double max_v_mps = 0.0, max_w_radps = 0.0, max_wheel_mps = 0.0;
 
-  std::unique_ptr<tether::SerialLink> link;
+  std::unique_ptr<link::SerialPort> serial;
   std::unique_ptr<ObjectDetector> detector;
   std::unique_ptr<internal::HwCamera> camera;
   std::unique_ptr<internal::GpioLine> gpio;
@@ -161,7 +161,7 @@ struct HwUgvBase::Impl {
     }
   }
 
-  void write(const std::vector<std::uint8_t>& bytes) { link->write(bytes); }
+  void write(const std::vector<std::uint8_t>& bytes) { serial->write(bytes); }
 
   void open_serial() {
     port = config.serial.port;
@@ -173,8 +173,8 @@ struct HwUgvBase::Impl {
                                    "UART and disable the serial console)",
                                    port));
     try {
-      link = tether::open_serial_port(port, config.serial.baud);
-    } catch (const tether::SerialError& e) {
+      serial = link::open_serial_port(port, config.serial.baud);
+    } catch (const link::SerialError& e) {
       throw HwUgvError(Kind::kSerialMissing,
                        fmt::format("miniUGV MCU serial port '{}': cannot open at {} baud: {}",
                                    port, config.serial.baud, e.what()));
@@ -183,7 +183,7 @@ struct HwUgvBase::Impl {
 
   /// HELLO until INFO, then the IR count against the URDF's.
   void identify(const std::string& urdf) {
-    link->discard_input();
+    serial->discard_input();
     const auto start = Clock::now();
     const auto deadline = start + to_duration(config.link.connect_timeout_s);
     auto next_hello = start;
@@ -194,10 +194,7 @@ struct HwUgvBase::Impl {
         write(mcu::encode_hello(tx_seq++));
         next_hello += std::chrono::milliseconds(200);
       }
-      std::array<std::uint8_t, 256> chunk{};
-      const std::size_t n = link->read_some(chunk, 20);
-      bytes += n;
-      reader.push(std::span(chunk).first(n));
+      bytes += reader.receive(*serial, 20);
       while (const auto ev = reader.next()) {
         if (ev->status == mcu::DecodeResult::Status::kBadVersion) {
           other_version = ev->frame.version;
@@ -318,8 +315,9 @@ struct HwUgvBase::Impl {
       std::size_t n = 0;
       bool failed = false;
       try {
-        n = link->read_some(chunk, 5);
-      } catch (const tether::SerialError& e) {
+        // Outside the lock: the controller's calls go on while the port waits.
+        n = serial->read_some(chunk, 5);
+      } catch (const link::SerialError& e) {
         std::lock_guard lock(mutex);
         io_problem = e.what();
         failed = true;
@@ -353,7 +351,7 @@ struct HwUgvBase::Impl {
       for (const auto& bytes : out) {
         try {
           write(bytes);
-        } catch (const tether::SerialError& e) {
+        } catch (const link::SerialError& e) {
           std::lock_guard lock(mutex);
           io_problem = e.what();
         }
@@ -466,7 +464,7 @@ HwUgvBase::~HwUgvBase() {
   for (int i = 0; i < 3; ++i) {
     try {
       m.write(mcu::encode_drive(m.tx_seq++, {}));
-    } catch (const tether::SerialError&) {
+    } catch (const link::SerialError&) {
       break;
     }
   }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "ferret/core/error.hpp"
+#include "ferret/link/json_dispatcher.hpp"
 
 namespace ferret {
 namespace {
@@ -13,23 +14,14 @@ namespace {
 using link::StreamMessage;
 using nlohmann::json;
 
-std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+using link::dump_json;
 
 // --- the server's half -------------------------------------------------------------
 
-// A request the service refuses: the reply's "error".
-struct Refusal : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-double request_number(const json& j, const char* key, double lo, double hi) {
-  if (!j.contains(key) || !j[key].is_number()) throw Refusal(std::string("'") + key + "': expected a number");
-  const double v = j[key].get<double>();
-  if (!std::isfinite(v) || v < lo || v > hi)
-    throw Refusal(std::string("'") + key + "': expected a number in [" + json(lo).dump() + ", " + json(hi).dump() +
-                  "], got " + json(v).dump());
-  return v;
-}
+using link::JsonReply;
+using link::JsonRequest;
+using link::request_number;
+using link::RequestError;
 
 json pose_json(const Pose2& p) { return json::array({p.x_m, p.y_m, p.yaw_rad}); }
 
@@ -43,11 +35,6 @@ json scan_json(const RangeScan& s) {
     beams.push_back(range_json(b.range_m));
   }
   return {{"X_WS", pose_json(s.X_WS)}, {"max_range_m", s.max_range_m}, {"beams", std::move(beams)}};
-}
-
-StreamMessage reply(json j) {
-  j["ok"] = true;
-  return {dump(j), {}};
 }
 
 // --- the client's half -------------------------------------------------------------
@@ -116,65 +103,68 @@ RangeScan scan_of(const json& j, const std::string& op) {
 
 }  // namespace
 
-UgvBaseService::UgvBaseService(UgvBase& base, std::string server_name, Extension extension)
-    : base_(base), name_(std::move(server_name)), extension_(std::move(extension)) {}
-
-StreamMessage UgvBaseService::handle(const StreamMessage& request) {
+UgvBaseService::UgvBaseService(UgvBase& base, std::string server_name)
+    : base_(base),
+      name_(std::move(server_name)),
+      dispatcher_(std::make_unique<link::JsonDispatcher>("the miniUGV base protocol " +
+                                                         std::to_string(kUgvBaseProtocol))) {
   // Set-points within what any miniUGV could mean: anything else is a client bug.
   constexpr double kMaxSpeedMps = 100.0, kMaxYawRateRadps = 100.0, kMaxTimeS = 1e9;
-  std::string op;
-  try {
-    const json r = json::parse(request.header, nullptr, false);
-    if (r.is_discarded() || !r.is_object()) throw Refusal("the request is not a JSON object");
-    if (!r.contains("op") || !r["op"].is_string()) throw Refusal("'op': expected a string");
-    op = r["op"].get<std::string>();
-    if (op == "hello") {
-      if (!r.contains("protocol") || !r["protocol"].is_number_integer())
-        throw Refusal("'protocol': expected an integer");
-      if (r["protocol"].get<long long>() != kUgvBaseProtocol)
-        throw Refusal("'protocol': this server speaks " + std::to_string(kUgvBaseProtocol));
-      return reply({{"protocol", kUgvBaseProtocol}, {"server", name_}, {"backend", base_.backend()}});
-    }
-    if (op == "odometry") return reply({{"pose", pose_json(base_.odometry())}});
-    if (op == "speed") return reply({{"speed_mps", base_.speed_mps()}});
-    if (op == "ir_scan") return reply({{"scan", scan_json(base_.ir_scan())}});
-    if (op == "camera_frame") {
-      const CameraFrame f = base_.camera_frame(request_number(r, "time_s", -kMaxTimeS, kMaxTimeS));
-      json detections = json::array();
-      for (const ObjectDetection& d : f.detections)
-        detections.push_back(json::array({d.bearing_rad, d.distance_m, d.confidence}));
-      return reply({{"frame", {{"time_s", f.time_s}, {"view", scan_json(f.view)}, {"detections", detections}}}});
-    }
-    if (op == "velocity") {
-      const double v = request_number(r, "v_mps", -kMaxSpeedMps, kMaxSpeedMps);
-      const double w = request_number(r, "w_radps", -kMaxYawRateRadps, kMaxYawRateRadps);
-      base_.command_velocity(v, w);
-      return reply({});
-    }
-    if (op == "epm") {
-      if (!r.contains("on") || !r["on"].is_boolean()) throw Refusal("'on': expected a boolean");
-      base_.set_epm(r["on"].get<bool>());
-      return reply({});
-    }
-    if (op == "status") {
-      const UgvStatus s = base_.status();
-      return reply({{"battery_fraction", s.battery_fraction},
-                    {"epm_on", s.epm_on},
-                    {"contact", s.contact},
-                    {"faults", s.faults}});
-    }
-    if (extension_)
-      if (auto m = extension_(op, request.header)) return std::move(*m);
-    throw Refusal("'op': '" + op + "' is not an op of protocol " + std::to_string(kUgvBaseProtocol));
-  } catch (const std::exception& e) {
-    // A refusal, or the base's own error.
-    return {dump(json{{"ok", false}, {"op", op}, {"error", e.what()}}), {}};
-  }
+  link::JsonDispatcher& d = *dispatcher_;
+  d.add("hello", [this](const JsonRequest& r) -> JsonReply {
+    if (!r.fields.contains("protocol") || !r.fields["protocol"].is_number_integer())
+      throw RequestError("'protocol': expected an integer");
+    if (r.fields["protocol"].get<long long>() != kUgvBaseProtocol)
+      throw RequestError("'protocol': this server speaks " + std::to_string(kUgvBaseProtocol));
+    return json{{"protocol", kUgvBaseProtocol}, {"server", name_}, {"backend", base_.backend()}};
+  });
+  d.add("odometry", [this](const JsonRequest&) -> JsonReply {
+    return json{{"pose", pose_json(base_.odometry())}};
+  });
+  d.add("speed", [this](const JsonRequest&) -> JsonReply {
+    return json{{"speed_mps", base_.speed_mps()}};
+  });
+  d.add("ir_scan", [this](const JsonRequest&) -> JsonReply {
+    return json{{"scan", scan_json(base_.ir_scan())}};
+  });
+  d.add("camera_frame", [this](const JsonRequest& r) -> JsonReply {
+    const CameraFrame f =
+        base_.camera_frame(request_number(r.fields, "time_s", -kMaxTimeS, kMaxTimeS));
+    json detections = json::array();
+    for (const ObjectDetection& o : f.detections)
+      detections.push_back(json::array({o.bearing_rad, o.distance_m, o.confidence}));
+    return json{
+        {"frame", {{"time_s", f.time_s}, {"view", scan_json(f.view)}, {"detections", detections}}}};
+  });
+  d.add("velocity", [this](const JsonRequest& r) -> JsonReply {
+    const double v = request_number(r.fields, "v_mps", -kMaxSpeedMps, kMaxSpeedMps);
+    const double w = request_number(r.fields, "w_radps", -kMaxYawRateRadps, kMaxYawRateRadps);
+    base_.command_velocity(v, w);
+    return {};
+  });
+  d.add("epm", [this](const JsonRequest& r) -> JsonReply {
+    base_.set_epm(link::request_bool(r.fields, "on"));
+    return {};
+  });
+  d.add("status", [this](const JsonRequest&) -> JsonReply {
+    const UgvStatus s = base_.status();
+    return json{{"battery_fraction", s.battery_fraction},
+                {"epm_on", s.epm_on},
+                {"contact", s.contact},
+                {"faults", s.faults}};
+  });
+}
+
+UgvBaseService::~UgvBaseService() = default;
+
+StreamMessage UgvBaseService::handle(const StreamMessage& request) const {
+  return dispatcher_->handle(request);
 }
 
 RemoteUgvBase::RemoteUgvBase(link::RpcChannel& channel, std::string backend)
     : channel_(channel), backend_(std::move(backend)) {
-  const json j = parse_reply(channel_.call(dump({{"op", "hello"}, {"protocol", kUgvBaseProtocol}})), "hello");
+  const json j = parse_reply(
+      channel_.call(dump_json({{"op", "hello"}, {"protocol", kUgvBaseProtocol}})), "hello");
   if (!j.contains("protocol") || !j["protocol"].is_number_integer() ||
       j["protocol"].get<long long>() != kUgvBaseProtocol)
     throw UgvBaseProtocolError("miniUGV base: the server does not speak protocol " + std::to_string(kUgvBaseProtocol));
@@ -197,7 +187,7 @@ RangeScan RemoteUgvBase::ir_scan() {
 
 CameraFrame RemoteUgvBase::camera_frame(double time_s) {
   const std::string op = "camera_frame";
-  const json j = parse_reply(channel_.call(dump({{"op", op}, {"time_s", time_s}})), op);
+  const json j = parse_reply(channel_.call(dump_json({{"op", op}, {"time_s", time_s}})), op);
   if (!j.contains("frame") || !j["frame"].is_object()) broken(op, "has no object 'frame'");
   const json& f = j["frame"];
   CameraFrame frame;
@@ -217,11 +207,13 @@ CameraFrame RemoteUgvBase::camera_frame(double time_s) {
 }
 
 void RemoteUgvBase::command_velocity(double v_mps, double w_radps) {
-  (void)parse_reply(channel_.call(dump({{"op", "velocity"}, {"v_mps", v_mps}, {"w_radps", w_radps}})), "velocity");
+  (void)parse_reply(
+      channel_.call(dump_json({{"op", "velocity"}, {"v_mps", v_mps}, {"w_radps", w_radps}})),
+      "velocity");
 }
 
 void RemoteUgvBase::set_epm(bool on) {
-  (void)parse_reply(channel_.call(dump({{"op", "epm"}, {"on", on}})), "epm");
+  (void)parse_reply(channel_.call(dump_json({{"op", "epm"}, {"on", on}})), "epm");
 }
 
 UgvStatus RemoteUgvBase::status() const {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 
+#include "ferret/link/serial_framing.hpp"
+
 namespace ferret::ugv::mcu {
 namespace {
 
@@ -120,84 +122,79 @@ std::vector<std::uint8_t> encode_frame(const Frame& frame) {
   return out;
 }
 
+const link::FrameFormat& frame_format() {
+  static const link::FrameFormat kFormat{
+      .sync = {kSync0, kSync1},
+      .length_offset = 5,
+      .length_bytes = 1,
+      .overhead = kHeaderSize + kCrcSize,
+      .checksum_from = 2,
+      .checksum = [](std::span<const std::uint8_t> bytes) { return crc16_ccitt(bytes); },
+      // Only version 1's lengths are known here; another version's frame is read whole.
+      .length_ok =
+          [](std::span<const std::uint8_t> header, std::size_t length) {
+            return header[2] != kProtocolVersion || length <= kMaxPayloadSize;
+          },
+      // No stuffing: a false sync inside noise must not swallow a real frame after it.
+      .after_bad_length = link::Resync::kNextByte,
+      .after_bad_checksum = link::Resync::kNextByte,
+  };
+  return kFormat;
+}
+
 DecodeResult decode(std::span<const std::uint8_t> buffer) {
+  using Scan = link::FrameScan::Status;
   DecodeResult r;
-  std::size_t start = 0;
-  while (start + 1 < buffer.size() && !(buffer[start] == kSync0 && buffer[start + 1] == kSync1))
-    ++start;
-  if (start + 1 >= buffer.size()) {
-    // No sync pair: keep a last byte that may be the first half of one.
-    r.consumed = !buffer.empty() && buffer.back() == kSync0 ? buffer.size() - 1 : buffer.size();
-    return r;
+  const link::FrameScan scan = link::find_frame(buffer, frame_format());
+  r.consumed = scan.consumed;
+  switch (scan.status) {
+    case Scan::kIncomplete:
+      return r;
+    case Scan::kBadLength:
+      r.status = DecodeResult::Status::kBadLength;
+      return r;
+    case Scan::kBadChecksum:
+      r.status = DecodeResult::Status::kBadCrc;
+      return r;
+    case Scan::kFrame:
+      break;
   }
-  r.consumed = start;  // the noise before the sync pair
-  if (buffer.size() < start + kHeaderSize) return r;
-  const std::uint8_t version = buffer[start + 2];
-  const std::size_t length = buffer[start + 5];
-  if (version == kProtocolVersion && length > kMaxPayloadSize) {
-    r.status = DecodeResult::Status::kBadLength;
-    r.consumed = start + 1;
-    return r;
-  }
-  const std::size_t total = kHeaderSize + length + kCrcSize;
-  if (buffer.size() < start + total) return r;
-  const auto whole = buffer.subspan(start, total);
-  const std::uint16_t expected = crc16_ccitt(whole.subspan(2, kHeaderSize - 2 + length));
-  const auto got = static_cast<std::uint16_t>(whole[total - 2] | (whole[total - 1] << 8));
-  if (expected != got) {
-    r.status = DecodeResult::Status::kBadCrc;
-    r.consumed = start + 1;
-    return r;
-  }
-  r.frame.version = version;
+  const auto whole = buffer.subspan(scan.start, scan.size);
+  r.frame.version = whole[2];
   r.frame.type = whole[3];
   r.frame.seq = whole[4];
-  r.frame.payload.assign(whole.begin() + kHeaderSize,
-                         whole.begin() + static_cast<std::ptrdiff_t>(kHeaderSize + length));
-  r.status = version == kProtocolVersion ? DecodeResult::Status::kFrame
-                                         : DecodeResult::Status::kBadVersion;
-  r.consumed = start + total;
+  r.frame.payload.assign(whole.begin() + kHeaderSize, whole.end() - kCrcSize);
+  r.status = r.frame.version == kProtocolVersion ? DecodeResult::Status::kFrame
+                                                 : DecodeResult::Status::kBadVersion;
   return r;
 }
 
-void FrameReader::push(std::span<const std::uint8_t> bytes) {
-  buffer_.insert(buffer_.end(), bytes.begin(), bytes.end());
+FrameReader::FrameReader() : reader_(frame_format()) {}
+
+void FrameReader::push(std::span<const std::uint8_t> bytes) { reader_.push(bytes); }
+
+std::size_t FrameReader::receive(link::SerialPort& port, int timeout_ms) {
+  return reader_.receive(port, timeout_ms);
 }
 
 std::optional<DecodeResult> FrameReader::next() {
-  while (!buffer_.empty()) {
-    DecodeResult r = decode(buffer_);
-    const std::size_t before_sync =
-        r.status == DecodeResult::Status::kFrame || r.status == DecodeResult::Status::kBadVersion
-            ? r.consumed - (kHeaderSize + r.frame.payload.size() + kCrcSize)
-            : r.consumed;
-    buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(r.consumed));
-    switch (r.status) {
-      case DecodeResult::Status::kIncomplete:
-        stats_.noise_bytes += r.consumed;
-        // A frame of another version may claim up to 255 bytes: more than that pending
-        // without a frame is impossible, so the buffer never grows past a frame.
-        return std::nullopt;
-      case DecodeResult::Status::kFrame:
-        stats_.noise_bytes += before_sync;
-        ++stats_.frames;
-        return r;
-      case DecodeResult::Status::kBadVersion:
-        stats_.noise_bytes += before_sync;
-        ++stats_.bad_version;
-        stats_.last_bad_version = r.frame.version;
-        return r;
-      case DecodeResult::Status::kBadCrc:
-        stats_.noise_bytes += r.consumed;
-        ++stats_.bad_crc;
-        break;
-      case DecodeResult::Status::kBadLength:
-        stats_.noise_bytes += r.consumed;
-        ++stats_.bad_length;
-        break;
+  std::optional<DecodeResult> out;
+  // Noise, bad CRCs and bad lengths are only counted.
+  while (const std::optional<link::FrameEvent> e = reader_.next()) {
+    if (e->status != link::FrameScan::Status::kFrame) continue;
+    out = decode(e->bytes);
+    if (out->status == DecodeResult::Status::kBadVersion) {
+      ++stats_.bad_version;
+      stats_.last_bad_version = out->frame.version;
     }
+    break;
   }
-  return std::nullopt;
+  const link::FrameStats& s = reader_.stats();
+  stats_.frames = s.frames - stats_.bad_version;
+  stats_.bad_crc = s.bad_checksum;
+  stats_.bad_length = s.bad_length;
+  stats_.noise_bytes = s.noise_bytes;
+  return out;
 }
 
 // ---------------------------------------------------------------- payloads

@@ -9,10 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "ferret/link/serial_port.hpp"
 #include "ferret/tether_model/dynamixel_protocol.hpp"
-#include "ferret/tether_model/serial_port.hpp"
 
 namespace ferret::tether {
+
+// The bus runs over link's serial port; its error and opener are part of the driver's
+// interface (a DynamixelError is a SerialError).
+using link::open_serial_port;
+using link::SerialError;
 
 /// A failed exchange with a servo.
 class DynamixelError : public SerialError {
@@ -41,7 +46,7 @@ class DynamixelBus {
     int retries = 2;      ///< extra attempts after a timeout or a corrupted reply
   };
 
-  DynamixelBus(std::unique_ptr<SerialLink> link, Options options);
+  DynamixelBus(std::unique_ptr<link::SerialPort> port, Options options);
 
   [[nodiscard]] PingReply ping(std::uint8_t id);
   [[nodiscard]] std::vector<std::uint8_t> read(std::uint8_t id, std::uint16_t address,
@@ -64,13 +69,13 @@ class DynamixelBus {
 
   /// Attempts that were repeated after a timeout or corrupted reply (for diagnostics).
   [[nodiscard]] int retried() const { return retried_; }
-  [[nodiscard]] const std::string& port() const { return link_->name(); }
+  [[nodiscard]] const std::string& port() const { return port_->name(); }
 
  private:
   dxl::Packet transact(std::uint8_t id, std::uint8_t instruction,
                        const std::vector<std::uint8_t>& params, std::size_t expected_params);
 
-  std::unique_ptr<SerialLink> link_;
+  std::unique_ptr<link::SerialPort> port_;
   Options options_;
   int retried_ = 0;
 };

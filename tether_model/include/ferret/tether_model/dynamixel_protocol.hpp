@@ -11,6 +11,10 @@
 #include <string>
 #include <vector>
 
+namespace ferret::link {
+struct FrameFormat;
+}
+
 namespace ferret::tether::dxl {
 
 namespace instruction {
@@ -55,6 +59,10 @@ struct DecodeResult {
   std::size_t consumed = 0;  ///< bytes of the buffer used (noise before the header included)
   Packet packet;             ///< valid when status == kPacket
 };
+
+/// Protocol 2.0's framing for link::FrameReader: the header, the length at bytes 5-6,
+/// the CRC over everything before it; after a bad CRC the search resumes past the packet.
+[[nodiscard]] const link::FrameFormat& frame_format();
 
 /// Finds and decodes the first packet in `buffer` (a receive stream: bytes before a
 /// header are skipped). kIncomplete: wait for more bytes (consumed = noise skipped);

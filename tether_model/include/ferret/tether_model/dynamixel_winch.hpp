@@ -58,8 +58,8 @@ class DynamixelWinch final : public Winch {
 
   /// Opens the port (throws SerialError if it is missing). Call connect() next.
   explicit DynamixelWinch(Options options);
-  /// For tests and emulators: an already-open link.
-  DynamixelWinch(Options options, std::unique_ptr<SerialLink> link);
+  /// For tests and emulators: an already-open port.
+  DynamixelWinch(Options options, std::unique_ptr<link::SerialPort> port);
 
   /// Pings the servo, checks its model, switches it to velocity mode with the profile
   /// acceleration and enables torque; l_t is initial_released_m from here. Throws

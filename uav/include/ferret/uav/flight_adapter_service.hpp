@@ -5,14 +5,17 @@
 // on every test run; an adapter written in C++ against DJI's Onboard SDK can link it
 // and implement FlightController and UavCameras over the SDK.
 
-#include <functional>
-#include <optional>
-#include <string>
-
 #include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
 
 #include "ferret/link/message_stream.hpp"
 #include "ferret/uav/flight_controller.hpp"
+
+namespace ferret::link {
+class JsonDispatcher;
+}
 
 namespace ferret {
 
@@ -22,15 +25,14 @@ class FlightAdapterService {
     /// The protocol's velocity set-point (m/s in the world, yaw rate rad/s), held until
     /// the next command. Empty: "velocity" is refused as unsupported.
     std::function<void(const Eigen::Vector3d& v_W, double yaw_rate_radps)> velocity;
-    /// Ops beyond protocol 1 (the simulator's "sim_advance"): the reply, or none for an
-    /// op it does not know either. Gets the op and the whole request header.
-    std::function<std::optional<link::StreamMessage>(const std::string& op, const std::string& request)>
-        extension;
   };
 
   /// `adapter_name` is what "hello" answers ("sim", "dji-osdk", ...).
   FlightAdapterService(FlightController& flight, UavCameras& cameras, std::string adapter_name,
                        Hooks hooks = {});
+  ~FlightAdapterService();
+  FlightAdapterService(const FlightAdapterService&) = delete;
+  FlightAdapterService& operator=(const FlightAdapterService&) = delete;
 
   /// The reply to one request. Never throws for a bad request: it is a reply with
   /// "ok": false and an "error" naming the field and what was expected.
@@ -40,11 +42,16 @@ class FlightAdapterService {
   /// (checked every 100 ms while idle).
   void serve(link::MessageStream& stream, const std::function<bool()>& keep_going);
 
+  /// The ops it answers (protocol 1's). A server adds its own beside them (the
+  /// simulator's "sim_advance", the winch's ops on the same connection).
+  [[nodiscard]] link::JsonDispatcher& dispatcher() { return *dispatcher_; }
+
  private:
   FlightController& flight_;
   UavCameras& cameras_;
   std::string adapter_name_;
   Hooks hooks_;
+  std::unique_ptr<link::JsonDispatcher> dispatcher_;
 };
 
 }  // namespace ferret

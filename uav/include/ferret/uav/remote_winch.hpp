@@ -1,15 +1,18 @@
 #pragma once
 // The winch across a process boundary (docs/robots.md, "The winch across a process
-// boundary"): WinchService answers requests against a tether::Winch (the simulated
-// world serves its simulated winch with it, beside the flight adapter's ops), and
+// boundary"): add_winch_ops answers requests against a tether::Winch (the simulated
+// world serves its simulated winch with them, beside the flight adapter's ops), and
 // RemoteWinch is a Winch whose every call is one request over an RpcChannel. On the
 // UAV the winch process drives DynamixelWinch directly.
 
-#include <optional>
-#include <string>
+#include <memory>
 
 #include "ferret/link/message_stream.hpp"
 #include "ferret/tether_model/winch.hpp"
+
+namespace ferret::link {
+class JsonDispatcher;
+}
 
 namespace ferret {
 
@@ -19,16 +22,23 @@ class WinchProtocolError : public link::StreamError {
   using link::StreamError::StreamError;
 };
 
+/// Adds the winch protocol's ops ("winch_torque", "winch_velocity", "winch_state")
+/// against `winch` to a server's dispatcher (the simulated world answers them beside the
+/// flight adapter's). A bad request is refused naming the field and never reaches the
+/// winch. `winch` must outlive the dispatcher.
+void add_winch_ops(link::JsonDispatcher& dispatcher, tether::Winch& winch);
+
+/// A server of the winch alone.
 class WinchService {
  public:
-  explicit WinchService(tether::Winch& winch) : winch_(winch) {}
-  /// The reply to a request whose op is one of "winch_torque", "winch_velocity",
-  /// "winch_state"; none for another op (the caller's to answer). Never throws for a bad
-  /// request: "ok": false with an "error" naming the field.
-  [[nodiscard]] std::optional<link::StreamMessage> handle(const std::string& op, const std::string& request);
+  explicit WinchService(tether::Winch& winch);
+  ~WinchService();
+  /// The reply to one request; never throws for a bad one: "ok": false with an "error"
+  /// naming the field (an op that is not the winch's is refused too).
+  [[nodiscard]] link::StreamMessage handle(const link::StreamMessage& request) const;
 
  private:
-  tether::Winch& winch_;
+  std::unique_ptr<link::JsonDispatcher> dispatcher_;
 };
 
 class RemoteWinch final : public tether::Winch {

@@ -9,12 +9,15 @@
 // framing). Numbers travel as JSON numbers, which carry a double exactly, so a mission
 // over the protocol makes the same decisions as one with the base in its process.
 
-#include <functional>
-#include <optional>
+#include <memory>
 #include <string>
 
 #include "ferret/link/message_stream.hpp"
 #include "ferret/ugv/ugv_base.hpp"
+
+namespace ferret::link {
+class JsonDispatcher;
+}
 
 namespace ferret {
 
@@ -33,21 +36,24 @@ class UgvBaseProtocolError : public link::StreamError {
 
 class UgvBaseService {
  public:
-  /// Ops beyond protocol 1 (the simulated world's stepping): the reply, or none for an
-  /// op it does not know either. Gets the op and the whole request header.
-  using Extension = std::function<std::optional<link::StreamMessage>(const std::string& op, const std::string& request)>;
-
   /// `server_name` is what "hello" answers ("sim", ...).
-  UgvBaseService(UgvBase& base, std::string server_name, Extension extension = {});
+  UgvBaseService(UgvBase& base, std::string server_name);
+  ~UgvBaseService();
+  UgvBaseService(const UgvBaseService&) = delete;
+  UgvBaseService& operator=(const UgvBaseService&) = delete;
 
   /// The reply to one request. Never throws for a bad request: it is a reply with
   /// "ok": false and an "error" naming the field and what was expected.
-  [[nodiscard]] link::StreamMessage handle(const link::StreamMessage& request);
+  [[nodiscard]] link::StreamMessage handle(const link::StreamMessage& request) const;
+
+  /// The ops it answers (protocol 1's). A server adds its own beside them (the
+  /// simulated world's "ugv_deployment").
+  [[nodiscard]] link::JsonDispatcher& dispatcher() { return *dispatcher_; }
 
  private:
   UgvBase& base_;
   std::string name_;
-  Extension extension_;
+  std::unique_ptr<link::JsonDispatcher> dispatcher_;
 };
 
 class RemoteUgvBase final : public UgvBase {

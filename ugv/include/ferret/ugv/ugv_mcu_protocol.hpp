@@ -20,7 +20,8 @@
 // only the first sync byte and searches again, so a false sync inside noise never
 // swallows a real frame that follows.
 //
-// Pure functions and a stream reader, no I/O: HwUgvBase (hw_ugv_base.hpp) does the I/O.
+// Pure functions and a stream reader over link's framing (link/serial_framing.hpp), which
+// also finds the Dynamixel's packets; HwUgvBase (hw_ugv_base.hpp) drives the port.
 
 #include <cstddef>
 #include <cstdint>
@@ -28,6 +29,12 @@
 #include <span>
 #include <string>
 #include <vector>
+
+#include "ferret/link/serial_framing.hpp"
+
+namespace ferret::link {
+class SerialPort;
+}
 
 namespace ferret::ugv::mcu {
 
@@ -110,6 +117,10 @@ struct DecodeResult {
   Frame frame;               ///< kFrame; kBadVersion: the header fields and payload
 };
 
+/// The framing for link::FrameReader: the sync pair, the length at byte 5, the CRC over
+/// version .. payload, a version-1 length checked before it, resync one byte later.
+[[nodiscard]] const link::FrameFormat& frame_format();
+
 /// Finds and checks the first frame in `buffer` (a receive stream: bytes before a
 /// sync pair are skipped). Never reads past the buffer, never throws on its bytes.
 /// A bad CRC or length consumes only up to the first sync byte, so the search
@@ -126,21 +137,25 @@ struct ReaderStats {
   std::uint8_t last_bad_version = 0;
 };
 
-/// A byte-stream state machine over decode(): push bytes as they arrive, then take
+/// A byte-stream reader over link::FrameReader: push bytes as they arrive, then take
 /// frames until there is none. Keeps at most one frame's worth of bytes.
 class FrameReader {
  public:
+  FrameReader();
   /// Appends received bytes.
   void push(std::span<const std::uint8_t> bytes);
+  /// Waits up to `timeout_ms` for bytes from `port` and appends them; how many came.
+  /// Throws the port's link::SerialError.
+  std::size_t receive(link::SerialPort& port, int timeout_ms);
   /// The next event: a valid frame or a frame of another version (kBadVersion); noise,
   /// bad CRCs and bad lengths are only counted. nullopt: nothing more until more bytes.
   [[nodiscard]] std::optional<DecodeResult> next();
   [[nodiscard]] const ReaderStats& stats() const { return stats_; }
   /// Forgets buffered bytes (after a reconnect).
-  void clear() { buffer_.clear(); }
+  void clear() { reader_.clear(); }
 
  private:
-  std::vector<std::uint8_t> buffer_;
+  link::FrameReader reader_;
   ReaderStats stats_;
 };
 

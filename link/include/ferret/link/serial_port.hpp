@@ -1,9 +1,11 @@
 #pragma once
-// Byte I/O with timeouts for the Dynamixel bus. Serial devices (USB2Dynamixel,
-// U2D2: /dev/ttyUSB*, /dev/ttyACM*) go through libserialport. Pseudo-terminals
-// (/dev/pts/*, used by the fake servo in the tests and by bus emulators) are opened
-// with termios directly: libserialport 0.1.1 (Debian bookworm) refuses them, since
-// its port lookup needs a sysfs tty entry and sp_open fails on TIOCMGET (ENOTTY).
+// Byte I/O with timeouts for the robots' serial devices: the winch's Dynamixel bus
+// (USB2Dynamixel, U2D2: /dev/ttyUSB*, /dev/ttyACM*) and the miniUGV's MCU (/dev/serial0).
+// Serial devices go through libserialport (kept out of this header). Pseudo-terminals
+// (/dev/pts/*, used by the fake servo and fake MCU in the tests and by bus emulators)
+// are opened with termios directly: libserialport 0.1.1 (Debian bookworm) refuses
+// them, since its port lookup needs a sysfs tty entry and sp_open fails on TIOCMGET
+// (ENOTTY). Frames on top of the bytes: serial_framing.hpp.
 
 #include <cstddef>
 #include <cstdint>
@@ -12,7 +14,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace ferret::tether {
+namespace ferret::link {
 
 /// A serial-port or bus failure, with the port name in the message.
 class SerialError : public std::runtime_error {
@@ -20,9 +22,10 @@ class SerialError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-class SerialLink {
+/// An open serial port (an interface, so tests can script one).
+class SerialPort {
  public:
-  virtual ~SerialLink() = default;
+  virtual ~SerialPort() = default;
   /// Writes all bytes or throws SerialError.
   virtual void write(std::span<const std::uint8_t> bytes) = 0;
   /// Waits up to timeout_ms for at least one byte; returns how many were read (0 on timeout).
@@ -34,6 +37,6 @@ class SerialLink {
 
 /// Opens `port` at `baud_rate` 8N1 without flow control. Throws SerialError naming
 /// the port for a missing device, a busy one, or a rate the port refuses.
-[[nodiscard]] std::unique_ptr<SerialLink> open_serial_port(const std::string& port, int baud_rate);
+[[nodiscard]] std::unique_ptr<SerialPort> open_serial_port(const std::string& port, int baud_rate);
 
-}  // namespace ferret::tether
+}  // namespace ferret::link

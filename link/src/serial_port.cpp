@@ -1,4 +1,4 @@
-#include "ferret/tether_model/serial_port.hpp"
+#include "ferret/link/serial_port.hpp"
 
 #include <fcntl.h>
 #include <libserialport.h>
@@ -11,15 +11,14 @@
 #include <cstring>
 #include <filesystem>
 
-namespace ferret::tether {
+namespace ferret::link {
 namespace {
 
-class LibSerialPortLink final : public SerialLink {
+class LibSerialPort final : public SerialPort {
  public:
-  LibSerialPortLink(const std::string& name, int baud) : name_(name) {
+  LibSerialPort(const std::string& name, int baud) : name_(name) {
     if (sp_get_port_by_name(name.c_str(), &port_) != SP_OK)
-      throw SerialError("serial port '" + name +
-                        "': not found (is the Dynamixel adapter plugged in?)");
+      throw SerialError("serial port '" + name + "': not found (is the adapter plugged in?)");
     if (sp_open(port_, SP_MODE_READ_WRITE) != SP_OK) {
       const std::string why = sp_last_error_message();
       sp_free_port(port_);
@@ -35,7 +34,7 @@ class LibSerialPortLink final : public SerialLink {
                         " baud 8N1: " + why);
     }
   }
-  ~LibSerialPortLink() override {
+  ~LibSerialPort() override {
     sp_close(port_);
     sp_free_port(port_);
   }
@@ -79,9 +78,9 @@ speed_t termios_speed(int baud) {
   }
 }
 
-class TermiosLink final : public SerialLink {
+class TermiosPort final : public SerialPort {
  public:
-  TermiosLink(const std::string& name, int baud) : name_(name) {
+  TermiosPort(const std::string& name, int baud) : name_(name) {
     fd_ = ::open(name.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
     if (fd_ < 0)
       throw SerialError("serial port '" + name + "': cannot open: " + std::strerror(errno));
@@ -97,7 +96,7 @@ class TermiosLink final : public SerialLink {
     tio.c_cc[VTIME] = 0;
     if (::tcsetattr(fd_, TCSANOW, &tio) != 0) fail(std::strerror(errno));
   }
-  ~TermiosLink() override { ::close(fd_); }
+  ~TermiosPort() override { ::close(fd_); }
   void write(std::span<const std::uint8_t> bytes) override {
     std::size_t done = 0;
     while (done < bytes.size()) {
@@ -144,10 +143,10 @@ bool is_pseudo_terminal(const std::string& name) {
 
 }  // namespace
 
-std::unique_ptr<SerialLink> open_serial_port(const std::string& port, int baud_rate) {
+std::unique_ptr<SerialPort> open_serial_port(const std::string& port, int baud_rate) {
   if (baud_rate <= 0) throw SerialError("serial port '" + port + "': baud rate must be > 0");
-  if (is_pseudo_terminal(port)) return std::make_unique<TermiosLink>(port, baud_rate);
-  return std::make_unique<LibSerialPortLink>(port, baud_rate);
+  if (is_pseudo_terminal(port)) return std::make_unique<TermiosPort>(port, baud_rate);
+  return std::make_unique<LibSerialPort>(port, baud_rate);
 }
 
-}  // namespace ferret::tether
+}  // namespace ferret::link
