@@ -45,6 +45,23 @@ std::string_view to_string(UavMissionOutcome outcome) {
   return "?";
 }
 
+std::string_view to_string(ReleaseMode release) {
+  switch (release) {
+    case ReleaseMode::kLand: return "land";
+    case ReleaseMode::kHover: return "hover";
+  }
+  return "?";
+}
+
+std::string_view to_string(VisitState state) {
+  switch (state) {
+    case VisitState::kDetected: return "detected";
+    case VisitState::kSkipped: return "skipped";
+    case VisitState::kServiced: return "serviced";
+  }
+  return "?";
+}
+
 void UavMissionOptions::validate(const std::string& source) const {
   const auto positive = [&](double v, const char* field, std::string_view unit, double hi = 1e6) {
     check_number(v, NumberRange::positive(hi, unit), source, field);
@@ -72,7 +89,6 @@ void UavMissionOptions::validate(const std::string& source) const {
   if (survey_frames_max < 1 || survey_frames_max > kMaxHoverFrames)
     throw InputError(source, "uav.survey_frames_max", "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
                      std::to_string(survey_frames_max));
-  if (release != "land" && release != "hover") throw InputError(source, "uav.release", "land or hover", release);
   if (no_landing_zone != "hover" && no_landing_zone != "skip")
     throw InputError(source, "uav.no_landing_zone", "hover or skip", no_landing_zone);
   positive(hover_standoff_m, "uav.hover_standoff_m", "m", 10.0);
@@ -399,7 +415,7 @@ void UavMission::start_survey_view() {
 void UavMission::choose_release(const std::string& why_no_zone) {
   HiddenSpaceVisit& v = current();
   if (options_.no_landing_zone == "skip") {
-    v.state = "skipped";
+    v.state = VisitState::kSkipped;
     v.note = why_no_zone;
     return resume_search("skipped marker " + std::to_string(v.marker_id) + ": " + why_no_zone);
   }
@@ -417,7 +433,7 @@ void UavMission::hover_over_opening(const std::string& why) {
   v.landed = false;
   v.note = why + "; hovering";
   if (!fly_to(release_W_, 1.0, false, o.entry_yaw_rad)) {
-    v.state = "skipped";
+    v.state = VisitState::kSkipped;
     v.note = why + "; no flight to the hover point";
     return resume_search("skipped marker " + std::to_string(v.marker_id) + ": " + v.note);
   }
@@ -470,7 +486,7 @@ void UavMission::tick() {
       if (battery_calls_home(s)) return go_home("the battery covers the way home only");
       refine_opening();
       if (in_state_s > options_.approach_timeout_s) {
-        current().state = "skipped";
+        current().state = VisitState::kSkipped;
         current().note = "approach timed out";
         return resume_search("approach timed out");
       }
@@ -479,7 +495,7 @@ void UavMission::tick() {
                                                        2 * std::numbers::pi)) < 0.05)) {
         // Near the opening, facing it, with the nearest frames' estimate of it: a hover
         // release needs no landing zone, so no survey.
-        if (options_.release == "hover") return hover_over_opening("uav.release is hover");
+        if (options_.release == ReleaseMode::kHover) return hover_over_opening("uav.release is hover");
         enter(UavMissionState::kSurvey, "over the survey point");
       }
       return;
@@ -523,7 +539,7 @@ void UavMission::tick() {
 
     case UavMissionState::kLand: {
       if (in_state_s > options_.land_timeout_s) {
-        current().state = "skipped";
+        current().state = VisitState::kSkipped;
         current().note = "landing timed out";
         path_.clear();
         hw_.flight.command_takeoff(home_W_.z() + options_.search_altitude_m);
@@ -632,7 +648,7 @@ void UavMission::tick() {
         hw_.ugv.retracted();
         HiddenSpaceVisit& v = current();
         v.retracted_s = now;
-        v.state = "serviced";
+        v.state = VisitState::kServiced;
         v.object_retrieved = r.object_held;
         carrying_ = r.object_held;
         hw_.flight.command_takeoff(std::max(s.p_W.z(), home_W_.z() + options_.search_altitude_m));

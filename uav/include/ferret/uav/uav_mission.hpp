@@ -61,6 +61,19 @@ enum class UavMissionOutcome {
 };
 [[nodiscard]] std::string_view to_string(UavMissionOutcome outcome);
 
+/// How the miniUGV goes down by a hidden space (uav.release).
+enum class ReleaseMode {
+  kLand,   ///< beside the opening, on a safe zone the depth frames show within l_0 of it
+  kHover,  ///< always from a hover over the opening, no survey
+};
+/// "land", "hover": the YAML's words.
+[[nodiscard]] std::string_view to_string(ReleaseMode release);
+
+/// What came of a hidden space the UAV found.
+enum class VisitState { kDetected, kSkipped, kServiced };
+/// "detected", "skipped", "serviced": the words of report.json.
+[[nodiscard]] std::string_view to_string(VisitState state);
+
 /// A flight planner: a collision-free path from `from` to `to` (both included), with
 /// the miniUGV hanging below when `carrying`; nullopt when there is none.
 using FlightPlanner = std::function<std::optional<std::vector<Eigen::Vector3d>>(
@@ -102,10 +115,10 @@ struct UavMissionOptions {
   /// (hover_frames_after_miss; at most survey_frames: never). What 8 frames' noise hides
   /// at 4 m, 16, 32 or 64 show: 64 frames of a D415 at 30 Hz take 2.1 s.
   int survey_frames_max = 64;
-  /// How the miniUGV goes down: "land" (beside the opening, on a safe zone the depth
-  /// frames show within l_0 of it; none: no_landing_zone decides) or "hover" (always from
+  /// How the miniUGV goes down: land (beside the opening, on a safe zone the depth
+  /// frames show within l_0 of it; none: no_landing_zone decides) or hover (always from
   /// a hover over the opening, no survey: for ground the team knows is unsafe).
-  std::string release = "land";
+  ReleaseMode release = ReleaseMode::kLand;
   /// No safe landing zone within reach: "hover" (lower from a hover over the opening's
   /// standoff point) or "skip" (leave the hidden space and search on).
   std::string no_landing_zone = "hover";
@@ -161,7 +174,7 @@ struct HiddenSpaceVisit {
   double marker_distance_m = 1e9;  ///< camera to marker in that frame
   double detected_s = 0.0;
   std::size_t pattern_index = 0;   ///< the pattern waypoint the UAV was flying to then
-  std::string state = "detected";  ///< detected, skipped, serviced
+  VisitState state = VisitState::kDetected;
   std::string note;                ///< why skipped, or why the object was not delivered
   bool landed = false;             ///< landed beside it (false: hovered)
   std::optional<LandingZone> landing_zone;
