@@ -6,7 +6,6 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/number.hpp"
-#include "ferret/perception/marker_family.hpp"
 #include "ferret/tether_model/required_length.hpp"
 
 namespace ferret {
@@ -148,28 +147,7 @@ class ReportedTetherLength final : public tether::RequiredLengthModel {
 
 namespace {
 
-// The cells across the black square of the marker min_marker_side_px was set for
-// (ArUco 4x4 with its border), which the search's range scales from.
-constexpr double kSearchMarkerCells = 6.0;
-
 double yaw_of(const Eigen::Vector3d& d) { return std::atan2(d.y(), d.x()); }
-
-// Legs of a boustrophedon over the area at height z: along x (legs stepping in y),
-// or along y; consecutive legs run opposite ways, so each way of a pass is flown on
-// every other leg.
-void add_pass(std::vector<Eigen::Vector3d>& out, const Eigen::Vector4d& a, double spacing, double z,
-              bool along_x) {
-  const double lo = along_x ? a[1] : a[0], hi = along_x ? a[3] : a[2];
-  const double from = along_x ? a[0] : a[1], to = along_x ? a[2] : a[3];
-  const int legs = std::max(1, static_cast<int>(std::ceil((hi - lo) / spacing)));
-  const double step = (hi - lo) / legs;
-  for (int i = 0; i < legs; ++i) {
-    const double c = lo + (i + 0.5) * step;
-    const double s = (i % 2 == 0) ? from : to, e = (i % 2 == 0) ? to : from;
-    out.emplace_back(along_x ? s : c, along_x ? c : s, z);
-    out.emplace_back(along_x ? e : c, along_x ? c : e, z);
-  }
-}
 
 }  // namespace
 
@@ -193,27 +171,10 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
   required_ = std::make_shared<ReportedTetherLength>(options_.tether.entry_offset_m);
   winch_ctl_ = tether::make_tether_controller(options_.winch_controller, options_.winch_control, required_);
 
-  leg_spacing_m_ = options_.leg_spacing_m;
-  if (leg_spacing_m_ <= 0.0) {
-    // A 4x4 marker (6 cells across its black square) spans min_marker_side_px at
-    // d_max; it is decoded reliably up to about two thirds of that. What the decoder
-    // needs is pixels a cell, so a marker of more cells is read nearer: d_max is where
-    // the cells span min_marker_side_px / 6 px each (tag36h11's 8 cells: 3/4 of a 4x4
-    // marker's range; docs/mission.md). Seen from a leg flying at it, it must lie within
-    // the camera's half-width at about half that range (a wall marker near the ground
-    // leaves the pitched camera's view when the UAV comes closer); every other leg flies
-    // each way, so legs are one reach apart.
-    const int cells = marker_bitmap(options_.marker.dictionary, 0).black_square_cells;
-    const double d_max_m = marker_camera_.fx_px * options_.marker.marker_size_m /
-                           (std::max(1.0, options_.marker.min_marker_side_px) *
-                            std::max(1, cells) / kSearchMarkerCells);
-    const double half_fov = std::atan2(0.5 * marker_camera_.width_px, marker_camera_.fx_px);
-    leg_spacing_m_ = std::clamp(0.5 * d_max_m * std::tan(half_fov), 1.0, 50.0);
-  }
-  add_pass(pattern_, options_.search_area_m, leg_spacing_m_, options_.search_altitude_m, true);
-  first_pass_end_ = pattern_.size();
-  if (options_.passes > 1)
-    add_pass(pattern_, options_.search_area_m, leg_spacing_m_, options_.search_altitude_m, false);
+  pattern_ = CoveragePattern(options_.search_area_m, options_.search_altitude_m, options_.passes,
+                             options_.leg_spacing_m <= 0.0
+                                 ? CoveragePattern::camera_leg_spacing_m(options_.marker, marker_camera_)
+                                 : options_.leg_spacing_m);
 }
 
 UavMission::~UavMission() = default;
@@ -366,7 +327,7 @@ void UavMission::look_for_markers() {
     visit.opening = locate_opening(d, frame->X_WC, *known);
     visit.marker_distance_m = d.X_CM.translation().norm();
     visit.detected_s = clock_.now_s();
-    visit.pattern_index = pattern_next_;
+    visit.pattern_index = pattern_.next_index();
     visits_.push_back(visit);
     current_ = static_cast<int>(visits_.size()) - 1;
     survey_view_ = 0;
@@ -470,13 +431,13 @@ void UavMission::tick() {
       if (battery_calls_home(s)) return go_home("the battery covers the way home only");
       look_for_markers();
       if (state_ != UavMissionState::kSearch) return;
-      if (pattern_next_ >= pattern_.size()) return go_home("search pattern flown");
-      if (path_.empty() && !fly_to(pattern_[pattern_next_], options_.search_speed_mps, false)) {
-        ++pattern_next_;  // an unreachable waypoint: on to the next
+      if (pattern_.done()) return go_home("search pattern flown");
+      if (path_.empty() && !fly_to(pattern_.next_waypoint(), options_.search_speed_mps, false)) {
+        pattern_.advance();  // an unreachable waypoint: on to the next
         return;
       }
       if (follow(s)) {
-        ++pattern_next_;
+        pattern_.advance();
         path_.clear();
       }
       return;
@@ -714,7 +675,7 @@ void UavMission::tick() {
         if (carrying_)
           return finish(UavMissionOutcome::kDeliveryFailed, "landed at home with the object: " +
                                                                  (current_ >= 0 ? current().note : std::string("no delivery")));
-        const bool early = pattern_next_ < pattern_.size();
+        const bool early = !pattern_.done();
         return finish(early ? UavMissionOutcome::kFlightBudget : UavMissionOutcome::kSearchComplete,
                       early ? "landed at home, pattern not finished" : "landed at home");
       }

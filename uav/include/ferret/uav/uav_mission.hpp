@@ -37,6 +37,7 @@
 #include "ferret/tether_model/tether_controller.hpp"
 #include "ferret/tether_model/tether_modes.hpp"
 #include "ferret/tether_model/winch.hpp"
+#include "ferret/uav/coverage_pattern.hpp"
 #include "ferret/uav/flight_controller.hpp"
 #include "ferret/uav/landing_zone.hpp"
 #include "ferret/uav/marker_detector.hpp"
@@ -236,11 +237,11 @@ class UavMission {
   [[nodiscard]] bool done() const { return state_ == UavMissionState::kDone; }
   [[nodiscard]] const std::vector<HiddenSpaceVisit>& visits() const { return visits_; }
   /// The coverage pattern's waypoints (at the search altitude) and how far it got.
-  [[nodiscard]] const std::vector<Eigen::Vector3d>& pattern() const { return pattern_; }
-  [[nodiscard]] std::size_t pattern_done() const { return pattern_next_; }
-  [[nodiscard]] double leg_spacing_m() const { return leg_spacing_m_; }
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& pattern() const { return pattern_.waypoints(); }
+  [[nodiscard]] std::size_t pattern_done() const { return pattern_.next_index(); }
+  [[nodiscard]] double leg_spacing_m() const { return pattern_.leg_spacing_m(); }
   /// Waypoints of the first pass (legs along x); the second pass follows.
-  [[nodiscard]] std::size_t first_pass_waypoints() const { return first_pass_end_; }
+  [[nodiscard]] std::size_t first_pass_waypoints() const { return pattern_.first_pass_waypoints(); }
   /// Seconds spent in each state.
   [[nodiscard]] const std::map<std::string, double>& time_in_state() const { return time_in_; }
   [[nodiscard]] tether::TetherMode tether_mode() const { return modes_.mode(); }
@@ -297,10 +298,7 @@ class UavMission {
   double state_since_s_ = 0.0;
   double last_tick_s_ = 0.0;
   std::map<std::string, double> time_in_;
-  std::vector<Eigen::Vector3d> pattern_;
-  std::size_t pattern_next_ = 0;
-  double leg_spacing_m_ = 0.0;
-  std::size_t first_pass_end_ = 0;
+  CoveragePattern pattern_;
   std::vector<Eigen::Vector3d> path_;
   std::size_t path_next_ = 0;
   double path_speed_mps_ = 0.0;
