@@ -145,21 +145,15 @@ class ReportedTetherLength final : public tether::RequiredLengthModel {
   double to_anchor_m_ = 0.0;
 };
 
-namespace {
-
-double yaw_of(const Eigen::Vector3d& d) { return std::atan2(d.y(), d.x()); }
-
-}  // namespace
-
 UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner planner,
                        CameraModel marker_camera, CameraModel depth_camera,
                        UavMissionOptions options, TransitionLog* log)
     : hw_(hardware),
       clock_(clock),
-      planner_(std::move(planner)),
       marker_camera_(std::move(marker_camera)),
       depth_camera_(std::move(depth_camera)),
       options_(std::move(options)),
+      path_(hw_.flight, std::move(planner), {options_.braking_accel_mps2, options_.waypoint_tolerance_m}),
       log_(log),
       landing_(options_.landing),
       modes_(tether::TetherModeSwitcher::Options::from_mission(options_.tether,
@@ -216,68 +210,6 @@ void UavMission::stop(const std::string& reason) {
   finish(UavMissionOutcome::kAborted, reason);
 }
 
-bool UavMission::fly_to(const Eigen::Vector3d& goal, double speed_mps, bool carrying,
-                        std::optional<double> yaw_rad) {
-  const FlightState s = hw_.flight.state();
-  // A new path starts where the UAV comes to a stop, not where it is: the planner checks
-  // the way from its start, and a UAV at 3 m/s still covers two metres braking along the
-  // way it was flying (which went round what lay ahead). The braking line is checked too;
-  // when it is not clear, the new path starts at the old one's next corner, reached
-  // along a segment that was checked.
-  Eigen::Vector3d from = s.p_W;
-  if (const double v = s.v_W.norm(); v > 0.3) {
-    const Eigen::Vector3d stop = s.p_W + s.v_W * (v / (2.0 * options_.braking_accel_mps2));
-    const auto brake = planner_(s.p_W, stop, carrying);
-    if (brake && brake->size() == 2)
-      from = stop;
-    else if (!path_.empty())
-      from = path_[std::min(path_next_, path_.size() - 1)];
-  }
-  auto path = planner_(from, goal, carrying);
-  if (!path || path->empty()) {
-    ++plans_failed_;
-    path_.clear();
-    return false;
-  }
-  path_ = std::move(*path);
-  path_next_ = 0;
-  path_speed_mps_ = speed_mps;
-  path_yaw_rad_ = yaw_rad;
-  return true;
-}
-
-bool UavMission::follow(const FlightState& s) {
-  if (path_.empty()) return true;
-  // Corners of a planned path are passed closely: the plan is collision-checked along
-  // its segments only, so cutting a corner could graze what the planner went round.
-  // A corner is left only once reached and slowed down, so the turn happens on it.
-  while (path_next_ + 1 < path_.size() &&
-         (path_[path_next_] - s.p_W).norm() <= std::min(0.15, options_.waypoint_tolerance_m) &&
-         s.v_W.norm() < 0.5)
-    ++path_next_;
-  const Eigen::Vector3d& target = path_[path_next_];
-  const bool last = path_next_ + 1 == path_.size();
-  // At the end the setpoint and heading are still commanded: a heading that changed
-  // (a refined opening) is turned to even when the position is already reached.
-  const bool arrived = last && (target - s.p_W).norm() <= options_.waypoint_tolerance_m && s.v_W.norm() < 0.3;
-  // Face the way it flies (the marker camera looks ahead); the final heading when given.
-  double yaw = s.yaw_rad;
-  const Eigen::Vector3d d = target - s.p_W;
-  if (d.head<2>().norm() > 0.5) yaw = yaw_of(d);
-  const bool final_heading = last && path_yaw_rad_ && d.head<2>().norm() < 1.0;
-  if (final_heading) yaw = *path_yaw_rad_;
-  // Turn on the spot at the start of a segment: the planner checked the segment with
-  // the UAV facing along it, and its shape is not round.
-  const Eigen::Vector3d& hold = path_[path_next_ > 0 ? path_next_ - 1 : 0];
-  if (!final_heading && (s.p_W - hold).norm() < 0.3 &&
-      std::abs(std::remainder(yaw - s.yaw_rad, 2 * std::numbers::pi)) > 0.15) {
-    hw_.flight.command_position(hold, yaw, path_speed_mps_);
-    return false;
-  }
-  hw_.flight.command_position(target, yaw, path_speed_mps_);
-  return arrived;
-}
-
 bool UavMission::battery_calls_home(const FlightState& s, double before_s) const {
   const double home_s = before_s + (s.p_W - home_W_).norm() / options_.cruise_speed_mps + 30.0;
   return s.battery_fraction < home_s / options_.flight_endurance_s + options_.battery_reserve_fraction;
@@ -285,9 +217,8 @@ bool UavMission::battery_calls_home(const FlightState& s, double before_s) const
 
 void UavMission::go_home(const std::string& reason) {
   const Eigen::Vector3d above = home_W_ + Eigen::Vector3d(0, 0, options_.search_altitude_m);
-  if (!fly_to(above, options_.cruise_speed_mps, carrying_)) path_ = {above};  // straight: the way it came is clear
-  path_next_ = 0;
-  path_speed_mps_ = options_.cruise_speed_mps;
+  if (!path_.fly_to(above, options_.cruise_speed_mps, carrying_))
+    path_.fly_straight(above, options_.cruise_speed_mps);  // the way it came is clear
   enter(UavMissionState::kReturnHome, reason);
 }
 
@@ -367,7 +298,7 @@ Eigen::Vector3d UavMission::survey_point(int view) const {
 void UavMission::start_survey_view() {
   const Eigen::Vector3d p = survey_point(survey_view_);
   const double face = current().opening.entry_yaw_rad;  // look along the way into the opening
-  if (!fly_to(p, options_.cruise_speed_mps, false, face)) {
+  if (!path_.fly_to(p, options_.cruise_speed_mps, false, face)) {
     if (++survey_view_ < options_.survey_views) return start_survey_view();
     choose_release("no flight to any survey point");
   }
@@ -393,7 +324,7 @@ void UavMission::hover_over_opening(const std::string& why) {
                 o.p_WE.z() + std::sqrt(l0 * l0 - s * s) + options_.touchdown_height_m};
   v.landed = false;
   v.note = why + "; hovering";
-  if (!fly_to(release_W_, 1.0, false, o.entry_yaw_rad)) {
+  if (!path_.fly_to(release_W_, 1.0, false, o.entry_yaw_rad)) {
     v.state = VisitState::kSkipped;
     v.note = why + "; no flight to the hover point";
     return resume_search("skipped marker " + std::to_string(v.marker_id) + ": " + v.note);
@@ -432,11 +363,11 @@ void UavMission::tick() {
       look_for_markers();
       if (state_ != UavMissionState::kSearch) return;
       if (pattern_.done()) return go_home("search pattern flown");
-      if (path_.empty() && !fly_to(pattern_.next_waypoint(), options_.search_speed_mps, false)) {
+      if (path_.empty() && !path_.fly_to(pattern_.next_waypoint(), options_.search_speed_mps, false)) {
         pattern_.advance();  // an unreachable waypoint: on to the next
         return;
       }
-      if (follow(s)) {
+      if (path_.follow(s)) {
         pattern_.advance();
         path_.clear();
       }
@@ -452,7 +383,7 @@ void UavMission::tick() {
         return resume_search("approach timed out");
       }
       // The survey frame is taken level and facing the opening, as planned for.
-      if (follow(s) && settled(std::abs(std::remainder(s.yaw_rad - path_yaw_rad_.value_or(s.yaw_rad),
+      if (path_.follow(s) && settled(std::abs(std::remainder(s.yaw_rad - path_.final_yaw_rad().value_or(s.yaw_rad),
                                                        2 * std::numbers::pi)) < 0.05)) {
         // Near the opening, facing it, with the nearest frames' estimate of it: a hover
         // release needs no landing zone, so no survey.
@@ -483,7 +414,7 @@ void UavMission::tick() {
         v.landed = true;
         const Eigen::Vector3d& c = v.landing_zone->center_m;
         release_W_ = c + Eigen::Vector3d(0, 0, 1.5);
-        if (fly_to(release_W_, 1.0, false, v.opening.entry_yaw_rad))
+        if (path_.fly_to(release_W_, 1.0, false, v.opening.entry_yaw_rad))
           return enter(UavMissionState::kLand, "landing zone " + std::to_string(c.x()).substr(0, 6) + ", " +
                                                    std::to_string(c.y()).substr(0, 6) + " (slope " +
                                                    std::to_string(v.landing_zone->slope_deg).substr(0, 4) + " deg, " +
@@ -507,11 +438,11 @@ void UavMission::tick() {
         return resume_search("landing timed out");
       }
       if (!current().landed) {  // hover release: lower once the hover is steady
-        if (follow(s) && settled(true)) enter(UavMissionState::kLower, "hovering over the opening");
+        if (path_.follow(s) && settled(true)) enter(UavMissionState::kLower, "hovering over the opening");
         return;
       }
       if (!path_.empty()) {
-        if (follow(s) && settled(true)) {
+        if (path_.follow(s) && settled(true)) {
           path_.clear();
           hw_.flight.command_land();
         }
@@ -628,7 +559,7 @@ void UavMission::tick() {
         if (carrying_) {
           const Eigen::Vector3d drop(options_.drop_zone_W.x(), options_.drop_zone_W.y(),
                                      home_W_.z() + options_.drop_altitude_m);
-          if (fly_to(drop, options_.cruise_speed_mps, true)) return enter(UavMissionState::kDeliver, "to the drop zone");
+          if (path_.fly_to(drop, options_.cruise_speed_mps, true)) return enter(UavMissionState::kDeliver, "to the drop zone");
           current().note = "no flight to the drop zone with the miniUGV below";
           return go_home(current().note);
         }
@@ -642,7 +573,7 @@ void UavMission::tick() {
         current().note = "delivery timed out";
         return go_home(current().note);
       }
-      if (follow(s) && settled(true)) {
+      if (path_.follow(s) && settled(true)) {
         hw_.ugv.release_object();
         return enter(UavMissionState::kDrop, "over the drop zone: EPM off");
       }
@@ -658,7 +589,7 @@ void UavMission::tick() {
       return;
 
     case UavMissionState::kReturnHome:
-      if (follow(s) && settled(true)) {
+      if (path_.follow(s) && settled(true)) {
         hw_.flight.command_land();
         return enter(UavMissionState::kLandHome, "over home");
       }

@@ -39,6 +39,7 @@
 #include "ferret/tether_model/winch.hpp"
 #include "ferret/uav/coverage_pattern.hpp"
 #include "ferret/uav/flight_controller.hpp"
+#include "ferret/uav/flight_path_follower.hpp"
 #include "ferret/uav/landing_zone.hpp"
 #include "ferret/uav/marker_detector.hpp"
 #include "ferret/uav/opening_locator.hpp"
@@ -74,11 +75,6 @@ enum class ReleaseMode {
 enum class VisitState { kDetected, kSkipped, kServiced };
 /// "detected", "skipped", "serviced": the words of report.json.
 [[nodiscard]] std::string_view to_string(VisitState state);
-
-/// A flight planner: a collision-free path from `from` to `to` (both included), with
-/// the miniUGV hanging below when `carrying`; nullopt when there is none.
-using FlightPlanner = std::function<std::optional<std::vector<Eigen::Vector3d>>(
-    const Eigen::Vector3d& from, const Eigen::Vector3d& to, bool carrying)>;
 
 struct UavMissionOptions {
   /// The area to search, [x0, y0, x1, y1] (m) in the world.
@@ -247,16 +243,11 @@ class UavMission {
   [[nodiscard]] tether::TetherMode tether_mode() const { return modes_.mode(); }
   [[nodiscard]] const tether::TautControlOptions& winch_control() const { return options_.winch_control; }
   [[nodiscard]] int frames_processed() const { return frames_; }
-  [[nodiscard]] int plans_failed() const { return plans_failed_; }
+  [[nodiscard]] int plans_failed() const { return path_.plans_failed(); }
 
  private:
   void enter(UavMissionState next, const std::string& reason);
   void finish(UavMissionOutcome outcome, const std::string& reason);
-  /// Plans to `goal` and starts following the path; false when there is no plan.
-  bool fly_to(const Eigen::Vector3d& goal, double speed_mps, bool carrying,
-              std::optional<double> yaw_rad = std::nullopt);
-  /// Follows the current path; true when at its end.
-  bool follow(const FlightState& s);
   struct MarkerFrame {
     Pose3 X_WC;
     std::vector<MarkerDetection> detections;
@@ -281,9 +272,9 @@ class UavMission {
 
   Hardware hw_;
   const Clock& clock_;
-  FlightPlanner planner_;
   CameraModel marker_camera_, depth_camera_;
   UavMissionOptions options_;
+  FlightPathFollower path_;  ///< the planned legs the UAV flies
   bool recalled_ = false;  ///< the miniUGV in this hidden space was called back
   TransitionLog* log_;
   std::unique_ptr<MarkerDetector> detector_;
@@ -299,10 +290,6 @@ class UavMission {
   double last_tick_s_ = 0.0;
   std::map<std::string, double> time_in_;
   CoveragePattern pattern_;
-  std::vector<Eigen::Vector3d> path_;
-  std::size_t path_next_ = 0;
-  double path_speed_mps_ = 0.0;
-  std::optional<double> path_yaw_rad_;
   double next_frame_s_ = 0.0;
   std::map<int, int> sightings_;  ///< marker id -> detections not yet acted on
   std::vector<HiddenSpaceVisit> visits_;
@@ -316,7 +303,6 @@ class UavMission {
   Eigen::Vector3d release_W_ = Eigen::Vector3d::Zero();
   bool carrying_ = false;
   int frames_ = 0;
-  int plans_failed_ = 0;
   Eigen::Vector3d home_W_ = Eigen::Vector3d::Zero();
 };
 
