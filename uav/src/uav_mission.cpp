@@ -154,6 +154,8 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
       depth_camera_(std::move(depth_camera)),
       options_(std::move(options)),
       path_(hw_.flight, std::move(planner), {options_.braking_accel_mps2, options_.waypoint_tolerance_m}),
+      budget_({options_.cruise_speed_mps, options_.flight_endurance_s, options_.battery_reserve_fraction,
+               options_.retract_speed_mps, options_.ugv_return_speed_mps}),
       log_(log),
       landing_(options_.landing),
       modes_(tether::TetherModeSwitcher::Options::from_mission(options_.tether,
@@ -194,11 +196,11 @@ void UavMission::winch_idle() { hw_.winch.command_velocity_mps(0.0); }
 void UavMission::start() {
   if (state_ != UavMissionState::kIdle) return;
   const FlightState s = hw_.flight.state();
-  home_W_ = s.p_W;
+  budget_.set_home(s.p_W);
   last_tick_s_ = clock_.now_s();
   hw_.winch.set_torque_enabled(true);
   winch_idle();
-  hw_.flight.command_takeoff(home_W_.z() + options_.search_altitude_m);
+  hw_.flight.command_takeoff(home_W().z() + options_.search_altitude_m);
   enter(UavMissionState::kTakeoff, "mission started");
 }
 
@@ -210,13 +212,8 @@ void UavMission::stop(const std::string& reason) {
   finish(UavMissionOutcome::kAborted, reason);
 }
 
-bool UavMission::battery_calls_home(const FlightState& s, double before_s) const {
-  const double home_s = before_s + (s.p_W - home_W_).norm() / options_.cruise_speed_mps + 30.0;
-  return s.battery_fraction < home_s / options_.flight_endurance_s + options_.battery_reserve_fraction;
-}
-
 void UavMission::go_home(const std::string& reason) {
-  const Eigen::Vector3d above = home_W_ + Eigen::Vector3d(0, 0, options_.search_altitude_m);
+  const Eigen::Vector3d above = home_W() + Eigen::Vector3d(0, 0, options_.search_altitude_m);
   if (!path_.fly_to(above, options_.cruise_speed_mps, carrying_))
     path_.fly_straight(above, options_.cruise_speed_mps);  // the way it came is clear
   enter(UavMissionState::kReturnHome, reason);
@@ -352,14 +349,14 @@ void UavMission::tick() {
 
   switch (state_) {
     case UavMissionState::kTakeoff:
-      if (s.p_W.z() >= home_W_.z() + options_.search_altitude_m - 0.2)
+      if (s.p_W.z() >= home_W().z() + options_.search_altitude_m - 0.2)
         return enter(UavMissionState::kSearch, "at the search altitude");
       if (in_state_s > options_.takeoff_timeout_s)
         return finish(UavMissionOutcome::kTakeoffFailed, "not at the search altitude in time");
       return;
 
     case UavMissionState::kSearch: {
-      if (battery_calls_home(s)) return go_home("the battery covers the way home only");
+      if (budget_.calls_home(s)) return go_home("the battery covers the way home only");
       look_for_markers();
       if (state_ != UavMissionState::kSearch) return;
       if (pattern_.done()) return go_home("search pattern flown");
@@ -375,7 +372,7 @@ void UavMission::tick() {
     }
 
     case UavMissionState::kApproach:
-      if (battery_calls_home(s)) return go_home("the battery covers the way home only");
+      if (budget_.calls_home(s)) return go_home("the battery covers the way home only");
       refine_opening();
       if (in_state_s > options_.approach_timeout_s) {
         current().state = VisitState::kSkipped;
@@ -434,7 +431,7 @@ void UavMission::tick() {
         current().state = VisitState::kSkipped;
         current().note = "landing timed out";
         path_.clear();
-        hw_.flight.command_takeoff(home_W_.z() + options_.search_altitude_m);
+        hw_.flight.command_takeoff(home_W().z() + options_.search_altitude_m);
         return resume_search("landing timed out");
       }
       if (!current().landed) {  // hover release: lower once the hover is steady
@@ -467,7 +464,7 @@ void UavMission::tick() {
         winch_idle();
         guard_.reset();
         winch_ctl_->reset();
-        recalled_ = false;
+        budget_.miniugv_released();
         hw_.ugv.deploy(current().opening.p_WE, current().opening.entry_yaw_rad);
         current().deployed_s = now;
         return enter(UavMissionState::kUgvOps, "miniUGV at the entry (l_t " + std::to_string(w.released_m).substr(0, 4) + " m)");
@@ -512,21 +509,19 @@ void UavMission::tick() {
         current().ugv_outcome = "aborted";
         return enter(UavMissionState::kRetract, "hidden-space time ran out");
       }
-      // Hovering burns the flight budget while the miniUGV works: call it back while
-      // the battery still covers its way back along the tether, the reel-in, the climb
-      // and the way home; below what the reel-in and the way home need, drag it out.
+      // Hovering burns the flight budget while the miniUGV works.
       if (!current().landed) {
-        const double tether_m = r.tether_to_anchor_m + (r.p_WG - r.tether_anchor_W).norm();
-        const double lift_s = w.released_m / options_.retract_speed_mps + 10.0;
-        if (battery_calls_home(s, lift_s)) {
-          hw_.ugv.abort("the UAV's battery covers only the lift and the way home");
-          current().ugv_outcome = "aborted";
-          current().note = "flight budget while hovering";
-          return enter(UavMissionState::kRetract, "the battery covers only the lift and the way home");
-        }
-        if (!recalled_ && battery_calls_home(s, lift_s + tether_m / options_.ugv_return_speed_mps)) {
-          recalled_ = true;
-          hw_.ugv.recall("the UAV's flight budget");  // the miniUGV logs its own return
+        switch (budget_.while_hovering(s, r, w.released_m)) {
+          case FlightBudget::HoverCall::kLiftOut:
+            hw_.ugv.abort("the UAV's battery covers only the lift and the way home");
+            current().ugv_outcome = "aborted";
+            current().note = "flight budget while hovering";
+            return enter(UavMissionState::kRetract, "the battery covers only the lift and the way home");
+          case FlightBudget::HoverCall::kRecall:
+            hw_.ugv.recall("the UAV's flight budget");  // the miniUGV logs its own return
+            break;
+          case FlightBudget::HoverCall::kGoOn:
+            break;
         }
       }
       return;
@@ -543,7 +538,7 @@ void UavMission::tick() {
         v.state = VisitState::kServiced;
         v.object_retrieved = r.object_held;
         carrying_ = r.object_held;
-        hw_.flight.command_takeoff(std::max(s.p_W.z(), home_W_.z() + options_.search_altitude_m));
+        hw_.flight.command_takeoff(std::max(s.p_W.z(), home_W().z() + options_.search_altitude_m));
         return enter(UavMissionState::kLiftoff, r.object_held ? "miniUGV aboard with the object" : "miniUGV aboard, no object");
       }
       if (in_state_s > options_.retract_timeout_s) {
@@ -555,10 +550,10 @@ void UavMission::tick() {
     }
 
     case UavMissionState::kLiftoff:
-      if (s.p_W.z() >= home_W_.z() + options_.search_altitude_m - 0.2) {
+      if (s.p_W.z() >= home_W().z() + options_.search_altitude_m - 0.2) {
         if (carrying_) {
           const Eigen::Vector3d drop(options_.drop_zone_W.x(), options_.drop_zone_W.y(),
-                                     home_W_.z() + options_.drop_altitude_m);
+                                     home_W().z() + options_.drop_altitude_m);
           if (path_.fly_to(drop, options_.cruise_speed_mps, true)) return enter(UavMissionState::kDeliver, "to the drop zone");
           current().note = "no flight to the drop zone with the miniUGV below";
           return go_home(current().note);
@@ -583,7 +578,7 @@ void UavMission::tick() {
       if (in_state_s >= options_.drop_time_s) {
         current().object_dropped = true;
         carrying_ = false;
-        if (battery_calls_home(s)) return go_home("the battery covers the way home only");
+        if (budget_.calls_home(s)) return go_home("the battery covers the way home only");
         return resume_search("object dropped");
       }
       return;

@@ -38,6 +38,7 @@
 #include "ferret/tether_model/tether_modes.hpp"
 #include "ferret/tether_model/winch.hpp"
 #include "ferret/uav/coverage_pattern.hpp"
+#include "ferret/uav/flight_budget.hpp"
 #include "ferret/uav/flight_controller.hpp"
 #include "ferret/uav/flight_path_follower.hpp"
 #include "ferret/uav/landing_zone.hpp"
@@ -258,9 +259,6 @@ class UavMission {
   [[nodiscard]] const OpeningInMarker* opening_of(int marker_id) const;
   void look_for_markers();
   void refine_opening();
-  /// Whether the battery left covers no more than `before_s` of hovering (the miniUGV's
-  /// return, the reel-in), the way home at cruise speed, 30 s and the reserve.
-  bool battery_calls_home(const FlightState& s, double before_s = 0.0) const;
   void go_home(const std::string& reason);
   void start_survey_view();
   void choose_release(const std::string& why_no_zone);
@@ -269,13 +267,14 @@ class UavMission {
   void winch_idle();
   [[nodiscard]] HiddenSpaceVisit& current() { return visits_.at(static_cast<std::size_t>(current_)); }
   [[nodiscard]] Eigen::Vector3d survey_point(int view) const;
+  [[nodiscard]] const Eigen::Vector3d& home_W() const { return budget_.home_W(); }
 
   Hardware hw_;
   const Clock& clock_;
   CameraModel marker_camera_, depth_camera_;
   UavMissionOptions options_;
   FlightPathFollower path_;  ///< the planned legs the UAV flies
-  bool recalled_ = false;  ///< the miniUGV in this hidden space was called back
+  FlightBudget budget_;      ///< the battery against the way home
   TransitionLog* log_;
   std::unique_ptr<MarkerDetector> detector_;
   LandingZoneDetector landing_;
@@ -303,7 +302,6 @@ class UavMission {
   Eigen::Vector3d release_W_ = Eigen::Vector3d::Zero();
   bool carrying_ = false;
   int frames_ = 0;
-  Eigen::Vector3d home_W_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace ferret
