@@ -6,7 +6,6 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/number.hpp"
-#include "ferret/tether_model/required_length.hpp"
 
 namespace ferret {
 
@@ -125,26 +124,6 @@ void UavMissionOptions::validate(const std::string& source) const {
   landing.check(source);
 }
 
-// The tether length the miniUGV's last report asks for at a position: l_0, the taut
-// tether from the entry to its last fixed point, and straight on from there. The
-// winch controllers predict the miniUGV's motion between reports with it.
-class ReportedTetherLength final : public tether::RequiredLengthModel {
- public:
-  explicit ReportedTetherLength(double entry_offset_m) : l0_m_(entry_offset_m) {}
-  void update(const UgvReport& r) {
-    anchor_W_ = r.tether_anchor_W;
-    to_anchor_m_ = r.tether_to_anchor_m;
-  }
-  [[nodiscard]] double required_length_m(const Eigen::Vector2d& p_WG) const override {
-    return l0_m_ + to_anchor_m_ + (p_WG - anchor_W_).norm();
-  }
-
- private:
-  double l0_m_;
-  Eigen::Vector2d anchor_W_ = Eigen::Vector2d::Zero();
-  double to_anchor_m_ = 0.0;
-};
-
 UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner planner,
                        CameraModel marker_camera, CameraModel depth_camera,
                        UavMissionOptions options, TransitionLog* log)
@@ -164,8 +143,9 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
   options_.validate("uav mission options");
   detector_ = make_marker_detector(options_.marker);
   options_.winch_control.limits.total_length_m = options_.tether.total_length_m;
-  required_ = std::make_shared<ReportedTetherLength>(options_.tether.entry_offset_m);
-  winch_ctl_ = tether::make_tether_controller(options_.winch_controller, options_.winch_control, required_);
+  winch_.emplace(hw_.winch, WinchSupervision::Options{options_.tether.entry_offset_m, options_.touchdown,
+                                                     options_.winch_controller, options_.winch_control,
+                                                     options_.retract_speed_mps});
 
   pattern_ = CoveragePattern(options_.search_area_m, options_.search_altitude_m, options_.passes,
                              options_.leg_spacing_m <= 0.0
@@ -187,19 +167,16 @@ void UavMission::enter(UavMissionState next, const std::string& reason) {
 
 void UavMission::finish(UavMissionOutcome outcome, const std::string& reason) {
   outcome_ = outcome;
-  winch_idle();
+  winch_->idle();
   enter(UavMissionState::kDone, std::string(to_string(outcome)) + ": " + reason);
 }
-
-void UavMission::winch_idle() { hw_.winch.command_velocity_mps(0.0); }
 
 void UavMission::start() {
   if (state_ != UavMissionState::kIdle) return;
   const FlightState s = hw_.flight.state();
   budget_.set_home(s.p_W);
   last_tick_s_ = clock_.now_s();
-  hw_.winch.set_torque_enabled(true);
-  winch_idle();
+  winch_->switch_on();
   hw_.flight.command_takeoff(home_W().z() + options_.search_altitude_m);
   enter(UavMissionState::kTakeoff, "mission started");
 }
@@ -446,24 +423,18 @@ void UavMission::tick() {
         return;
       }
       if (s.on_ground) {
-        guard_ = std::make_unique<tether::TouchdownGuard>(options_.touchdown);
+        winch_->arm_touchdown_guard();
         return enter(UavMissionState::kLower, "landed beside the opening");
       }
       return;
     }
 
     case UavMissionState::kLower: {
-      if (!guard_) guard_ = std::make_unique<tether::TouchdownGuard>(options_.touchdown);
+      winch_->keep_touchdown_guard();
       if (!current().landed) hw_.flight.command_position(release_W_, current().opening.entry_yaw_rad, 0.5);
       const UgvReport r = hw_.ugv.report();
-      // The miniUGV starts with the winch's slack reference paid out beyond l_0: a
-      // metre of line is stiff (1.5 kN/m), so a line ending exactly taut at the entry
-      // pulls tens of newtons the moment the robot moves.
-      const double l0 = options_.tether.entry_offset_m + options_.winch_control.slack_reference_m;
-      if (w.released_m >= l0 - 0.01) {
-        winch_idle();
-        guard_.reset();
-        winch_ctl_->reset();
+      if (winch_->ugv_at_entry(w)) {
+        winch_->start_taut_control();
         budget_.miniugv_released();
         hw_.ugv.deploy(current().opening.p_WE, current().opening.entry_yaw_rad);
         current().deployed_s = now;
@@ -473,10 +444,7 @@ void UavMission::tick() {
         current().note = "lowering timed out (touchdown angle)";
         return enter(UavMissionState::kRetract, "lowering timed out");
       }
-      // The touchdown check matters near the floor; above it the miniUGV hangs level.
-      const auto action = guard_->update(now, r.roll_rad, r.pitch_rad, w.released_m);
-      (void)action;
-      hw_.winch.command_velocity_mps(std::min(guard_->spool_velocity_mps(), l0 - w.released_m + 0.05));
+      winch_->lower(now, r, w);
       return;
     }
 
@@ -484,22 +452,7 @@ void UavMission::tick() {
       if (!current().landed) hw_.flight.command_position(release_W_, current().opening.entry_yaw_rad, 0.5);
       const UgvReport r = hw_.ugv.report();
       current().max_released_m = std::max(current().max_released_m, w.released_m);
-      // Over the robot link the miniUGV answers its search request a moment later:
-      // until it has started (or while it is not heard) the winch cannot know where the
-      // line must go, and holds its length. In one process it has started at once.
-      const bool heard = r.link_ok && (r.running || r.done || r.wants_retraction);
-      if (heard) required_->update(r);
-      tether::TetherObservation obs;
-      obs.t_s = now;
-      obs.released_m = w.released_m;
-      obs.spool_speed_mps = w.speed_mps;
-      obs.winch_tension_n = w.tension_n;
-      obs.ugv.p_WG = r.p_WG;
-      obs.ugv.v_WG = r.v_WG;
-      obs.slack_margin_m = r.tether_uncertainty_m;
-      // Without word from the miniUGV the winch holds its length (the miniUGV holds too,
-      // docs/link.md "Watchdogs").
-      hw_.winch.command_velocity_mps(heard ? winch_ctl_->step(obs) : 0.0);
+      winch_->follow_ugv(now, r, w);
       if (r.done || r.wants_retraction) {
         current().ugv_outcome = r.outcome.empty() ? "at the entry" : r.outcome;
         return enter(UavMissionState::kRetract, "miniUGV asks to be lifted out (" + current().ugv_outcome + ")");
@@ -529,8 +482,8 @@ void UavMission::tick() {
 
     case UavMissionState::kRetract: {
       if (!current().landed) hw_.flight.command_position(release_W_, current().opening.entry_yaw_rad, 0.5);
-      if (w.released_m <= 0.01) {
-        winch_idle();
+      if (winch_->reeled_in(w)) {
+        winch_->idle();
         const UgvReport r = hw_.ugv.report();
         hw_.ugv.retracted();
         HiddenSpaceVisit& v = current();
@@ -542,10 +495,10 @@ void UavMission::tick() {
         return enter(UavMissionState::kLiftoff, r.object_held ? "miniUGV aboard with the object" : "miniUGV aboard, no object");
       }
       if (in_state_s > options_.retract_timeout_s) {
-        winch_idle();
+        winch_->idle();
         return finish(UavMissionOutcome::kRetractFailed, "the miniUGV was not reeled in in time");
       }
-      hw_.winch.command_velocity_mps(-options_.retract_speed_mps);
+      winch_->reel_in();
       return;
     }
 

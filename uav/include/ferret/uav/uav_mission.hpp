@@ -44,6 +44,7 @@
 #include "ferret/uav/landing_zone.hpp"
 #include "ferret/uav/marker_detector.hpp"
 #include "ferret/uav/opening_locator.hpp"
+#include "ferret/uav/winch_supervision.hpp"
 
 namespace ferret {
 
@@ -264,7 +265,6 @@ class UavMission {
   void choose_release(const std::string& why_no_zone);
   void hover_over_opening(const std::string& why);
   void resume_search(const std::string& reason);
-  void winch_idle();
   [[nodiscard]] HiddenSpaceVisit& current() { return visits_.at(static_cast<std::size_t>(current_)); }
   [[nodiscard]] Eigen::Vector3d survey_point(int view) const;
   [[nodiscard]] const Eigen::Vector3d& home_W() const { return budget_.home_W(); }
@@ -279,9 +279,8 @@ class UavMission {
   std::unique_ptr<MarkerDetector> detector_;
   LandingZoneDetector landing_;
   tether::TetherModeSwitcher modes_;
-  std::unique_ptr<tether::TouchdownGuard> guard_;
-  std::unique_ptr<tether::TetherController> winch_ctl_;
-  std::shared_ptr<class ReportedTetherLength> required_;
+  /// The winch while the miniUGV is out (built once the options are checked).
+  std::optional<WinchSupervision> winch_;
 
   UavMissionState state_ = UavMissionState::kIdle;
   UavMissionOutcome outcome_ = UavMissionOutcome::kNone;
