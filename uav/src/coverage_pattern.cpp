@@ -50,9 +50,9 @@ double CoveragePattern::camera_leg_spacing_m(const MarkerDetectorOptions& marker
   // leaves the pitched camera's view when the UAV comes closer); every other leg flies
   // each way, so legs are one reach apart.
   const int cells = marker_bitmap(marker.dictionary, 0).black_square_cells;
-  const double d_max_m = marker_camera.fx_px * marker.marker_size_m /
-                         (std::max(1.0, marker.min_marker_side_px) * std::max(1, cells) /
-                          kSearchMarkerCells);
+  const double d_max_m =
+      marker_camera.fx_px * marker.marker_size_m /
+      (std::max(1.0, marker.min_marker_side_px) * std::max(1, cells) / kSearchMarkerCells);
   const double half_fov = std::atan2(0.5 * marker_camera.width_px, marker_camera.fx_px);
   return std::clamp(0.5 * d_max_m * std::tan(half_fov), 1.0, 50.0);
 }

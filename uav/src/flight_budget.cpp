@@ -4,7 +4,8 @@ namespace ferret {
 
 bool FlightBudget::calls_home(const FlightState& s, double before_s) const {
   const double home_s = before_s + (s.p_W - home_W_).norm() / options_.cruise_speed_mps + 30.0;
-  return s.battery_fraction < home_s / options_.flight_endurance_s + options_.battery_reserve_fraction;
+  return s.battery_fraction <
+         home_s / options_.flight_endurance_s + options_.battery_reserve_fraction;
 }
 
 FlightBudget::HoverCall FlightBudget::while_hovering(const FlightState& s, const UgvReport& r,

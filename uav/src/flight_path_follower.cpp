@@ -12,7 +12,8 @@ double yaw_of(const Eigen::Vector3d& d) { return std::atan2(d.y(), d.x()); }
 
 }  // namespace
 
-FlightPathFollower::FlightPathFollower(FlightController& flight, FlightPlanner planner, Options options)
+FlightPathFollower::FlightPathFollower(FlightController& flight, FlightPlanner planner,
+                                       Options options)
     : flight_(flight), planner_(std::move(planner)), options_(options) {}
 
 bool FlightPathFollower::fly_to(const Eigen::Vector3d& goal, double speed_mps, bool carrying,
@@ -64,7 +65,8 @@ bool FlightPathFollower::follow(const FlightState& s) {
   const bool last = next_ + 1 == path_.size();
   // At the end the setpoint and heading are still commanded: a heading that changed
   // (a refined opening) is turned to even when the position is already reached.
-  const bool arrived = last && (target - s.p_W).norm() <= options_.waypoint_tolerance_m && s.v_W.norm() < 0.3;
+  const bool arrived =
+      last && (target - s.p_W).norm() <= options_.waypoint_tolerance_m && s.v_W.norm() < 0.3;
   // Face the way it flies (the marker camera looks ahead); the final heading when given.
   double yaw = s.yaw_rad;
   const Eigen::Vector3d d = target - s.p_W;

@@ -1,8 +1,6 @@
 #include "ferret/uav/uav_mission.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <numbers>
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/number.hpp"
@@ -203,368 +201,40 @@ void UavMission::resume_search(const std::string& reason) {
   enter(UavMissionState::kSearch, reason);
 }
 
-const OpeningInMarker* UavMission::opening_of(int marker_id) const {
-  const auto o = std::find_if(options_.openings.begin(), options_.openings.end(),
-                              [&](const OpeningInMarker& x) { return x.marker_id == marker_id; });
-  return o == options_.openings.end() ? nullptr : &*o;
-}
-
-std::optional<UavMission::MarkerFrame> UavMission::marker_frame_due() {
-  if (clock_.now_s() < next_frame_s_) return std::nullopt;
-  next_frame_s_ = clock_.now_s() + options_.frame_period_s;
-  const CameraShot<GrayImage> shot = hw_.cameras.marker_frame();
-  ++frames_;
-  if (shot.image.empty()) return MarkerFrame{shot.X_WC, {}};  // dropped: nothing to look at
-  return MarkerFrame{shot.X_WC, detector_->detect(shot.image, marker_camera_)};
-}
-
-void UavMission::look_for_markers() {
-  const auto frame = marker_frame_due();
-  if (!frame) return;
-  for (const MarkerDetection& d : frame->detections) {
-    const OpeningInMarker* known = opening_of(d.id);
-    if (!known) continue;
-    if (std::any_of(visits_.begin(), visits_.end(), [&](const HiddenSpaceVisit& v) { return v.marker_id == d.id; }))
-      continue;
-    if (++sightings_[d.id] < options_.confirm_detections) continue;
-    HiddenSpaceVisit visit;
-    visit.marker_id = d.id;
-    visit.opening = locate_opening(d, frame->X_WC, *known);
-    visit.marker_distance_m = d.X_CM.translation().norm();
-    visit.detected_s = clock_.now_s();
-    visit.pattern_index = pattern_.next_index();
-    visits_.push_back(visit);
-    current_ = static_cast<int>(visits_.size()) - 1;
-    survey_view_ = 0;
-    const Eigen::Vector3d& e = visit.opening.p_WE;
-    enter(UavMissionState::kApproach,
-          "marker " + std::to_string(d.id) + ": opening at (" + std::to_string(e.x()).substr(0, 6) + ", " +
-              std::to_string(e.y()).substr(0, 6) + ")");
-    start_survey_view();
-    return;
-  }
-}
-
-void UavMission::refine_opening() {
-  // Nearer frames of the same marker give a better pose: keep the nearest one's estimate.
-  const auto frame = marker_frame_due();
-  if (!frame) return;
-  HiddenSpaceVisit& v = current();
-  const OpeningInMarker* known = opening_of(v.marker_id);
-  for (const MarkerDetection& d : frame->detections) {
-    if (d.id != v.marker_id || !known) continue;
-    const double distance_m = d.X_CM.translation().norm();
-    if (distance_m >= v.marker_distance_m) continue;
-    v.marker_distance_m = distance_m;
-    v.opening = locate_opening(d, frame->X_WC, *known);
-  }
-}
-
-Eigen::Vector3d UavMission::survey_point(int view) const {
-  const OpeningEstimate& o = visits_.at(static_cast<std::size_t>(current_)).opening;
-  // Views: straight out from the opening, then swung 50 degrees either way.
-  const double swing = (view == 0) ? 0.0 : ((view % 2) ? 1.0 : -1.0) * ((view + 1) / 2) * 50.0 * std::numbers::pi / 180.0;
-  const double out = o.entry_yaw_rad + std::numbers::pi + swing;
-  return {o.p_WE.x() + options_.survey_standoff_m * std::cos(out),
-          o.p_WE.y() + options_.survey_standoff_m * std::sin(out), o.p_WE.z() + options_.survey_height_m};
-}
-
-void UavMission::start_survey_view() {
-  const Eigen::Vector3d p = survey_point(survey_view_);
-  const double face = current().opening.entry_yaw_rad;  // look along the way into the opening
-  if (!path_.fly_to(p, options_.cruise_speed_mps, false, face)) {
-    if (++survey_view_ < options_.survey_views) return start_survey_view();
-    choose_release("no flight to any survey point");
-  }
-}
-
-void UavMission::choose_release(const std::string& why_no_zone) {
-  HiddenSpaceVisit& v = current();
-  if (options_.no_landing_zone == "skip") {
-    v.state = VisitState::kSkipped;
-    v.note = why_no_zone;
-    return resume_search("skipped marker " + std::to_string(v.marker_id) + ": " + why_no_zone);
-  }
-  hover_over_opening(why_no_zone);
-}
-
-void UavMission::hover_over_opening(const std::string& why) {
-  HiddenSpaceVisit& v = current();
-  // Hover where the winch is l_0 from the entry: out by hover_standoff, up by the rest.
-  const OpeningEstimate& o = v.opening;
-  const double out = o.entry_yaw_rad + std::numbers::pi;
-  const double l0 = options_.tether.entry_offset_m, s = options_.hover_standoff_m;
-  release_W_ = {o.p_WE.x() + s * std::cos(out), o.p_WE.y() + s * std::sin(out),
-                o.p_WE.z() + std::sqrt(l0 * l0 - s * s) + options_.touchdown_height_m};
-  v.landed = false;
-  v.note = why + "; hovering";
-  if (!path_.fly_to(release_W_, 1.0, false, o.entry_yaw_rad)) {
-    v.state = VisitState::kSkipped;
-    v.note = why + "; no flight to the hover point";
-    return resume_search("skipped marker " + std::to_string(v.marker_id) + ": " + v.note);
-  }
-  enter(UavMissionState::kLand, why + ": hovering over the opening");
-}
-
 void UavMission::tick() {
   if (state_ == UavMissionState::kIdle || done()) return;
   const double now = clock_.now_s();
   time_in_[std::string(to_string(state_))] += now - last_tick_s_;
   last_tick_s_ = now;
-  const double in_state_s = now - state_since_s_;
-  const FlightState s = hw_.flight.state();
-  const tether::WinchState w = hw_.winch.read_state();
-  modes_.update(now, w.released_m);
-  const auto settled = [&](bool there) {
-    if (!there || s.v_W.norm() > 0.15) {
-      settled_since_s_ = -1.0;
-      return false;
-    }
-    if (settled_since_s_ < 0) settled_since_s_ = now;
-    return now - settled_since_s_ >= 1.0;
-  };
-
+  const Tick t{now, now - state_since_s_, hw_.flight.state(), hw_.winch.read_state()};
+  modes_.update(now, t.winch.released_m);
   switch (state_) {
-    case UavMissionState::kTakeoff:
-      if (s.p_W.z() >= home_W().z() + options_.search_altitude_m - 0.2)
-        return enter(UavMissionState::kSearch, "at the search altitude");
-      if (in_state_s > options_.takeoff_timeout_s)
-        return finish(UavMissionOutcome::kTakeoffFailed, "not at the search altitude in time");
-      return;
-
-    case UavMissionState::kSearch: {
-      if (budget_.calls_home(s)) return go_home("the battery covers the way home only");
-      look_for_markers();
-      if (state_ != UavMissionState::kSearch) return;
-      if (pattern_.done()) return go_home("search pattern flown");
-      if (path_.empty() && !path_.fly_to(pattern_.next_waypoint(), options_.search_speed_mps, false)) {
-        pattern_.advance();  // an unreachable waypoint: on to the next
-        return;
-      }
-      if (path_.follow(s)) {
-        pattern_.advance();
-        path_.clear();
-      }
-      return;
-    }
-
-    case UavMissionState::kApproach:
-      if (budget_.calls_home(s)) return go_home("the battery covers the way home only");
-      refine_opening();
-      if (in_state_s > options_.approach_timeout_s) {
-        current().state = VisitState::kSkipped;
-        current().note = "approach timed out";
-        return resume_search("approach timed out");
-      }
-      // The survey frame is taken level and facing the opening, as planned for.
-      if (path_.follow(s) && settled(std::abs(std::remainder(s.yaw_rad - path_.final_yaw_rad().value_or(s.yaw_rad),
-                                                       2 * std::numbers::pi)) < 0.05)) {
-        // Near the opening, facing it, with the nearest frames' estimate of it: a hover
-        // release needs no landing zone, so no survey.
-        if (options_.release == ReleaseMode::kHover) return hover_over_opening("uav.release is hover");
-        enter(UavMissionState::kSurvey, "over the survey point");
-      }
-      return;
-
-    case UavMissionState::kSurvey: {
-      if (in_state_s > options_.survey_timeout_s) return choose_release("survey timed out");
-      // The hover's frames, one a cycle, fused before the ground is judged.
-      if (!survey_frames_.add(hw_.cameras.depth_frame(), survey_frames_needed_)) return;
-      LandingZoneDetector::Options lo = options_.landing;
-      lo.p_WE = current().opening.p_WE;
-      lo.reach_m = options_.tether.entry_offset_m;
-      const LandingResult zones = LandingZoneDetector(lo).detect(survey_frames_.fused());
-      const int taken = static_cast<int>(survey_frames_.size());
-      const int longer = hover_frames_after_miss(taken, options_.survey_frames_max);
-      if (zones.zones.empty() && longer > taken) {
-        // Nothing safe in these frames: keep them and look longer before the next view.
-        survey_frames_needed_ = longer;
-        return;
-      }
-      survey_frames_.clear();
-      if (!zones.zones.empty()) {
-        HiddenSpaceVisit& v = current();
-        v.landing_zone = zones.zones.front();
-        v.landed = true;
-        const Eigen::Vector3d& c = v.landing_zone->center_m;
-        release_W_ = c + Eigen::Vector3d(0, 0, 1.5);
-        if (path_.fly_to(release_W_, 1.0, false, v.opening.entry_yaw_rad))
-          return enter(UavMissionState::kLand, "landing zone " + std::to_string(c.x()).substr(0, 6) + ", " +
-                                                   std::to_string(c.y()).substr(0, 6) + " (slope " +
-                                                   std::to_string(v.landing_zone->slope_deg).substr(0, 4) + " deg, " +
-                                                   std::to_string(taken) + " frames)");
-      }
-      if (++survey_view_ < options_.survey_views) {
-        start_survey_view();
-        return enter(UavMissionState::kApproach, "no safe landing zone in view (" + zones.reason + ") in " +
-                                                     std::to_string(taken) + " frames, next view");
-      }
-      return choose_release("no safe landing zone within reach of the opening (" + std::to_string(taken) +
-                            " frames a view)");
-    }
-
-    case UavMissionState::kLand: {
-      if (in_state_s > options_.land_timeout_s) {
-        current().state = VisitState::kSkipped;
-        current().note = "landing timed out";
-        path_.clear();
-        hw_.flight.command_takeoff(home_W().z() + options_.search_altitude_m);
-        return resume_search("landing timed out");
-      }
-      if (!current().landed) {  // hover release: lower once the hover is steady
-        if (path_.follow(s) && settled(true)) enter(UavMissionState::kLower, "hovering over the opening");
-        return;
-      }
-      if (!path_.empty()) {
-        if (path_.follow(s) && settled(true)) {
-          path_.clear();
-          hw_.flight.command_land();
-        }
-        return;
-      }
-      if (s.on_ground) {
-        winch_->arm_touchdown_guard();
-        return enter(UavMissionState::kLower, "landed beside the opening");
-      }
-      return;
-    }
-
-    case UavMissionState::kLower: {
-      winch_->keep_touchdown_guard();
-      if (!current().landed) hw_.flight.command_position(release_W_, current().opening.entry_yaw_rad, 0.5);
-      const UgvReport r = hw_.ugv.report();
-      if (winch_->ugv_at_entry(w)) {
-        winch_->start_taut_control();
-        budget_.miniugv_released();
-        hw_.ugv.deploy(current().opening.p_WE, current().opening.entry_yaw_rad);
-        current().deployed_s = now;
-        return enter(UavMissionState::kUgvOps, "miniUGV at the entry (l_t " + std::to_string(w.released_m).substr(0, 4) + " m)");
-      }
-      if (in_state_s > options_.lower_timeout_s) {
-        current().note = "lowering timed out (touchdown angle)";
-        return enter(UavMissionState::kRetract, "lowering timed out");
-      }
-      winch_->lower(now, r, w);
-      return;
-    }
-
-    case UavMissionState::kUgvOps: {
-      if (!current().landed) hw_.flight.command_position(release_W_, current().opening.entry_yaw_rad, 0.5);
-      const UgvReport r = hw_.ugv.report();
-      current().max_released_m = std::max(current().max_released_m, w.released_m);
-      winch_->follow_ugv(now, r, w);
-      if (r.done || r.wants_retraction) {
-        current().ugv_outcome = r.outcome.empty() ? "at the entry" : r.outcome;
-        return enter(UavMissionState::kRetract, "miniUGV asks to be lifted out (" + current().ugv_outcome + ")");
-      }
-      if (in_state_s > options_.ugv_ops_timeout_s) {
-        hw_.ugv.abort("the UAV's time for the hidden space ran out");
-        current().ugv_outcome = "aborted";
-        return enter(UavMissionState::kRetract, "hidden-space time ran out");
-      }
-      // Hovering burns the flight budget while the miniUGV works.
-      if (!current().landed) {
-        switch (budget_.while_hovering(s, r, w.released_m)) {
-          case FlightBudget::HoverCall::kLiftOut:
-            hw_.ugv.abort("the UAV's battery covers only the lift and the way home");
-            current().ugv_outcome = "aborted";
-            current().note = "flight budget while hovering";
-            return enter(UavMissionState::kRetract, "the battery covers only the lift and the way home");
-          case FlightBudget::HoverCall::kRecall:
-            hw_.ugv.recall("the UAV's flight budget");  // the miniUGV logs its own return
-            break;
-          case FlightBudget::HoverCall::kGoOn:
-            break;
-        }
-      }
-      return;
-    }
-
-    case UavMissionState::kRetract: {
-      if (!current().landed) hw_.flight.command_position(release_W_, current().opening.entry_yaw_rad, 0.5);
-      if (winch_->reeled_in(w)) {
-        winch_->idle();
-        const UgvReport r = hw_.ugv.report();
-        hw_.ugv.retracted();
-        HiddenSpaceVisit& v = current();
-        v.retracted_s = now;
-        v.state = VisitState::kServiced;
-        v.object_retrieved = r.object_held;
-        carrying_ = r.object_held;
-        hw_.flight.command_takeoff(std::max(s.p_W.z(), home_W().z() + options_.search_altitude_m));
-        return enter(UavMissionState::kLiftoff, r.object_held ? "miniUGV aboard with the object" : "miniUGV aboard, no object");
-      }
-      if (in_state_s > options_.retract_timeout_s) {
-        winch_->idle();
-        return finish(UavMissionOutcome::kRetractFailed, "the miniUGV was not reeled in in time");
-      }
-      winch_->reel_in();
-      return;
-    }
-
-    case UavMissionState::kLiftoff:
-      if (s.p_W.z() >= home_W().z() + options_.search_altitude_m - 0.2) {
-        if (carrying_) {
-          const Eigen::Vector3d drop(options_.drop_zone_W.x(), options_.drop_zone_W.y(),
-                                     home_W().z() + options_.drop_altitude_m);
-          if (path_.fly_to(drop, options_.cruise_speed_mps, true)) return enter(UavMissionState::kDeliver, "to the drop zone");
-          current().note = "no flight to the drop zone with the miniUGV below";
-          return go_home(current().note);
-        }
-        return resume_search("searching on");
-      }
-      if (in_state_s > options_.takeoff_timeout_s) return finish(UavMissionOutcome::kTakeoffFailed, "no climb after the hidden space");
-      return;
-
-    case UavMissionState::kDeliver:
-      if (in_state_s > options_.deliver_timeout_s) {
-        current().note = "delivery timed out";
-        return go_home(current().note);
-      }
-      if (path_.follow(s) && settled(true)) {
-        hw_.ugv.release_object();
-        return enter(UavMissionState::kDrop, "over the drop zone: EPM off");
-      }
-      return;
-
-    case UavMissionState::kDrop:
-      if (in_state_s >= options_.drop_time_s) {
-        current().object_dropped = true;
-        carrying_ = false;
-        if (budget_.calls_home(s)) return go_home("the battery covers the way home only");
-        return resume_search("object dropped");
-      }
-      return;
-
-    case UavMissionState::kReturnHome:
-      if (path_.follow(s) && settled(true)) {
-        hw_.flight.command_land();
-        return enter(UavMissionState::kLandHome, "over home");
-      }
-      if (in_state_s > options_.return_timeout_s) {
-        hw_.flight.command_land();
-        return enter(UavMissionState::kLandHome, "return timed out: landing where it is");
-      }
-      return;
-
-    case UavMissionState::kLandHome:
-      if (s.on_ground) {
-        // Home with the object still below: the delivery failed, whatever the battery
-        // and the pattern say (it was not the flight budget that ended the search).
-        if (carrying_)
-          return finish(UavMissionOutcome::kDeliveryFailed, "landed at home with the object: " +
-                                                                 (current_ >= 0 ? current().note : std::string("no delivery")));
-        const bool early = !pattern_.done();
-        return finish(early ? UavMissionOutcome::kFlightBudget : UavMissionOutcome::kSearchComplete,
-                      early ? "landed at home, pattern not finished" : "landed at home");
-      }
-      if (in_state_s > options_.land_timeout_s) return finish(UavMissionOutcome::kAborted, "no touchdown at home");
-      return;
-
+    case UavMissionState::kTakeoff: return on_takeoff(t);
+    case UavMissionState::kSearch: return on_search(t);
+    case UavMissionState::kApproach: return on_approach(t);
+    case UavMissionState::kSurvey: return on_survey(t);
+    case UavMissionState::kLand: return on_land(t);
+    case UavMissionState::kLower: return on_lower(t);
+    case UavMissionState::kUgvOps: return on_ugv_ops(t);
+    case UavMissionState::kRetract: return on_retract(t);
+    case UavMissionState::kLiftoff: return on_liftoff(t);
+    case UavMissionState::kDeliver: return on_deliver(t);
+    case UavMissionState::kDrop: return on_drop(t);
+    case UavMissionState::kReturnHome: return on_return_home(t);
+    case UavMissionState::kLandHome: return on_land_home(t);
     case UavMissionState::kIdle:
     case UavMissionState::kDone:
       return;
   }
+}
+
+bool UavMission::settled(bool there, const Tick& t) {
+  if (!there || t.uav.v_W.norm() > 0.15) {
+    settled_since_s_ = -1.0;
+    return false;
+  }
+  if (settled_since_s_ < 0) settled_since_s_ = t.now_s;
+  return t.now_s - settled_since_s_ >= 1.0;
 }
 
 }  // namespace ferret

@@ -65,7 +65,8 @@ void WinchSupervision::lower(double now_s, const UgvReport& r, const tether::Win
   // The touchdown check matters near the floor; above it the miniUGV hangs level.
   const auto action = guard_->update(now_s, r.roll_rad, r.pitch_rad, w.released_m);
   (void)action;
-  winch_.command_velocity_mps(std::min(guard_->spool_velocity_mps(), release_length_m() - w.released_m + 0.05));
+  winch_.command_velocity_mps(
+      std::min(guard_->spool_velocity_mps(), release_length_m() - w.released_m + 0.05));
 }
 
 void WinchSupervision::start_taut_control() {

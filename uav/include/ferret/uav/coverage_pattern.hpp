@@ -18,7 +18,8 @@ class CoveragePattern {
   CoveragePattern() = default;
   /// Legs along x over `area_m` ([x0, y0, x1, y1]) `leg_spacing_m` apart at
   /// `altitude_m`, then (passes 2) legs along y.
-  CoveragePattern(const Eigen::Vector4d& area_m, double altitude_m, int passes, double leg_spacing_m);
+  CoveragePattern(const Eigen::Vector4d& area_m, double altitude_m, int passes,
+                  double leg_spacing_m);
 
   /// The spacing the marker camera allows: legs one lateral reach apart, at about half
   /// the range where a marker of `marker` still spans its min_marker_side_px.

@@ -17,8 +17,8 @@ class FlightBudget {
     /// Flight endurance of a full battery, and the reserve kept over the way home.
     double flight_endurance_s = 20.0 * 60.0;
     double battery_reserve_fraction = 0.10;
-    double retract_speed_mps = 0.4;      ///< the reel-in
-    double ugv_return_speed_mps = 0.2;   ///< the miniUGV coming back along its tether
+    double retract_speed_mps = 0.4;     ///< the reel-in
+    double ugv_return_speed_mps = 0.2;  ///< the miniUGV coming back along its tether
   };
   explicit FlightBudget(Options options) : options_(options) {}
 
@@ -37,7 +37,8 @@ class FlightBudget {
     kLiftOut,  ///< the battery covers only the lift and the way home: reel it in now
   };
   /// One hover step with the miniUGV out, `released_m` of tether paid out.
-  [[nodiscard]] HoverCall while_hovering(const FlightState& s, const UgvReport& r, double released_m);
+  [[nodiscard]] HoverCall while_hovering(const FlightState& s, const UgvReport& r,
+                                         double released_m);
   /// A new release: the miniUGV has not been called back yet.
   void miniugv_released() { recalled_ = false; }
 

@@ -19,7 +19,9 @@
 //   return_home  the pattern done, or the battery only covers the way home
 //   land_home    down at home -> done
 // Every state has a timeout and a defined exit; every transition goes to the
-// TransitionLog with the clock's time and the reason. The controller sees the
+// TransitionLog with the clock's time and the reason. Each state is one handler
+// (on_<state>, in uav_mission_<phase>.cpp); the parts they share are classes of their
+// own: CoveragePattern, FlightPathFollower, FlightBudget, WinchSupervision. The controller sees the
 // interfaces of flight_controller.hpp, a tether::Winch, a Clock and a flight planner,
 // never the simulator's truth.
 
@@ -248,6 +250,37 @@ class UavMission {
   [[nodiscard]] int plans_failed() const { return path_.plans_failed(); }
 
  private:
+  /// What one control step sees: the clock, the time in the state so far, the vehicle
+  /// and the winch.
+  struct Tick {
+    double now_s;
+    double in_state_s;
+    FlightState uav;
+    tether::WinchState winch;
+  };
+  // One handler a state; tick() dispatches on the state. Each returns after at most one
+  // transition.
+  // uav_mission_search.cpp: the climb, the coverage pattern, the approach to an opening.
+  void on_takeoff(const Tick& t);
+  void on_search(const Tick& t);
+  void on_approach(const Tick& t);
+  // uav_mission_survey.cpp: the landing zone survey, the landing or the hover.
+  void on_survey(const Tick& t);
+  void on_land(const Tick& t);
+  // uav_mission_ugv.cpp: the miniUGV lowered, at work, reeled in.
+  void on_lower(const Tick& t);
+  void on_ugv_ops(const Tick& t);
+  void on_retract(const Tick& t);
+  // uav_mission_return.cpp: the climb back, the delivery, the way home.
+  void on_liftoff(const Tick& t);
+  void on_deliver(const Tick& t);
+  void on_drop(const Tick& t);
+  void on_return_home(const Tick& t);
+  void on_land_home(const Tick& t);
+  /// Whether the UAV has held still (`there`, and slower than 0.15 m/s) for a second;
+  /// the second starts again when it is not.
+  bool settled(bool there, const Tick& t);
+
   void enter(UavMissionState next, const std::string& reason);
   void finish(UavMissionOutcome outcome, const std::string& reason);
   struct MarkerFrame {
@@ -265,6 +298,8 @@ class UavMission {
   void choose_release(const std::string& why_no_zone);
   void hover_over_opening(const std::string& why);
   void resume_search(const std::string& reason);
+  /// While the miniUGV is out: the hover over the release point held.
+  void hold_over_release();
   [[nodiscard]] HiddenSpaceVisit& current() { return visits_.at(static_cast<std::size_t>(current_)); }
   [[nodiscard]] Eigen::Vector3d survey_point(int view) const;
   [[nodiscard]] const Eigen::Vector3d& home_W() const { return budget_.home_W(); }
