@@ -101,7 +101,7 @@ nlohmann::json report_json(const Options& o, const fs::path& world, const Missio
                         {"detected_on_pass", v.pattern_index < r.first_pass_waypoints ? 1 : 2},
                         {"opening_estimate_m", xyz(v.opening.p_WE)},
                         {"entry_yaw_rad", v.opening.entry_yaw_rad},
-                        {"state", v.state},
+                        {"state", std::string(to_string(v.state))},
                         {"note", v.note},
                         {"landed", v.landed},
                         {"deployed_s", v.deployed_s},
@@ -346,8 +346,8 @@ void run(const Options& o) {
               retrieved, r.objects_in_world, r.objects_dropped, r.flown_m, r.battery_left, r.max_released_m,
               r.over_tension_events, r.uav_collisions, ugv_body_contacts(r));
   for (const HiddenSpaceVisit& v : r.visits)
-    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, v.state.c_str(),
-                v.state == "serviced" ? (v.landed ? " (landed)" : " (hovered)") : "",
+    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, std::string(to_string(v.state)).c_str(),
+                v.state == VisitState::kServiced ? (v.landed ? " (landed)" : " (hovered)") : "",
                 v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(), v.object_dropped ? ", object dropped" : "");
   for (const auto& [state, n] : r.collisions_in) std::printf("  uav collision checks failed in %s: %d\n", state.c_str(), n);
   if (r.uav_collisions > 0)

@@ -292,7 +292,7 @@ void run_uav(const Options& o) {
       const int retrieved = print_uav_outcome(mission, clock.now_s());
       json visits = json::array();
       for (const HiddenSpaceVisit& v : mission.visits())
-        visits.push_back({{"marker_id", v.marker_id}, {"state", v.state}, {"landed", v.landed},
+        visits.push_back({{"marker_id", v.marker_id}, {"state", std::string(to_string(v.state))}, {"landed", v.landed},
                           {"ugv_outcome", v.ugv_outcome}, {"object_retrieved", v.object_retrieved},
                           {"object_dropped", v.object_dropped}});
       std::printf("link: UAV end: %s\n", linked.session().counters().summary().c_str());

@@ -95,8 +95,8 @@ int print_uav_outcome(const UavMission& mission, double time_s) {
   std::printf("outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu\nobjects_retrieved: %d\nobjects_dropped: %d\n",
               std::string(to_string(mission.outcome())).c_str(), time_s, mission.visits().size(), retrieved, dropped);
   for (const HiddenSpaceVisit& v : mission.visits())
-    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, v.state.c_str(),
-                v.state == "serviced" ? (v.landed ? " (landed)" : " (hovered)") : "",
+    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, std::string(to_string(v.state)).c_str(),
+                v.state == VisitState::kServiced ? (v.landed ? " (landed)" : " (hovered)") : "",
                 v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(), v.object_dropped ? ", object dropped" : "");
   return retrieved;
 }

@@ -112,14 +112,14 @@ TEST(MissionRun, FindsBothSpacesRetrievesTheObjectAndReportsTheEmptyOne) {
   const auto& spec = *run_.world.spec;
   EXPECT_LT(Eigen::Vector2d((shed->opening.p_WE - spec.hidden_spaces[0].p_WE).head(2)).norm(), 0.3);
   EXPECT_LT(Eigen::Vector2d((kiln->opening.p_WE - spec.hidden_spaces[1].p_WE).head(2)).norm(), 0.3);
-  EXPECT_EQ(shed->state, "serviced");
+  EXPECT_EQ(shed->state, VisitState::kServiced);
   EXPECT_TRUE(shed->object_retrieved);
   EXPECT_TRUE(shed->object_dropped);
   // The miniUGV's return can stall on its way back (docs/mission.md, open defects);
   // the winch then drags it out along its tether, the object on the magnet.
   EXPECT_TRUE(shed->ugv_outcome == "object_retrieved" || shed->ugv_outcome == "return_failed")
       << shed->ugv_outcome;
-  EXPECT_EQ(kiln->state, "serviced");
+  EXPECT_EQ(kiln->state, VisitState::kServiced);
   EXPECT_FALSE(kiln->object_retrieved);
   EXPECT_TRUE(kiln->ugv_outcome == "no_object" || kiln->ugv_outcome == "return_failed") << kiln->ugv_outcome;
   EXPECT_EQ(r.objects_dropped, 1);
@@ -140,7 +140,7 @@ TEST(MissionRun, TheDefaultWorldsSecondSpaceIsFoundOnTheSecondPass) {
   EXPECT_LT(house->pattern_index, r.first_pass_waypoints);
   EXPECT_GE(garage->pattern_index, r.first_pass_waypoints);
   EXPECT_TRUE(house->object_dropped);
-  EXPECT_EQ(garage->state, "serviced");
+  EXPECT_EQ(garage->state, VisitState::kServiced);
   EXPECT_EQ(garage->ugv_outcome, "no_object");
   EXPECT_EQ(r.objects_dropped, 1);
   expect_body_kept_off_walls(r, 1);
@@ -217,7 +217,7 @@ TEST(MissionRun, UnsafeGroundByAnOpeningHoversOrSkips) {
   ASSERT_TRUE(kiln);
   EXPECT_FALSE(kiln->landed);
   EXPECT_FALSE(kiln->landing_zone.has_value());
-  EXPECT_EQ(kiln->state, "serviced") << kiln->note;
+  EXPECT_EQ(kiln->state, VisitState::kServiced) << kiln->note;
   EXPECT_GE(kiln->deployed_s, 0.0);
   const HiddenSpaceVisit* shed = visit_of(hover, 5);
   ASSERT_TRUE(shed);
@@ -239,7 +239,7 @@ TEST(MissionRun, UnsafeGroundByAnOpeningHoversOrSkips) {
   expect_safe(skip, {});
   kiln = visit_of(skip, 9);
   ASSERT_TRUE(kiln);
-  EXPECT_EQ(kiln->state, "skipped");
+  EXPECT_EQ(kiln->state, VisitState::kSkipped);
   EXPECT_LT(kiln->deployed_s, 0.0);
 }
 
@@ -255,12 +255,12 @@ TEST(MissionRun, AHoverReleaseFromTheMissionYamlNeverLands) {
   const PlanningWorld world = load_planning_world(data_path("worlds/two_sites.yaml"));
   MissionRunSettings s = mission_settings_for(uav, ugv, mission, *world.spec);
   (void)load_uav_mission_options(mission_yaml, s.uav);
-  ASSERT_EQ(s.uav.release, "hover");
+  ASSERT_EQ(s.uav.release, ReleaseMode::kHover);
   const MissionRunResult r = run_mission(world, uav, s, 1);
   expect_safe(r, mission);
   ASSERT_EQ(r.visits.size(), 2u);
   for (const HiddenSpaceVisit& v : r.visits) {
-    EXPECT_EQ(v.state, "serviced") << v.marker_id << ": " << v.note;
+    EXPECT_EQ(v.state, VisitState::kServiced) << v.marker_id << ": " << v.note;
     EXPECT_FALSE(v.landed) << v.marker_id;
     EXPECT_FALSE(v.landing_zone.has_value()) << v.marker_id;
   }
@@ -278,7 +278,7 @@ TEST(MissionRun, HoveringOnALowBatteryRecallsTheMiniUgvInTime) {
   const PlanningWorld world = load_planning_world(data_path("worlds/two_sites.yaml"));
   const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), {});
   MissionRunSettings s = mission_settings_for(uav, ugv, {}, *world.spec);
-  s.uav.release = "hover";
+  s.uav.release = ReleaseMode::kHover;
   s.uav.flight_endurance_s = 220.0;
   const MissionRunResult r = run_mission(world, uav, s, 1);
   expect_safe(r, {});
@@ -287,7 +287,7 @@ TEST(MissionRun, HoveringOnALowBatteryRecallsTheMiniUgvInTime) {
   ASSERT_TRUE(kiln);
   EXPECT_FALSE(kiln->landed);
   EXPECT_EQ(kiln->ugv_outcome, "recalled");
-  EXPECT_EQ(kiln->state, "serviced");
+  EXPECT_EQ(kiln->state, VisitState::kServiced);
   EXPECT_GE(r.battery_left, 0.10);  // home with the reserve
 }
 

@@ -50,7 +50,7 @@ TEST(UavMissionConfig, TheKeysTheFileSetsAreReadAndTheRestKeepTheirValues) {
                                               "m.yaml", o);
   EXPECT_DOUBLE_EQ(o.search_altitude_m, 5.5);
   EXPECT_EQ(o.passes, 1);
-  EXPECT_EQ(o.release, "hover");
+  EXPECT_EQ(o.release, ReleaseMode::kHover);
   EXPECT_EQ(o.winch_controller, "baseline");
   EXPECT_DOUBLE_EQ(o.flight_endurance_s, 900.0);
   EXPECT_EQ(o.search_area_m, Eigen::Vector4d(-7.0, -6.0, 7.0, 6.0));  // not given: the world's
@@ -71,6 +71,7 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   o.survey_frames = 12;
   o.survey_frames_max = 24;
   o.no_landing_zone = "skip";
+  o.release = ReleaseMode::kHover;
   o.battery_reserve_fraction = 0.1;  // 0.1 is not exact in binary: the text must round trip
   o.return_timeout_s = 412.5;
   o.marker.dictionary.family = MarkerFamily::kAprilTag;
@@ -84,6 +85,9 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   EXPECT_EQ(given.size(), uav_mission_keys().size());  // the dump writes every key
   EXPECT_EQ(again.search_area_m, o.search_area_m);
   EXPECT_EQ(again.no_landing_zone, "skip");
+  EXPECT_EQ(again.release, ReleaseMode::kHover);
+  EXPECT_NE(text.find("release: hover\n"), std::string::npos);  // the word, not a number
+  EXPECT_NE(dump(UavMissionOptions{}).find("release: land\n"), std::string::npos);
   EXPECT_EQ(again.survey_frames, 12);
   EXPECT_EQ(again.survey_frames_max, 24);
   EXPECT_TRUE(again.marker_from_mission);

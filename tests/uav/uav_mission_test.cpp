@@ -350,5 +350,16 @@ TEST(UavMission, BadOptionsNameTheField) {
   EXPECT_EQ(field_of(UavMissionOptions{}), "");
 }
 
+// report.json and the mission YAML carry these words: the enums must print them.
+TEST(UavMission, VisitStatesAndReleaseModesPrintTheirWords) {
+  EXPECT_EQ(to_string(VisitState::kDetected), "detected");
+  EXPECT_EQ(to_string(VisitState::kSkipped), "skipped");
+  EXPECT_EQ(to_string(VisitState::kServiced), "serviced");
+  EXPECT_EQ(HiddenSpaceVisit{}.state, VisitState::kDetected);
+  EXPECT_EQ(to_string(ReleaseMode::kLand), "land");
+  EXPECT_EQ(to_string(ReleaseMode::kHover), "hover");
+  EXPECT_EQ(UavMissionOptions{}.release, ReleaseMode::kLand);
+}
+
 }  // namespace
 }  // namespace ferret

@@ -5,6 +5,7 @@
 #include <array>
 #include <utility>
 
+#include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/core/yaml_emit.hpp"
 #include "ferret/perception/marker_family.hpp"
@@ -51,8 +52,9 @@ constexpr std::array<std::pair<std::string_view, int Options::*>, 5> kIntegers{{
     {"survey_frames", &Options::survey_frames},
     {"survey_frames_max", &Options::survey_frames_max},
 }};
-constexpr std::array<std::pair<std::string_view, std::string Options::*>, 3> kChoices{{
-    {"release", &Options::release},
+// How the miniUGV goes down: an enum, read and written as its word, before the choices.
+constexpr std::string_view kRelease = "release";
+constexpr std::array<std::pair<std::string_view, std::string Options::*>, 2> kChoices{{
     {"no_landing_zone", &Options::no_landing_zone},
     {"winch_controller", &Options::winch_controller},
 }};
@@ -71,12 +73,19 @@ constexpr auto all_keys(bool with_backends) {
   out[i++] = kMarker;
   for (const auto& [k, m] : kNumbers) out[i++] = k;
   for (const auto& [k, m] : kIntegers) out[i++] = k;
+  out[i++] = kRelease;
   for (const auto& [k, m] : kChoices) out[i++] = k;
   return out;
 }
-constexpr std::size_t kMissionKeyCount = 2 + kNumbers.size() + kIntegers.size() + kChoices.size();
+constexpr std::size_t kMissionKeyCount = 3 + kNumbers.size() + kIntegers.size() + kChoices.size();
 constexpr auto kMissionKeys = all_keys<kMissionKeyCount>(false);
 constexpr auto kSectionKeys = all_keys<kMissionKeyCount + kBackendKeys.size()>(true);
+
+ReleaseMode read_release_mode(const std::string& word, const std::string& source) {
+  for (const ReleaseMode m : {ReleaseMode::kLand, ReleaseMode::kHover})
+    if (word == to_string(m)) return m;
+  throw InputError(source, "uav.release", "land or hover", word);
+}
 
 }  // namespace
 
@@ -124,6 +133,8 @@ std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std
   };
   read(kNumbers);
   read(kIntegers);
+  o.release = read_release_mode(r.get_or(kRelease, std::string(to_string(o.release))), source);
+  note(kRelease);
   read(kChoices);
   o.validate(source);
   return given;
@@ -149,6 +160,7 @@ void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& o, bool
   }
   for (const auto& [key, member] : kNumbers) internal::emit_key_number(e, key.data(), o.*member);
   for (const auto& [key, member] : kIntegers) e << YAML::Key << key.data() << YAML::Value << o.*member;
+  e << YAML::Key << kRelease.data() << YAML::Value << std::string(to_string(o.release));
   for (const auto& [key, member] : kChoices) e << YAML::Key << key.data() << YAML::Value << o.*member;
 }
 

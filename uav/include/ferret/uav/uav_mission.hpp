@@ -19,7 +19,9 @@
 //   return_home  the pattern done, or the battery only covers the way home
 //   land_home    down at home -> done
 // Every state has a timeout and a defined exit; every transition goes to the
-// TransitionLog with the clock's time and the reason. The controller sees the
+// TransitionLog with the clock's time and the reason. Each state is one handler
+// (on_<state>, in uav_mission_<phase>.cpp); the parts they share are classes of their
+// own: CoveragePattern, FlightPathFollower, FlightBudget, WinchSupervision. The controller sees the
 // interfaces of flight_controller.hpp, a tether::Winch, a Clock and a flight planner,
 // never the simulator's truth.
 
@@ -37,10 +39,14 @@
 #include "ferret/tether_model/tether_controller.hpp"
 #include "ferret/tether_model/tether_modes.hpp"
 #include "ferret/tether_model/winch.hpp"
+#include "ferret/uav/coverage_pattern.hpp"
+#include "ferret/uav/flight_budget.hpp"
 #include "ferret/uav/flight_controller.hpp"
+#include "ferret/uav/flight_path_follower.hpp"
 #include "ferret/uav/landing_zone.hpp"
 #include "ferret/uav/marker_detector.hpp"
 #include "ferret/uav/opening_locator.hpp"
+#include "ferret/uav/winch_supervision.hpp"
 
 namespace ferret {
 
@@ -61,10 +67,18 @@ enum class UavMissionOutcome {
 };
 [[nodiscard]] std::string_view to_string(UavMissionOutcome outcome);
 
-/// A flight planner: a collision-free path from `from` to `to` (both included), with
-/// the miniUGV hanging below when `carrying`; nullopt when there is none.
-using FlightPlanner = std::function<std::optional<std::vector<Eigen::Vector3d>>(
-    const Eigen::Vector3d& from, const Eigen::Vector3d& to, bool carrying)>;
+/// How the miniUGV goes down by a hidden space (uav.release).
+enum class ReleaseMode {
+  kLand,   ///< beside the opening, on a safe zone the depth frames show within l_0 of it
+  kHover,  ///< always from a hover over the opening, no survey
+};
+/// "land", "hover": the YAML's words.
+[[nodiscard]] std::string_view to_string(ReleaseMode release);
+
+/// What came of a hidden space the UAV found.
+enum class VisitState { kDetected, kSkipped, kServiced };
+/// "detected", "skipped", "serviced": the words of report.json.
+[[nodiscard]] std::string_view to_string(VisitState state);
 
 struct UavMissionOptions {
   /// The area to search, [x0, y0, x1, y1] (m) in the world.
@@ -102,10 +116,10 @@ struct UavMissionOptions {
   /// (hover_frames_after_miss; at most survey_frames: never). What 8 frames' noise hides
   /// at 4 m, 16, 32 or 64 show: 64 frames of a D415 at 30 Hz take 2.1 s.
   int survey_frames_max = 64;
-  /// How the miniUGV goes down: "land" (beside the opening, on a safe zone the depth
-  /// frames show within l_0 of it; none: no_landing_zone decides) or "hover" (always from
+  /// How the miniUGV goes down: land (beside the opening, on a safe zone the depth
+  /// frames show within l_0 of it; none: no_landing_zone decides) or hover (always from
   /// a hover over the opening, no survey: for ground the team knows is unsafe).
-  std::string release = "land";
+  ReleaseMode release = ReleaseMode::kLand;
   /// No safe landing zone within reach: "hover" (lower from a hover over the opening's
   /// standoff point) or "skip" (leave the hidden space and search on).
   std::string no_landing_zone = "hover";
@@ -161,7 +175,7 @@ struct HiddenSpaceVisit {
   double marker_distance_m = 1e9;  ///< camera to marker in that frame
   double detected_s = 0.0;
   std::size_t pattern_index = 0;   ///< the pattern waypoint the UAV was flying to then
-  std::string state = "detected";  ///< detected, skipped, serviced
+  VisitState state = VisitState::kDetected;
   std::string note;                ///< why skipped, or why the object was not delivered
   bool landed = false;             ///< landed beside it (false: hovered)
   std::optional<LandingZone> landing_zone;
@@ -223,26 +237,52 @@ class UavMission {
   [[nodiscard]] bool done() const { return state_ == UavMissionState::kDone; }
   [[nodiscard]] const std::vector<HiddenSpaceVisit>& visits() const { return visits_; }
   /// The coverage pattern's waypoints (at the search altitude) and how far it got.
-  [[nodiscard]] const std::vector<Eigen::Vector3d>& pattern() const { return pattern_; }
-  [[nodiscard]] std::size_t pattern_done() const { return pattern_next_; }
-  [[nodiscard]] double leg_spacing_m() const { return leg_spacing_m_; }
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& pattern() const { return pattern_.waypoints(); }
+  [[nodiscard]] std::size_t pattern_done() const { return pattern_.next_index(); }
+  [[nodiscard]] double leg_spacing_m() const { return pattern_.leg_spacing_m(); }
   /// Waypoints of the first pass (legs along x); the second pass follows.
-  [[nodiscard]] std::size_t first_pass_waypoints() const { return first_pass_end_; }
+  [[nodiscard]] std::size_t first_pass_waypoints() const { return pattern_.first_pass_waypoints(); }
   /// Seconds spent in each state.
   [[nodiscard]] const std::map<std::string, double>& time_in_state() const { return time_in_; }
   [[nodiscard]] tether::TetherMode tether_mode() const { return modes_.mode(); }
   [[nodiscard]] const tether::TautControlOptions& winch_control() const { return options_.winch_control; }
   [[nodiscard]] int frames_processed() const { return frames_; }
-  [[nodiscard]] int plans_failed() const { return plans_failed_; }
+  [[nodiscard]] int plans_failed() const { return path_.plans_failed(); }
 
  private:
+  /// What one control step sees: the clock, the time in the state so far, the vehicle
+  /// and the winch.
+  struct Tick {
+    double now_s;
+    double in_state_s;
+    FlightState uav;
+    tether::WinchState winch;
+  };
+  // One handler a state; tick() dispatches on the state. Each returns after at most one
+  // transition.
+  // uav_mission_search.cpp: the climb, the coverage pattern, the approach to an opening.
+  void on_takeoff(const Tick& t);
+  void on_search(const Tick& t);
+  void on_approach(const Tick& t);
+  // uav_mission_survey.cpp: the landing zone survey, the landing or the hover.
+  void on_survey(const Tick& t);
+  void on_land(const Tick& t);
+  // uav_mission_ugv.cpp: the miniUGV lowered, at work, reeled in.
+  void on_lower(const Tick& t);
+  void on_ugv_ops(const Tick& t);
+  void on_retract(const Tick& t);
+  // uav_mission_return.cpp: the climb back, the delivery, the way home.
+  void on_liftoff(const Tick& t);
+  void on_deliver(const Tick& t);
+  void on_drop(const Tick& t);
+  void on_return_home(const Tick& t);
+  void on_land_home(const Tick& t);
+  /// Whether the UAV has held still (`there`, and slower than 0.15 m/s) for a second;
+  /// the second starts again when it is not.
+  bool settled(bool there, const Tick& t);
+
   void enter(UavMissionState next, const std::string& reason);
   void finish(UavMissionOutcome outcome, const std::string& reason);
-  /// Plans to `goal` and starts following the path; false when there is no plan.
-  bool fly_to(const Eigen::Vector3d& goal, double speed_mps, bool carrying,
-              std::optional<double> yaw_rad = std::nullopt);
-  /// Follows the current path; true when at its end.
-  bool follow(const FlightState& s);
   struct MarkerFrame {
     Pose3 X_WC;
     std::vector<MarkerDetection> detections;
@@ -253,45 +293,36 @@ class UavMission {
   [[nodiscard]] const OpeningInMarker* opening_of(int marker_id) const;
   void look_for_markers();
   void refine_opening();
-  /// Whether the battery left covers no more than `before_s` of hovering (the miniUGV's
-  /// return, the reel-in), the way home at cruise speed, 30 s and the reserve.
-  bool battery_calls_home(const FlightState& s, double before_s = 0.0) const;
   void go_home(const std::string& reason);
   void start_survey_view();
   void choose_release(const std::string& why_no_zone);
   void hover_over_opening(const std::string& why);
   void resume_search(const std::string& reason);
-  void winch_idle();
+  /// While the miniUGV is out: the hover over the release point held.
+  void hold_over_release();
   [[nodiscard]] HiddenSpaceVisit& current() { return visits_.at(static_cast<std::size_t>(current_)); }
   [[nodiscard]] Eigen::Vector3d survey_point(int view) const;
+  [[nodiscard]] const Eigen::Vector3d& home_W() const { return budget_.home_W(); }
 
   Hardware hw_;
   const Clock& clock_;
-  FlightPlanner planner_;
   CameraModel marker_camera_, depth_camera_;
   UavMissionOptions options_;
-  bool recalled_ = false;  ///< the miniUGV in this hidden space was called back
+  FlightPathFollower path_;  ///< the planned legs the UAV flies
+  FlightBudget budget_;      ///< the battery against the way home
   TransitionLog* log_;
   std::unique_ptr<MarkerDetector> detector_;
   LandingZoneDetector landing_;
   tether::TetherModeSwitcher modes_;
-  std::unique_ptr<tether::TouchdownGuard> guard_;
-  std::unique_ptr<tether::TetherController> winch_ctl_;
-  std::shared_ptr<class ReportedTetherLength> required_;
+  /// The winch while the miniUGV is out (built once the options are checked).
+  std::optional<WinchSupervision> winch_;
 
   UavMissionState state_ = UavMissionState::kIdle;
   UavMissionOutcome outcome_ = UavMissionOutcome::kNone;
   double state_since_s_ = 0.0;
   double last_tick_s_ = 0.0;
   std::map<std::string, double> time_in_;
-  std::vector<Eigen::Vector3d> pattern_;
-  std::size_t pattern_next_ = 0;
-  double leg_spacing_m_ = 0.0;
-  std::size_t first_pass_end_ = 0;
-  std::vector<Eigen::Vector3d> path_;
-  std::size_t path_next_ = 0;
-  double path_speed_mps_ = 0.0;
-  std::optional<double> path_yaw_rad_;
+  CoveragePattern pattern_;
   double next_frame_s_ = 0.0;
   std::map<int, int> sightings_;  ///< marker id -> detections not yet acted on
   std::vector<HiddenSpaceVisit> visits_;
@@ -305,8 +336,6 @@ class UavMission {
   Eigen::Vector3d release_W_ = Eigen::Vector3d::Zero();
   bool carrying_ = false;
   int frames_ = 0;
-  int plans_failed_ = 0;
-  Eigen::Vector3d home_W_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace ferret
