@@ -29,7 +29,7 @@
 
 #include "ferret/service/planner_service.hpp"
 
-#include <httplib.h>  // after Eigen (service/src/planner_service.cpp says why)
+#include <httplib.h>  // after Eigen (service/src/planner_service_impl.hpp says why)
 
 namespace {
 

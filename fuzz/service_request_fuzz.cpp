@@ -15,7 +15,7 @@
 #include "ferret/service/planner_service.hpp"
 #include "fuzz_support.hpp"
 
-#include <httplib.h>  // after Eigen (service/src/planner_service.cpp says why)
+#include <httplib.h>  // after Eigen (service/src/planner_service_impl.hpp says why)
 
 namespace {
 

@@ -153,7 +153,7 @@ int run(int argc, char** argv) {
   // heap, where a long-lived block between them keeps the pages.
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
   // An arena a thread (glibc's default is 8 a core, fewer than the HTTP threads), so the
-  // service's map builder keeps its own (planner_service.cpp, MapBuilder).
+  // service's map builder keeps its own (service/src/map_store.hpp, MapBuilder).
   mallopt(M_ARENA_MAX, o.workers + o.queue + 16);
   ferret::PlannerService service(o);  // checks the options and loads both robots
   for (const auto& [name, file] : maps) {

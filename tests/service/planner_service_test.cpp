@@ -28,7 +28,7 @@
 #include "ferret/service/planner_service.hpp"
 #include "support/cli_runner.hpp"
 
-#include <httplib.h>  // after Eigen (see service/src/planner_service.cpp)
+#include <httplib.h>  // after Eigen (see service/src/planner_service_impl.hpp)
 
 namespace ferret {
 namespace {

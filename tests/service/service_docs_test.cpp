@@ -15,7 +15,7 @@
 
 #include "ferret/service/planner_service.hpp"
 
-#include <httplib.h>  // after Eigen (see service/src/planner_service.cpp)
+#include <httplib.h>  // after Eigen (see service/src/planner_service_impl.hpp)
 
 namespace ferret {
 namespace {
