@@ -1,11 +1,4 @@
-// `ferret mission`: the whole mission in the simulated world (docs/mission.md): the
-// UAV searches, finds the marked openings, lands (or hovers) beside each, lowers the
-// miniUGV, which searches the hidden space and brings the object out, and the UAV drops
-// it in the drop zone and searches on.
-//   ferret mission [--world W.yaml] [--robot-uav URDF] [--robot-ugv URDF]
-//                  [--mission M.yaml] [--seed N] [--out DIR]
-// Prints the transitions as they happen (simulated time) and a progress line a
-// simulated minute on stderr, then a summary on stdout; --out writes report.json, the figures, map.bt and mission.mcap.
+#include "ferret/mission/mission_outputs.hpp"
 
 #include <fmt/format.h>
 
@@ -20,9 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "cli_options.hpp"
-#include "command.hpp"
-#include "mission_setup.hpp"
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/foxglove_log.hpp"
@@ -42,20 +32,10 @@
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
-namespace ferret::cli {
+namespace ferret {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Options {
-  MissionSetupOptions setup;
-  std::string out;
-  std::string link = "in-process";
-  double link_loss = 0.0, link_reorder = 0.0;
-  std::uint64_t seed = 1;
-  bool quiet = false;
-  bool render_every_frame = false;
-};
 
 nlohmann::json xyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
@@ -65,11 +45,11 @@ int ugv_body_contacts(const MissionRunResult& r) {
   return n;
 }
 
-nlohmann::json report_json(const Options& o, const fs::path& world, const MissionRunResult& r) {
+nlohmann::json report_json(std::uint64_t seed, const fs::path& world, const MissionRunResult& r) {
   nlohmann::json j;
   j["schema"] = "ferret.mission_report/1";
   j["world"] = world.string();
-  j["seed"] = o.seed;
+  j["seed"] = seed;
   j["backends"] = r.backends;
   if (!r.link_counters.empty()) j["link_counters"] = r.link_counters;
   j["outcome"] = to_string(r.outcome);
@@ -284,61 +264,16 @@ std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition
   return log.finish();
 }
 
-void run(const Options& o) {
-  if (o.link != "in-process" && o.link != "messages") throw InputError("--link", "", "in-process or messages", o.link);
-  for (const auto& [option, value] : {std::pair{"--link-loss", o.link_loss}, std::pair{"--link-reorder", o.link_reorder}}) {
-    if (!(std::isfinite(value) && value >= 0.0 && value <= 0.9))
-      throw InputError(option, "", "a fraction of the datagrams in [0, 0.9]", fmt::format("{}", value));
-    if (value > 0.0 && o.link != "messages")
-      throw InputError(option, "", "--link messages (in one process there are no messages to lose)", fmt::format("{}", value));
-  }
-  if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
-  MissionSetup setup = load_mission_setup(o.setup);
-  require_all_sim(setup.backends, o.setup.mission, "ferret mission runs both robots in its own simulator");
-  const fs::path& world_path = setup.world_path;
-  const MissionConfig& mission = setup.mission;
-  const RobotBackends& backends = setup.backends;
-  const RobotDescription& uav = setup.uav;
-  const PlanningWorld& world = setup.world;
-  MissionRunSettings& settings = setup.settings;
-  settings.render_markerless_frames = o.render_every_frame;
-  if (o.link == "messages") {
-    link::LossyChannelOptions channel;
-    channel.drop_fraction = o.link_loss;
-    channel.reorder_fraction = o.link_reorder;
-    settings.link_channel = channel;
-  }
-  const WorldSpec& spec = *world.spec;
-
-  // What the mission YAML asked for (all sim here), and what the run itself uses
-  // besides: the rendered cameras and the miniUGV's link inside this process.
-  if (!o.quiet) {
-    std::string line = "backends: " + backends.summary();
-    for (const auto& [name, backend] : mission_backends())
-      if (name == "uav.cameras") line += ", " + name + ": " + backend;
-    line += ", link: " + (o.link == "messages" ? fmt::format("messages (loss {:g}, reordering {:g})", o.link_loss,
-                                                              o.link_reorder)
-                                               : o.link);
-    std::fprintf(stderr, "%s\n", line.c_str());
-  }
-  TransitionLog log;
-  double next_progress_s = 60.0;
-  log.on_transition([&](const Transition& t) {
-    if (o.quiet) return;
-    std::fprintf(stderr, "%s\n", TransitionLog::format(t).c_str());
-  });
-  settings.on_sample = [&](double t_s, const MissionSim& m) {
-    if (o.quiet || t_s < next_progress_s) return;
-    next_progress_s += 60.0;
-    const FlightState s = m.uav_truth();
-    std::fprintf(stderr, "  [%6.0f s] uav %s at (%.1f, %.1f, %.1f), battery %.0f %%, l_t %.2f m, %zu/%zu waypoints\n", t_s,
-                std::string(to_string(m.uav().state())).c_str(), s.p_W.x(), s.p_W.y(), s.p_W.z(),
-                100 * s.battery_fraction, m.released_m(), m.uav().pattern_done(), m.uav().pattern().size());
-  };
-  const MissionRunResult r = run_mission(world, uav, settings, o.seed, &log);
-
+int objects_retrieved(const MissionRunResult& r) {
   int retrieved = 0;
   for (const HiddenSpaceVisit& v : r.visits) retrieved += v.object_retrieved ? 1 : 0;
+  return retrieved;
+}
+
+}  // namespace
+
+void print_mission_summary(const MissionRunResult& r) {
+  const int retrieved = objects_retrieved(r);
   std::printf("outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu of %d\nobjects_retrieved: %d of %d\n"
               "objects_dropped: %d\nflown_m: %.1f\nbattery_left: %.3f\ntether_max_m: %.2f\n"
               "tether_over_tension_events: %d\nuav_collisions: %d\nugv_body_contacts: %d\n",
@@ -362,15 +297,16 @@ void run(const Options& o) {
                 std::string(to_string(d.result.outcome)).c_str(), d.result.time_s, d.result.path_m,
                 d.result.battery_left, d.result.body_contacts, d.result.deepest_contact_m);
   if (!r.link_counters.empty()) std::printf("link: %s\n", r.link_counters.c_str());
-  if (o.out.empty()) return;
+}
 
-  OutputSet files(fs::path(o.out), OutputKind::kDirectory);
-  files.write_text("report.json", report_json(o, world_path, r).dump(1) + "\n");
+void write_mission_outputs(const fs::path& dir, const MissionOutputsInput& in, const MissionRunResult& r) {
+  const PlanningWorld& world = in.world;
+  const WorldSpec& spec = *world.spec;
+  OutputSet files(dir, OutputKind::kDirectory);
+  files.write_text("report.json", report_json(in.seed, in.world_path, r).dump(1) + "\n");
   files.write("aerial.png", [&](const fs::path& p) { write_aerial_png(*world.tree, spec, r, p); });
-  files.write("battery.png", [&](const fs::path& p) { write_battery_png(r, settings.uav, p); });
-  files.write("tether.png", [&](const fs::path& p) {
-    write_tether_png(r, settings.uav, mission.tether.total_length_m, p);
-  });
+  files.write("battery.png", [&](const fs::path& p) { write_battery_png(r, in.uav, p); });
+  files.write("tether.png", [&](const fs::path& p) { write_tether_png(r, in.uav, in.tether_total_length_m, p); });
   for (const UgvDeployment& d : r.deployments) {
     if (d.hidden_space.empty() || !d.result.grid) continue;
     EpisodeResult figure;
@@ -383,38 +319,13 @@ void run(const Options& o) {
     figure.trajectory = d.result.trajectory;
     figure.grid = d.result.grid;
     figure.objects = d.result.objects;
-    const fs::path dir = files.path("spaces/" + d.hidden_space + "/G.png").parent_path();
-    write_exploration_images(d.truth, d.object_W.value_or(Eigen::Vector2d(-1e6, -1e6)), figure, dir,
+    const fs::path space_dir = files.path("spaces/" + d.hidden_space + "/G.png").parent_path();
+    write_exploration_images(d.truth, d.object_W.value_or(Eigen::Vector2d(-1e6, -1e6)), figure, space_dir,
                              fmt::format("{}: {}", d.hidden_space, to_string(d.result.outcome)));
   }
   files.write("map.bt", [&](const fs::path& p) { save_octree(*world.tree, p); });
   files.write_text("mission.mcap", mission_mcap(r, r.transitions));
   files.commit();
-  std::printf("wrote: %s (report.json, aerial.png, tether.png, battery.png, spaces/*/G.png O.png G_O.png, map.bt, mission.mcap)\n",
-              o.out.c_str());
 }
 
-}  // namespace
-
-const CommandRegistration kMission{
-    "mission", [](CLI::App& app) {
-      auto o = std::make_shared<Options>();
-      auto* sub = app.add_subcommand("mission", "Simulate the whole mission: search, land, retrieve, drop");
-      add_mission_setup_options(sub, o->setup);
-      add_seed_option(sub, o->seed, "mission");
-      sub->add_option("-o,--out", o->out,
-                      "Directory for report.json, aerial.png, tether.png, battery.png, spaces/*/, map.bt, mission.mcap (default: none, summary only)");
-      sub->add_option("--link", o->link,
-                      "How the UAV and the miniUGV talk: in-process (calls) or messages (the robot link's frames and "
-                      "sessions through a simulated network, docs/link.md) (default: in-process)");
-      sub->add_option("--link-loss", o->link_loss, "With --link messages: the fraction of datagrams lost, each way (default: 0)");
-      sub->add_option("--link-reorder", o->link_reorder,
-                      "With --link messages: the fraction of datagrams held back past later ones, each way (default: 0)");
-      sub->add_flag("--render-every-frame", o->render_every_frame,
-                    "Render and search every marker frame, also those no marker's quad lies in (default: such "
-                    "frames reach the mission empty; docs/mission.md)");
-      sub->add_flag("-q,--quiet", o->quiet, "Print the summary only");
-      sub->callback([o] { run(*o); });
-    }};
-
-}  // namespace ferret::cli
+}  // namespace ferret

@@ -1,4 +1,5 @@
-// One process a robot (docs/robots.md, "One process a robot"):
+// One process a robot (docs/robots.md, "One process a robot"): the world's process and
+// the two robots' against it or on their hardware.
 //   ferret sim-world [--world W] [--mission M] [--seed N] [--listen ADDR] [--link-loss F --link-reorder F]
 //       the simulated world, serving both robots' hardware and the link between them
 //   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A --duration-s S]
@@ -10,6 +11,8 @@
 // The three read the same world, robots and mission YAML; with the same seed the run ends
 // as `ferret mission --link messages` does.
 
+#include "ferret/mission/robot_processes.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -20,8 +23,6 @@
 #include <string>
 #include <vector>
 
-#include "cli_options.hpp"
-#include "command.hpp"
 #include "ferret/core/clock.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/transition_log.hpp"
@@ -39,10 +40,10 @@
 #include "ferret/ugv/mini_ugv_mission.hpp"
 #include "ferret/ugv/remote_ugv_base.hpp"
 #include "ferret/ugv/ugv_link_endpoint.hpp"
-#include "mission_setup.hpp"
-#include "robots_on_hardware.hpp"
+#include "ferret/mission/mission_setup.hpp"
+#include "ferret/mission/robots_on_hardware.hpp"
 
-namespace ferret::cli {
+namespace ferret {
 namespace {
 
 using link::MessageStream;
@@ -50,26 +51,12 @@ using link::StreamError;
 using link::StreamMessage;
 using nlohmann::json;
 
-constexpr const char* kDefaultSimWorld = "127.0.0.1:47830";
 constexpr int kReplyTimeoutMs = 60'000;
 
 std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
 
-struct Options {
-  MissionSetupOptions setup;
-  std::uint64_t seed = 1;
-  std::string address = kDefaultSimWorld;  ///< sim-world: --listen; robots: --sim-world
-  double link_loss = 0.0, link_reorder = 0.0;
-  bool render_every_frame = false;
-  bool quiet = false;
-  // A robot on its hardware (docs/robots.md, "On the robots"):
-  std::string link_bind, link_peer;
-  double duration_s = 0.0;
-  bool sim_world_given = false;  ///< --sim-world on the command line
-};
-
 // The options of one mode given in the other are a mistake worth naming.
-void check_mode_options(const Options& o, bool on_hardware) {
+void check_mode_options(const RobotProcessOptions& o, bool on_hardware) {
   if (on_hardware && o.sim_world_given)
     throw InputError("--sim-world", "", "no --sim-world: the mission YAML's backends are hw (the robot's own loop)",
                      o.address);
@@ -87,13 +74,15 @@ void check_mode_options(const Options& o, bool on_hardware) {
                        "given");
 }
 
-RobotOnHardwareOptions hardware_options(const Options& o) {
+RobotOnHardwareOptions hardware_options(const RobotProcessOptions& o) {
   return {o.setup.mission, o.link_bind, o.link_peer, o.duration_s, o.seed, o.quiet};
 }
 
 // --- sim-world ---------------------------------------------------------------------
 
-void run_sim_world_command(const Options& o) {
+}  // namespace
+
+void run_sim_world_process(const RobotProcessOptions& o) {
   for (const auto& [option, value] : {std::pair{"--link-loss", o.link_loss}, std::pair{"--link-reorder", o.link_reorder}})
     if (!(std::isfinite(value) && value >= 0.0 && value <= 0.9))
       throw InputError(option, "", "a fraction of the datagrams in [0, 0.9]", fmt::format("{}", value));
@@ -147,10 +136,12 @@ void run_sim_world_command(const Options& o) {
   std::printf("uav: %s\nugv: %s\n", r.uav_summary.c_str(), r.ugv_summary.c_str());
 }
 
+namespace {
+
 // --- the robots' lockstep loop -------------------------------------------------------
 
 // Connects to sim-world and says which robot this is.
-link::StreamRpcChannel connect_to_world(const Options& o, const std::string& role) {
+link::StreamRpcChannel connect_to_world(const RobotProcessOptions& o, const std::string& role) {
   const link::Ipv4Address address = link::parse_ipv4_address(o.address, "--sim-world", "", false);
   link::StreamRpcChannel channel(MessageStream::connect(address, 30.0), kReplyTimeoutMs);
   const json hello = json::parse(
@@ -221,7 +212,9 @@ class SimWorldUgvLink final : public UgvLink {
   bool lonely_ = false;
 };
 
-void run_uav(const Options& o) {
+}  // namespace
+
+void run_uav_process(const RobotProcessOptions& o) {
   const MissionSetup setup = load_mission_setup(o.setup);
   const bool on_hardware = uav_on_hardware(setup, o.setup.mission);
   check_mode_options(o, on_hardware);
@@ -311,7 +304,7 @@ void run_uav(const Options& o) {
 
 // --- ugv -----------------------------------------------------------------------------
 
-void run_ugv(const Options& o) {
+void run_ugv_process(const RobotProcessOptions& o) {
   const MissionSetup setup = load_mission_setup(o.setup);
   const bool on_hardware = ugv_on_hardware(setup);
   check_mode_options(o, on_hardware);
@@ -388,73 +381,4 @@ void run_ugv(const Options& o) {
   }
 }
 
-// A robot process or the world that loses its peer, or hears what it cannot follow, ends
-// as a failed run (exit 1), not as an internal error.
-template <class Run>
-void failing_on_stream_errors(const Run& run, const Options& o) {
-  try {
-    run(o);
-  } catch (const StreamError& e) {
-    throw CheckFailed(e.what());
-  } catch (const nlohmann::json::exception& e) {
-    throw CheckFailed(std::string("a lockstep message without the fields it needs: ") + e.what());
-  }
-}
-
-void add_common(CLI::App* sub, Options& o) {
-  add_mission_setup_options(sub, o.setup);
-  add_seed_option(sub, o.seed, "mission");
-  sub->add_flag("-q,--quiet", o.quiet, "Print the summary only");
-}
-
-void add_robot_options(CLI::App* sub, Options& o, const std::string& own_port, const std::string& peer_default) {
-  sub->add_option("--sim-world", o.address, "With sim backends: the ferret sim-world's address:port")
-      ->capture_default_str();
-  sub->add_option("--link-bind", o.link_bind,
-                  "With hw backends: this robot's robot-link address:port (default: 127.0.0.1:" + own_port + ")");
-  sub->add_option("--link-peer", o.link_peer, "With hw backends: the other robot's address:port (default: " +
-                                                  peer_default + ")");
-  sub->add_option("--duration-s", o.duration_s,
-                  "With hw backends: stop after this many seconds (default: when done, or at SIGINT/SIGTERM)");
-}
-
-}  // namespace
-
-const CommandRegistration kSimWorld{"sim-world", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("sim-world", "Serve the simulated world to a ferret uav and a ferret ugv process");
-  add_common(sub, *o);
-  sub->add_option("--listen", o->address, "Address:port to listen on (port 0: any free one)")->capture_default_str();
-  sub->add_option("--link-loss", o->link_loss, "The fraction of the robot link's datagrams lost, each way (default: 0)");
-  sub->add_option("--link-reorder", o->link_reorder,
-                  "The fraction of the robot link's datagrams held back past later ones, each way (default: 0)");
-  sub->add_flag("--render-every-frame", o->render_every_frame,
-                "Render every marker frame, also those no marker's quad lies in (docs/mission.md)");
-  sub->callback([o] { failing_on_stream_errors(run_sim_world_command, *o); });
-}};
-
-const CommandRegistration kUav{"uav", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand(
-      "uav", "Run the UAV's mission controller: on its hardware (hw backends) or against ferret sim-world (sim)");
-  add_common(sub, *o);
-  add_robot_options(sub, *o, "47810", "the miniUGV's, 127.0.0.1:47811");
-  sub->callback([o, sub] {
-    o->sim_world_given = sub->count("--sim-world") > 0;
-    failing_on_stream_errors(run_uav, *o);
-  });
-}};
-
-const CommandRegistration kUgv{"ugv", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand(
-      "ugv", "Run the miniUGV's mission controller: on its hardware (hw backend) or against ferret sim-world (sim)");
-  add_common(sub, *o);
-  add_robot_options(sub, *o, "47811", "the UAV's, 127.0.0.1:47810");
-  sub->callback([o, sub] {
-    o->sim_world_given = sub->count("--sim-world") > 0;
-    failing_on_stream_errors(run_ugv, *o);
-  });
-}};
-
-}  // namespace ferret::cli
+}  // namespace ferret

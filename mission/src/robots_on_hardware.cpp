@@ -1,4 +1,4 @@
-#include "robots_on_hardware.hpp"
+#include "ferret/mission/robots_on_hardware.hpp"
 
 #include <fmt/format.h>
 
@@ -30,9 +30,9 @@
 #include "ferret/ugv/mini_ugv_mission.hpp"
 #include "ferret/ugv/ugv_base_factory.hpp"
 #include "ferret/ugv/ugv_link_endpoint.hpp"
-#include "robot_loop.hpp"
+#include "ferret/mission/robot_loop.hpp"
 
-namespace ferret::cli {
+namespace ferret {
 namespace {
 
 constexpr double kUgvPeriodS = 0.05;  // the miniUGV's control and telemetry rate, 20 Hz
@@ -233,4 +233,4 @@ void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   std::fflush(stdout);
 }
 
-}  // namespace ferret::cli
+}  // namespace ferret
