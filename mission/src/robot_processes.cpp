@@ -28,20 +28,19 @@
 #include "ferret/core/transition_log.hpp"
 #include "ferret/link/ip_address.hpp"
 #include "ferret/link/message_stream.hpp"
-#include "ferret/perception/camera_model.hpp"
+#include "ferret/mission/mission_assembly.hpp"
+#include "ferret/mission/mission_setup.hpp"
+#include "ferret/mission/robots_on_hardware.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/sim_world_server.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/uav/adapter_flight_controller.hpp"
-#include "ferret/uav/flight_planner.hpp"
 #include "ferret/uav/linked_ugv.hpp"
 #include "ferret/uav/remote_winch.hpp"
 #include "ferret/uav/uav_mission.hpp"
 #include "ferret/ugv/mini_ugv_mission.hpp"
 #include "ferret/ugv/remote_ugv_base.hpp"
 #include "ferret/ugv/ugv_link_endpoint.hpp"
-#include "ferret/mission/mission_setup.hpp"
-#include "ferret/mission/robots_on_hardware.hpp"
 
 namespace ferret {
 namespace {
@@ -222,14 +221,8 @@ void run_uav_process(const RobotProcessOptions& o) {
   (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);
   require_all_sim(setup.backends, o.setup.mission,
                   "ferret uav under ferret sim-world: every interface simulated; all of the UAV's hw for its own loop");
-  const MissionRunSettings& settings = setup.settings;
-  UavMissionOptions options = settings.uav;
-  fill_uav_mission_from_world(options, *setup.world.spec, settings.ugv.exploration.mission);
-  options.validate(o.setup.mission.empty() ? "(built-in defaults)" : o.setup.mission);
-  const CameraModel marker_model = camera_model(camera_for(setup.uav, false, "marker_camera"), setup.uav.source);
-  const CameraModel depth_model = camera_model(camera_for(setup.uav, true, "depth_camera"), setup.uav.source);
-  const FlightPlanner planner = make_flight_planner(setup.world, setup.uav, settings.ugv.exploration.mission,
-                                                    settings.uav_max_speed_mps, o.seed);
+  const MissionAssembly assembly(setup.world, setup.uav, setup.settings, o.seed,
+                                 o.setup.mission.empty() ? "(built-in defaults)" : o.setup.mission);
 
   if (!o.quiet)  // the log's first line: what drives each interface
     std::fprintf(stderr,
@@ -246,7 +239,7 @@ void run_uav_process(const RobotProcessOptions& o) {
   // Requests go out only inside a lockstep step (between sim-world's message and this
   // process's answer), so the adapter's greeting waits for "start".
   std::optional<AdapterFlightController> flight;
-  std::optional<UavMission> started;
+  std::unique_ptr<UavMission> started;
   const auto mission_or_throw = [&]() -> UavMission& {
     if (!started) throw StreamError("sim-world stepped the UAV before its 'start'");
     return *started;
@@ -261,8 +254,7 @@ void run_uav_process(const RobotProcessOptions& o) {
     const std::string op = j["op"].get<std::string>();
     if (op == "start") {
       flight.emplace(channel, "sim");
-      started.emplace(UavMission::Hardware{*flight, *flight, winch, ugv}, clock, planner, marker_model, depth_model,
-                      options, &log);
+      started = assembly.uav_mission({*flight, *flight, winch, ugv}, clock, &log);
       started->start();
       json r = state();
       r["op"] = "start_done";
@@ -336,8 +328,8 @@ void run_ugv_process(const RobotProcessOptions& o) {
                        map.at("cells").at(1).get<int>()};
     const std::uint64_t seed = d.at("seed").get<std::uint64_t>();
     if (!base) throw StreamError("sim-world asked the miniUGV to search before its 'start'");
-    missions.push_back(std::make_unique<MiniUgvMission>(*base, clock, ugv_mission_map(truth, start, settings),
-                                                        ugv_mission_options(settings, seed, std::nullopt, truth), &log));
+    missions.push_back(
+        MissionAssembly::ugv_mission(settings, *base, clock, ugv_mission_map(truth, start, settings), seed, std::nullopt, &log));
     return {missions.back().get(), &*base};
   });
   MessageStream& stream = channel.stream();

@@ -1,9 +1,11 @@
 #pragma once
 // The simulated world of a whole mission, shared by `ferret mission` (both controllers
-// in this process) and the reference flight adapter (sim_flight_adapter.hpp), and
-// meant for a world served to robot processes over loopback (issue 13): the M100 as its position loop flies it, its rendered cameras,
-// the winch and the true taut tether, the hidden spaces where the miniUGV is set down,
-// and the truth checks (collisions, tension, l_t). Internal to sim/.
+// in this process, mission/mission_run.hpp), `ferret sim-world` (sim_world_server.hpp)
+// and the reference flight adapter (sim_flight_adapter.hpp): the M100 as its position
+// loop flies it, its rendered cameras, the winch and the true taut tether, the hidden
+// spaces where the miniUGV is set down, and the truth checks (collisions, tension, l_t).
+// The controllers plug into its loop through MissionControllers; only mission/ and sim/
+// include this header.
 
 #include <octomap/OcTree.h>
 
