@@ -7,6 +7,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
+#include "ferret/mission/mission_setup.hpp"
 #include "ferret/perception/camera_info.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/urdf/robot_description.hpp"

@@ -15,10 +15,14 @@
 #include <string_view>
 #include <vector>
 
-#include "ferret/mission/mission_setup.hpp"  // resolve_robot, load_mission_or_defaults
+#include "ferret/mission/mission_files.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/urdf/mission_config.hpp"
+
+namespace ferret {
+struct MissionSetupOptions;
+}  // namespace ferret
 
 namespace ferret::cli {
 

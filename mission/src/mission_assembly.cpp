@@ -1,7 +1,6 @@
 #include "ferret/mission/mission_assembly.hpp"
 
 #include "ferret/core/error.hpp"
-
 #include "ferret/sim/sensor_sim.hpp"
 
 namespace ferret {
@@ -29,6 +28,14 @@ std::unique_ptr<MiniUgvMission> MissionAssembly::ugv_mission(const UgvMissionRun
                                                              const std::optional<Eigen::Vector2d>& object_W,
                                                              TransitionLog* log) {
   return std::make_unique<MiniUgvMission>(base, clock, map, ugv_mission_options(settings, seed, object_W, map), log);
+}
+
+UgvControllerFactory MissionAssembly::ugv_controllers(const UgvMissionRunSettings& settings, const Clock& clock,
+                                                      TransitionLog* log) {
+  return [settings, &clock, log](SimUgvBase& base, const GridGeometry& map, std::uint64_t seed,
+                                 const std::optional<Eigen::Vector2d>& object_W) {
+    return ugv_mission(settings, base, clock, map, seed, object_W, log);
+  };
 }
 
 }  // namespace ferret

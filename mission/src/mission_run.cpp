@@ -177,12 +177,13 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
   TransitionLog own_log;
   TransitionLog& transitions = log ? *log : own_log;
   internal::MissionWorld sim(world, uav_robot, settings, seed, transitions);
+  const MissionAssembly assembly(world, uav_robot, settings, seed, "mission");
+  sim.spaces().set_ugv_controllers(MissionAssembly::ugv_controllers(sim.settings().ugv, sim.clock(), &transitions));
   InProcessUgvLink in_process(sim.spaces());
   std::unique_ptr<SimLinkedUgv> linked;
   if (settings.link_channel)
     linked = std::make_unique<SimLinkedUgv>(sim.spaces(), sim.clock(), *settings.link_channel, seed);
   UgvLink& link = linked ? static_cast<UgvLink&>(*linked) : in_process;
-  const MissionAssembly assembly(world, uav_robot, settings, seed, "mission");
   const std::unique_ptr<UavMission> uav = assembly.uav_mission({sim.flight(), sim.cameras(), sim.winch(), link},
                                                                sim.clock(), &transitions);
   UavMission& mission = *uav;

@@ -56,6 +56,12 @@ class MissionAssembly {
                                                                    const std::optional<Eigen::Vector2d>& object_W,
                                                                    TransitionLog* log);
 
+  /// The same as a factory for the simulated world (UgvMissionSim, SimHiddenSpaces):
+  /// each deployment's controller on `clock` with `settings` (copied), its transitions
+  /// to `log` (may be null). `clock` must outlive the factory.
+  [[nodiscard]] static UgvControllerFactory ugv_controllers(const UgvMissionRunSettings& settings, const Clock& clock,
+                                                            TransitionLog* log);
+
  private:
   UavMissionOptions uav_options_;
   CameraModel marker_model_, depth_model_;

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ferret/mission/mission_files.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/robot_backends.hpp"
@@ -37,17 +38,6 @@ struct MissionSetup {
 /// InputError (naming the world file and the hidden space) unless every opening admits
 /// the miniUGV: its collision box's width and height at most the opening's.
 void check_openings_admit(const WorldSpec& world, const std::string& source, const RobotDescription& ugv);
-
-/// The names of the models shipped with ferret (m100, miniugv).
-[[nodiscard]] const std::vector<std::string>& shipped_model_names();
-/// --robot's value as a file: "" gives `default_model` (a shipped file name such as
-/// "miniugv.urdf"); a shipped model's name gives its file; anything else is a path,
-/// which must exist. InputError listing the shipped names otherwise.
-[[nodiscard]] std::filesystem::path resolve_robot(const std::string& robot, std::string_view default_model);
-
-/// The mission YAML, or the built-in defaults when `path` is empty. Its backend sections
-/// (`ugv`, `uav`: load_robot_backends) are checked as well.
-[[nodiscard]] MissionConfig load_mission_or_defaults(const std::string& path);
 
 /// Loads and checks everything; InputError naming the option or the file and field.
 [[nodiscard]] MissionSetup load_mission_setup(const MissionSetupOptions& o);

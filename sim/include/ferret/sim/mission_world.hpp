@@ -186,9 +186,12 @@ class SimHiddenSpaces {
       : world_(world), spec_(*world.spec), sensors_(sensors), settings_(settings), clock_(clock), log_(log),
         seed_(seed) {}
 
+  /// Where an in-process deployment's controller comes from (MissionAssembly's).
+  void set_ugv_controllers(UgvControllerFactory make_controller) { ugv_controllers_ = std::move(make_controller); }
   /// The miniUGV set down at the entry of the hidden space nearest p_WE (within 3 m):
-  /// its simulated base there and, in-process, its controller too (not started). Set
-  /// down where no hidden space is, it searches nothing (lonely()).
+  /// its simulated base there and, in-process, its controller too (not started; from
+  /// set_ugv_controllers()). Set down where no hidden space is, it searches nothing
+  /// (lonely()).
   void put_down(const Eigen::Vector3d& p_WE, bool with_controller) {
     UgvDeployment d;
     d.deployed_s = clock_.now_s();
@@ -242,7 +245,7 @@ class SimHiddenSpaces {
     start_pose_ = start_pose;
     deployment_seed_ = seed;
     sim_ = with_controller
-               ? std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed, clock_, log_)
+               ? std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed, ugv_controllers_)
                : std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed);
   }
   /// Aboard again (the winch reeled it in): the deployment's result is kept, and what
@@ -359,6 +362,7 @@ class SimHiddenSpaces {
   TransitionLog& log_;
   std::uint64_t seed_;
   std::vector<UgvDeployment> deployments_;
+  UgvControllerFactory ugv_controllers_;
   std::unique_ptr<UgvMissionSim> sim_;
   std::vector<std::unique_ptr<UgvMissionSim>> finished_;
   std::unique_ptr<TautTether> tether_;
