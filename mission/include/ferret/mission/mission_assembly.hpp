@@ -36,31 +36,32 @@ class MissionAssembly {
   /// models from `uav_robot` (InputError without a marker or a depth camera) and builds
   /// its flight planner on the world's collision map (OMPL seeded with `seed`). `world`
   /// must outlive the assembly and the controllers it builds.
-  MissionAssembly(const PlanningWorld& world, const RobotDescription& uav_robot, const MissionRunSettings& settings,
-                  std::uint64_t seed, const std::string& source);
+  MissionAssembly(const PlanningWorld& world, const RobotDescription& uav_robot,
+                  const MissionRunSettings& settings, std::uint64_t seed,
+                  const std::string& source);
 
   /// The UAV's options the controller runs with (filled from the world).
   [[nodiscard]] const UavMissionOptions& uav_options() const { return uav_options_; }
 
   /// The UAV's mission controller on `hardware` and `clock`, not started; `log` (may be
   /// null) receives its transitions.
-  [[nodiscard]] std::unique_ptr<UavMission> uav_mission(const UavBackends& hardware, const Clock& clock,
+  [[nodiscard]] std::unique_ptr<UavMission> uav_mission(const UavBackends& hardware,
+                                                        const Clock& clock,
                                                         TransitionLog* log) const;
 
   /// The miniUGV's mission controller for one deployment, not started: on `base` and
   /// `clock`, its maps over `map`, its search seeded from `seed`; `object_W` is the
   /// oracle's object (in a simulation only; none: an empty space or a real one).
-  [[nodiscard]] static std::unique_ptr<MiniUgvMission> ugv_mission(const UgvMissionRunSettings& settings,
-                                                                   UgvBase& base, const Clock& clock,
-                                                                   const GridGeometry& map, std::uint64_t seed,
-                                                                   const std::optional<Eigen::Vector2d>& object_W,
-                                                                   TransitionLog* log);
+  [[nodiscard]] static std::unique_ptr<MiniUgvMission> ugv_mission(
+      const UgvMissionRunSettings& settings, UgvBase& base, const Clock& clock,
+      const GridGeometry& map, std::uint64_t seed, const std::optional<Eigen::Vector2d>& object_W,
+      TransitionLog* log);
 
   /// The same as a factory for the simulated world (UgvMissionSim, SimHiddenSpaces):
   /// each deployment's controller on `clock` with `settings` (copied), its transitions
   /// to `log` (may be null). `clock` must outlive the factory.
-  [[nodiscard]] static UgvControllerFactory ugv_controllers(const UgvMissionRunSettings& settings, const Clock& clock,
-                                                            TransitionLog* log);
+  [[nodiscard]] static UgvControllerFactory ugv_controllers(const UgvMissionRunSettings& settings,
+                                                            const Clock& clock, TransitionLog* log);
 
  private:
   UavMissionOptions uav_options_;

@@ -16,7 +16,8 @@ namespace ferret {
 /// --robot's value as a file: "" gives `default_model` (a shipped file name such as
 /// "miniugv.urdf"); a shipped model's name gives its file; anything else is a path,
 /// which must exist. InputError listing the shipped names otherwise.
-[[nodiscard]] std::filesystem::path resolve_robot(const std::string& robot, std::string_view default_model);
+[[nodiscard]] std::filesystem::path resolve_robot(const std::string& robot,
+                                                  std::string_view default_model);
 
 /// The mission YAML, or the built-in defaults when `path` is empty. Its backend sections
 /// (`ugv`, `uav`: load_robot_backends) are checked as well.

@@ -13,17 +13,18 @@ namespace ferret {
 
 /// What the outputs say besides the run's result.
 struct MissionOutputsInput {
-  const PlanningWorld& world;           ///< the world flown (its OctoMap: aerial.png, map.bt)
-  std::filesystem::path world_path;     ///< as report.json names it
+  const PlanningWorld& world;        ///< the world flown (its OctoMap: aerial.png, map.bt)
+  std::filesystem::path world_path;  ///< as report.json names it
   std::uint64_t seed = 1;
-  const UavMissionOptions& uav;         ///< the UAV's options (battery reserve, winch band)
-  double tether_total_length_m = 0.0;   ///< L
+  const UavMissionOptions& uav;        ///< the UAV's options (battery reserve, winch band)
+  double tether_total_length_m = 0.0;  ///< L
 };
 
 /// The run's summary on stdout (`ferret mission`'s).
 void print_mission_summary(const MissionRunResult& r);
 
 /// Writes the run's files into `dir` (created; replaced only once all are written).
-void write_mission_outputs(const std::filesystem::path& dir, const MissionOutputsInput& in, const MissionRunResult& r);
+void write_mission_outputs(const std::filesystem::path& dir, const MissionOutputsInput& in,
+                           const MissionRunResult& r);
 
 }  // namespace ferret

@@ -34,7 +34,8 @@ class MissionSim {
 /// Runs the mission. `uav_robot` is the UAV's description (its marker and depth
 /// cameras, its shape); throws InputError for a world without a world YAML's hidden
 /// spaces, a robot without the cameras, or bad options.
-[[nodiscard]] MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription& uav_robot,
+[[nodiscard]] MissionRunResult run_mission(const PlanningWorld& world,
+                                           const RobotDescription& uav_robot,
                                            const MissionRunSettings& settings, std::uint64_t seed,
                                            TransitionLog* log = nullptr);
 
