@@ -7,10 +7,9 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
+#include "ferret/mission/mission_setup.hpp"
 #include "ferret/perception/camera_info.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/sim/robot_backends.hpp"
-#include "ferret/uav/uav_mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {
@@ -101,24 +100,6 @@ CLI::Option* add_seed_option(CLI::App* cmd, std::uint64_t& seed, std::string_vie
   return cmd->add_option("--seed", seed, std::string(what))->capture_default_str();
 }
 
-const std::vector<std::string>& shipped_model_names() {
-  static const std::vector<std::string> names{"m100", "miniugv"};
-  return names;
-}
-
-std::filesystem::path resolve_robot(const std::string& robot, std::string_view default_model) {
-  if (robot.empty()) return find_model(default_model);
-  for (const auto& name : shipped_model_names())
-    if (robot == name || robot == name + ".urdf") return find_model(name + ".urdf");
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(robot, ec))
-    throw InputError("--robot", "",
-                     "a URDF file, or a shipped model: " +
-                         fmt::format("{}", fmt::join(shipped_model_names(), ", ")),
-                     robot);
-  return robot;
-}
-
 CLI::Option* add_camera_option(CLI::App* cmd, std::string& camera_yaml, std::string_view role) {
   return cmd->add_option("--camera", camera_yaml,
                          fmt::format("camera_info YAML of the camera (ROS calibration file); "
@@ -149,17 +130,16 @@ CameraModel resolve_camera(const std::string& camera_yaml, const std::string& ro
   return camera_model(*sensor, description.source);
 }
 
-MissionConfig load_mission_or_defaults(const std::string& path) {
-  if (path.empty()) return {};
-  MissionConfig mission = load_mission_config(path);
-  // The backend sections and the UAV mission's keys too, although this command may not
-  // build a robot or fly: a typo there is reported by the first command that reads the
-  // file, not by the robot at start-up.
-  (void)load_robot_backends(path);
-  UavMissionOptions uav;
-  uav.tether = mission.tether;
-  (void)load_uav_mission_options(path, uav);
-  return mission;
+void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o) {
+  sub->add_option("--world", o.world, "World YAML (default: the shipped default world)");
+  sub->add_option("--robot-uav", o.robot_uav, "The UAV's URDF (default: the shipped m100)");
+  sub->add_option("--robot-ugv", o.robot_ugv, "The miniUGV's URDF (default: the shipped miniugv)");
+  sub->add_option("--mission", o.mission, "Mission YAML (default: the built-in defaults)");
+  sub->add_option("--method", o.method, "The miniUGV's search: cdos, rapid, nearest, ... (default: cdos)");
+  sub->add_option("--planner", o.planner,
+                  "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM) (default: grid)");
+  sub->add_option("--no-landing-zone", o.no_landing_zone,
+                  "No safe landing zone by an opening: hover (lower from a hover) or skip (default: the mission YAML's uav.no_landing_zone, hover)");
 }
 
 std::string one_of(const std::vector<std::string>& choices) {

@@ -15,9 +15,14 @@
 #include <string_view>
 #include <vector>
 
+#include "ferret/mission/mission_files.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/urdf/mission_config.hpp"
+
+namespace ferret {
+struct MissionSetupOptions;
+}  // namespace ferret
 
 namespace ferret::cli {
 
@@ -73,14 +78,6 @@ CLI::Option* add_hidden_alias(CLI::App* cmd, const std::string& name, T& value) 
   return cmd->add_option(name, value, "")->group("");
 }
 
-/// The names of the models shipped with ferret (m100, miniugv).
-[[nodiscard]] const std::vector<std::string>& shipped_model_names();
-/// --robot's value as a file: "" gives `default_model` (a shipped file name such as
-/// "miniugv.urdf"); a shipped model's name gives its file; anything else is a path,
-/// which must exist. InputError listing the shipped names otherwise.
-[[nodiscard]] std::filesystem::path resolve_robot(const std::string& robot,
-                                                  std::string_view default_model);
-
 /// `--camera CAM.yaml`: a ROS camera_info calibration file; the alternative to taking
 /// the camera from --robot's URDF by its role.
 CLI::Option* add_camera_option(CLI::App* cmd, std::string& camera_yaml, std::string_view role);
@@ -93,9 +90,9 @@ CLI::Option* add_camera_option(CLI::App* cmd, std::string& camera_yaml, std::str
 [[nodiscard]] CameraModel resolve_camera(const std::string& camera_yaml, const std::string& robot,
                                          std::string_view role, const MissionConfig& mission = {});
 
-/// The mission YAML, or the built-in defaults when `path` is empty. Its backend sections
-/// (`ugv`, `uav`: load_robot_backends) are checked as well.
-[[nodiscard]] MissionConfig load_mission_or_defaults(const std::string& path);
+/// --world, --robot-uav, --robot-ugv, --mission, --method, --planner, --no-landing-zone:
+/// the files and choices of one mission (`ferret mission`, `sim-world`, `uav`, `ugv`).
+void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o);
 
 /// "one of a, b, c": the expectation of an option with a fixed set of values.
 [[nodiscard]] std::string one_of(const std::vector<std::string>& choices);

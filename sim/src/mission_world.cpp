@@ -1,4 +1,4 @@
-#include "mission_world.hpp"
+#include "ferret/sim/mission_world.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include "ferret/core/transition_log.hpp"
 #include "ferret/link/json_dispatcher.hpp"
 #include "ferret/uav/flight_adapter_service.hpp"
-#include "mission_world.hpp"
+#include "ferret/sim/mission_world.hpp"
 
 namespace ferret {
 

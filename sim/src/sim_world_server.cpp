@@ -9,7 +9,7 @@
 #include "ferret/uav/flight_adapter_service.hpp"
 #include "ferret/uav/remote_winch.hpp"
 #include "ferret/ugv/remote_ugv_base.hpp"
-#include "mission_world.hpp"
+#include "ferret/sim/mission_world.hpp"
 
 namespace ferret {
 namespace {

@@ -1,7 +1,5 @@
 #include "ferret/sim/ugv_mission_run.hpp"
 
-#include <cmath>
-
 namespace ferret {
 
 UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
@@ -28,10 +26,9 @@ UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
 UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
                              const std::optional<Eigen::Vector2d>& object_W,
                              const UgvMissionRunSettings& settings, std::uint64_t seed,
-                             const Clock& clock, TransitionLog& log)
+                             const UgvControllerFactory& make_controller)
     : UgvMissionSim(truth, start, object_W, settings, seed) {
-  mission_ = std::make_unique<MiniUgvMission>(*base_, clock, ugv_mission_map(truth.geometry, start, settings),
-                                              ugv_mission_options(settings, seed, object_W, truth.geometry), &log);
+  mission_ = make_controller(*base_, ugv_mission_map(truth.geometry, start, settings), seed, object_W);
 }
 
 GridGeometry ugv_mission_map(const GridGeometry& truth, const Pose2& start, const UgvMissionRunSettings& settings) {
@@ -98,38 +95,6 @@ UgvMissionRunResult UgvMissionSim::result(const TransitionLog& log) const {
   result.trajectory = trajectory_;
   result.grid = mission_->explore_controller().grid_ptr();
   result.objects = mission_->explore_controller().objects_ptr();
-  return result;
-}
-
-UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& start,
-                                    const std::optional<Eigen::Vector2d>& object_W,
-                                    const UgvMissionRunSettings& settings, std::uint64_t seed,
-                                    TransitionLog* log) {
-  SimClock clock;
-  TransitionLog own_log;
-  TransitionLog& transitions = log ? *log : own_log;
-  UgvMissionSim sim(truth, start, object_W, settings, seed, clock, transitions);
-
-  const double dt = sim.tick_s();
-  const auto max_steps = static_cast<long>(std::ceil(settings.time_limit_s / dt));
-  std::optional<double> retract_at_s;
-  MiniUgvMission& mission = sim.mission();
-  sim.start();
-  for (long step = 0; step < max_steps && !mission.done(); ++step) {
-    clock.set(static_cast<double>(step) * dt);
-    if (mission.wants_retraction()) {
-      if (!retract_at_s) retract_at_s = clock.now_s() + settings.retract_time_s;
-      if (clock.now_s() >= *retract_at_s) {
-        mission.retracted();
-        break;
-      }
-    }
-    sim.step(dt);
-    if (settings.on_tick) settings.on_tick(clock.now_s(), mission, sim.base());
-  }
-  if (!mission.done()) mission.stop("the simulation's time limit");
-  UgvMissionRunResult result = sim.result(transitions);
-  result.time_s = clock.now_s();
   return result;
 }
 

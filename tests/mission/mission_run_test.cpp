@@ -1,7 +1,7 @@
-// The whole mission end to end in simulation (sim/mission_run.hpp): the UAV's and the
+// The whole mission end to end in simulation (mission/mission_run.hpp): the UAV's and the
 // miniUGV's controllers on the rendered world, against the world's truth.
 
-#include "ferret/sim/mission_run.hpp"
+#include "ferret/mission/mission_run.hpp"
 
 #include <gtest/gtest.h>
 

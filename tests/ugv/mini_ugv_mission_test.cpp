@@ -13,6 +13,8 @@
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
+#include "ferret/mission/mission_assembly.hpp"
+#include "ferret/mission/ugv_mission_run.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/line_catch.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
@@ -210,7 +212,8 @@ TEST(UgvMission, ARecallEndsTheSearchWithTheWayHomeAndIsLiftedOutAsRecalled) {
   const auto map = test::small_hidden_space();
   SimClock clock;
   TransitionLog log;
-  UgvMissionSim sim(map, kEntry, kBehindPartition, settings(), 5, clock, log);
+  UgvMissionSim sim(map, kEntry, kBehindPartition, settings(), 5,
+                    MissionAssembly::ugv_controllers(settings(), clock, &log));
   sim.start();
   double t = 0.0;
   const auto run_until = [&](const std::function<bool()>& done, double limit_s) {

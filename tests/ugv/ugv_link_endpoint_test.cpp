@@ -11,6 +11,7 @@
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
 #include "ferret/link/codec.hpp"
+#include "ferret/mission/mission_assembly.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/uav/linked_ugv.hpp"
 #include "ferret/ugv/mini_ugv_mission.hpp"
@@ -33,7 +34,8 @@ struct Linked {
   SimClock clock;
   TransitionLog log;
   OccupancyMap2D map = test::small_hidden_space();
-  UgvMissionSim sim{map, kEntry, Eigen::Vector2d(3.2, 0.8), settings(), 5, clock, log};
+  UgvMissionSim sim{map, kEntry, Eigen::Vector2d(3.2, 0.8), settings(), 5,
+                    MissionAssembly::ugv_controllers(settings(), clock, &log)};
   int searches_asked = 0;
   UgvLinkEndpoint ugv{clock, [this](const link::UavRequest& r) {
                         ++searches_asked;

@@ -1,10 +1,8 @@
 #pragma once
-// The whole mission in one simulated world (docs/mission.md): the UAV's mission
-// controller (uav/uav_mission.hpp) flying a simulated M100 with rendered camera and
-// depth frames, the winch (tether::SimulatedWinch) and the tether, and the miniUGV's
-// mission controller in each hidden space the UAV lowers it into, all on one SimClock.
-// Only this harness reads the truth: the world's geometry, where the hidden spaces and
-// objects are, the true taut tether. Deterministic for a seed.
+// The settings and the result of a whole mission in one simulated world (docs/mission.md),
+// the world's side (sim/mission_world.hpp) and the controllers' (mission/mission_run.hpp,
+// which runs them). Only the simulation reads the truth: the world's geometry, where
+// the hidden spaces and objects are, the true taut tether.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -105,22 +103,6 @@ struct MissionRunResult {
   std::vector<Transition> transitions;
 };
 
-class MissionSimImpl;
-
-/// The running simulation, for hooks (read only).
-class MissionSim {
- public:
-  explicit MissionSim(const MissionSimImpl& impl) : impl_(impl) {}
-  [[nodiscard]] const UavMission& uav() const;
-  [[nodiscard]] FlightState uav_truth() const;
-  /// The miniUGV's mission in the hidden space it works in now, or null.
-  [[nodiscard]] const UgvMissionSim* ugv() const;
-  [[nodiscard]] double released_m() const;
-
- private:
-  const MissionSimImpl& impl_;
-};
-
 /// The openings of a world's markers (what the team placed and tells the UAV).
 [[nodiscard]] std::vector<OpeningInMarker> world_openings(const WorldSpec& world);
 
@@ -135,12 +117,5 @@ class MissionSim {
 /// every interface simulated, the miniUGV's link inside the process. The result's
 /// `backends` say the same from the objects themselves.
 [[nodiscard]] std::map<std::string, std::string> mission_backends();
-
-/// Runs the mission. `uav_robot` is the UAV's description (its marker and depth
-/// cameras, its shape); throws InputError for a world without a world YAML's hidden
-/// spaces, a robot without the cameras, or bad options.
-[[nodiscard]] MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription& uav_robot,
-                                           const MissionRunSettings& settings, std::uint64_t seed,
-                                           TransitionLog* log = nullptr);
 
 }  // namespace ferret

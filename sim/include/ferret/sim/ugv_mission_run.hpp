@@ -1,7 +1,8 @@
 #pragma once
-// The miniUGV's whole mission in the simulated hidden space: MiniUgvMission driving a
-// SimUgvBase on a SimClock, the winch's lift simulated when the robot asks for it.
-// Deterministic for a seed; only this harness knows where the object really is.
+// The miniUGV in a simulated hidden space: its SimUgvBase on the truth, stepped by its
+// owner, with the controller a factory gives it (MissionAssembly's, in mission/; or
+// none, when a robot process drives the base). The settings and the result of a
+// deployment. Only the simulation knows where the object really is.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -59,17 +60,25 @@ struct UgvMissionRunResult {
   std::shared_ptr<const ObjectMap> objects;
 };
 
+/// The miniUGV's controller for a deployment, built elsewhere (MissionAssembly, in
+/// mission/): on `base`, its maps over `map`, its search seeded from `seed`; `object_W`
+/// the oracle's object (none: an empty space).
+using UgvControllerFactory = std::function<std::unique_ptr<MiniUgvMission>(
+    SimUgvBase& base, const GridGeometry& map, std::uint64_t seed, const std::optional<Eigen::Vector2d>& object_W)>;
+
 /// One miniUGV mission in a simulated hidden space, stepped by its owner: the
-/// harness run_ugv_mission uses, and the whole mission's simulation (sim/mission_run),
-/// which steps it on the clock it shares with the UAV. Holds the truth (the map, the
-/// object); the controller inside sees only the simulated base.
+/// harness run_ugv_mission (mission/ugv_mission_run.hpp) uses, and the whole mission's
+/// simulation (sim/mission_world.hpp), which steps it on the clock it shares with the
+/// UAV. Holds the truth (the map, the object); the controller inside sees only the
+/// simulated base.
 class UgvMissionSim {
  public:
-  /// `truth` (the simulator keeps a reference) and `clock` must outlive the simulation.
-  /// Throws as run_ugv_mission.
+  /// `truth` (the simulator keeps a reference) must outlive the simulation; the
+  /// controller comes from `make_controller`. Throws std::invalid_argument as
+  /// run_exploration for a bad start or method.
   UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
                 const std::optional<Eigen::Vector2d>& object_W, const UgvMissionRunSettings& settings,
-                std::uint64_t seed, const Clock& clock, TransitionLog& log);
+                std::uint64_t seed, const UgvControllerFactory& make_controller);
   /// The simulated base alone: its controller runs elsewhere (a robot process) and
   /// drives it through its UgvBase.
   UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
@@ -115,13 +124,5 @@ class UgvMissionSim {
 [[nodiscard]] UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std::uint64_t seed,
                                                     const std::optional<Eigen::Vector2d>& object_W,
                                                     const GridGeometry& truth);
-
-/// @param object_W the object, or none (an empty hidden space)
-/// @param log      receives the transitions as they happen (may be null)
-/// @throws std::invalid_argument as run_exploration; InputError for bad options.
-[[nodiscard]] UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& start,
-                                                  const std::optional<Eigen::Vector2d>& object_W,
-                                                  const UgvMissionRunSettings& settings,
-                                                  std::uint64_t seed, TransitionLog* log = nullptr);
 
 }  // namespace ferret

@@ -1,4 +1,4 @@
-#include "robot_loop.hpp"
+#include "ferret/mission/robot_loop.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
-namespace ferret::cli {
+namespace ferret {
 namespace {
 
 std::atomic<int> g_signal{0};
@@ -80,4 +80,4 @@ PeriodicLoopResult run_periodic(double period_s, double duration_s, const std::f
   }
 }
 
-}  // namespace ferret::cli
+}  // namespace ferret

@@ -1,4 +1,4 @@
-#include "robots_on_hardware.hpp"
+#include "ferret/mission/robots_on_hardware.hpp"
 
 #include <fmt/format.h>
 
@@ -15,13 +15,13 @@
 #include "ferret/core/transition_log.hpp"
 #include "ferret/link/message_stream.hpp"
 #include "ferret/link/udp_link.hpp"
-#include "ferret/perception/camera_model.hpp"
+#include "ferret/mission/mission_assembly.hpp"
+#include "ferret/mission/robot_loop.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/dynamixel_bus.hpp"
 #include "ferret/tether_model/winch_factory.hpp"
 #include "ferret/uav/adapter_flight_controller.hpp"
-#include "ferret/uav/flight_planner.hpp"
 #include "ferret/uav/linked_ugv.hpp"
 #include "ferret/uav/uav_mission.hpp"
 #include "ferret/ugv/anchored_ugv_base.hpp"
@@ -29,9 +29,8 @@
 #include "ferret/ugv/mini_ugv_mission.hpp"
 #include "ferret/ugv/ugv_base_factory.hpp"
 #include "ferret/ugv/ugv_link_endpoint.hpp"
-#include "robot_loop.hpp"
 
-namespace ferret::cli {
+namespace ferret {
 namespace {
 
 constexpr double kUgvPeriodS = 0.05;  // the miniUGV's control and telemetry rate, 20 Hz
@@ -144,8 +143,7 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
     base.anchor(entry);
     const GridGeometry map = GridGeometry::centred_on(entry.position(), window_m.x(), window_m.y(), resolution_m);
     const std::uint64_t seed = derive_seed(o.seed, {static_cast<std::uint64_t>(missions.size() + 1)});
-    missions.push_back(std::make_unique<MiniUgvMission>(base, clock, map,
-                                                        ugv_mission_options(settings, seed, std::nullopt, map), &log));
+    missions.push_back(MissionAssembly::ugv_mission(settings, base, clock, map, seed, std::nullopt, &log));
     if (!o.quiet)
       std::fprintf(stderr, "ugv: search %zu from (%.2f, %.2f) heading %.0f deg, a %.1f x %.1f m map\n",
                    missions.size(), entry.x_m, entry.y_m, entry.yaw_rad * 180.0 / std::numbers::pi, window_m.x(),
@@ -184,14 +182,7 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
 // --- UAV -----------------------------------------------------------------------------
 
 void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions& o) {
-  const MissionRunSettings& settings = setup.settings;
-  UavMissionOptions options = settings.uav;
-  fill_uav_mission_from_world(options, *setup.world.spec, settings.ugv.exploration.mission);
-  options.validate(o.mission_path);
-  const CameraModel marker_model = camera_model(camera_for(setup.uav, false, "marker_camera"), setup.uav.source);
-  const CameraModel depth_model = camera_model(camera_for(setup.uav, true, "depth_camera"), setup.uav.source);
-  const FlightPlanner planner = make_flight_planner(setup.world, setup.uav, settings.ugv.exploration.mission,
-                                                    settings.uav_max_speed_mps, o.seed);
+  const MissionAssembly assembly(setup.world, setup.uav, setup.settings, o.seed, o.mission_path);
   link::UdpLink udp = open_link(o, link::kDefaultUavAddress, link::kDefaultUgvAddress);
   const std::string& adapter_address = setup.backends.flight_controller.address;
   if (!o.quiet)
@@ -212,8 +203,8 @@ void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   LinkedUgv ugv(clock);
   TransitionLog log;
   print_transitions(log, o.quiet);
-  UavMission mission(UavMission::Hardware{flight, flight, *winch, ugv}, clock, planner, marker_model, depth_model,
-                     options, &log);
+  const std::unique_ptr<UavMission> uav = assembly.uav_mission({flight, flight, *winch, ugv}, clock, &log);
+  UavMission& mission = *uav;
   mission.start();
   const PeriodicLoopResult loop = run_periodic(kUavPeriodS, o.duration_s, [&] {
     receive_waiting(udp, ugv.session());
@@ -232,4 +223,4 @@ void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   std::fflush(stdout);
 }
 
-}  // namespace ferret::cli
+}  // namespace ferret

@@ -1,26 +1,46 @@
-#include "mission_setup.hpp"
+#include "ferret/mission/mission_setup.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
-#include "cli_options.hpp"
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/sim/robot_backends.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
 
-namespace ferret::cli {
+namespace ferret {
 
-void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o) {
-  sub->add_option("--world", o.world, "World YAML (default: the shipped default world)");
-  sub->add_option("--robot-uav", o.robot_uav, "The UAV's URDF (default: the shipped m100)");
-  sub->add_option("--robot-ugv", o.robot_ugv, "The miniUGV's URDF (default: the shipped miniugv)");
-  sub->add_option("--mission", o.mission, "Mission YAML (default: the built-in defaults)");
-  sub->add_option("--method", o.method, "The miniUGV's search: cdos, rapid, nearest, ... (default: cdos)");
-  sub->add_option("--planner", o.planner,
-                  "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM) (default: grid)");
-  sub->add_option("--no-landing-zone", o.no_landing_zone,
-                  "No safe landing zone by an opening: hover (lower from a hover) or skip (default: the mission YAML's uav.no_landing_zone, hover)");
+const std::vector<std::string>& shipped_model_names() {
+  static const std::vector<std::string> names{"m100", "miniugv"};
+  return names;
+}
+
+std::filesystem::path resolve_robot(const std::string& robot, std::string_view default_model) {
+  if (robot.empty()) return find_model(default_model);
+  for (const auto& name : shipped_model_names())
+    if (robot == name || robot == name + ".urdf") return find_model(name + ".urdf");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(robot, ec))
+    throw InputError("--robot", "",
+                     "a URDF file, or a shipped model: " +
+                         fmt::format("{}", fmt::join(shipped_model_names(), ", ")),
+                     robot);
+  return robot;
+}
+
+MissionConfig load_mission_or_defaults(const std::string& path) {
+  if (path.empty()) return {};
+  MissionConfig mission = load_mission_config(path);
+  // The backend sections and the UAV mission's keys too, although this command may not
+  // build a robot or fly: a typo there is reported by the first command that reads the
+  // file, not by the robot at start-up.
+  (void)load_robot_backends(path);
+  UavMissionOptions uav;
+  uav.tether = mission.tether;
+  (void)load_uav_mission_options(path, uav);
+  return mission;
 }
 
 void check_openings_admit(const WorldSpec& world, const std::string& source, const RobotDescription& ugv) {
@@ -43,7 +63,7 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
     throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
   if (o.planner != "grid" && o.planner != "ompl") throw InputError("--planner", "", "grid or ompl", o.planner);
   if (!has_exploration_policy(o.method))
-    throw InputError("--method", "", one_of(exploration_policy_names()), o.method);
+    throw InputError("--method", "", fmt::format("one of {}", fmt::join(exploration_policy_names(), ", ")), o.method);
   MissionSetup s{o.world.empty() ? data_path("worlds/default.yaml") : std::filesystem::path(o.world),
                  load_mission_or_defaults(o.mission),
                  {},
@@ -77,4 +97,4 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   return s;
 }
 
-}  // namespace ferret::cli
+}  // namespace ferret

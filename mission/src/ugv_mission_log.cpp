@@ -1,4 +1,4 @@
-#include "ferret/sim/ugv_mission_log.hpp"
+#include "ferret/mission/ugv_mission_log.hpp"
 
 #include <algorithm>
 #include <cmath>

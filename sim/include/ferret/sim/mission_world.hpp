@@ -1,9 +1,11 @@
 #pragma once
 // The simulated world of a whole mission, shared by `ferret mission` (both controllers
-// in this process) and the reference flight adapter (sim_flight_adapter.hpp), and
-// meant for a world served to robot processes over loopback (issue 13): the M100 as its position loop flies it, its rendered cameras,
-// the winch and the true taut tether, the hidden spaces where the miniUGV is set down,
-// and the truth checks (collisions, tension, l_t). Internal to sim/.
+// in this process, mission/mission_run.hpp), `ferret sim-world` (sim_world_server.hpp)
+// and the reference flight adapter (sim_flight_adapter.hpp): the M100 as its position
+// loop flies it, its rendered cameras, the winch and the true taut tether, the hidden
+// spaces where the miniUGV is set down, and the truth checks (collisions, tension, l_t).
+// The controllers plug into its loop through MissionControllers; only mission/ and sim/
+// include this header.
 
 #include <octomap/OcTree.h>
 
@@ -184,9 +186,12 @@ class SimHiddenSpaces {
       : world_(world), spec_(*world.spec), sensors_(sensors), settings_(settings), clock_(clock), log_(log),
         seed_(seed) {}
 
+  /// Where an in-process deployment's controller comes from (MissionAssembly's).
+  void set_ugv_controllers(UgvControllerFactory make_controller) { ugv_controllers_ = std::move(make_controller); }
   /// The miniUGV set down at the entry of the hidden space nearest p_WE (within 3 m):
-  /// its simulated base there and, in-process, its controller too (not started). Set
-  /// down where no hidden space is, it searches nothing (lonely()).
+  /// its simulated base there and, in-process, its controller too (not started; from
+  /// set_ugv_controllers()). Set down where no hidden space is, it searches nothing
+  /// (lonely()).
   void put_down(const Eigen::Vector3d& p_WE, bool with_controller) {
     UgvDeployment d;
     d.deployed_s = clock_.now_s();
@@ -240,7 +245,7 @@ class SimHiddenSpaces {
     start_pose_ = start_pose;
     deployment_seed_ = seed;
     sim_ = with_controller
-               ? std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed, clock_, log_)
+               ? std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed, ugv_controllers_)
                : std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed);
   }
   /// Aboard again (the winch reeled it in): the deployment's result is kept, and what
@@ -357,6 +362,7 @@ class SimHiddenSpaces {
   TransitionLog& log_;
   std::uint64_t seed_;
   std::vector<UgvDeployment> deployments_;
+  UgvControllerFactory ugv_controllers_;
   std::unique_ptr<UgvMissionSim> sim_;
   std::vector<std::unique_ptr<UgvMissionSim>> finished_;
   std::unique_ptr<TautTether> tether_;

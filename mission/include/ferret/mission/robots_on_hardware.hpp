@@ -7,14 +7,12 @@
 #include <cstdint>
 #include <string>
 
-#include "mission_setup.hpp"
+#include "ferret/mission/mission_setup.hpp"
 
 namespace ferret {
+
 class TransitionLog;
 class UavMission;
-}
-
-namespace ferret::cli {
 
 struct RobotOnHardwareOptions {
   std::string mission_path;  ///< the mission YAML the backends came from (for messages)
@@ -48,4 +46,4 @@ int print_uav_outcome(const UavMission& mission, double time_s);
 [[nodiscard]] bool uav_on_hardware(const MissionSetup& setup, const std::string& mission_path);
 [[nodiscard]] bool ugv_on_hardware(const MissionSetup& setup);
 
-}  // namespace ferret::cli
+}  // namespace ferret

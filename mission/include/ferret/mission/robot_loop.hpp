@@ -9,7 +9,7 @@
 #include <functional>
 #include <string>
 
-namespace ferret::cli {
+namespace ferret {
 
 struct PeriodicLoopResult {
   std::uint64_t steps = 0;
@@ -25,4 +25,4 @@ struct PeriodicLoopResult {
 /// handlers are restored): a robot ends its loop and stops its actuators itself.
 PeriodicLoopResult run_periodic(double period_s, double duration_s, const std::function<bool()>& step);
 
-}  // namespace ferret::cli
+}  // namespace ferret

@@ -1,0 +1,46 @@
+#include "ferret/mission/mission_assembly.hpp"
+
+#include "ferret/core/error.hpp"
+#include "ferret/sim/sensor_sim.hpp"
+
+namespace ferret {
+
+MissionAssembly::MissionAssembly(const PlanningWorld& world, const RobotDescription& uav_robot,
+                                 const MissionRunSettings& settings, std::uint64_t seed,
+                                 const std::string& source)
+    : uav_options_(settings.uav) {
+  if (!world.spec)
+    throw InputError(world.source.string(), "",
+                     "a world YAML (an OctoMap file names no hidden spaces)");
+  fill_uav_mission_from_world(uav_options_, *world.spec, settings.ugv.exploration.mission);
+  uav_options_.validate(source);
+  marker_model_ = camera_model(camera_for(uav_robot, false, "marker_camera"), uav_robot.source);
+  depth_model_ = camera_model(camera_for(uav_robot, true, "depth_camera"), uav_robot.source);
+  planner_ = make_flight_planner(world, uav_robot, settings.ugv.exploration.mission,
+                                 settings.uav_max_speed_mps, seed);
+}
+
+std::unique_ptr<UavMission> MissionAssembly::uav_mission(const UavBackends& hardware,
+                                                         const Clock& clock,
+                                                         TransitionLog* log) const {
+  return std::make_unique<UavMission>(hardware, clock, planner_, marker_model_, depth_model_,
+                                      uav_options_, log);
+}
+
+std::unique_ptr<MiniUgvMission> MissionAssembly::ugv_mission(
+    const UgvMissionRunSettings& settings, UgvBase& base, const Clock& clock,
+    const GridGeometry& map, std::uint64_t seed, const std::optional<Eigen::Vector2d>& object_W,
+    TransitionLog* log) {
+  return std::make_unique<MiniUgvMission>(base, clock, map,
+                                          ugv_mission_options(settings, seed, object_W, map), log);
+}
+
+UgvControllerFactory MissionAssembly::ugv_controllers(const UgvMissionRunSettings& settings,
+                                                      const Clock& clock, TransitionLog* log) {
+  return [settings, &clock, log](SimUgvBase& base, const GridGeometry& map, std::uint64_t seed,
+                                 const std::optional<Eigen::Vector2d>& object_W) {
+    return ugv_mission(settings, base, clock, map, seed, object_W, log);
+  };
+}
+
+}  // namespace ferret
