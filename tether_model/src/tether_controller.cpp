@@ -5,8 +5,6 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "ferret/tether_model/feedforward_pid.hpp"
-#include "ferret/tether_model/taut_mpc.hpp"
 
 namespace ferret::tether {
 
@@ -371,28 +369,5 @@ UgvMotion TetherStateEstimator::filter_pose(double t_msg_s, const UgvMotion& mea
   }
   return pose_filter.update(t_msg_s, measured);
 }
-
-std::unique_ptr<TetherController> make_tether_controller(
-    std::string_view name, const TautControlOptions& options,
-    std::shared_ptr<const RequiredLengthModel> model) {
-  if (name == "mpc") {
-    TautTetherMpc::Options o;
-    o.control = options;
-    // The velocity-error filter and the response identification as the common options
-    // have them (off by default; the mission's winch turns them on).
-    o.ugv_velocity_error = options.ugv_velocity_error;
-    o.ugv_response_identification = options.ugv_response_identification;
-    return std::make_unique<TautTetherMpc>(o, std::move(model));
-  }
-  if (name == "baseline") {
-    FeedForwardPid::Options o;
-    o.control = options;
-    return std::make_unique<FeedForwardPid>(o, std::move(model));
-  }
-  throw std::invalid_argument("unknown tether controller '" + std::string(name) +
-                              "' (expected mpc or baseline)");
-}
-
-std::vector<std::string> tether_controller_names() { return {"mpc", "baseline"}; }
 
 }  // namespace ferret::tether

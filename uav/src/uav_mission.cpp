@@ -175,7 +175,9 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
   detector_ = make_marker_detector(options_.marker);
   options_.winch_control.limits.total_length_m = options_.tether.total_length_m;
   required_ = std::make_shared<ReportedTetherLength>(options_.tether.entry_offset_m);
-  winch_ctl_ = tether::make_tether_controller(options_.winch_controller, options_.winch_control, required_);
+  winch_ctl_ = tether::tether_controllers().make(
+      options_.winch_controller, {options_.winch_control, options_.winch_controllers, required_},
+      "uav mission options", "uav.winch_controller");
 
   leg_spacing_m_ = options_.leg_spacing_m;
   if (leg_spacing_m_ <= 0.0) {

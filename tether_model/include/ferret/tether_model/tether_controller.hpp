@@ -423,12 +423,15 @@ struct TetherStateEstimator {
   UgvResponseIdentifier::Model fixed_model_;
 };
 
-/// Named factory: "mpc" or "baseline". Throws std::invalid_argument for another name.
-/// The MPC gets options.ugv_velocity_error (default off), not TautTetherMpc's default.
+/// A controller of tether_controllers() (winch_controllers.hpp), "mpc" or "baseline",
+/// with WinchControllerOptions::following(options): the MPC gets
+/// options.ugv_velocity_error (default off), not TautTetherMpc's default.
+/// @throws InputError listing the names for another name.
 [[nodiscard]] std::unique_ptr<TetherController> make_tether_controller(
     std::string_view name, const TautControlOptions& options,
     std::shared_ptr<const RequiredLengthModel> model);
 
+/// The names of tether_controllers(), in the order registered.
 [[nodiscard]] std::vector<std::string> tether_controller_names();
 
 }  // namespace ferret::tether
