@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "ferret/core/error.hpp"
-#include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/tether_model/winch_controllers.hpp"
 
 namespace ferret::tether {
 namespace {

@@ -19,6 +19,8 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "ferret/core/registry.hpp"
 #include "ferret/core/yaml_config.hpp"
@@ -46,6 +48,17 @@ struct WinchControllerSetup {
 };
 
 using TetherControllerRegistry = Registry<TetherController, WinchControllerSetup>;
+
+/// A controller of tether_controllers() (winch_controllers.hpp), "mpc" or "baseline",
+/// with WinchControllerOptions::following(options): the MPC gets
+/// options.ugv_velocity_error (default off), not TautTetherMpc's default.
+/// @throws InputError listing the names for another name.
+[[nodiscard]] std::unique_ptr<TetherController> make_tether_controller(
+    std::string_view name, const TautControlOptions& options,
+    std::shared_ptr<const RequiredLengthModel> model);
+
+/// The names of tether_controllers(), in the order registered.
+[[nodiscard]] std::vector<std::string> tether_controller_names();
 
 /// Adds "mpc" and "baseline".
 void register_builtin_tether_controllers(TetherControllerRegistry& registry);
