@@ -116,7 +116,8 @@ std::size_t decide(ExplorationPolicy& policy, const Snapshot& snapshot) {
 
 void decision(benchmark::State& state, const char* planner) {
   const States& s = states();
-  auto policy = make_exploration_policy(policy_for_planner("cdos", planner), s.options);
+  auto policy = make_exploration_policy(
+      exploration_policy_for("cdos", parse_frontier_planner(planner, "planner")), s.options);
   std::size_t k = 0;
   for (auto _ : state) decide(*policy, *s.all[k++ % s.all.size()]);
   state.counters["states"] = static_cast<double>(s.all.size());
@@ -149,7 +150,8 @@ double thread_cpu_s() {
 // The CPU time of each single decision (every state, 5 times), median and p90.
 void print_single_decisions(const char* planner) {
   const States& s = states();
-  auto policy = make_exploration_policy(policy_for_planner("cdos", planner), s.options);
+  auto policy = make_exploration_policy(
+      exploration_policy_for("cdos", parse_frontier_planner(planner, "planner")), s.options);
   std::vector<double> us;
   for (int rep = 0; rep < 5; ++rep)
     for (const auto& snapshot : s.all) {

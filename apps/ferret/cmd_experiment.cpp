@@ -32,7 +32,7 @@ struct Options {
   std::string config, out, shard = "0/1", plot_script;
   int jobs = 1;
   bool no_plots = false, quiet = false;
-  std::string planner = "grid";  // "ompl": cdos and rapid run as cdos+ompl, rapid+ompl
+  std::string planner = "grid";  // FrontierPlanner: "ompl" runs cdos and rapid as cdos+ompl, rapid+ompl
 };
 
 std::pair<int, int> parse_shard(const std::string& text) {
@@ -114,12 +114,11 @@ void run(const Options& o) {
     throw InputError("--jobs", "", fmt::format("a number of worker threads in [1, {}]", kMaxJobs),
                      std::to_string(o.jobs));
   ExperimentConfig config = load_experiment_config(o.config);
-  if (o.planner != "grid" && o.planner != "ompl")
-    throw InputError("--planner", "", "grid or ompl", o.planner);
-  if (o.planner == "ompl")
-    for (auto* list : {&config.methods, &config.sweep_methods})
-      for (auto& m : *list)
-        m = policy_for_planner(m, o.planner);
+  // Each method as the frontier planner runs it (cdos: cdos+ompl), or an InputError
+  // naming the method the planner does not serve.
+  const FrontierPlanner planner = parse_frontier_planner(o.planner, "--planner");
+  for (auto* list : {&config.methods, &config.sweep_methods})
+    for (auto& m : *list) m = exploration_policy_for(m, planner);
 
   ExperimentOptions eo;
   eo.jobs = o.jobs;

@@ -136,11 +136,9 @@ void run(const Options& o) {
   const bool no_object = o.retrieve && o.object == "none";
   const auto object_v =
       no_object ? std::vector<double>{0.0, 0.0} : parse_number_list(o.object, 2, "--object");
-  if (!has_exploration_policy(o.method)) {
-    std::string names;
-    for (const auto& n : exploration_policy_names()) names += (names.empty() ? "" : ", ") + n;
-    throw InputError("--method", "", "one of " + names, o.method);
-  }
+  // The method and the frontier planner that runs it, or an InputError naming why not.
+  const std::string policy =
+      exploration_policy_for(o.method, parse_frontier_planner(o.planner, "--planner"));
   if (o.candidates != "fv" && o.candidates != "fg")
     throw InputError("--cdos-candidates", "", "fv or fg", o.candidates);
   for (const auto& [v, name] : {std::pair{o.camera_fov_deg, "--camera-fov-deg"},
@@ -177,14 +175,7 @@ void run(const Options& o) {
   if (!o.robot.empty()) robot = load_robot_description(resolve_robot(o.robot, ""), mission);
   ExplorationSettings s = robot ? exploration_settings_for(*robot, mission) : ExplorationSettings{};
   s.mission = mission;
-  s.method = o.method;
-  if (o.planner == "ompl") {
-    if (o.method != "cdos" && o.method != "rapid")
-      throw InputError("--planner", "", "ompl with --method cdos or rapid", o.method);
-    s.method = o.method + "+ompl";  // the OMPL frontier policies of planning/frontier_sampler.hpp
-  } else if (o.planner != "grid") {
-    throw InputError("--planner", "", "grid or ompl", o.planner);
-  }
+  s.method = policy;
   if (!robot) {  // the mission's ugv_limits, as a robot's limits would be
     s.robot.max_velocity_mps = mission.ugv_limits.max_velocity_mps;
     s.robot.max_yaw_rate_radps = mission.ugv_limits.max_yaw_rate_radps;

@@ -17,8 +17,7 @@
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
 #include "ferret/sim/tether_sim.hpp"
-#include "ferret/tether_model/feedforward_pid.hpp"
-#include "ferret/tether_model/taut_mpc.hpp"
+#include "ferret/tether_model/winch_controllers.hpp"
 #include "ferret/urdf/mission_config.hpp"
 
 namespace ferret::cli {
@@ -34,9 +33,8 @@ struct Options {
 };
 
 void run(const Options& o) {
+  tether::tether_controllers().check(o.controller, "--controller");
   const fs::path out = checked_out_dir(o.out, "the output directory");
-  if (o.controller != "mpc" && o.controller != "baseline")
-    throw InputError("--controller", "", "mpc or baseline", o.controller);
   if (o.horizon && (*o.horizon < 2 || *o.horizon > 200))
     throw InputError("--horizon", "", "an integer in [2, 200]",
                      std::to_string(*o.horizon));
@@ -60,15 +58,10 @@ void run(const Options& o) {
   auto& options = config.sim;
   auto model = std::make_shared<tether::FixedWrapTether>(options.entry_offset_m, scenario.p_WE,
                                                          scenario.wrap_points);
-  std::unique_ptr<tether::TetherController> controller;
-  const tether::TautTetherMpc* mpc_controller = nullptr;
-  if (o.controller == "mpc") {
-    auto owned = std::make_unique<tether::TautTetherMpc>(config.mpc, model);
-    mpc_controller = owned.get();
-    controller = std::move(owned);
-  } else {
-    controller = std::make_unique<tether::FeedForwardPid>(config.baseline, model);
-  }
+  const std::unique_ptr<tether::TetherController> controller = tether::tether_controllers().make(
+      o.controller, {options.control, {config.mpc, config.baseline}, model}, "--controller");
+  // The MPC reports its QP fallbacks and the response it identified.
+  const auto* mpc_controller = dynamic_cast<const tether::TautTetherMpc*>(controller.get());
   const sim::TetherSimResult r = sim::run_tether_sim(scenario, options, *controller);
   const auto& m = r.metrics;
   const auto& c = options.control;
@@ -102,7 +95,7 @@ void run(const Options& o) {
   j["controller"] = r.controller;
   j["seed"] = o.seed;
   j["config"] = o.config.empty() ? nlohmann::json() : nlohmann::json(o.config);
-  j["horizon"] = o.controller == "mpc" ? nlohmann::json(config.mpc.horizon) : nlohmann::json();
+  j["horizon"] = mpc_controller ? nlohmann::json(config.mpc.horizon) : nlohmann::json();
   j["link_latency_s"] = options.link_latency_s;
   j["ugv_velocity_lag_s"] = options.ugv_velocity_lag_s;
   j["ugv_slip_noise_mps"] = options.ugv_slip_noise_mps;
@@ -135,8 +128,8 @@ const CommandRegistration kTetherSim{
           "tether-sim", "Run a miniUGV trajectory through the tether model and winch controller");
       sub->add_option("--trajectory", o->trajectory,
                       "trajectory CSV or YAML (default: the built-in scripted one)");
-      sub->add_option("--controller", o->controller, "mpc or baseline")
-          ->check(CLI::IsMember({"mpc", "baseline"}))
+      sub->add_option("--controller", o->controller,
+                      tether::tether_controllers().expected() + " (winch controllers)")
           ->capture_default_str();
       add_seed_option(sub, o->seed, "seed of the sensor noise");
       add_out_option(sub, o->out, "output directory (created)");

@@ -61,9 +61,9 @@ void check_openings_admit(const WorldSpec& world, const std::string& source, con
 MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   if (!o.no_landing_zone.empty() && o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
     throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
-  if (o.planner != "grid" && o.planner != "ompl") throw InputError("--planner", "", "grid or ompl", o.planner);
-  if (!has_exploration_policy(o.method))
-    throw InputError("--method", "", fmt::format("one of {}", fmt::join(exploration_policy_names(), ", ")), o.method);
+  // The method with the frontier planner, or an InputError naming why not (the miniUGV's
+  // ExploreController asks the same function).
+  (void)exploration_policy_for(o.method, parse_frontier_planner(o.planner, "--planner"));
   MissionSetup s{o.world.empty() ? data_path("worlds/default.yaml") : std::filesystem::path(o.world),
                  load_mission_or_defaults(o.mission),
                  {},

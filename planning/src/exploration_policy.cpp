@@ -1,56 +1,166 @@
 #include "ferret/planning/exploration_policy.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <mutex>
 #include <stdexcept>
 
+#include "ferret/core/error.hpp"
 #include "ferret/planning/policies.hpp"
 #include "ferret/planning/viewpoint_search.hpp"
 
 namespace ferret {
+
+void register_builtin_policies(ExplorationPolicies& p) {
+  p.add("cdos", "curiosity-driven object search", [](const PolicyOptions& o) {
+    return std::make_unique<CdosPolicy>(o, false);
+  });
+  p.add("cdos-literal", "the paper's section IV read to the letter", [](const PolicyOptions& o) {
+    return std::make_unique<CdosPolicy>(o, true);
+  });
+  p.add("cdos-fg", "cdos scoring all of F_g", [](PolicyOptions o) {
+    o.cdos_candidates_global = true;
+    return std::make_unique<CdosPolicy>(o, false, "cdos-fg");
+  });
+  p.add("cdos-closest", "cdos with d_{t+1} at the closest approach", [](PolicyOptions o) {
+    o.curiosity.closest_approach = true;
+    return std::make_unique<CdosPolicy>(o, false, "cdos-closest");
+  });
+  p.add("rapid", "rapid frontier (Cieslewski et al. 2017)", [](const PolicyOptions& o) {
+    return std::make_unique<RapidFrontierPolicy>(o);
+  });
+  p.add("nearest", "nearest reachable frontier (Yamauchi 1997)", [](const PolicyOptions& o) {
+    return std::make_unique<NearestFrontierPolicy>(o);
+  });
+  p.add("oracle", "knows the object, drives to the nearest pose that sees it",
+        [](const PolicyOptions& o) { return std::make_unique<OraclePolicy>(o); });
+  p.add("bayes", "Bayesian viewpoint search", [](const PolicyOptions& o) {
+    return std::make_unique<ViewpointSearchPolicy>(o);
+  });
+}
+
 namespace {
-struct Registry {
+
+// The registry a process uses: filled by the registration calls the first time it is
+// asked for (explicit calls: a static build keeps them), then only read, but for
+// register_exploration_policy (tests) under the mutex.
+struct Global {
   std::mutex mutex;
-  std::map<std::string, ExplorationPolicyFactory, std::less<>> factories;
+  ExplorationPolicies policies;
 };
 
-Registry& registry() {
-  static Registry* r = [] {
-    auto* reg = new Registry;
-    // The built-in table: one line a policy.
-    reg->factories["cdos"] = [](const PolicyOptions& o) {
-      return std::make_unique<CdosPolicy>(o, false);
-    };
-    reg->factories["cdos-literal"] = [](const PolicyOptions& o) {
-      return std::make_unique<CdosPolicy>(o, true);
-    };
-    reg->factories["cdos-fg"] = [](PolicyOptions o) {  // CDOS scoring all of F_g
-      o.cdos_candidates_global = true;
-      return std::make_unique<CdosPolicy>(o, false, "cdos-fg");
-    };
-    reg->factories["cdos-closest"] = [](PolicyOptions o) {  // d_{t+1} at the closest approach
-      o.curiosity.closest_approach = true;
-      return std::make_unique<CdosPolicy>(o, false, "cdos-closest");
-    };
-    reg->factories["rapid"] = [](const PolicyOptions& o) {
-      return std::make_unique<RapidFrontierPolicy>(o);
-    };
-    reg->factories["nearest"] = [](const PolicyOptions& o) {
-      return std::make_unique<NearestFrontierPolicy>(o);
-    };
-    reg->factories["oracle"] = [](const PolicyOptions& o) {
-      return std::make_unique<OraclePolicy>(o);
-    };
-    reg->factories["bayes"] = [](const PolicyOptions& o) {
-      return std::make_unique<ViewpointSearchPolicy>(o);
-    };
-    return reg;
+Global& global() {
+  static Global* g = [] {
+    auto* r = new Global;
+    register_builtin_policies(r->policies);
+    register_ompl_frontier_policies(r->policies);
+    return r;
   }();
-  return *r;
+  return *g;
 }
+
 }  // namespace
+
+std::string_view to_string(FrontierPlanner planner) {
+  switch (planner) {
+    case FrontierPlanner::kGrid:
+      return "grid";
+    case FrontierPlanner::kOmpl:
+      return "ompl";
+  }
+  return "grid";
+}
+
+std::string_view to_string(GoalRule rule) {
+  switch (rule) {
+    case GoalRule::kNone:
+      return "";
+    case GoalRule::kCuriosity:
+      return "curiosity";
+    case GoalRule::kRapid:
+      return "rapid";
+    case GoalRule::kNearest:
+      return "nearest";
+    case GoalRule::kOracle:
+      return "oracle";
+    case GoalRule::kRevisit:
+      return "revisit";
+    case GoalRule::kEvidence:
+      return "evidence";
+    case GoalRule::kRecheck:
+      return "recheck";
+    case GoalRule::kViewpoint:
+      return "viewpoint";
+    case GoalRule::kUnwind:
+      return "unwind";
+  }
+  return "";
+}
+
+std::string to_string(const GoalReason& reason) {
+  std::string text(to_string(reason.rule));
+  if (reason.path_by) {
+    text.push_back('+');
+    text.append(to_string(*reason.path_by));
+  }
+  return text;
+}
+
+FrontierPlanner parse_frontier_planner(std::string_view text, const std::string& source,
+                                       const std::string& field) {
+  for (const auto p : {FrontierPlanner::kGrid, FrontierPlanner::kOmpl})
+    if (text == to_string(p)) return p;
+  throw InputError(source, field, "grid or ompl", std::string(text));
+}
+
+void ExplorationPolicies::add(std::string name, std::string description,
+                              ExplorationPolicyFactory factory) {
+  registry_.add(std::move(name), std::move(description), std::move(factory));
+}
+
+void ExplorationPolicies::add_variant(const std::string& method, FrontierPlanner planner,
+                                      std::string name, std::string description,
+                                      ExplorationPolicyFactory factory) {
+  if (!registry_.contains(method) || planner == FrontierPlanner::kGrid)
+    throw std::logic_error("exploration policy " + name + ": a variant of an unknown method " +
+                           method);
+  variants_.push_back({method, planner, name});
+  registry_.add(std::move(name), std::move(description), std::move(factory));
+}
+
+std::vector<std::string> ExplorationPolicies::methods() const {
+  std::vector<std::string> names;
+  for (const auto& e : registry_.entries())
+    if (std::none_of(variants_.begin(), variants_.end(),
+                     [&](const Variant& v) { return v.policy == e.name; }))
+      names.push_back(e.name);
+  return names;
+}
+
+std::string ExplorationPolicies::policy_for(std::string_view method,
+                                            FrontierPlanner planner) const {
+  if (!registry_.contains(method))
+    throw InputError("--method", "", fmt::format("one of {}", fmt::join(methods(), ", ")),
+                     std::string(method));
+  // A variant named as it is runs as it is: its name fixes its planner.
+  for (const auto& v : variants_)
+    if (v.policy == method) return v.policy;
+  if (planner == FrontierPlanner::kGrid) return std::string(method);
+  std::vector<std::string> served;
+  for (const auto& v : variants_) {
+    if (v.planner != planner) continue;
+    if (v.method == method) return v.policy;
+    served.push_back(v.method);
+  }
+  throw InputError(
+      "--planner", "",
+      fmt::format("grid, or {} with a method its frontier sampler serves ({}); {} has none",
+                  to_string(planner), fmt::join(served, ", "), method),
+      std::string(to_string(planner)));
+}
 
 PolicyOptions PolicyOptions::from(const MissionConfig& mission, double camera_range_m,
                                   double max_velocity_mps) {
@@ -61,44 +171,44 @@ PolicyOptions PolicyOptions::from(const MissionConfig& mission, double camera_ra
   return o;
 }
 
+const ExplorationPolicies& exploration_policies() { return global().policies; }
+
 void register_exploration_policy(std::string name, ExplorationPolicyFactory factory) {
-  auto& r = registry();
-  std::lock_guard lock(r.mutex);
-  r.factories[std::move(name)] = std::move(factory);
+  auto& g = global();
+  std::lock_guard lock(g.mutex);
+  g.policies.add(std::move(name), "", std::move(factory));
 }
 
 std::vector<std::string> exploration_policy_names() {
-  auto& r = registry();
-  std::lock_guard lock(r.mutex);
-  std::vector<std::string> names;
-  for (const auto& [name, factory] : r.factories) names.push_back(name);
-  return names;
+  auto& g = global();
+  std::lock_guard lock(g.mutex);
+  return g.policies.methods();
 }
 
 bool has_exploration_policy(std::string_view name) {
-  auto& r = registry();
-  std::lock_guard lock(r.mutex);
-  return r.factories.find(name) != r.factories.end();
+  auto& g = global();
+  std::lock_guard lock(g.mutex);
+  return g.policies.registry().contains(name);
 }
 
-std::string policy_for_planner(std::string_view method, std::string_view planner) {
-  if (planner == "grid") return std::string(method);
-  if (planner != "ompl")
-    throw std::invalid_argument("unknown planner: " + std::string(planner) + " (grid or ompl)");
-  std::string ompl = std::string(method) + "+ompl";
-  return has_exploration_policy(ompl) ? ompl : std::string(method);
+std::string exploration_policy_for(std::string_view method, FrontierPlanner planner) {
+  auto& g = global();
+  std::lock_guard lock(g.mutex);
+  return g.policies.policy_for(method, planner);
 }
 
 std::unique_ptr<ExplorationPolicy> make_exploration_policy(std::string_view name,
                                                            const PolicyOptions& options) {
   ExplorationPolicyFactory factory;
   {
-    auto& r = registry();
-    std::lock_guard lock(r.mutex);
-    const auto it = r.factories.find(name);
-    if (it == r.factories.end())
-      throw std::out_of_range("unknown exploration policy: " + std::string(name));
-    factory = it->second;
+    auto& g = global();
+    std::lock_guard lock(g.mutex);
+    const auto* entry = g.policies.registry().find(name);
+    if (entry == nullptr)
+      throw InputError("--method", "",
+                       fmt::format("one of {}", fmt::join(g.policies.methods(), ", ")),
+                       std::string(name));
+    factory = entry->factory;
   }
   return factory(options);
 }

@@ -61,18 +61,18 @@ FrontierCandidates rapid_weights(const ExplorationState& s, double max_velocity_
       out.cells.push_back(c);
       out.weights.push_back(std::exp(-(max_velocity_mps * u - v).norm() / (0.25 * max_velocity_mps)));
     }
-    out.rule = "rapid";
+    out.rule = GoalRule::kRapid;
   } else {
     for (const Cell& c : s.frontier_sets().global) {
       out.cells.push_back(c);
       out.weights.push_back(std::exp(-static_cast<double>(s.paths.distance_m(c)) / 1.0));
     }
-    out.rule = "nearest";
+    out.rule = GoalRule::kNearest;
   }
   // Far candidates underflow to 0: keep every weight positive but tiny.
   for (double& w : out.weights) w = std::max(w, 1e-12);
   std::optional<std::size_t> first;
-  if (out.rule == "rapid")  // the rapid policy's goal, near-ties resolved as there
+  if (out.rule == GoalRule::kRapid)  // the rapid policy's goal, near-ties resolved as there
     if (const auto goal = RapidFrontierPolicy::choose_visible(s, max_velocity_mps))
       first = static_cast<std::size_t>(std::find(out.cells.begin(), out.cells.end(), goal->cell) - out.cells.begin());
   out.finalize(first);
@@ -101,7 +101,7 @@ FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOpt
         // Sharpened: a candidate with 10% less loss than the best is 1/e as likely.
         out.weights.push_back(std::max(std::exp((f.loss - best) / (0.1 * best)), 1e-12));
       }
-      out.rule = "curiosity";
+      out.rule = GoalRule::kCuriosity;
       out.finalize(cdos_argmax(scored, strongest_evidence(evidence).p_W));  // the cdos policy's goal first
       return out;
     }

@@ -36,7 +36,7 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
               : rapid_candidates(s, options_.max_velocity_mps));
     // Any other goal is kept while it is a frontier, unless curiosity now speaks (as
     // rapid and nearest keep theirs).
-    if (committed_ && !curious() && candidates->rule != "curiosity" && s.tracker.is_frontier(committed_->cell) &&
+    if (committed_ && !curious() && candidates->rule != GoalRule::kCuriosity && s.tracker.is_frontier(committed_->cell) &&
         !s.tracker.blacklisted(committed_->cell) && s.paths.reachable(committed_->cell) && replan(s))
       return committed_;
     committed_.reset();
@@ -49,10 +49,10 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
     // The grid policies' headings: curiosity faces the strongest evidence (the paper's
     // "pointing towards o_i"), nearest faces the unknown, rapid leaves it to the path.
     const auto evidence = collect_evidence(s.objects);
-    if (candidates->rule == "curiosity" && !evidence.empty()) {
+    if (candidates->rule == GoalRule::kCuriosity && !evidence.empty()) {
       const Eigen::Vector2d to = strongest_evidence(evidence).p_W - goal.p_W;
       if (to.norm() > 1e-6) goal.heading_rad = std::atan2(to.y(), to.x());
-    } else if (candidates->rule == "nearest") {
+    } else if (candidates->rule == GoalRule::kNearest) {
       goal.heading_rad = frontier_heading_rad(s.grid, goal.cell);
     }
     committed_ = goal;
@@ -68,7 +68,9 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
   }
 
  private:
-  [[nodiscard]] bool curious() const { return committed_ && committed_->reason.starts_with("curiosity"); }
+  [[nodiscard]] bool curious() const {
+    return committed_ && committed_->reason.rule == GoalRule::kCuriosity;
+  }
 
   // The best-weighted candidate whose grid path is within reach (PRM found none).
   static bool fallback(const ExplorationState& s, const FrontierCandidates& candidates, ExplorationGoal& goal) {
@@ -81,7 +83,7 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
         if (!s.within_reach(c, s.paths.path_to(c))) continue;
       }
       goal.cell = c;
-      goal.reason = candidates.rule + "+grid";
+      goal.reason = {candidates.rule, FrontierPlanner::kGrid};
       return true;  // path_W empty: the caller follows the grid path
     }
     return false;
@@ -95,7 +97,7 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
     if (!plan.solved) return fallback(s, *candidates, goal);
     goal.cell = plan.goal;
     goal.path_W = plan.path_W;
-    goal.reason = candidates->rule + "+ompl";
+    goal.reason = {candidates->rule, FrontierPlanner::kOmpl};
     return true;
   }
 
@@ -106,7 +108,7 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
     one->geometry = s.grid.geometry();
     one->cells = {committed_->cell};
     one->weights = {1.0};
-    one->rule = committed_->reason.substr(0, committed_->reason.find('+'));
+    one->rule = committed_->reason.rule;
     one->finalize();
     ExplorationGoal again;
     if (!plan(s, one, again)) return false;
@@ -122,16 +124,17 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
   std::uint64_t decisions_ = 0;
 };
 
-// Registered when the planning library loads, beside the built-in policies.
-const bool kRegistered = [] {
-  register_exploration_policy("cdos+ompl", [](const PolicyOptions& o) {
-    return std::make_unique<OmplFrontierPolicy>(o, true);
-  });
-  register_exploration_policy("rapid+ompl", [](const PolicyOptions& o) {
-    return std::make_unique<OmplFrontierPolicy>(o, false);
-  });
-  return true;
-}();
-
 }  // namespace
+
+void register_ompl_frontier_policies(ExplorationPolicies& policies) {
+  policies.add_variant(
+      "cdos", FrontierPlanner::kOmpl, "cdos+ompl",
+      "cdos goals and paths by PRM with the frontier sampler",
+      [](const PolicyOptions& o) { return std::make_unique<OmplFrontierPolicy>(o, true); });
+  policies.add_variant(
+      "rapid", FrontierPlanner::kOmpl, "rapid+ompl",
+      "rapid goals and paths by PRM with the frontier sampler",
+      [](const PolicyOptions& o) { return std::make_unique<OmplFrontierPolicy>(o, false); });
+}
+
 }  // namespace ferret

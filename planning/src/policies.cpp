@@ -60,7 +60,7 @@ std::optional<ExplorationGoal> NearestFrontierPolicy::choose(const ExplorationSt
   goal.p_W = s.grid.geometry().center(goal.cell);
   goal.heading_rad = frontier_heading_rad(s.grid, goal.cell);
   goal.score = s.paths.distance_m(goal.cell);
-  goal.reason = "nearest";
+  goal.reason = {GoalRule::kNearest};
   return goal;
 }
 
@@ -88,7 +88,7 @@ std::optional<ExplorationGoal> RapidFrontierPolicy::choose_visible(const Explora
       best->score = change;
     }
   }
-  best->reason = "rapid";
+  best->reason = {GoalRule::kRapid};
   return best;
 }
 
@@ -113,7 +113,7 @@ std::optional<ExplorationGoal> CdosPolicy::choose(const ExplorationState& s) {
     return committed_;
   committed_.reset();
   auto goal = choose_fresh(s);
-  if (goal && goal->reason == "curiosity") {
+  if (goal && goal->reason.rule == GoalRule::kCuriosity) {
     committed_ = goal;
     baseline_.goal_done();  // the baseline's goal is abandoned
   }
@@ -145,7 +145,7 @@ std::optional<ExplorationGoal> CdosPolicy::choose_fresh(const ExplorationState& 
   goal.cell = best->cell;
   goal.p_W = best->p_W;
   goal.score = best->loss;
-  goal.reason = "curiosity";
+  goal.reason = {GoalRule::kCuriosity};
   if (!literal_) {
     // The paper's "pointing towards o_i": face the strongest evidence on arrival.
     const Eigen::Vector2d to = strongest_evidence(evidence).p_W - goal.p_W;
@@ -163,7 +163,7 @@ std::optional<ExplorationGoal> OraclePolicy::choose(const ExplorationState& s) {
       viewing_goal(s.grid, s.tracker, *planner_, *s.oracle_object_W, options_.view_distance_m);
   if (!goal) return fallback_.choose(s);
   goal->path_W = planner_->path_to(goal->cell);
-  goal->reason = "oracle";
+  goal->reason = {GoalRule::kOracle};
   return goal;
 }
 

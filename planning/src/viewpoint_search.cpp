@@ -289,7 +289,7 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     const bool ahead = in_sector(s.X_WG, strongest.p_W, s.ir_fov_rad, s.ir_range_m);
     if (!ahead && (strongest.p_W - s.X_WG.position()).norm() >= options_.evidence_view_min_m)
       if (auto goal = viewing_goal(s.grid, s.tracker, s.paths, strongest.p_W, view_distance_m_)) {
-        goal->reason = "evidence";
+        goal->reason = {GoalRule::kEvidence};
         return goal;
       }
     return cdos_.choose(s);
@@ -327,7 +327,7 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     if (!in_view && far && !rechecked)
       if (auto goal = viewing_goal(s.grid, s.tracker, s.paths, at, view_distance_m_)) {
         rechecked_W_.push_back(at);
-        goal->reason = "recheck";
+        goal->reason = {GoalRule::kRecheck};
         recheck_ = goal;
         return recheck_;
       }
@@ -421,7 +421,7 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const Exp
       best->p_W = q;
       best->heading_rad = view.heading_rad;
       best->score = view.mass;
-      best->reason = "viewpoint";
+      best->reason = {GoalRule::kViewpoint};
     }
   }
   return best;

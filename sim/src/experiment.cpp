@@ -335,8 +335,9 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
       if (c.maps[a].name == c.maps[b].name)
         maps[entry_of[a]].fail(maps[entry_of[a]].has("generate") ? "generate" : "name", "a name no other map has",
                                c.maps[a].name);
+  // The sweeps' default: the methods without the reference that knows the object.
   for (const auto& m : c.methods)
-    if (m != "oracle") c.sweep_methods.push_back(m);
+    if (!make_exploration_policy(m, PolicyOptions{})->needs_oracle()) c.sweep_methods.push_back(m);
   c.sweep_objects_per_zone = c.objects_per_zone;
   if (const auto sw = r.optional_child("sweeps")) {
     sw->allow_only({"camera_fov_deg", "ir_fov_deg", "methods", "objects_per_zone"});

@@ -12,6 +12,7 @@
 #include "ferret/core/atomic_file.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/sim/tether_sim.hpp"
+#include "ferret/tether_model/winch_controllers.hpp"
 #include "plot_panel.hpp"
 
 namespace ferret::sim {
@@ -103,7 +104,7 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
   cv::putText(img,
               fmt::format("{}, {}: slack RMS {:.2f} mm, peak {:.1f} N",
                           r.plot_title.empty() ? fmt::format("tether-sim {} trajectory", r.scenario) : r.plot_title,
-                          r.controller == "mpc" ? "MPC" : r.controller,
+                          tether::tether_controllers().label(r.controller),
                           1e3 * m.slack_rms_m, m.max_tension_n),
               cv::Point(20, 26), cv::FONT_HERSHEY_SIMPLEX, 0.62, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "exploration_room.hpp"
+#include "ferret/core/error.hpp"
 #include "ferret/planning/ompl_setup.hpp"
 
 namespace ferret {
@@ -28,7 +29,7 @@ std::shared_ptr<FrontierCandidates> three_frontiers() {
   c->geometry = {0.0, 0.0, 0.5, 20, 20};
   c->cells = {{2, 17}, {17, 17}, {17, 2}};
   c->weights = {1.0, 2.0, 7.0};
-  c->rule = "test";
+  c->rule = GoalRule::kNearest;
   c->finalize();
   return c;
 }
@@ -149,18 +150,18 @@ TEST(FrontierWeights, RapidAndCdosWeighTheFrontier) {
   ASSERT_FALSE(r.sets.visible.empty());
   // At rest, facing +x: the rapid weight peaks straight ahead (y = 1).
   const FrontierCandidates rapid = rapid_candidates(r.state(), 2.0);
-  EXPECT_EQ(rapid.rule, "rapid");
+  EXPECT_EQ(rapid.rule, GoalRule::kRapid);
   EXPECT_EQ(rapid.cells.size(), r.sets.visible.size());
   EXPECT_NEAR(r.geo.center(rapid.cells[heaviest(rapid)]).y(), 1.0, 0.05);
   // Without object evidence CDOS weighs as rapid does.
   const FrontierCandidates same = cdos_candidates(r.state(), options.curiosity);
-  EXPECT_EQ(same.rule, "rapid");
+  EXPECT_EQ(same.rule, GoalRule::kRapid);
   EXPECT_EQ(same.weights, rapid.weights);
   // A weak detection at (3, 1.8): the curiosity weights peak level with it.
   const Eigen::Vector2d object{3.0, 1.8};
   see_weakly(r, object);
   const FrontierCandidates curious = cdos_candidates(r.state(), options.curiosity);
-  EXPECT_EQ(curious.rule, "curiosity");
+  EXPECT_EQ(curious.rule, GoalRule::kCuriosity);
   const std::size_t best = heaviest(curious);
   EXPECT_DOUBLE_EQ(curious.weights[best], 1.0);  // exp(0): the largest loss
   EXPECT_NEAR(r.geo.center(curious.cells[best]).y(), object.y(), 0.03);
@@ -234,18 +235,42 @@ TEST(FrontierWeights, CdosOmplChoosesTheGoalCdosChooses) {
   const auto ompl = make_exploration_policy("cdos+ompl", options)->choose(r.state());
   ASSERT_TRUE(grid && ompl);
   EXPECT_EQ(ompl->cell, grid->cell);
-  EXPECT_EQ(ompl->reason, "curiosity+ompl");
+  EXPECT_EQ(to_string(ompl->reason), "curiosity+ompl");
   ASSERT_TRUE(ompl->heading_rad && grid->heading_rad);
   EXPECT_NEAR(*ompl->heading_rad, *grid->heading_rad, 1e-9);
   EXPECT_FALSE(ompl->path_W.empty());
 }
 
-TEST(FrontierSampler, PolicyForPlannerMapsTheMethods) {
-  EXPECT_EQ(policy_for_planner("cdos", "grid"), "cdos");
-  EXPECT_EQ(policy_for_planner("cdos", "ompl"), "cdos+ompl");
-  EXPECT_EQ(policy_for_planner("rapid", "ompl"), "rapid+ompl");
-  EXPECT_EQ(policy_for_planner("oracle", "ompl"), "oracle");
-  EXPECT_THROW((void)policy_for_planner("cdos", "rrt"), std::invalid_argument);
+TEST(FrontierSampler, OnePlaceDecidesThePolicyOfAMethodAndAPlanner) {
+  EXPECT_EQ(exploration_policy_for("cdos", FrontierPlanner::kGrid), "cdos");
+  EXPECT_EQ(exploration_policy_for("nearest", FrontierPlanner::kGrid), "nearest");
+  EXPECT_EQ(exploration_policy_for("cdos", FrontierPlanner::kOmpl), "cdos+ompl");
+  EXPECT_EQ(exploration_policy_for("rapid", FrontierPlanner::kOmpl), "rapid+ompl");
+  // A variant named as it is keeps its planner (the experiment's methods after --planner).
+  EXPECT_EQ(exploration_policy_for("cdos+ompl", FrontierPlanner::kGrid), "cdos+ompl");
+  // The sampler serves cdos and rapid: any other method with it is an error saying so.
+  for (const char* method : {"nearest", "oracle", "cdos-literal", "bayes"}) {
+    try {
+      (void)exploration_policy_for(method, FrontierPlanner::kOmpl);
+      ADD_FAILURE() << method;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), "--planner");
+      EXPECT_NE(e.expected().find("(cdos, rapid); " + std::string(method) + " has none"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  try {
+    (void)exploration_policy_for("random", FrontierPlanner::kOmpl);
+    ADD_FAILURE() << "random";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "--method");
+    EXPECT_NE(e.expected().find("cdos, cdos-literal"), std::string::npos) << e.what();
+    EXPECT_EQ(e.expected().find("cdos+ompl"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(parse_frontier_planner("ompl", "--planner"), FrontierPlanner::kOmpl);
+  EXPECT_EQ(to_string(FrontierPlanner::kGrid), "grid");
+  EXPECT_THROW((void)parse_frontier_planner("rrt", "--planner"), InputError);
 }
 
 // PRM::solve grows the roadmap in one thread, checks for solutions in another and
@@ -290,10 +315,13 @@ TEST(FrontierWeights, PlansRepeatGivenTheSeedAlsoInParallelThreads) {
   }
 }
 
-TEST(FrontierSampler, OmplPoliciesAreRegistered) {
+TEST(FrontierSampler, OmplPoliciesAreRegisteredAsVariantsNotMethods) {
   EXPECT_TRUE(has_exploration_policy("cdos+ompl"));
   EXPECT_TRUE(has_exploration_policy("rapid+ompl"));
   EXPECT_EQ(make_exploration_policy("rapid+ompl", PolicyOptions{})->name(), "rapid+ompl");
+  const auto methods = exploration_policy_names();
+  EXPECT_EQ(std::find(methods.begin(), methods.end(), "cdos+ompl"), methods.end());
+  EXPECT_NE(std::find(methods.begin(), methods.end(), "cdos"), methods.end());
 }
 
 }  // namespace

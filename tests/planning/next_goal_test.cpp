@@ -81,7 +81,7 @@ TEST(NextGoal, CdosFollowsTheObjectMapItIsSent) {
         r.object_probability[k] = 0.8f;
     const auto goal = next_exploration_goal(r);
     ASSERT_TRUE(goal);
-    EXPECT_EQ(goal->reason, "curiosity");
+    EXPECT_EQ(to_string(goal->reason), "curiosity");
     EXPECT_NEAR(goal->p_W.y(), y_object, 0.35) << "evidence at y = " << y_object;
     // Without evidence the choice is rapid's: straight ahead at rest.
     r.object_probability.clear();

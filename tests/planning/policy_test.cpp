@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "exploration_room.hpp"
+#include "ferret/core/error.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/policies.hpp"
 
@@ -23,7 +24,7 @@ TEST(Policy, RegistryKnowsTheBuiltInsAndRejectsUnknownNames) {
     EXPECT_EQ(make_exploration_policy(n, options())->name(), n);
   }
   EXPECT_FALSE(has_exploration_policy("random"));
-  EXPECT_THROW((void)make_exploration_policy("random", options()), std::out_of_range);
+  EXPECT_THROW((void)make_exploration_policy("random", options()), InputError);
 }
 
 TEST(Policy, RapidChoosesTheLeastChangeOfVelocity) {
@@ -56,7 +57,7 @@ TEST(Policy, RapidFallsBackToTheNearestFrontierByPath) {
   auto policy = make_exploration_policy("rapid", options());
   const auto goal = policy->choose(w.state());
   ASSERT_TRUE(goal);
-  EXPECT_EQ(goal->reason, "nearest");
+  EXPECT_EQ(to_string(goal->reason), "nearest");
   EXPECT_EQ(goal->cell.i, 39);       // the frontier column
   EXPECT_NEAR(goal->cell.j, 20, 1);  // straight across
   ASSERT_TRUE(goal->heading_rad);
@@ -86,7 +87,7 @@ TEST(Policy, CdosGoesTowardsEvidenceAndFacesIt) {
   auto cdos = make_exploration_policy("cdos", options());
   const auto goal = cdos->choose(w.state());
   ASSERT_TRUE(goal);
-  EXPECT_EQ(goal->reason, "curiosity");
+  EXPECT_EQ(to_string(goal->reason), "curiosity");
   EXPECT_GT(goal->score, 0.0);
   // Among the visible frontier (x = 1.975, |y - 1| <= 1.5 * tan 30), the cell nearest the evidence.
   EXPECT_EQ(goal->cell.i, 39);
@@ -105,7 +106,7 @@ TEST(Policy, OracleHeadsForAPoseThatSeesTheObject) {
   s.oracle_object_W = object;
   const auto goal = oracle->choose(s);
   ASSERT_TRUE(goal);
-  EXPECT_EQ(goal->reason, "oracle");
+  EXPECT_EQ(to_string(goal->reason), "oracle");
   EXPECT_LE((goal->p_W - object).norm(), options().view_distance_m);
   EXPECT_NEAR(goal->p_W.x(), 3.5 - options().view_distance_m, 0.06);  // straight towards it
   ASSERT_GE(goal->path_W.size(), 2u);
@@ -162,7 +163,7 @@ TEST(Policy, RapidKeepsItsGoalWhileItIsAFrontierAndCdosDropsTheBaselineForEviden
 
   World u;
   auto cdos = make_exploration_policy("cdos", options());
-  ASSERT_EQ(cdos->choose(u.state())->reason, "rapid");
+  ASSERT_EQ(to_string(cdos->choose(u.state())->reason), "rapid");
   EXPECT_TRUE(cdos->keeps_goal(u.objects, u.tracker));
   u.objects.fuse(u.geo.cell_at(3.0, 1.5), 0.6);  // evidence appears: decide again
   EXPECT_FALSE(cdos->keeps_goal(u.objects, u.tracker));

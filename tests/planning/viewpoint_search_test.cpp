@@ -119,7 +119,7 @@ TEST(ViewpointSearch, ThePolicyFacesTheUnsearchedHalfOfTheRoom) {
   EXPECT_EQ(policy->name(), "bayes");
   const auto goal = policy->choose(w.state());
   ASSERT_TRUE(goal);
-  EXPECT_EQ(goal->reason, "viewpoint");
+  EXPECT_EQ(to_string(goal->reason), "viewpoint");
   ASSERT_TRUE(goal->heading_rad);
   // It looks into the unknown half (+x), from the known side.
   EXPECT_LT(std::abs(wrap_angle_rad(*goal->heading_rad)), kPi / 4);
@@ -156,7 +156,7 @@ TEST(ViewpointSearch, AtTheEntryItDrivesInByCdossRule) {
   EXPECT_EQ(entering->reason, cdos->reason);
   const auto left = make_exploration_policy("bayes", po)->choose(w.state());
   ASSERT_TRUE(left);
-  EXPECT_EQ(left->reason, "viewpoint");  // the view it faces is searched: elsewhere
+  EXPECT_EQ(to_string(left->reason), "viewpoint");  // the view it faces is searched: elsewhere
 }
 
 // One far detection of an object at `object_W`, seen from the robot's pose.
@@ -179,7 +179,7 @@ TEST(ViewpointSearch, EvidenceItCanReachIsLookedAtFromTheViewDistance) {
   auto bayes = make_exploration_policy("bayes", po);
   const auto goal = bayes->choose(w.state());
   ASSERT_TRUE(goal);
-  EXPECT_EQ(goal->reason, "evidence");
+  EXPECT_EQ(to_string(goal->reason), "evidence");
   // Within the view distance of the evidence (which lies within the object's radius of
   // the object), on the robot's side of it, facing it.
   EXPECT_LE((goal->p_W - object).norm(), po.view_distance_m + 0.15);
@@ -198,7 +198,7 @@ TEST(ViewpointSearch, EvidenceNearOrOutOfReachIsLeftToCdos) {
   auto cdos = make_exploration_policy("cdos", po);
   const auto a = bayes->choose(w.state()), b = cdos->choose(w.state());
   ASSERT_TRUE(a && b);
-  EXPECT_EQ(a->reason, "curiosity");
+  EXPECT_EQ(to_string(a->reason), "curiosity");
   EXPECT_EQ(a->cell, b->cell);
   // Near evidence (1 m, under evidence_view_min_m): CDOS's choice too.
   test::HalfSeenRoom near;
@@ -236,7 +236,7 @@ TEST(ViewpointSearch, FarEvidenceInsideTheIrFanIsLeftToCdos) {
       EXPECT_EQ(a->reason, b->reason);
       EXPECT_EQ(a->cell, b->cell);
     } else {
-      EXPECT_EQ(a->reason, "evidence");  // 40 degrees off the heading
+      EXPECT_EQ(to_string(a->reason), "evidence");  // 40 degrees off the heading
       EXPECT_LE((a->p_W - object).norm(), po.view_distance_m + 0.15);
     }
   }
@@ -282,13 +282,13 @@ TEST(ViewpointSearch, EvidenceDismissedFromAfarIsLookedAtOnceMore) {
       w.refresh();
       goal = bayes->choose(w.state());
       ASSERT_TRUE(goal);
-      if (goal->reason != "recheck") bayes->goal_done();
+      if (goal->reason.rule != GoalRule::kRecheck) bayes->goal_done();
     }
     if (!c.recheck) {
-      EXPECT_NE(goal->reason, "recheck") << c.at.x_m << " " << c.yaws.back();
+      EXPECT_NE(to_string(goal->reason), "recheck") << c.at.x_m << " " << c.yaws.back();
       continue;
     }
-    EXPECT_EQ(goal->reason, "recheck") << c.yaws.size();
+    EXPECT_EQ(to_string(goal->reason), "recheck") << c.yaws.size();
     EXPECT_LE((goal->p_W - object).norm(), po.view_distance_m + 0.15);
     // Kept until reached, then not again.
     const auto again = bayes->choose(w.state());
@@ -297,7 +297,7 @@ TEST(ViewpointSearch, EvidenceDismissedFromAfarIsLookedAtOnceMore) {
     bayes->goal_done();
     const auto after = bayes->choose(w.state());
     ASSERT_TRUE(after);
-    EXPECT_NE(after->reason, "recheck");
+    EXPECT_NE(to_string(after->reason), "recheck");
   }
 }
 
@@ -442,7 +442,7 @@ TEST(ViewpointSearch, KeptViewsChooseExactlyAsViewsComputedAfresh) {
         ASSERT_EQ(x.mass, y.mass) << "step " << step << " cell " << i << "," << j;
         ASSERT_EQ(x.heading_rad, y.heading_rad) << "step " << step << " cell " << i << "," << j;
       }
-    if (step % 3 == 2 && a->heading_rad && a->reason == "viewpoint") {
+    if (step % 3 == 2 && a->heading_rad && a->reason.rule == GoalRule::kViewpoint) {
       // Reached: the robot stands there facing the view, and looks.
       pose = {a->p_W.x(), a->p_W.y(), *a->heading_rad};
       sense();

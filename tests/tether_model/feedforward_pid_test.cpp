@@ -4,7 +4,8 @@
 
 #include <cmath>
 
-#include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/core/error.hpp"
+#include "ferret/tether_model/winch_controllers.hpp"
 
 namespace ferret::tether {
 namespace {
@@ -82,7 +83,7 @@ TEST(TetherControllerFactory, NamesBothControllers) {
   TautControlOptions o;
   EXPECT_EQ(make_tether_controller("mpc", o, tether())->name(), "mpc");
   EXPECT_EQ(make_tether_controller("baseline", o, tether())->name(), "baseline");
-  EXPECT_THROW((void)make_tether_controller("bang-bang", o, tether()), std::invalid_argument);
+  EXPECT_THROW((void)make_tether_controller("bang-bang", o, tether()), InputError);
   EXPECT_EQ(tether_controller_names(), (std::vector<std::string>{"mpc", "baseline"}));
 }
 

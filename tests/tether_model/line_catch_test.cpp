@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/tether_model/taut_control_options.hpp"
 
 namespace ferret::tether {
 namespace {

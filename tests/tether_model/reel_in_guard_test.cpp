@@ -11,7 +11,8 @@
 #include <string>
 
 #include "ferret/tether_model/simulated_winch.hpp"
-#include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/tether_model/taut_control_options.hpp"
+#include "ferret/tether_model/winch_controllers.hpp"
 
 namespace ferret::tether {
 namespace {

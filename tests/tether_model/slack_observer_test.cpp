@@ -4,7 +4,7 @@
 #include <limits>
 #include <random>
 
-#include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/tether_model/slack_observer.hpp"
 
 namespace ferret::tether {
 namespace {

@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "ferret/core/random.hpp"
-#include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/tether_model/ugv_position_filter.hpp"
+#include "ferret/tether_model/ugv_response_identifier.hpp"
 
 namespace ferret::tether {
 namespace {

@@ -78,6 +78,9 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   o.marker.dictionary.name = "tag25h9";
   o.marker.marker_size_m = 0.175;
   o.marker_from_mission = true;
+  o.winch_controllers.mpc.horizon = 24;  // each controller's own options: the MPC's
+  o.winch_controllers.mpc.weight_slack = 0.1;
+  o.winch_controllers.baseline.use_preview = true;
   const std::string text = dump(o);
   UavMissionOptions again;
   const auto given = read_uav_mission_options(yaml::load_string(text, "dump"), "dump", again);
@@ -94,6 +97,10 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   EXPECT_EQ(again.marker.dictionary.family, MarkerFamily::kAprilTag);
   EXPECT_EQ(again.marker.dictionary.name, "tag25h9");
   EXPECT_DOUBLE_EQ(again.marker.marker_size_m, 0.175);
+  EXPECT_EQ(again.winch_controllers.mpc.horizon, 24);
+  EXPECT_DOUBLE_EQ(again.winch_controllers.mpc.weight_slack, 0.1);
+  EXPECT_TRUE(again.winch_controllers.baseline.use_preview);
+  EXPECT_NE(text.find("winch_control:"), std::string::npos) << text;
   // Without the search area, the dump leaves it to the world; so the marker, unless set.
   EXPECT_EQ(dump(o, false).find("search_area_m"), std::string::npos);
   EXPECT_EQ(dump(UavMissionOptions{}).find("marker:"), std::string::npos);
@@ -139,6 +146,11 @@ TEST(UavMissionConfig, BadValuesNameTheFileAndTheField) {
       {"uav:\n  marker: {size_m: 0.2}\n", "uav.marker.family"},
       {"uav:\n  marker:\n", "uav.marker"},
       {"uav:\n  marker: DICT_4X4_50\n", "uav.marker"},
+      {"uav:\n  winch_control: {mpc: {horizon: 1}}\n", "uav.winch_control.mpc.horizon"},
+      {"uav:\n  winch_control: {mpc: {weight_slack: -2}}\n", "uav.winch_control.mpc.weight_slack"},
+      {"uav:\n  winch_control: {baseline: {kd: .nan}}\n", "uav.winch_control.baseline.kd"},
+      {"uav:\n  winch_control: {pid: {}}\n", "uav.winch_control.pid"},
+      {"uav:\n  winch_control:\n", "uav.winch_control"},
   };
   for (const Case& c : cases) {
     const std::string e = error_of(c.yaml);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "ferret/core/error.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
@@ -199,7 +200,7 @@ class ReachFirstPolicy : public ExplorationPolicy {
         best->cell = c;
         best->p_W = g.center(c);
         best->score = s.paths.distance_m(c);
-        best->reason = "probe";
+        best->reason = {GoalRule::kNearest};
       }
     return best;
   }
@@ -218,7 +219,10 @@ TEST(ExploreController, APolicyAskingTheTetherFirstStillReadsTheCyclesFrontierSe
 TEST(ExploreController, AnUnknownPlannerIsRefused) {
   ExploreOptions options;
   options.planner = "rrt";
-  EXPECT_THROW(ExploreController(test::small_hidden_space().geometry, kEntry, options), std::invalid_argument);
+  EXPECT_THROW(ExploreController(test::small_hidden_space().geometry, kEntry, options), InputError);
+  options.planner = "ompl";  // the sampler serves cdos and rapid, not nearest
+  options.method = "nearest";
+  EXPECT_THROW(ExploreController(test::small_hidden_space().geometry, kEntry, options), InputError);
 }
 
 TEST(ExploreController, ABumpMarksTheCellsAtTheBodysFrontOccupiedAndNoOthers) {

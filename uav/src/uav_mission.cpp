@@ -143,6 +143,7 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
   options_.winch_control.limits.total_length_m = options_.tether.total_length_m;
   winch_.emplace(hw_.winch, WinchSupervision::Options{options_.tether.entry_offset_m, options_.touchdown,
                                                      options_.winch_controller, options_.winch_control,
+                                                     options_.winch_controllers,
                                                      options_.retract_speed_mps});
 
   pattern_ = CoveragePattern(options_.search_area_m, options_.search_altitude_m, options_.passes,

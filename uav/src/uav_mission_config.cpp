@@ -61,6 +61,8 @@ constexpr std::array<std::pair<std::string_view, std::string Options::*>, 2> kCh
 constexpr std::string_view kSearchArea = "search_area_m";
 // The markers the UAV looks for, over the world's: {family, dictionary, size_m}.
 constexpr std::string_view kMarker = "marker";
+// Each winch controller's own options: {mpc: {...}, baseline: {...}} (winch_controllers.hpp).
+constexpr std::string_view kWinchControl = "winch_control";
 constexpr std::array<std::string_view, 2> kBackendKeys{"winch", "flight_controller"};
 
 template <std::size_t N>
@@ -71,6 +73,7 @@ constexpr auto all_keys(bool with_backends) {
     for (const auto k : kBackendKeys) out[i++] = k;
   out[i++] = kSearchArea;
   out[i++] = kMarker;
+  out[i++] = kWinchControl;
   for (const auto& [k, m] : kNumbers) out[i++] = k;
   for (const auto& [k, m] : kIntegers) out[i++] = k;
   out[i++] = kRelease;
@@ -124,6 +127,12 @@ std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std
   } else if (r.given_empty(kMarker)) {
     r.fail(kMarker, "a mapping {family, dictionary, size_m}", "a key without a value");
   }
+  if (r.has(kWinchControl)) {
+    tether::read_winch_controller_options(r.child(kWinchControl), o.winch_controllers);
+    note(kWinchControl);
+  } else if (r.given_empty(kWinchControl)) {
+    r.fail(kWinchControl, "a mapping {mpc: {...}, baseline: {...}}", "a key without a value");
+  }
   // get_or refuses `key:` without a value, and parses numbers finite (NaN, inf refused).
   const auto read = [&](const auto& table) {
     for (const auto& [key, member] : table) {
@@ -162,6 +171,8 @@ void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& o, bool
   for (const auto& [key, member] : kIntegers) e << YAML::Key << key.data() << YAML::Value << o.*member;
   e << YAML::Key << kRelease.data() << YAML::Value << std::string(to_string(o.release));
   for (const auto& [key, member] : kChoices) e << YAML::Key << key.data() << YAML::Value << o.*member;
+  e << YAML::Key << kWinchControl.data() << YAML::Value;
+  tether::emit_winch_controller_options(e, o.winch_controllers);
 }
 
 }  // namespace ferret

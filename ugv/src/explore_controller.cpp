@@ -30,9 +30,8 @@ constexpr int kMaxUnwinds = 3;
 ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& start,
                                      ExploreOptions options)
     : geo_(geometry), options_(std::move(options)), follower_(options_.robot) {
-  const std::string policy_name = policy_for_planner(options_.method, options_.planner);
-  if (!has_exploration_policy(policy_name))
-    throw std::invalid_argument("unknown exploration method: " + options_.method);
+  const std::string policy_name = exploration_policy_for(
+      options_.method, parse_frontier_planner(options_.planner, "--planner"));
   if (!(options_.tether_obstacle_depth_m >= 0.0 && options_.tether_obstacle_depth_m <= 10.0))
     throw std::invalid_argument("ExploreOptions::tether_obstacle_depth_m: expected 0 to 10 m");
   const UgvSensorGeometry& s = options_.sensors;
@@ -328,7 +327,7 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
         auto path = retrace_path(0.5 * *options_.tether_budget_m);
         if (path.size() > 1) {
           goal = ExplorationGoal{geo_.cell_at(path.back().x(), path.back().y()), path.back(),
-                                 std::nullopt, std::move(path), 0.0, "unwind"};
+                                 std::nullopt, std::move(path), 0.0, GoalRule::kUnwind};
           goal_is_revisit_ = true;  // follow it to the end, no re-decision on the way
           unwinding_ = true;
         }
@@ -345,7 +344,7 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
             goal.reset();
           }
           if (goal) {
-            goal->reason = "revisit";
+            goal->reason = {GoalRule::kRevisit};
             goal_is_revisit_ = true;
             ++revisits_;
           }
@@ -368,7 +367,7 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
         follower_.set_path(std::move(path), goal_->heading_rad);
         if (options_.record_decisions) {
           fill_sets();
-          decision_log_.push_back({t, pose, goal_->p_W, goal_->reason, goal_->score,
+          decision_log_.push_back({t, pose, goal_->p_W, to_string(goal_->reason), goal_->score,
                                    sets.global.size(), sets.visible.size(),
                                    objects_->evidence_cells().size()});
         }

@@ -11,8 +11,9 @@
 //   oracle        knows the object; drives towards the nearest pose that sees it
 //   bayes         Bayesian viewpoint search without evidence, CDOS with it
 //                 (viewpoint_search.hpp)
-// docs/object_search.md describes each. A new policy is one class plus one
-// register_exploration_policy() call (or one line in the built-in table).
+// docs/object_search.md describes each. A new policy is one class plus one line in
+// register_builtin_policies() (exploration_policy.cpp). The OMPL frontier planner
+// (FrontierPlanner::kOmpl) runs cdos and rapid as the variants cdos+ompl and rapid+ompl.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "ferret/core/pose.hpp"
+#include "ferret/core/registry.hpp"
 #include "ferret/mapping/frontier.hpp"
 #include "ferret/mapping/ir_grid.hpp"
 #include "ferret/mapping/object_map.hpp"
@@ -31,6 +33,45 @@
 #include "ferret/planning/grid_path_planner.hpp"
 
 namespace ferret {
+
+/// How a policy's goals are chosen and reached: on the Dijkstra field over G, or by
+/// PRM with the frontier valid-state sampler (frontier_sampler.hpp, docs/planning.md).
+enum class FrontierPlanner { kGrid, kOmpl };
+
+/// The rule that chose a goal (decision logs print to_string()).
+enum class GoalRule {
+  kNone,       ///< not said (viewing_goal() before its caller names it)
+  kCuriosity,  ///< cdos: the largest curiosity loss
+  kRapid,      ///< the least change of velocity
+  kNearest,    ///< the nearest reachable frontier
+  kOracle,     ///< towards the object the oracle knows
+  kRevisit,    ///< the strongest evidence once exploration ended
+  kEvidence,   ///< bayes: a view of the evidence
+  kRecheck,    ///< bayes: the evidence again from another side
+  kViewpoint,  ///< bayes: the viewpoint of most expected information
+  kUnwind,     ///< the explore controller: back along the driven path to unwind the tether
+};
+/// "", "curiosity", "rapid", "nearest", "oracle", "revisit", "evidence", "recheck",
+/// "viewpoint", "unwind".
+[[nodiscard]] std::string_view to_string(GoalRule rule);
+
+/// Why a goal was chosen: its rule and, for the OMPL frontier policies, how its path
+/// was found (PRM: "+ompl"; the grid path where PRM found none: "+grid").
+struct GoalReason {
+  GoalReason() = default;
+  GoalReason(GoalRule r, std::optional<FrontierPlanner> by = std::nullopt)  // NOLINT: a rule is a reason
+      : rule(r), path_by(by) {}
+  GoalRule rule = GoalRule::kNone;
+  std::optional<FrontierPlanner> path_by;
+  bool operator==(const GoalReason&) const = default;
+};
+/// "curiosity", "curiosity+ompl", "rapid+grid", ...
+[[nodiscard]] std::string to_string(const GoalReason& reason);
+/// For nlohmann::json (found by ADL): the reason as to_string() prints it.
+template <class Json>
+void to_json(Json& j, const GoalReason& reason) {
+  j = to_string(reason);
+}
 
 struct ExplorationGoal {
   Cell cell;
@@ -40,7 +81,7 @@ struct ExplorationGoal {
   /// known-free field of ExplorationState::paths.
   std::vector<Eigen::Vector2d> path_W;
   double score = 0.0;  ///< the quantity the policy optimised (curiosity loss, velocity change, ...)
-  std::string reason;  ///< "curiosity", "rapid", "nearest", "oracle", "revisit"
+  GoalReason reason;
 };
 
 /// What a policy may look at when it decides.
@@ -121,24 +162,74 @@ class ExplorationPolicy {
   }
 };
 
-using ExplorationPolicyFactory =
-    std::function<std::unique_ptr<ExplorationPolicy>(const PolicyOptions&)>;
+using ExplorationPolicyRegistry = Registry<ExplorationPolicy, PolicyOptions>;
+using ExplorationPolicyFactory = ExplorationPolicyRegistry::Factory;
 
-/// Adds a policy under `name` (replaces one of the same name).
+/// "grid", "ompl".
+[[nodiscard]] std::string_view to_string(FrontierPlanner planner);
+/// "grid" or "ompl". @throws InputError(source, field, "grid or ompl", text) otherwise.
+[[nodiscard]] FrontierPlanner parse_frontier_planner(std::string_view text,
+                                                     const std::string& source,
+                                                     const std::string& field = {});
+
+/// The exploration policies by name, and which of them runs a method with a frontier
+/// planner other than the grid. A method's own policy is its grid policy (name ==
+/// method); a variant is a policy of its own name (what runs.csv and the logs print)
+/// that runs `method` with `planner`.
+class ExplorationPolicies {
+ public:
+  /// A method: its policy runs on the grid.
+  void add(std::string name, std::string description, ExplorationPolicyFactory factory);
+  /// A policy `name` that runs `method` (added before) with `planner`.
+  void add_variant(const std::string& method, FrontierPlanner planner, std::string name,
+                   std::string description, ExplorationPolicyFactory factory);
+
+  /// Every policy, methods and variants.
+  [[nodiscard]] const ExplorationPolicyRegistry& registry() const { return registry_; }
+  /// The methods (what --method and an experiment's `methods:` name), in the order added.
+  [[nodiscard]] std::vector<std::string> methods() const;
+  /// The policy that runs `method` with `planner`: the method itself on the grid (and
+  /// a variant's name as given), else its variant for `planner`.
+  /// @throws InputError("--method", ...) listing the methods for an unknown one, and
+  /// InputError("--planner", ...) naming the methods the planner serves when `method`
+  /// has no variant for it ("ompl: ...; nearest has none").
+  [[nodiscard]] std::string policy_for(std::string_view method, FrontierPlanner planner) const;
+
+ private:
+  struct Variant {
+    std::string method;
+    FrontierPlanner planner;
+    std::string policy;
+  };
+  ExplorationPolicyRegistry registry_;
+  std::vector<Variant> variants_;
+};
+
+/// The built-in policies (exploration_policy.cpp): cdos, cdos-literal, ..., bayes.
+void register_builtin_policies(ExplorationPolicies& policies);
+/// The OMPL frontier policies (ompl_frontier_policy.cpp): cdos+ompl and rapid+ompl,
+/// the variants of cdos and rapid with FrontierPlanner::kOmpl.
+void register_ompl_frontier_policies(ExplorationPolicies& policies);
+
+/// The policies of the search, filled on first use by the two calls above.
+[[nodiscard]] const ExplorationPolicies& exploration_policies();
+
+/// Adds a method under `name` to exploration_policies() (for tests and extensions;
+/// before any search runs). @throws std::logic_error when the name is taken.
 void register_exploration_policy(std::string name, ExplorationPolicyFactory factory);
-/// Names of every registered policy, sorted.
+/// The methods of exploration_policies(), in the order they were registered.
 [[nodiscard]] std::vector<std::string> exploration_policy_names();
+/// True for a registered policy, a method or a variant (cdos+ompl).
 [[nodiscard]] bool has_exploration_policy(std::string_view name);
-/// A new policy. @throws std::out_of_range for an unknown name (callers that read
-/// user input check has_exploration_policy first and raise an InputError).
+/// A new policy (a method or a variant by its name). @throws InputError("--method")
+/// listing the methods for an unknown name.
 [[nodiscard]] std::unique_ptr<ExplorationPolicy> make_exploration_policy(
     std::string_view name, const PolicyOptions& options);
 
-/// The policy that runs `method` with `planner`: "grid" (the Dijkstra field over G) is
-/// `method` itself; "ompl" is `method` + "+ompl" where that policy exists (cdos, rapid:
-/// the OMPL frontier sampler), `method` otherwise (the oracle, nearest, ...).
-/// @throws std::invalid_argument for a planner other than "grid" or "ompl".
-[[nodiscard]] std::string policy_for_planner(std::string_view method, std::string_view planner);
+/// exploration_policies().policy_for(method, planner): the one place that decides
+/// which policy runs a method with a frontier planner (explore, experiment, the
+/// mission's miniUGV).
+[[nodiscard]] std::string exploration_policy_for(std::string_view method, FrontierPlanner planner);
 
 /// A goal from which the camera sees `target_W`: the reachable cell within
 /// `view_distance_m` of it (with a line of sight through non-occupied cells of G) of

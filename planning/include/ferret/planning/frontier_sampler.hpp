@@ -37,7 +37,7 @@ struct FrontierCandidates {
   /// Candidate indices, heaviest first (ties in the cells' order); the constructors
   /// below put the grid policy's choice first.
   std::vector<std::size_t> order;
-  std::string rule;             ///< "curiosity", "rapid" or "nearest": what set the weights
+  GoalRule rule = GoalRule::kNone;  ///< what set the weights: curiosity, rapid or nearest
 
   /// Sets `cumulative`, `order` and the cell index; `first` (if any) heads `order`
   /// (the grid policy's own choice, so that near-ties resolve as there).

@@ -8,7 +8,9 @@
 
 #include <memory>
 
+#include "ferret/tether_model/taut_control_options.hpp"
 #include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/tether_model/tether_state_estimator.hpp"
 
 namespace ferret::tether {
 

@@ -10,7 +10,9 @@
 #include <memory>
 
 #include "ferret/tether_model/qp_solver.hpp"
+#include "ferret/tether_model/taut_control_options.hpp"
 #include "ferret/tether_model/tether_controller.hpp"
+#include "ferret/tether_model/tether_state_estimator.hpp"
 
 namespace ferret::tether {
 

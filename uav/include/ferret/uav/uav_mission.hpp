@@ -41,6 +41,7 @@
 #include "ferret/tether_model/winch.hpp"
 #include "ferret/uav/coverage_pattern.hpp"
 #include "ferret/uav/flight_budget.hpp"
+#include "ferret/tether_model/winch_controllers.hpp"
 #include "ferret/uav/flight_controller.hpp"
 #include "ferret/uav/flight_path_follower.hpp"
 #include "ferret/uav/landing_zone.hpp"
@@ -143,6 +144,10 @@ struct UavMissionOptions {
     o.ugv_response_identification = tether::UgvResponseIdentificationOptions::on();
     return o;
   }
+  /// Each winch controller's own options (`uav.winch_control.mpc`, `.baseline` of the
+  /// mission YAML); the MPC estimates the miniUGV as winch_control has it.
+  tether::WinchControllerOptions winch_controllers =
+      tether::WinchControllerOptions::following(default_winch_control());
   double retract_speed_mps = 0.4;
   /// How fast the UAV counts on the miniUGV coming back along its tether when it
   /// recalls it (hovering on a low battery): half its tethered speed, for the turns.

@@ -7,9 +7,11 @@
 #include <memory>
 #include <string>
 
+#include "ferret/tether_model/taut_control_options.hpp"
 #include "ferret/tether_model/tether_controller.hpp"
 #include "ferret/tether_model/tether_modes.hpp"
 #include "ferret/tether_model/winch.hpp"
+#include "ferret/tether_model/winch_controllers.hpp"
 #include "ferret/uav/flight_controller.hpp"
 
 namespace ferret {
@@ -19,8 +21,10 @@ class WinchSupervision {
   struct Options {
     double entry_offset_m = 1.0;  ///< l_0
     tether::TouchdownGuard::Options touchdown;
-    std::string controller = "mpc";  ///< tether::tether_controller_names()
+    std::string controller = "mpc";  ///< a name of tether::tether_controllers()
     tether::TautControlOptions control;
+    /// Each controller's own options (the mission YAML's uav.winch_control).
+    tether::WinchControllerOptions controllers;
     double retract_speed_mps = 0.4;
   };
   WinchSupervision(tether::Winch& winch, Options options);

@@ -41,9 +41,10 @@ struct UgvSensorGeometry {
 
 struct ExploreOptions {
   std::string method = "cdos";
-  /// How goals are chosen and reached: "grid" (the Dijkstra field over G) or "ompl"
-  /// (cdos and rapid run as cdos+ompl and rapid+ompl: PRM with the CDOS frontier
-  /// sampler; other methods are unchanged). docs/planning.md compares the two.
+  /// How goals are chosen and reached (FrontierPlanner): "grid" (the Dijkstra field
+  /// over G) or "ompl" (cdos and rapid run as cdos+ompl and rapid+ompl: PRM with the
+  /// CDOS frontier sampler; other methods have none: an InputError).
+  /// exploration_policy_for() decides; docs/planning.md compares the two.
   std::string planner = "grid";
   UgvSensorGeometry sensors;
   RobotOptions robot;
@@ -83,7 +84,8 @@ struct DecisionRecord {
 
 class ExploreController {
  public:
-  /// @throws std::invalid_argument for an unknown method.
+  /// @throws InputError for an unknown method or planner, or a method the planner does
+  /// not serve (exploration_policy_for()).
   ExploreController(const GridGeometry& geometry, const Pose2& start, ExploreOptions options);
   ~ExploreController();
   ExploreController(const ExploreController&) = delete;
