@@ -80,7 +80,8 @@ constexpr auto all_keys(bool with_backends) {
   for (const auto& [k, m] : kChoices) out[i++] = k;
   return out;
 }
-constexpr std::size_t kMissionKeyCount = 3 + kNumbers.size() + kIntegers.size() + kChoices.size();
+// search_area_m, marker, winch_control and release, then the tables.
+constexpr std::size_t kMissionKeyCount = 4 + kNumbers.size() + kIntegers.size() + kChoices.size();
 constexpr auto kMissionKeys = all_keys<kMissionKeyCount>(false);
 constexpr auto kSectionKeys = all_keys<kMissionKeyCount + kBackendKeys.size()>(true);
 
