@@ -48,7 +48,9 @@ struct Scene {
   CameraFrame frame;
 
   // The shipped sparse space, start (1, 4), the object at (3.6, 5.4).
-  Scene() : Scene(load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/sparse.yaml"), {1.0, 4.0}, {3.6, 5.4}) {}
+  Scene()
+      : Scene(load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/sparse.yaml"),
+              {1.0, 4.0}, {3.6, 5.4}) {}
   Scene(OccupancyMap2D map, Eigen::Vector2d start_W, Eigen::Vector2d object_W)
       : truth(std::move(map)), start(start_W), object(object_W) {
     grid.mark_free_disk(start, 0.2);
@@ -131,7 +133,9 @@ void cycle_in_generated_space(benchmark::State& state, const char* method, int z
   run_cycles(state, method, scene);
   state.counters["cells"] = static_cast<double>(scene.truth.geometry.size());
 }
-void decision_cycle_size(benchmark::State& state, const char* method) { cycle_in_generated_space(state, method, 2); }
+void decision_cycle_size(benchmark::State& state, const char* method) {
+  cycle_in_generated_space(state, method, 2);
+}
 // bayes's own cycle: no evidence, a fresh viewpoint choice every cycle (its worst case:
 // it keeps a goal between choices).
 void decision_cycle_unseen(benchmark::State& state, const char* method) {
@@ -143,10 +147,10 @@ BENCHMARK_CAPTURE(decision_cycle, rapid, "rapid")->Unit(benchmark::kMicrosecond)
 // decision_cycle_{size,unseen}/METHOD/W/H, registered in main() for each method.
 void register_sizes() {
   for (const char* method : {"cdos", "rapid", "bayes"})
-    for (const auto& [name, fn] :
-         {std::pair<const char*, void (*)(benchmark::State&, const char*)>{"decision_cycle_size/", decision_cycle_size},
-          std::pair<const char*, void (*)(benchmark::State&, const char*)>{"decision_cycle_unseen/",
-                                                                           decision_cycle_unseen}})
+    for (const auto& [name, fn] : {std::pair<const char*, void (*)(benchmark::State&, const char*)>{
+                                       "decision_cycle_size/", decision_cycle_size},
+                                   std::pair<const char*, void (*)(benchmark::State&, const char*)>{
+                                       "decision_cycle_unseen/", decision_cycle_unseen}})
       benchmark::RegisterBenchmark((std::string(name) + method).c_str(), fn, method)
           ->Args({12, 8})
           ->Args({24, 16})
@@ -188,8 +192,10 @@ int main(int argc, char** argv) {
       for (const char* size : {"12/8", "24/16", "48/32"}) {
         const auto at = m.find(prefix + size + "/repeats:15");
         if (at != m.end())
-          std::printf("generated sparse %s m, object %s, %s: median %.1f us, %.2fx the 12 x 8 m space's\n", size,
-                      std::string(kind) == "size" ? "seen" : "unseen", method, at->second, at->second / base->second);
+          std::printf(
+              "generated sparse %s m, object %s, %s: median %.1f us, %.2fx the 12 x 8 m space's\n",
+              size, std::string(kind) == "size" ? "seen" : "unseen", method, at->second,
+              at->second / base->second);
       }
     }
   benchmark::Shutdown();

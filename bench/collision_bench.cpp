@@ -26,8 +26,8 @@
 
 #include "ferret/core/random.hpp"
 #include "ferret/mapping/world_octree.hpp"
-#include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/benchmark_problems.hpp"
+#include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/ompl_setup.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/planning/uav_planner.hpp"
@@ -68,10 +68,18 @@ class PlainFcl {
     for (const ShapePart& p : shape.parts) {
       std::shared_ptr<fcl::CollisionGeometryd> g;
       switch (p.kind) {
-        case ShapePart::Kind::kBox: g = std::make_shared<fcl::Boxd>(p.box_size_m); break;
-        case ShapePart::Kind::kCylinder: g = std::make_shared<fcl::Cylinderd>(p.radius_m, p.length_m); break;
-        case ShapePart::Kind::kCapsule: g = std::make_shared<fcl::Capsuled>(p.radius_m, p.length_m); break;
-        case ShapePart::Kind::kSphere: g = std::make_shared<fcl::Sphered>(p.radius_m); break;
+        case ShapePart::Kind::kBox:
+          g = std::make_shared<fcl::Boxd>(p.box_size_m);
+          break;
+        case ShapePart::Kind::kCylinder:
+          g = std::make_shared<fcl::Cylinderd>(p.radius_m, p.length_m);
+          break;
+        case ShapePart::Kind::kCapsule:
+          g = std::make_shared<fcl::Capsuled>(p.radius_m, p.length_m);
+          break;
+        case ShapePart::Kind::kSphere:
+          g = std::make_shared<fcl::Sphered>(p.radius_m);
+          break;
       }
       parts_.push_back({p.X_BS, std::make_unique<fcl::CollisionObjectd>(g)});
     }
@@ -115,7 +123,8 @@ QuerySet make_set(const std::string& name) {
   auto pose = [](double x, double y, double z, double yaw, double tilt) {
     Pose3 X = Pose3::Identity();
     X.translation() = Eigen::Vector3d(x, y, z);
-    X.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()))
+    X.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()))
                      .toRotationMatrix();
     return X;
   };
@@ -134,8 +143,8 @@ QuerySet make_set(const std::string& name) {
     return q;
   }
   if (name == "ugv_planner" || name == "ugv_urdf_planner") {
-    static const PlanningWorld cellar =
-        load_planning_world(std::string(FERRET_SOURCE_DIR) + "/examples/scenarios/tether_detour.yaml");
+    static const PlanningWorld cellar = load_planning_world(
+        std::string(FERRET_SOURCE_DIR) + "/examples/scenarios/tether_detour.yaml");
     const HiddenSpaceFrame f = hidden_space_frame(cellar.spec->hidden_spaces.at(0));
     q.shape = name == "ugv_planner" ? ugv_shape() : urdf_shape("miniugv.urdf", PlanRobot::kUgv);
     q.map = ugv_collision_map(*cellar.tree, f);
@@ -166,8 +175,9 @@ QuerySet make_set(const std::string& name) {
     q.map = w.map;
     q.plain_tree = w.tree;
     for (int k = 0; k < kQueries; ++k)
-      q.poses.push_back(pose(rng.uniform(-29.0, 29.0), rng.uniform(-29.0, 29.0), rng.uniform(0.0, 4.0),
-                             rng.uniform(-3.1416, 3.1416), rng.uniform(-0.2, 0.2)));
+      q.poses.push_back(pose(rng.uniform(-29.0, 29.0), rng.uniform(-29.0, 29.0),
+                             rng.uniform(0.0, 4.0), rng.uniform(-3.1416, 3.1416),
+                             rng.uniform(-0.2, 0.2)));
   }
   return q;
 }
@@ -197,10 +207,10 @@ void BM_Ferret(benchmark::State& state, const std::string& name) {
     k = (k + 1) % q.poses.size();
   }
   const auto& s = checker.stats();
-  const double parts = static_cast<double>(s.fast_free + s.fast_hit + s.fcl_calls - before.fast_free -
-                                           before.fast_hit - before.fcl_calls);
-  state.counters["queries_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                       benchmark::Counter::kIsRate);
+  const double parts = static_cast<double>(s.fast_free + s.fast_hit + s.fcl_calls -
+                                           before.fast_free - before.fast_hit - before.fcl_calls);
+  state.counters["queries_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["disagreements"] = disagreements;
   state.counters["collision_share"] = static_cast<double>(collisions) / q.poses.size();
   state.counters["fcl_share_of_parts"] = (s.fcl_calls - before.fcl_calls) / std::max(parts, 1.0);
@@ -216,16 +226,16 @@ void BM_PlainFcl(benchmark::State& state, const std::string& name) {
     benchmark::DoNotOptimize(plain.collides(q.poses[k]));
     k = (k + 1) % q.poses.size();
   }
-  state.counters["queries_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                       benchmark::Counter::kIsRate);
+  state.counters["queries_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 }  // namespace
 }  // namespace ferret
 
 int main(int argc, char** argv) {
-  for (const std::string name : {"uav", "uav_with_ugv", "ugv", "uav_planner", "ugv_planner", "uav_urdf_planner",
-                                 "ugv_urdf_planner"}) {
+  for (const std::string name : {"uav", "uav_with_ugv", "ugv", "uav_planner", "ugv_planner",
+                                 "uav_urdf_planner", "ugv_urdf_planner"}) {
     benchmark::RegisterBenchmark(("ferret/" + name).c_str(), ferret::BM_Ferret, name);
     benchmark::RegisterBenchmark(("plain_fcl/" + name).c_str(), ferret::BM_PlainFcl, name);
   }

@@ -46,20 +46,38 @@ struct Snapshot {
   UgvSensorGeometry sensors;
   double escape_m;
 
-  Snapshot(const IrGrid& g, const ObjectMap& o, const Pose2& p, const Eigen::Vector2d& v, const UgvSensorGeometry& s,
-           double escape_m)
-      : grid(g), objects(o), tracker(g.geometry()), paths(g.geometry()), pose(p), v_W(v), sensors(s), escape_m(escape_m) {
+  Snapshot(const IrGrid& g, const ObjectMap& o, const Pose2& p, const Eigen::Vector2d& v,
+           const UgvSensorGeometry& s, double escape_m)
+      : grid(g),
+        objects(o),
+        tracker(g.geometry()),
+        paths(g.geometry()),
+        pose(p),
+        v_W(v),
+        sensors(s),
+        escape_m(escape_m) {
     tracker.update(grid);
-    paths.compute(grid, grid.geometry().cell_at(p.x_m, p.y_m), GridPathPlanner::Traversal::kKnownFree, escape_m);
+    paths.compute(grid, grid.geometry().cell_at(p.x_m, p.y_m),
+                  GridPathPlanner::Traversal::kKnownFree, escape_m);
     sets = tracker.extract(paths.distances_m(), pose, s.ir_fov_rad, s.ir_range_m);
   }
   [[nodiscard]] ExplorationState state() const {
-    return {grid, objects, tracker, sets, paths, pose, v_W, sensors.ir_fov_rad, sensors.ir_range_m, std::nullopt};
+    return {grid,
+            objects,
+            tracker,
+            sets,
+            paths,
+            pose,
+            v_W,
+            sensors.ir_fov_rad,
+            sensors.ir_range_m,
+            std::nullopt};
   }
 };
 
 struct States {
-  std::vector<std::unique_ptr<Snapshot>> all;  // mutable: the field benchmark recomputes the same field
+  std::vector<std::unique_ptr<Snapshot>>
+      all;  // mutable: the field benchmark recomputes the same field
   PolicyOptions options;
 };
 
@@ -79,19 +97,22 @@ const States& states() {
         base_options.battery_endurance_s = 1e9;
         SimUgvBase base(sim, m.start, base_options);
         const ExploreOptions eo = explore_options(settings, 1, objects.front());
-        out.options = PolicyOptions::from(eo.mission, eo.sensors.camera_range_m, eo.robot.max_velocity_mps);
+        out.options =
+            PolicyOptions::from(eo.mission, eo.sensors.camera_range_m, eo.robot.max_velocity_mps);
         ExploreController controller(m.map.geometry, m.start, eo);
-        const double escape_m = std::max(eo.robot.escape_radius_m, eo.robot.clearance_m + 2 * m.map.geometry.resolution_m);
+        const double escape_m = std::max(eo.robot.escape_radius_m,
+                                         eo.robot.clearance_m + 2 * m.map.geometry.resolution_m);
         Pose2 last = m.start;
         for (long step = 0; step * controller.tick_s() < 60.0; ++step) {
           const Pose2 pose = base.odometry();
           controller.observe_scan(base.ir_scan());
-          if (controller.frame_due(step) && controller.observe_frame(base.camera_frame(step * controller.tick_s())))
+          if (controller.frame_due(step) &&
+              controller.observe_frame(base.camera_frame(step * controller.tick_s())))
             break;
           if (step > 0 && step % 20 == 0)
-            out.all.push_back(std::make_unique<Snapshot>(controller.grid(), controller.objects(), pose,
-                                                         (pose.position() - last.position()) / controller.tick_s(),
-                                                         eo.sensors, escape_m));
+            out.all.push_back(std::make_unique<Snapshot>(
+                controller.grid(), controller.objects(), pose,
+                (pose.position() - last.position()) / controller.tick_s(), eo.sensors, escape_m));
           last = pose;
           const auto command = controller.decide(step, pose);
           if (command.explored) break;
@@ -130,10 +151,12 @@ void field(benchmark::State& state) {
   std::size_t k = 0;
   for (auto _ : state) {
     Snapshot& snapshot = *s.all[k++ % s.all.size()];
-    snapshot.paths.compute(snapshot.grid, snapshot.grid.geometry().cell_at(snapshot.pose.x_m, snapshot.pose.y_m),
+    snapshot.paths.compute(snapshot.grid,
+                           snapshot.grid.geometry().cell_at(snapshot.pose.x_m, snapshot.pose.y_m),
                            GridPathPlanner::Traversal::kKnownFree, snapshot.escape_m);
     benchmark::DoNotOptimize(snapshot.tracker.extract(snapshot.paths.distances_m(), snapshot.pose,
-                                                      snapshot.sensors.ir_fov_rad, snapshot.sensors.ir_range_m));
+                                                      snapshot.sensors.ir_fov_rad,
+                                                      snapshot.sensors.ir_range_m));
   }
 }
 
@@ -160,8 +183,8 @@ void print_single_decisions(const char* planner) {
       us.push_back(1e6 * (thread_cpu_s() - t0));
     }
   std::sort(us.begin(), us.end());
-  std::printf("%s: decision CPU median %.0f us, p90 %.0f us (%zu states x 5)\n", planner, us[us.size() / 2],
-              us[us.size() * 9 / 10], s.all.size());
+  std::printf("%s: decision CPU median %.0f us, p90 %.0f us (%zu states x 5)\n", planner,
+              us[us.size() / 2], us[us.size() * 9 / 10], s.all.size());
 }
 
 }  // namespace

@@ -190,7 +190,7 @@ int compare(int terrains, std::uint64_t seed, bool verbose,
       {"min_clearance_m", &LandingZoneDetector::Options::min_clearance_m}};
   // The scene's keys, read below.
   static const std::set<std::string> kSceneKeys = {
-      "truth_radius_m", "view_radius_m", "depth_noise_per_m", "depth_dropout",  "width_px",
+      "truth_radius_m", "view_radius_m", "depth_noise_per_m", "depth_dropout",   "width_px",
       "height_px",      "frames",        "hover_drift_m",     "hover_drift_deg", "frames_max"};
   for (const auto& [k, v] : set) {
     if (const auto f = kDetectorFields.find(k); f != kDetectorFields.end()) {

@@ -9,9 +9,9 @@
 // --concurrency bounds the load; a client answered 503 waits its Retry-After only with
 // --honour-retry-after (overload runs leave it off to offer as much as they can).
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -29,7 +29,9 @@
 
 #include "ferret/service/planner_service.hpp"
 
+// clang-format off: httplib after every header that includes Eigen
 #include <httplib.h>  // after Eigen (service/src/planner_service_impl.hpp says why)
+// clang-format on
 
 namespace {
 
@@ -58,8 +60,8 @@ struct Sample {
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  const auto k = static_cast<std::size_t>(std::clamp(p * static_cast<double>(v.size()), 0.0,
-                                                     static_cast<double>(v.size() - 1)));
+  const auto k = static_cast<std::size_t>(
+      std::clamp(p * static_cast<double>(v.size()), 0.0, static_cast<double>(v.size() - 1)));
   return v[k];
 }
 
@@ -82,20 +84,25 @@ int main(int argc, char** argv) {
   std::string world = "examples/worlds/default.yaml", token_file, map = "site", json_out;
   bool honour_retry = false;
   int workers = 2, queue = 32;
-  app.add_option("--port", port, "a running service on 127.0.0.1:PORT (default: start one in this process)");
+  app.add_option("--port", port,
+                 "a running service on 127.0.0.1:PORT (default: start one in this process)");
   app.add_option("--token-file", token_file, "the service's bearer token, first line of this file");
   app.add_option("--world", world, "the map to upload first (and to replace with --replace-every)")
       ->capture_default_str();
   app.add_option("--map", map, "the map's name")->capture_default_str();
   app.add_option("--concurrency", concurrency, "closed-loop clients")->capture_default_str();
   app.add_option("--duration", duration_s, "seconds to run")->capture_default_str();
-  app.add_option("--count", count, "stop after this many answers (0: no limit)")->capture_default_str();
+  app.add_option("--count", count, "stop after this many answers (0: no limit)")
+      ->capture_default_str();
   app.add_option("--deadline", deadline_s, "each request's deadline_s")->capture_default_str();
   app.add_option("--ugv", ugv_weight, "weight of POST /v1/plan/ugv")->capture_default_str();
-  app.add_option("--return", return_weight, "weight of POST /v1/plan/ugv/return")->capture_default_str();
+  app.add_option("--return", return_weight, "weight of POST /v1/plan/ugv/return")
+      ->capture_default_str();
   app.add_option("--uav", uav_weight, "weight of POST /v1/plan/uav")->capture_default_str();
-  app.add_option("--replace-every", replace_every_s, "PUT the map again every S seconds (0: never)");
-  app.add_option("--sample-every", sample_every_s, "seconds between resident-memory samples")->capture_default_str();
+  app.add_option("--replace-every", replace_every_s,
+                 "PUT the map again every S seconds (0: never)");
+  app.add_option("--sample-every", sample_every_s, "seconds between resident-memory samples")
+      ->capture_default_str();
   app.add_option("--seed", seed, "seed of the requests' poses")->capture_default_str();
   app.add_option("--workers", workers, "in-process service: workers")->capture_default_str();
   app.add_option("--queue", queue, "in-process service: queue")->capture_default_str();
@@ -129,13 +136,15 @@ int main(int argc, char** argv) {
   auto admin = client();
   const auto put = admin->Put("/v1/maps/" + map, world_bytes, "application/yaml");
   if (!put || put->status >= 300) {
-    std::cerr << "ferret-plannerd-load: PUT /v1/maps/" << map << " failed: " << (put ? put->body : "no answer") << "\n";
+    std::cerr << "ferret-plannerd-load: PUT /v1/maps/" << map
+              << " failed: " << (put ? put->body : "no answer") << "\n";
     return 2;
   }
   std::vector<Space> spaces;
   const json meta = json::parse(put->body);
   for (const json& h : meta["hidden_spaces"])
-    spaces.push_back({h["name"], h["bounds_xy_m"][0], h["bounds_xy_m"][1], h["bounds_xy_m"][2], h["bounds_xy_m"][3]});
+    spaces.push_back({h["name"], h["bounds_xy_m"][0], h["bounds_xy_m"][1], h["bounds_xy_m"][2],
+                      h["bounds_xy_m"][3]});
   if (spaces.empty() && (ugv_weight > 0 || return_weight > 0)) {
     std::cerr << "ferret-plannerd-load: the world has no hidden space for miniUGV requests\n";
     return 2;
@@ -146,7 +155,8 @@ int main(int argc, char** argv) {
   std::atomic<std::size_t> answered{0};
   std::atomic<bool> stop{false};
   const auto t0 = Clock::now();
-  const auto until = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(duration_s));
+  const auto until =
+      t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(duration_s));
 
   const auto run_client = [&](int k) {
     auto c = client();
@@ -161,8 +171,8 @@ int main(int argc, char** argv) {
       if (pick < ugv_weight + return_weight) {
         const Space& s = spaces[rng() % spaces.size()];
         const auto pose = [&] {
-          return json{s.x0 + 0.5 + (s.x1 - s.x0 - 1.0) * u(rng), s.y0 + 0.5 + (s.y1 - s.y0 - 1.0) * u(rng),
-                      -3.14 + 6.28 * u(rng)};
+          return json{s.x0 + 0.5 + (s.x1 - s.x0 - 1.0) * u(rng),
+                      s.y0 + 0.5 + (s.y1 - s.y0 - 1.0) * u(rng), -3.14 + 6.28 * u(rng)};
         };
         j["hidden_space"] = s.name;
         j["start"] = pose();
@@ -175,7 +185,8 @@ int main(int argc, char** argv) {
       }
       const auto t = Clock::now();
       const auto r = c->Post(route, j.dump(), "application/json");
-      Sample s{route, "", r ? r->status : 0, std::chrono::duration<double>(Clock::now() - t).count()};
+      Sample s{route, "", r ? r->status : 0,
+               std::chrono::duration<double>(Clock::now() - t).count()};
       if (r && r->status != 200) {
         const auto b = json::parse(r->body, nullptr, false);
         if (b.is_object() && b.contains("error")) s.code = b["error"].value("code", "");
@@ -183,7 +194,8 @@ int main(int argc, char** argv) {
       if (!r) s.code = "NO_ANSWER";
       mine.push_back(s);
       if (count > 0 && ++answered >= count) stop = true;
-      if (honour_retry && r && r->status == 503) std::this_thread::sleep_for(std::chrono::seconds(1));
+      if (honour_retry && r && r->status == 503)
+        std::this_thread::sleep_for(std::chrono::seconds(1));
     }
     const std::lock_guard lock(samples_mutex);
     samples.insert(samples.end(), mine.begin(), mine.end());
@@ -194,21 +206,25 @@ int main(int argc, char** argv) {
   // Meanwhile: the map replaced every few seconds, resident memory sampled.
   std::vector<std::pair<double, std::uint64_t>> rss, steady;
   std::size_t replaced = 0;
-  auto next_replace = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(replace_every_s));
+  auto next_replace = t0 + std::chrono::duration_cast<Clock::duration>(
+                               std::chrono::duration<double>(replace_every_s));
   auto next_sample = t0;
   while (!stop && Clock::now() < until) {
     const auto now = Clock::now();
     if (now >= next_sample) {
       rss.emplace_back(std::chrono::duration<double>(now - t0).count(), rss_from_metrics(*admin));
-      next_sample += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(sample_every_s));
+      next_sample += std::chrono::duration_cast<Clock::duration>(
+          std::chrono::duration<double>(sample_every_s));
     }
     if (replace_every_s > 0 && now >= next_replace) {
       // Resident memory just before each replacement: one map held, the same phase of
       // every cycle (a sample during a rebuild holds two maps and the build's scratch).
-      steady.emplace_back(std::chrono::duration<double>(now - t0).count(), rss_from_metrics(*admin));
+      steady.emplace_back(std::chrono::duration<double>(now - t0).count(),
+                          rss_from_metrics(*admin));
       const auto r = admin->Put("/v1/maps/" + map, world_bytes, "application/yaml");
       if (r && r->status < 300) ++replaced;
-      next_replace += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(replace_every_s));
+      next_replace += std::chrono::duration_cast<Clock::duration>(
+          std::chrono::duration<double>(replace_every_s));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -224,36 +240,44 @@ int main(int argc, char** argv) {
     if (s.status != 503 && s.status != 0) accepted.push_back(s.latency_s);
     if (s.status == 200) solved.push_back(s.latency_s);
   }
-  json report{{"concurrency", concurrency},
-              {"elapsed_s", elapsed_s},
-              {"requests", samples.size()},
-              {"throughput_per_s", static_cast<double>(samples.size()) / elapsed_s},
-              {"solved_per_s", static_cast<double>(solved.size()) / elapsed_s},
-              {"latency_s", {{"p50", percentile(all, 0.5)}, {"p99", percentile(all, 0.99)}}},
-              {"accepted_latency_s", {{"p50", percentile(accepted, 0.5)}, {"p99", percentile(accepted, 0.99)},
-                                      {"max", accepted.empty() ? 0.0 : *std::max_element(accepted.begin(), accepted.end())}}},
-              {"solved_latency_s", {{"p50", percentile(solved, 0.5)}, {"p99", percentile(solved, 0.99)}}},
-              {"answers", by_answer},
-              {"map_replacements", replaced},
-              {"deadline_s", deadline_s}};
+  json report{
+      {"concurrency", concurrency},
+      {"elapsed_s", elapsed_s},
+      {"requests", samples.size()},
+      {"throughput_per_s", static_cast<double>(samples.size()) / elapsed_s},
+      {"solved_per_s", static_cast<double>(solved.size()) / elapsed_s},
+      {"latency_s", {{"p50", percentile(all, 0.5)}, {"p99", percentile(all, 0.99)}}},
+      {"accepted_latency_s",
+       {{"p50", percentile(accepted, 0.5)},
+        {"p99", percentile(accepted, 0.99)},
+        {"max", accepted.empty() ? 0.0 : *std::max_element(accepted.begin(), accepted.end())}}},
+      {"solved_latency_s", {{"p50", percentile(solved, 0.5)}, {"p99", percentile(solved, 0.99)}}},
+      {"answers", by_answer},
+      {"map_replacements", replaced},
+      {"deadline_s", deadline_s}};
   json mem = json::array(), before_replacement = json::array();
   for (const auto& [t, b] : rss) mem.push_back({t, b});
   for (const auto& [t, b] : steady) before_replacement.push_back({t, b});
   report["resident_memory_bytes"] = mem;
   report["resident_memory_before_replacement_bytes"] = before_replacement;
-  std::cout << fmt::format("{} requests in {:.1f} s with {} clients: {:.0f}/s ({:.0f} solved/s)\n", samples.size(),
-                           elapsed_s, concurrency, report["throughput_per_s"].get<double>(),
+  std::cout << fmt::format("{} requests in {:.1f} s with {} clients: {:.0f}/s ({:.0f} solved/s)\n",
+                           samples.size(), elapsed_s, concurrency,
+                           report["throughput_per_s"].get<double>(),
                            report["solved_per_s"].get<double>());
-  std::cout << fmt::format("latency p50 {:.1f} ms, p99 {:.1f} ms; accepted p99 {:.1f} ms (deadline {:.0f} ms); solved p99 {:.1f} ms\n",
-                           percentile(all, 0.5) * 1e3, percentile(all, 0.99) * 1e3, percentile(accepted, 0.99) * 1e3,
-                           deadline_s * 1e3, percentile(solved, 0.99) * 1e3);
+  std::cout << fmt::format(
+      "latency p50 {:.1f} ms, p99 {:.1f} ms; accepted p99 {:.1f} ms (deadline {:.0f} ms); solved "
+      "p99 {:.1f} ms\n",
+      percentile(all, 0.5) * 1e3, percentile(all, 0.99) * 1e3, percentile(accepted, 0.99) * 1e3,
+      deadline_s * 1e3, percentile(solved, 0.99) * 1e3);
   for (const auto& [answer, n] : by_answer) std::cout << fmt::format("  {:>7}  {}\n", n, answer);
   if (rss.size() >= 2) {
     std::uint64_t lo = rss.front().second, hi = lo;
     for (const auto& [t, b] : rss) lo = std::min(lo, b), hi = std::max(hi, b);
-    std::cout << fmt::format("resident memory: first {:.1f} MiB, last {:.1f} MiB, min {:.1f}, max {:.1f} ({} samples, {} map replacements)\n",
-                             rss.front().second / 1048576.0, rss.back().second / 1048576.0, lo / 1048576.0,
-                             hi / 1048576.0, rss.size(), replaced);
+    std::cout << fmt::format(
+        "resident memory: first {:.1f} MiB, last {:.1f} MiB, min {:.1f}, max {:.1f} ({} samples, "
+        "{} map replacements)\n",
+        rss.front().second / 1048576.0, rss.back().second / 1048576.0, lo / 1048576.0,
+        hi / 1048576.0, rss.size(), replaced);
   }
   if (steady.size() >= 2) {
     // The soak's measure: memory at the same phase of each replacement cycle, after the
@@ -265,10 +289,12 @@ int main(int argc, char** argv) {
         lo = std::min(lo, b), hi = std::max(hi, b);
       }
     if (first > 0)
-      std::cout << fmt::format("before each replacement, after warm-up: first {:.1f} MiB, last {:.1f} MiB, min {:.1f}, "
-                               "max {:.1f} ({:+.1f} % / {:+.1f} % of the first)\n",
-                               first / 1048576.0, steady.back().second / 1048576.0, lo / 1048576.0, hi / 1048576.0,
-                               100.0 * (static_cast<double>(lo) / first - 1.0), 100.0 * (static_cast<double>(hi) / first - 1.0));
+      std::cout << fmt::format(
+          "before each replacement, after warm-up: first {:.1f} MiB, last {:.1f} MiB, min {:.1f}, "
+          "max {:.1f} ({:+.1f} % / {:+.1f} % of the first)\n",
+          first / 1048576.0, steady.back().second / 1048576.0, lo / 1048576.0, hi / 1048576.0,
+          100.0 * (static_cast<double>(lo) / first - 1.0),
+          100.0 * (static_cast<double>(hi) / first - 1.0));
   }
   if (!json_out.empty()) std::ofstream(json_out) << report.dump(2) << "\n";
   if (local) local->stop();

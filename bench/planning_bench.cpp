@@ -42,10 +42,12 @@ RobotShape urdf_shape(const char* model, PlanRobot robot) {
   return plan_robot_shape(robot, 0.0, &s);
 }
 
-void report(benchmark::State& state, std::vector<double> times_ms, int solved, int total, int invalid) {
+void report(benchmark::State& state, std::vector<double> times_ms, int solved, int total,
+            int invalid) {
   std::sort(times_ms.begin(), times_ms.end());
   auto pct = [&](double q) {
-    return times_ms.empty() ? 0.0 : times_ms[static_cast<std::size_t>(q * (times_ms.size() - 1) + 0.5)];
+    return times_ms.empty() ? 0.0
+                            : times_ms[static_cast<std::size_t>(q * (times_ms.size() - 1) + 0.5)];
   };
   state.counters["solved_pct"] = 100.0 * solved / total;
   state.counters["median_ms"] = pct(0.5);
@@ -57,7 +59,8 @@ void report(benchmark::State& state, std::vector<double> times_ms, int solved, i
 
 void BM_UavApproach(benchmark::State& state) {
   seed_ompl_once(1);
-  const PlanningWorld world = load_planning_world(std::string(FERRET_SOURCE_DIR) + "/examples/worlds/default.yaml");
+  const PlanningWorld world =
+      load_planning_world(std::string(FERRET_SOURCE_DIR) + "/examples/worlds/default.yaml");
   const auto map = CollisionMap::build(*world.tree, uav_map_options(world.spec));
   UavPlannerOptions opt;
   opt.geofence = {{-29.5, -29.5, 0.5}, {29.5, 29.5, 7.5}};
@@ -89,17 +92,21 @@ struct Cellar {
   PlanningWorld world;
   HiddenSpaceFrame frame;
   std::shared_ptr<const CollisionMap> map;
-  Cellar() : world(load_planning_world(std::string(FERRET_SOURCE_DIR) + "/examples/scenarios/tether_detour.yaml")) {
+  Cellar()
+      : world(load_planning_world(std::string(FERRET_SOURCE_DIR) +
+                                  "/examples/scenarios/tether_detour.yaml")) {
     frame = hidden_space_frame(world.spec->hidden_spaces.at(0));
     map = ugv_collision_map(*world.tree, frame);
   }
 };
 
-int validate_ugv(const UgvPlan& plan, const Cellar& c, UgvPlanner& planner, const TetherParams& tether) {
+int validate_ugv(const UgvPlan& plan, const Cellar& c, UgvPlanner& planner,
+                 const TetherParams& tether) {
   PlanFile file;
   file.robot = PlanRobot::kUgv;
   file.states = plan.states;
-  file.tether = PlanTether{c.frame.p_WE, plan.initial_wraps, tether.total_length_m, tether.entry_offset_m};
+  file.tether =
+      PlanTether{c.frame.p_WE, plan.initial_wraps, tether.total_length_m, tether.entry_offset_m};
   const UgvPlannerOptions timing;
   ValidationOptions v(planner_limits(timing.max_velocity_mps, timing.max_yaw_rate_radps),
                       default_resolution(PlanRobot::kUgv));

@@ -48,8 +48,9 @@ void searches(benchmark::State& state, const char* method) {
       o.height_m = static_cast<double>(state.range(1));
       const GeneratedHiddenSpace h = generate_hidden_space(o);
       for (int zone = 2; zone <= 5; ++zone) {
-        const auto objects = sample_zone_objects(h.map, h.zones[static_cast<std::size_t>(zone - 1)], 1, 0.25,
-                                                 derive_seed(seed, {static_cast<std::uint64_t>(zone)}));
+        const auto objects =
+            sample_zone_objects(h.map, h.zones[static_cast<std::size_t>(zone - 1)], 1, 0.25,
+                                derive_seed(seed, {static_cast<std::uint64_t>(zone)}));
         if (objects.empty()) continue;
         ExplorationSettings settings;
         settings.method = method;
@@ -59,9 +60,10 @@ void searches(benchmark::State& state, const char* method) {
         found += r.found ? 1 : 0;
         ++runs;
         if (!r.found)
-          std::fprintf(stderr, "%s, %g x %g m, seed %llu, zone %d, object (%.3f, %.3f): %s after %.1f s\n", method,
-                       o.width_m, o.height_m, static_cast<unsigned long long>(seed), zone, objects.front().x(),
-                       objects.front().y(), r.end_reason.c_str(), r.time_s);
+          std::fprintf(stderr,
+                       "%s, %g x %g m, seed %llu, zone %d, object (%.3f, %.3f): %s after %.1f s\n",
+                       method, o.width_m, o.height_m, static_cast<unsigned long long>(seed), zone,
+                       objects.front().x(), objects.front().y(), r.end_reason.c_str(), r.time_s);
       }
     }
   }
@@ -113,8 +115,8 @@ int main(int argc, char** argv) {
     for (const char* size : {"12/8", "24/16", "48/32"}) {
       const auto at = reporter.medians.find(prefix + size + "/iterations:1");
       if (at != reporter.medians.end())
-        std::printf("%s, %s m: median decision cycle %.0f us, %.2fx the 12 x 8 m median\n", method, size,
-                    at->second, at->second / base->second);
+        std::printf("%s, %s m: median decision cycle %.0f us, %.2fx the 12 x 8 m median\n", method,
+                    size, at->second, at->second / base->second);
     }
   }
   benchmark::Shutdown();

@@ -51,7 +51,8 @@ void BM_GrayFrame1280x720(benchmark::State& state) {
   const CameraModel model = camera_model(cam, s.uav.source);
   const Pose3 X_WC = optical_pose(s.X_WB, cam);
   std::uint64_t seed = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(s.sim.render_gray(model, X_WC, {}, ++seed).data.data());
+  for (auto _ : state)
+    benchmark::DoNotOptimize(s.sim.render_gray(model, X_WC, {}, ++seed).data.data());
 }
 BENCHMARK(BM_GrayFrame1280x720)->Unit(benchmark::kMillisecond);
 
@@ -74,7 +75,8 @@ void BM_GrayFrameSearchView(benchmark::State& state) {
   const CameraModel model = camera_model(cam, s.uav.source);
   const Pose3 X_WC = optical_pose(pose_from_xyz_rpy({-25.0, 8.0, 4.0}, 0, 0, 0), cam);
   std::uint64_t seed = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(s.sim.render_gray(model, X_WC, {}, ++seed).data.data());
+  for (auto _ : state)
+    benchmark::DoNotOptimize(s.sim.render_gray(model, X_WC, {}, ++seed).data.data());
 }
 BENCHMARK(BM_GrayFrameSearchView)->Unit(benchmark::kMillisecond);
 

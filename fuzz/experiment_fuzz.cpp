@@ -15,8 +15,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const bool fixtures_written =
       (dir.write("room.pgm", ferret::fuzz::room_pgm()),
        dir.write("room.yaml", ferret::fuzz::room_yaml()),
-       dir.write("searched.yaml", ferret::fuzz::room_yaml() +
-                                      "search:\n  start: [1.0, 1.0, 0.0]\n  zones: {1: [1.5, 1.5, 3.0, 2.5]}\n"),
+       dir.write("searched.yaml",
+                 ferret::fuzz::room_yaml() +
+                     "search:\n  start: [1.0, 1.0, 0.0]\n  zones: {1: [1.5, 1.5, 3.0, 2.5]}\n"),
        dir.write("mission.yaml", "{}\n"), true);
   (void)fixtures_written;
   const auto path = dir.write("experiment.yaml", data, size);

@@ -13,11 +13,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "rpc_replay.hpp"
-
 #include "ferret/core/error.hpp"
 #include "ferret/uav/adapter_flight_controller.hpp"
 #include "ferret/uav/flight_adapter_service.hpp"
+#include "rpc_replay.hpp"
 
 namespace {
 
@@ -39,8 +38,12 @@ struct RecordingFlight final : ferret::FlightController {
 };
 
 struct TinyCameras final : ferret::UavCameras {
-  ferret::CameraShot<ferret::GrayImage> marker_frame() override { return {ferret::GrayImage(2, 1), {}}; }
-  ferret::CameraShot<ferret::DepthImageMm> depth_frame() override { return {ferret::DepthImageMm(1, 2), {}}; }
+  ferret::CameraShot<ferret::GrayImage> marker_frame() override {
+    return {ferret::GrayImage(2, 1), {}};
+  }
+  ferret::CameraShot<ferret::DepthImageMm> depth_frame() override {
+    return {ferret::DepthImageMm(1, 2), {}};
+  }
 };
 
 }  // namespace
@@ -51,11 +54,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (data[0] % 2 == 0) {
     RecordingFlight flight;
     TinyCameras cameras;
-    ferret::FlightAdapterService service(flight, cameras, "fuzz",
-                                         {[&](const Eigen::Vector3d& v, double w) { flight.take(v.sum() + w); }});
+    ferret::FlightAdapterService service(
+        flight, cameras, "fuzz",
+        {[&](const Eigen::Vector3d& v, double w) { flight.take(v.sum() + w); }});
     const StreamMessage reply = service.handle({text, {}});
     const auto r = nlohmann::json::parse(reply.header, nullptr, false);
-    if (r.is_discarded() || !r.is_object() || !r.contains("ok") || !r["ok"].is_boolean()) std::abort();
+    if (r.is_discarded() || !r.is_object() || !r.contains("ok") || !r["ok"].is_boolean())
+      std::abort();
     if (!r["ok"].get<bool>() && flight.commands != 0) std::abort();  // refused, yet acted on
     return 0;
   }
@@ -63,13 +68,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ferret::fuzz::RpcReplay channel;
   const std::size_t nul = text.find('\0');
   channel.reply.header = text.substr(0, nul);
-  if (nul != std::string::npos) channel.reply.blob.assign(text.begin() + static_cast<long>(nul) + 1, text.end());
+  if (nul != std::string::npos)
+    channel.reply.blob.assign(text.begin() + static_cast<long>(nul) + 1, text.end());
   try {
     ferret::AdapterFlightController flight(channel, "hw");
     const ferret::FlightState s = flight.state();
     if (!s.p_W.allFinite() || !s.v_W.allFinite() || !std::isfinite(s.yaw_rad)) std::abort();
     const auto m = flight.marker_frame();
-    if (m.image.data.size() != static_cast<std::size_t>(m.image.width_px) * m.image.height_px) std::abort();
+    if (m.image.data.size() != static_cast<std::size_t>(m.image.width_px) * m.image.height_px)
+      std::abort();
     (void)flight.depth_frame();
   } catch (const ferret::FlightAdapterError&) {
   } catch (const ferret::InputError&) {

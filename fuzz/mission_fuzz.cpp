@@ -47,7 +47,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string uav_dump = uav_mission_dump(uav);
   ferret::UavMissionOptions uav_again;
   uav_again.tether = uav.tether;
-  (void)ferret::read_uav_mission_options(ferret::yaml::load_string(uav_dump, "dump"), "dump", uav_again);
+  (void)ferret::read_uav_mission_options(ferret::yaml::load_string(uav_dump, "dump"), "dump",
+                                         uav_again);
   if (uav_mission_dump(uav_again) != uav_dump) __builtin_trap();
   return 0;
 }

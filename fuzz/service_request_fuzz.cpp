@@ -15,7 +15,9 @@
 #include "ferret/service/planner_service.hpp"
 #include "fuzz_support.hpp"
 
+// clang-format off: httplib after every header that includes Eigen
 #include <httplib.h>  // after Eigen (service/src/planner_service_impl.hpp says why)
+// clang-format on
 
 namespace {
 
@@ -63,20 +65,22 @@ struct Fixture {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static Fixture f;
   if (size == 0) return 0;
-  static const char* routes[] = {"/v1/plan/ugv", "/v1/plan/ugv/return", "/v1/plan/uav", "/v1/validate",
-                                 "/v1/explore/next-goal", "/v1/maps/fz"};
+  static const char* routes[] = {"/v1/plan/ugv", "/v1/plan/ugv/return",   "/v1/plan/uav",
+                                 "/v1/validate", "/v1/explore/next-goal", "/v1/maps/fz"};
   const std::size_t route = data[0] % 6;
   const std::string body = ferret::fuzz::as_string(data + 1, size - 1);
   const auto r = route == 5 ? f.client->Put(routes[route], body, "multipart/form-data; boundary=b")
                             : f.client->Post(routes[route], body, "application/json");
   if (!r) std::abort();  // the service must answer
   const int st = r->status;
-  if (st != 200 && st != 201 && st != 400 && st != 404 && st != 413 && st != 422 && st != 503 && st != 507)
+  if (st != 200 && st != 201 && st != 400 && st != 404 && st != 413 && st != 422 && st != 503 &&
+      st != 507)
     std::abort();
   const auto j = nlohmann::json::parse(r->body, nullptr, false);
   if (!j.is_object()) std::abort();
-  if (st >= 300 && !(j.contains("error") && j["error"].contains("code") && j["error"]["code"].is_string() &&
-                     !j["error"]["code"].get<std::string>().empty()))
+  if (st >= 300 &&
+      !(j.contains("error") && j["error"].contains("code") && j["error"]["code"].is_string() &&
+        !j["error"]["code"].get<std::string>().empty()))
     std::abort();
   return 0;
 }

@@ -12,9 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "rpc_replay.hpp"
-
 #include "ferret/ugv/remote_ugv_base.hpp"
+#include "rpc_replay.hpp"
 
 namespace {
 
@@ -31,7 +30,8 @@ struct RecordingBase final : ferret::UgvBase {
     return {};
   }
   void command_velocity(double v, double w) override {
-    if (!std::isfinite(v) || !std::isfinite(w) || std::abs(v) > 100 || std::abs(w) > 100) std::abort();
+    if (!std::isfinite(v) || !std::isfinite(w) || std::abs(v) > 100 || std::abs(w) > 100)
+      std::abort();
     ++commands;
   }
   void set_epm(bool) override { ++commands; }
@@ -39,7 +39,9 @@ struct RecordingBase final : ferret::UgvBase {
 };
 
 void check_scan(const ferret::RangeScan& s) {
-  if (s.beams.size() > ferret::kMaxRemoteBeams || !(s.max_range_m > 0) || !std::isfinite(s.X_WS.yaw_rad)) std::abort();
+  if (s.beams.size() > ferret::kMaxRemoteBeams || !(s.max_range_m > 0) ||
+      !std::isfinite(s.X_WS.yaw_rad))
+    std::abort();
   for (const auto& b : s.beams)
     if (!std::isfinite(b.bearing_rad) || std::isnan(b.range_m) || b.range_m < 0) std::abort();
 }
@@ -54,7 +56,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ferret::UgvBaseService service(base, "fuzz");
     const StreamMessage reply = service.handle({text, {}});
     const auto r = nlohmann::json::parse(reply.header, nullptr, false);
-    if (r.is_discarded() || !r.is_object() || !r.contains("ok") || !r["ok"].is_boolean()) std::abort();
+    if (r.is_discarded() || !r.is_object() || !r.contains("ok") || !r["ok"].is_boolean())
+      std::abort();
     if (!r["ok"].get<bool>() && base.commands != 0) std::abort();  // refused, yet acted on
     return 0;
   }
@@ -70,7 +73,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check_scan(f.view);
     if (f.detections.size() > ferret::kMaxRemoteDetections) std::abort();
     for (const auto& d : f.detections)
-      if (!(d.distance_m > 0) || !std::isfinite(d.distance_m) || !std::isfinite(d.confidence)) std::abort();
+      if (!(d.distance_m > 0) || !std::isfinite(d.distance_m) || !std::isfinite(d.confidence))
+        std::abort();
     if (!std::isfinite(base.status().battery_fraction)) std::abort();
     base.command_velocity(0.1, 0.2);
     base.set_epm(true);

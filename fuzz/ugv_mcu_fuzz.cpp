@@ -21,16 +21,28 @@ void check_payload(const mcu::Frame& f) {
   bool decoded = true;
   switch (f.type) {
     case mcu::type::kDrive:
-      if (const auto d = mcu::decode_drive(p)) again = mcu::encode_payload(*d); else decoded = false;
+      if (const auto d = mcu::decode_drive(p))
+        again = mcu::encode_payload(*d);
+      else
+        decoded = false;
       break;
     case mcu::type::kEpm:
-      if (const auto e = mcu::decode_epm(p)) again = mcu::encode_payload(*e); else decoded = false;
+      if (const auto e = mcu::decode_epm(p))
+        again = mcu::encode_payload(*e);
+      else
+        decoded = false;
       break;
     case mcu::type::kInfo:
-      if (const auto i = mcu::decode_info(p)) again = mcu::encode_payload(*i); else decoded = false;
+      if (const auto i = mcu::decode_info(p))
+        again = mcu::encode_payload(*i);
+      else
+        decoded = false;
       break;
     case mcu::type::kState:
-      if (const auto s = mcu::decode_state(p)) again = mcu::encode_payload(*s); else decoded = false;
+      if (const auto s = mcu::decode_state(p))
+        again = mcu::encode_payload(*s);
+      else
+        decoded = false;
       break;
     default:
       decoded = false;

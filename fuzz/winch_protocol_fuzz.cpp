@@ -11,9 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "rpc_replay.hpp"
-
 #include "ferret/uav/remote_winch.hpp"
+#include "rpc_replay.hpp"
 
 namespace {
 
@@ -39,7 +38,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ferret::WinchService service(winch);
     const StreamMessage reply = service.handle({text, {}});
     const auto r = nlohmann::json::parse(reply.header, nullptr, false);
-    if (r.is_discarded() || !r.is_object() || !r.contains("ok") || !r["ok"].is_boolean()) std::abort();
+    if (r.is_discarded() || !r.is_object() || !r.contains("ok") || !r["ok"].is_boolean())
+      std::abort();
     if (!r["ok"].get<bool>() && winch.commands != 0) std::abort();
     return 0;
   }
@@ -48,7 +48,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ferret::RemoteWinch winch(channel);
   try {
     const ferret::tether::WinchState s = winch.read_state();
-    if (!std::isfinite(s.released_m) || s.released_m < 0 || !std::isfinite(s.speed_mps) || !std::isfinite(s.tension_n))
+    if (!std::isfinite(s.released_m) || s.released_m < 0 || !std::isfinite(s.speed_mps) ||
+        !std::isfinite(s.tension_n))
       std::abort();
   } catch (const ferret::WinchProtocolError&) {
   }

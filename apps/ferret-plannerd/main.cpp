@@ -3,12 +3,12 @@
 // SIGINT drain the service (new requests 503, those in flight end by their deadlines)
 // and exit 0.
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <malloc.h>
 #include <signal.h>
 #include <sys/stat.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -36,7 +36,8 @@ std::string slurp(const fs::path& path, const std::string& option) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
-  if (!in && !in.eof()) throw InputError(option, "", "a readable file", ferret::printable_path(path.string()));
+  if (!in && !in.eof())
+    throw InputError(option, "", "a readable file", ferret::printable_path(path.string()));
   return s.str();
 }
 
@@ -51,7 +52,8 @@ fs::path robot_path(const std::string& robot, const std::string& option) {
     }
   }
   std::error_code ec;
-  if (!fs::is_regular_file(robot, ec)) throw InputError(option, "", "a URDF file", ferret::printable_path(robot));
+  if (!fs::is_regular_file(robot, ec))
+    throw InputError(option, "", "a URDF file", ferret::printable_path(robot));
   return robot;
 }
 
@@ -59,9 +61,11 @@ fs::path robot_path(const std::string& robot, const std::string& option) {
 // would not be a secret), as ssh refuses a private key anyone can read.
 std::string read_token(const std::string& path) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) throw InputError("--token-file", "", "a readable file", ferret::printable_path(path));
+  if (::stat(path.c_str(), &st) != 0)
+    throw InputError("--token-file", "", "a readable file", ferret::printable_path(path));
   if (st.st_mode & (S_IRWXG | S_IRWXO))
-    throw InputError("--token-file", "", "a file only its owner may read (chmod 600)", ferret::printable_path(path));
+    throw InputError("--token-file", "", "a file only its owner may read (chmod 600)",
+                     ferret::printable_path(path));
   std::string token = slurp(path, "--token-file");
   token = token.substr(0, token.find('\n'));
   while (!token.empty() && (token.back() == '\r' || token.back() == ' ')) token.pop_back();
@@ -69,7 +73,8 @@ std::string read_token(const std::string& path) {
     throw InputError("--token-file", "", "a token of 16 to 4096 characters on the first line",
                      std::to_string(token.size()) + " characters");
   for (const unsigned char c : token)
-    if (c < 0x21 || c > 0x7e) throw InputError("--token-file", "", "a token of printable ASCII without spaces");
+    if (c < 0x21 || c > 0x7e)
+      throw InputError("--token-file", "", "a token of printable ASCII without spaces");
   return token;
 }
 
@@ -95,21 +100,29 @@ int run(int argc, char** argv) {
   app.add_option("--listen", listen,
                  "HOST:PORT to serve on; loopback by default, 0.0.0.0:PORT for every interface")
       ->capture_default_str();
-  app.add_option("--robot-uav", robot_uav, "the UAV's URDF, or a shipped model's name [default: m100]");
-  app.add_option("--robot-ugv", robot_ugv, "the miniUGV's URDF, or a shipped model's name [default: miniugv]");
+  app.add_option("--robot-uav", robot_uav,
+                 "the UAV's URDF, or a shipped model's name [default: m100]");
+  app.add_option("--robot-ugv", robot_ugv,
+                 "the miniUGV's URDF, or a shipped model's name [default: miniugv]");
   app.add_option("--mission", mission,
                  "mission YAML: motion limits, tether L and l_0 (default: the built-in values)");
   app.add_option("--token-file", token_file,
                  "a file (mode 600) whose first line is the bearer token every route but /healthz "
                  "requires (default: no token)");
-  app.add_option("--workers", o.workers, "requests planning or loading a map at once")->capture_default_str();
-  app.add_option("--queue", o.queue, "requests waiting for a worker; beyond it: 503")->capture_default_str();
-  app.add_option("--max-body-bytes", o.max_body_bytes, "the largest request body, bytes")->capture_default_str();
-  app.add_option("--deadline", deadline_s, "a request's deadline when it names none, seconds")->capture_default_str();
-  app.add_option("--max-deadline", max_deadline_s, "the longest deadline a request may ask for, seconds")
+  app.add_option("--workers", o.workers, "requests planning or loading a map at once")
+      ->capture_default_str();
+  app.add_option("--queue", o.queue, "requests waiting for a worker; beyond it: 503")
+      ->capture_default_str();
+  app.add_option("--max-body-bytes", o.max_body_bytes, "the largest request body, bytes")
+      ->capture_default_str();
+  app.add_option("--deadline", deadline_s, "a request's deadline when it names none, seconds")
+      ->capture_default_str();
+  app.add_option("--max-deadline", max_deadline_s,
+                 "the longest deadline a request may ask for, seconds")
       ->capture_default_str();
   app.add_option("--max-maps", o.max_maps, "maps held at once")->capture_default_str();
-  app.add_option("--map", preload, "preload a map: NAME=FILE (.bt, .ot, world YAML or map_server YAML); repeatable");
+  app.add_option("--map", preload,
+                 "preload a map: NAME=FILE (.bt, .ot, world YAML or map_server YAML); repeatable");
   app.add_flag("--log-json", o.json_log, "one JSON line a request on stderr");
   app.add_flag("--check-config", check_config,
                "check the options, robots, mission and maps, print what would be served, and exit");
@@ -160,7 +173,8 @@ int run(int argc, char** argv) {
     if (ferret::is_map_server_yaml(file)) {
       // A map_server map: its image is read where its YAML says, as ferret's commands do.
       const ferret::MapServerMeta meta = ferret::load_map_server_meta(file);
-      const fs::path image = meta.image.is_absolute() ? meta.image : fs::path(file).parent_path() / meta.image;
+      const fs::path image =
+          meta.image.is_absolute() ? meta.image : fs::path(file).parent_path() / meta.image;
       service.put_map_2d(name, slurp(file, "--map " + name), slurp(image, "--map " + name),
                          ferret::printable_path(file), ferret::printable_path(image.string()));
     } else {
@@ -170,10 +184,11 @@ int run(int argc, char** argv) {
   const std::string auth = o.token.empty() ? "none" : "bearer token";
   if (check_config) {
     std::cout << fmt::format(
-        "config ok: listen {}:{}, {} workers, queue {}, deadline {:g} s (max {:g} s), body <= {} bytes, "
+        "config ok: listen {}:{}, {} workers, queue {}, deadline {:g} s (max {:g} s), body <= {} "
+        "bytes, "
         "auth {}, {} map(s) preloaded\n",
-        o.host, o.port, o.workers, o.queue, o.default_deadline_s, o.max_deadline_s, o.max_body_bytes, auth,
-        maps.size());
+        o.host, o.port, o.workers, o.queue, o.default_deadline_s, o.max_deadline_s,
+        o.max_body_bytes, auth, maps.size());
     return 0;
   }
   int port = 0;
@@ -182,11 +197,12 @@ int run(int argc, char** argv) {
   } catch (const std::runtime_error&) {
     throw InputError("--listen", "", "an address of this machine with a free port", listen);
   }
-  std::cerr << fmt::format("ferret-plannerd: serving on {}:{} ({} workers, queue {}, auth {})\n", o.host,
-                           port, o.workers, o.queue, auth);
+  std::cerr << fmt::format("ferret-plannerd: serving on {}:{} ({} workers, queue {}, auth {})\n",
+                           o.host, port, o.workers, o.queue, auth);
   int sig = 0;
   sigwait(&signals, &sig);
-  std::cerr << fmt::format("ferret-plannerd: {} received, draining\n", sig == SIGTERM ? "SIGTERM" : "SIGINT");
+  std::cerr << fmt::format("ferret-plannerd: {} received, draining\n",
+                           sig == SIGTERM ? "SIGTERM" : "SIGINT");
   service.drain(o.max_deadline_s + 1.0);
   std::cerr << "ferret-plannerd: stopped\n";
   return 0;

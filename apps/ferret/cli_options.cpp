@@ -135,11 +135,14 @@ void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o) {
   sub->add_option("--robot-uav", o.robot_uav, "The UAV's URDF (default: the shipped m100)");
   sub->add_option("--robot-ugv", o.robot_ugv, "The miniUGV's URDF (default: the shipped miniugv)");
   sub->add_option("--mission", o.mission, "Mission YAML (default: the built-in defaults)");
-  sub->add_option("--method", o.method, "The miniUGV's search: cdos, rapid, nearest, ... (default: cdos)");
+  sub->add_option("--method", o.method,
+                  "The miniUGV's search: cdos, rapid, nearest, ... (default: cdos)");
   sub->add_option("--planner", o.planner,
-                  "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler with PRM) (default: grid)");
+                  "The miniUGV's goals: grid (Dijkstra on G) or ompl (the CDOS frontier sampler "
+                  "with PRM) (default: grid)");
   sub->add_option("--no-landing-zone", o.no_landing_zone,
-                  "No safe landing zone by an opening: hover (lower from a hover) or skip (default: the mission YAML's uav.no_landing_zone, hover)");
+                  "No safe landing zone by an opening: hover (lower from a hover) or skip "
+                  "(default: the mission YAML's uav.no_landing_zone, hover)");
 }
 
 std::string one_of(const std::vector<std::string>& choices) {

@@ -57,8 +57,10 @@ void run(const Options& o) {
   std::string mission_source = "(built-in defaults)";
   MissionConfig mission;
   RobotBackends backends;
-  if (!o.mission.empty()) mission_source = o.mission;
-  else if (fs::is_regular_file("config/mission.yaml")) mission_source = "config/mission.yaml";
+  if (!o.mission.empty())
+    mission_source = o.mission;
+  else if (fs::is_regular_file("config/mission.yaml"))
+    mission_source = "config/mission.yaml";
   UavMissionOptions uav_mission;
   std::set<std::string> uav_mission_given;
   if (mission_source != "(built-in defaults)") {
@@ -99,7 +101,8 @@ void run(const Options& o) {
   text += "# backends: which implementation each hardware interface runs on (sim or hw)\n";
   text += "backends:\n" + indent(robot_backends_to_yaml(backends));
   const bool search_area_given = uav_mission_given.count("search_area_m") > 0;
-  text += std::string("# the UAV mission's settings (the mission YAML's uav section takes these keys)") +
+  text += std::string(
+              "# the UAV mission's settings (the mission YAML's uav section takes these keys)") +
           (search_area_given ? "" : "; the search area is the world's bounds less 1 m") + "\n";
   YAML::Emitter uav_yaml;
   uav_yaml << YAML::BeginMap;

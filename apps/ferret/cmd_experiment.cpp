@@ -32,7 +32,8 @@ struct Options {
   std::string config, out, shard = "0/1", plot_script;
   int jobs = 1;
   bool no_plots = false, quiet = false;
-  std::string planner = "grid";  // FrontierPlanner: "ompl" runs cdos and rapid as cdos+ompl, rapid+ompl
+  std::string planner =
+      "grid";  // FrontierPlanner: "ompl" runs cdos and rapid as cdos+ompl, rapid+ompl
 };
 
 std::pair<int, int> parse_shard(const std::string& text) {

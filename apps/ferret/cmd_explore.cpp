@@ -21,11 +21,11 @@
 #include "command.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/mission/ugv_mission_run.hpp"
-#include "ferret/planning/planning_world.hpp"
-#include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/search_robot.hpp"
 #include "ferret/urdf/mission_config.hpp"
@@ -46,13 +46,12 @@ struct Options {
   std::string candidates = "fv";
   bool closest_approach = false;
   std::string planner =
-      "grid";  // "ompl": the frontier valid-state sampler with PRM (docs/planning.md)
+      "grid";             // "ompl": the frontier valid-state sampler with PRM (docs/planning.md)
   bool retrieve = false;  // the miniUGV's whole mission (ugv/mini_ugv_mission.hpp)
 };
 
 void check_positive(double value, const char* option) {
-  if (!(value > 0))
-    throw InputError(option, "", "a number > 0", std::to_string(value));
+  if (!(value > 0)) throw InputError(option, "", "a number > 0", std::to_string(value));
 }
 
 // --retrieve: search, servo, grasp, return, wait for the winch; the transitions print
@@ -105,17 +104,17 @@ void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& sta
   j["seed"] = o.seed;
   j["start"] = {start.x_m, start.y_m, start.yaw_rad};
   j["object"] = object ? nlohmann::json{object->x(), object->y()} : nlohmann::json();
-  j["result"] = {{"outcome", to_string(r.outcome)},
-                 {"final_state", to_string(r.final_state)},
-                 {"time_s", r.time_s},
-                 {"path_m", r.path_m},
-                 {"battery_left", r.battery_left},
-                 {"grasp_attempts", r.grasp_attempts},
-                 {"decisions", r.decisions},
-                 {"tether_max_m", r.max_tether_m},
-                 {"tether_max_in", to_string(r.max_tether_state)},
-                 {"found_at", r.found_W ? nlohmann::json{r.found_W->x(), r.found_W->y()}
-                                        : nlohmann::json()}};
+  j["result"] = {
+      {"outcome", to_string(r.outcome)},
+      {"final_state", to_string(r.final_state)},
+      {"time_s", r.time_s},
+      {"path_m", r.path_m},
+      {"battery_left", r.battery_left},
+      {"grasp_attempts", r.grasp_attempts},
+      {"decisions", r.decisions},
+      {"tether_max_m", r.max_tether_m},
+      {"tether_max_in", to_string(r.max_tether_state)},
+      {"found_at", r.found_W ? nlohmann::json{r.found_W->x(), r.found_W->y()} : nlohmann::json()}};
   auto& transitions = j["transitions"] = nlohmann::json::array();
   for (const auto& t : r.transitions)
     transitions.push_back({{"t_s", t.t_s}, {"from", t.from}, {"to", t.to}, {"reason", t.reason}});
@@ -156,8 +155,7 @@ void run(const Options& o) {
   for (const auto& [v, name] :
        {std::pair{o.camera_fov_deg, "--camera-fov-deg"}, {o.ir_fov_deg, "--ir-fov-deg"}})
     if (v && *v >= 360)
-      throw InputError(name, "", "a field of view below 360 degrees",
-                       std::to_string(*v));
+      throw InputError(name, "", "a field of view below 360 degrees", std::to_string(*v));
 
   // The output directory is checked before the search runs.
   if (!o.out.empty()) (void)check_output_target(o.out, OutputKind::kDirectory, "--out");
@@ -167,8 +165,7 @@ void run(const Options& o) {
   if (!map.is_free(map.geometry.cell_at(start.x_m, start.y_m)))
     throw InputError("--start", "", "a position on a free cell of " + o.map, o.start);
   if (!no_object && !map.is_free(map.geometry.cell_at(object.x(), object.y())))
-    throw InputError("--object", "", "a position on a free cell of " + o.map,
-                     o.object);
+    throw InputError("--object", "", "a position on a free cell of " + o.map, o.object);
 
   const MissionConfig mission = load_mission_or_defaults(o.mission);
   std::optional<RobotDescription> robot;
@@ -267,7 +264,8 @@ const CommandRegistration kExplore{
       sub->add_option("--object", o->object, "Object position x,y (m)")->required();
       std::string methods;
       for (const auto& n : exploration_policy_names()) methods += (methods.empty() ? "" : ", ") + n;
-      sub->add_option("--method", o->method, "one of " + methods + " (--list-methods)")->capture_default_str();
+      sub->add_option("--method", o->method, "one of " + methods + " (--list-methods)")
+          ->capture_default_str();
       // Before the required options are checked, so it needs none.
       sub->add_flag_callback(
           "--list-methods",

@@ -38,15 +38,17 @@ struct Options {
 
 void serve(const Options& o) {
   const link::Ipv4Address address = link::parse_ipv4_address(o.listen, "--listen", "", true);
-  if (o.clients < 0) throw InputError("--clients", "", "a count >= 0 (0: serve until interrupted)",
-                                      std::to_string(o.clients));
+  if (o.clients < 0)
+    throw InputError("--clients", "", "a count >= 0 (0: serve until interrupted)",
+                     std::to_string(o.clients));
   const MissionConfig mission = load_mission_or_defaults(o.mission);
   const RobotDescription uav = load_robot_description(resolve_robot(o.robot, "m100.urdf"), mission);
   const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
-  const PlanningWorld world =
-      load_planning_world(o.world.empty() ? data_path("worlds/default.yaml") : std::filesystem::path(o.world));
+  const PlanningWorld world = load_planning_world(o.world.empty() ? data_path("worlds/default.yaml")
+                                                                  : std::filesystem::path(o.world));
   if (!world.spec)
-    throw InputError(world.source.string(), "", "a world YAML (an OctoMap file has no home or hidden spaces)");
+    throw InputError(world.source.string(), "",
+                     "a world YAML (an OctoMap file has no home or hidden spaces)");
   const MissionRunSettings settings = mission_settings_for(uav, ugv, mission, *world.spec);
   link::MessageListener listener(address, "--listen", "");
   SimFlightAdapter adapter(world, uav, settings, o.seed);
@@ -60,17 +62,20 @@ void serve(const Options& o) {
       adapter.serve_in_real_time(*stream, [] { return true; });
     else
       adapter.serve(*stream, [] { return true; });
-    std::fprintf(stderr, "flight adapter: client %s left at t = %.2f s\n", stream->peer().c_str(), adapter.now_s());
+    std::fprintf(stderr, "flight adapter: client %s left at t = %.2f s\n", stream->peer().c_str(),
+                 adapter.now_s());
     ++served;
   }
 }
 
 void check(const Options& o) {
   const link::Ipv4Address address = link::parse_ipv4_address(o.adapter, "--adapter");
-  if (o.timeout_ms <= 0) throw InputError("--timeout-ms", "", "a reply timeout > 0", std::to_string(o.timeout_ms));
+  if (o.timeout_ms <= 0)
+    throw InputError("--timeout-ms", "", "a reply timeout > 0", std::to_string(o.timeout_ms));
   std::unique_ptr<link::StreamRpcChannel> channel;
   try {
-    channel = std::make_unique<link::StreamRpcChannel>(link::MessageStream::connect(address, 2.0), o.timeout_ms);
+    channel = std::make_unique<link::StreamRpcChannel>(link::MessageStream::connect(address, 2.0),
+                                                       o.timeout_ms);
   } catch (const link::StreamError& e) {
     throw CheckFailed(std::string("no flight adapter: ") + e.what());
   }
@@ -87,7 +92,8 @@ void check(const Options& o) {
 const CommandRegistration kFlightAdapter{
     "flight-adapter", [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      auto* cmd = app.add_subcommand("flight-adapter", "Serve or check the flight adapter protocol");
+      auto* cmd =
+          app.add_subcommand("flight-adapter", "Serve or check the flight adapter protocol");
       cmd->require_subcommand(1);
       auto* s = cmd->add_subcommand("serve", "Serve the reference adapter over the simulated M100");
       s->add_option("--listen", o->listen, "Address:port to listen on (port 0: any free one)")
@@ -96,15 +102,19 @@ const CommandRegistration kFlightAdapter{
       s->add_option("--robot", o->robot, "The UAV's URDF (default: the shipped m100)");
       s->add_option("--mission", o->mission, "Mission YAML (default: the built-in defaults)");
       add_seed_option(s, o->seed, "simulated cameras");
-      s->add_option("--clients", o->clients, "Clients to serve one after another, then exit (0: until interrupted)")
+      s->add_option("--clients", o->clients,
+                    "Clients to serve one after another, then exit (0: until interrupted)")
           ->capture_default_str();
       s->add_flag("--real-time", o->real_time,
-                  "The vehicle moves by itself in wall time, as a real one (for ferret uav on hw backends); "
+                  "The vehicle moves by itself in wall time, as a real one (for ferret uav on hw "
+                  "backends); "
                   "without it, only sim_advance moves it");
       s->callback([o] { serve(*o); });
-      auto* c = cmd->add_subcommand("check", "Ground checks of an adapter: hello, state, frames, refusals");
+      auto* c = cmd->add_subcommand("check",
+                                    "Ground checks of an adapter: hello, state, frames, refusals");
       c->add_option("--adapter", o->adapter, "The adapter's address:port")->required();
-      c->add_option("--timeout-ms", o->timeout_ms, "Reply timeout, milliseconds")->capture_default_str();
+      c->add_option("--timeout-ms", o->timeout_ms, "Reply timeout, milliseconds")
+          ->capture_default_str();
       c->callback([o] { check(*o); });
     }};
 

@@ -32,7 +32,8 @@ struct Common {
 };
 
 void add_common(CLI::App* sub, Common& c, const char* default_model) {
-  add_world_option(sub, c.world, true, "world YAML, map_server YAML (a 2D hidden space), .bt or .ot");
+  add_world_option(sub, c.world, true,
+                   "world YAML, map_server YAML (a 2D hidden space), .bt or .ot");
   add_out_option(sub, c.out, "plan JSON to write");
   add_mission_option(sub, c.mission);
   add_robot_option(

@@ -84,8 +84,10 @@ void run(const RenderArgs& a) {
       return MapCanvas(map, a.render);
     } catch (const InputError& e) {
       // The renderer names its own fields; the user gave them as options.
-      if (e.field() == "grid_spacing_m") throw InputError("--grid", "", e.expected(), fmt::format("{:g}", a.render.grid_spacing_m));
-      if (e.field() == "pixels_per_cell") throw InputError("--scale", "", e.expected(), std::to_string(a.render.pixels_per_cell));
+      if (e.field() == "grid_spacing_m")
+        throw InputError("--grid", "", e.expected(), fmt::format("{:g}", a.render.grid_spacing_m));
+      if (e.field() == "pixels_per_cell")
+        throw InputError("--scale", "", e.expected(), std::to_string(a.render.pixels_per_cell));
       throw;
     }
   }();

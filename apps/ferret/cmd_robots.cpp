@@ -1,8 +1,10 @@
 // One process a robot (docs/robots.md, "One process a robot"):
-//   ferret sim-world [--world W] [--mission M] [--seed N] [--listen ADDR] [--link-loss F --link-reorder F]
+//   ferret sim-world [--world W] [--mission M] [--seed N] [--listen ADDR] [--link-loss F
+//   --link-reorder F]
 //       the simulated world, serving both robots' hardware and the link between them
-//   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A --duration-s S]
-//   ferret ugv [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A --duration-s S]
+//   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A
+//   --duration-s S] ferret ugv [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind
+//   A --link-peer A --duration-s S]
 //       the UAV's and the miniUGV's mission controllers, each in its process
 //       (mission/robot_processes.hpp)
 
@@ -41,54 +43,69 @@ void add_common(CLI::App* sub, Options& o) {
   sub->add_flag("-q,--quiet", o.quiet, "Print the summary only");
 }
 
-void add_robot_options(CLI::App* sub, Options& o, const std::string& own_port, const std::string& peer_default) {
-  sub->add_option("--sim-world", o.address, "With sim backends: the ferret sim-world's address:port")
+void add_robot_options(CLI::App* sub, Options& o, const std::string& own_port,
+                       const std::string& peer_default) {
+  sub->add_option("--sim-world", o.address,
+                  "With sim backends: the ferret sim-world's address:port")
       ->capture_default_str();
   sub->add_option("--link-bind", o.link_bind,
-                  "With hw backends: this robot's robot-link address:port (default: 127.0.0.1:" + own_port + ")");
-  sub->add_option("--link-peer", o.link_peer, "With hw backends: the other robot's address:port (default: " +
-                                                  peer_default + ")");
-  sub->add_option("--duration-s", o.duration_s,
-                  "With hw backends: stop after this many seconds (default: when done, or at SIGINT/SIGTERM)");
+                  "With hw backends: this robot's robot-link address:port (default: 127.0.0.1:" +
+                      own_port + ")");
+  sub->add_option(
+      "--link-peer", o.link_peer,
+      "With hw backends: the other robot's address:port (default: " + peer_default + ")");
+  sub->add_option(
+      "--duration-s", o.duration_s,
+      "With hw backends: stop after this many seconds (default: when done, or at SIGINT/SIGTERM)");
 }
 
 }  // namespace
 
-const CommandRegistration kSimWorld{"sim-world", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("sim-world", "Serve the simulated world to a ferret uav and a ferret ugv process");
-  add_common(sub, *o);
-  sub->add_option("--listen", o->address, "Address:port to listen on (port 0: any free one)")->capture_default_str();
-  sub->add_option("--link-loss", o->link_loss, "The fraction of the robot link's datagrams lost, each way (default: 0)");
-  sub->add_option("--link-reorder", o->link_reorder,
-                  "The fraction of the robot link's datagrams held back past later ones, each way (default: 0)");
-  sub->add_flag("--render-every-frame", o->render_every_frame,
-                "Render every marker frame, also those no marker's quad lies in (docs/mission.md)");
-  sub->callback([o] { failing_on_stream_errors(run_sim_world_process, *o); });
-}};
+const CommandRegistration kSimWorld{
+    "sim-world", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      auto* sub = app.add_subcommand(
+          "sim-world", "Serve the simulated world to a ferret uav and a ferret ugv process");
+      add_common(sub, *o);
+      sub->add_option("--listen", o->address, "Address:port to listen on (port 0: any free one)")
+          ->capture_default_str();
+      sub->add_option("--link-loss", o->link_loss,
+                      "The fraction of the robot link's datagrams lost, each way (default: 0)");
+      sub->add_option("--link-reorder", o->link_reorder,
+                      "The fraction of the robot link's datagrams held back past later ones, each "
+                      "way (default: 0)");
+      sub->add_flag(
+          "--render-every-frame", o->render_every_frame,
+          "Render every marker frame, also those no marker's quad lies in (docs/mission.md)");
+      sub->callback([o] { failing_on_stream_errors(run_sim_world_process, *o); });
+    }};
 
-const CommandRegistration kUav{"uav", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand(
-      "uav", "Run the UAV's mission controller: on its hardware (hw backends) or against ferret sim-world (sim)");
-  add_common(sub, *o);
-  add_robot_options(sub, *o, "47810", "the miniUGV's, 127.0.0.1:47811");
-  sub->callback([o, sub] {
-    o->sim_world_given = sub->count("--sim-world") > 0;
-    failing_on_stream_errors(run_uav_process, *o);
-  });
-}};
+const CommandRegistration kUav{
+    "uav", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      auto* sub = app.add_subcommand("uav",
+                                     "Run the UAV's mission controller: on its hardware (hw "
+                                     "backends) or against ferret sim-world (sim)");
+      add_common(sub, *o);
+      add_robot_options(sub, *o, "47810", "the miniUGV's, 127.0.0.1:47811");
+      sub->callback([o, sub] {
+        o->sim_world_given = sub->count("--sim-world") > 0;
+        failing_on_stream_errors(run_uav_process, *o);
+      });
+    }};
 
 const CommandRegistration kUgv{"ugv", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand(
-      "ugv", "Run the miniUGV's mission controller: on its hardware (hw backend) or against ferret sim-world (sim)");
-  add_common(sub, *o);
-  add_robot_options(sub, *o, "47811", "the UAV's, 127.0.0.1:47810");
-  sub->callback([o, sub] {
-    o->sim_world_given = sub->count("--sim-world") > 0;
-    failing_on_stream_errors(run_ugv_process, *o);
-  });
-}};
+                                 auto o = std::make_shared<Options>();
+                                 auto* sub = app.add_subcommand(
+                                     "ugv",
+                                     "Run the miniUGV's mission controller: on its hardware (hw "
+                                     "backend) or against ferret sim-world (sim)");
+                                 add_common(sub, *o);
+                                 add_robot_options(sub, *o, "47811", "the UAV's, 127.0.0.1:47810");
+                                 sub->callback([o, sub] {
+                                   o->sim_world_given = sub->count("--sim-world") > 0;
+                                   failing_on_stream_errors(run_ugv_process, *o);
+                                 });
+                               }};
 
 }  // namespace ferret::cli

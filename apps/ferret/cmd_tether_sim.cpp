@@ -36,11 +36,9 @@ void run(const Options& o) {
   tether::tether_controllers().check(o.controller, "--controller");
   const fs::path out = checked_out_dir(o.out, "the output directory");
   if (o.horizon && (*o.horizon < 2 || *o.horizon > 200))
-    throw InputError("--horizon", "", "an integer in [2, 200]",
-                     std::to_string(*o.horizon));
+    throw InputError("--horizon", "", "an integer in [2, 200]", std::to_string(*o.horizon));
   if (o.latency_s && !(*o.latency_s >= 0.0 && *o.latency_s <= 1.0))
-    throw InputError("--latency", "", "seconds in [0, 1]",
-                     std::to_string(*o.latency_s));
+    throw InputError("--latency", "", "seconds in [0, 1]", std::to_string(*o.latency_s));
   // All input is read and checked before anything is written.
   const MissionConfig mission = load_mission_or_defaults(o.mission);
   const sim::TetherScenario scenario = o.trajectory.empty()
@@ -67,8 +65,9 @@ void run(const Options& o) {
   const auto& c = options.control;
   std::printf("scenario: %s\ncontroller: %s\nseed: %llu\nduration_s: %.2f\n", r.scenario.c_str(),
               r.controller.c_str(), static_cast<unsigned long long>(o.seed), m.duration_s);
-  std::printf("slack_rms_m: %.5f\nreachable_slack_rms_m: %.5f\nmax_slack_m: %.5f\nmin_slack_m: %.5f\n",
-              m.slack_rms_m, m.reachable_slack_rms_m, m.max_slack_m, m.min_slack_m);
+  std::printf(
+      "slack_rms_m: %.5f\nreachable_slack_rms_m: %.5f\nmax_slack_m: %.5f\nmin_slack_m: %.5f\n",
+      m.slack_rms_m, m.reachable_slack_rms_m, m.max_slack_m, m.min_slack_m);
   std::printf(
       "over_tension_events: %d\nover_tension_time_s: %.3f\nmax_tension_n: %.2f (limit %.1f)\n",
       m.over_tension_events, m.over_tension_time_s, m.max_tension_n,

@@ -64,7 +64,8 @@ const CommandRegistration kValidate{
       auto* cmd = app.add_subcommand(
           "validate",
           "Check a plan (plan JSON, JSON of states, or CSV t,x,y,z,yaw) against a world");
-      add_world_option(cmd, args->world, true, "world YAML, map_server YAML (a 2D hidden space), .bt or .ot");
+      add_world_option(cmd, args->world, true,
+                       "world YAML, map_server YAML (a 2D hidden space), .bt or .ot");
       cmd->add_option("--plan", args->plan,
                       "plan: ferret plan JSON, a JSON {\"states\": [...]}, or a CSV with a "
                       "header naming t,x,y,z,yaw (docs/planning.md)")

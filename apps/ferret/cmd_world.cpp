@@ -166,21 +166,24 @@ void add_generate_hidden(CLI::App& world) {
     HiddenSpaceGeneratorOptions options;
   };
   auto args = std::make_shared<Args>();
-  auto* gen = world.add_subcommand(
-      "generate-hidden",
-      "Write a generated hidden space (map_server YAML + PGM) with the object search's start and zones");
+  auto* gen = world.add_subcommand("generate-hidden",
+                                   "Write a generated hidden space (map_server YAML + PGM) with "
+                                   "the object search's start and zones");
   add_seed_option(gen, args->options.seed, "seed of the layout");
-  gen->add_option("--size", args->size, "width (along the start's heading), height in metres: [8, 64] x [5, 64]")
+  gen->add_option("--size", args->size,
+                  "width (along the start's heading), height in metres: [8, 64] x [5, 64]")
       ->expected(2)
       ->delimiter(',')
       ->capture_default_str();
   gen->add_option("--clutter", args->clutter, "sparse or dense")->capture_default_str();
-  gen->add_option("--resolution", args->options.resolution_m, "cell size, metres")->capture_default_str();
+  gen->add_option("--resolution", args->options.resolution_m, "cell size, metres")
+      ->capture_default_str();
   add_out_option(gen, args->output, "output map_server YAML (the PGM is written beside it)");
   gen->callback([args] {
     (void)checked_out_file(args->output, "an output map_server YAML");
     require_extension(args->output, {".yaml"}, "an output path ending in .yaml");
-    (void)checked_out_file(fs::path(args->output).replace_extension(".pgm").string(), "the PGM beside the YAML");
+    (void)checked_out_file(fs::path(args->output).replace_extension(".pgm").string(),
+                           "the PGM beside the YAML");
     const auto clutter = parse_hidden_space_clutter(args->clutter);
     if (!clutter) throw InputError("--clutter", "", "sparse or dense", args->clutter);
     HiddenSpaceGeneratorOptions o = args->options;
@@ -198,8 +201,9 @@ void add_generate_hidden(CLI::App& world) {
 }
 
 void setup(CLI::App& app) {
-  auto* world = app.add_subcommand(
-      "world", "Build 3D worlds (OctoMap) from YAML, slice them to 2D, summarise them, generate hidden spaces");
+  auto* world = app.add_subcommand("world",
+                                   "Build 3D worlds (OctoMap) from YAML, slice them to 2D, "
+                                   "summarise them, generate hidden spaces");
   world->require_subcommand(1);
   add_build(*world);
   add_slice(*world);

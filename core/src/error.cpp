@@ -11,13 +11,20 @@ std::size_t utf8_length(const unsigned char* s, std::size_t n, std::size_t i) {
   const unsigned char c = s[i];
   std::size_t len = 0;
   unsigned char lo = 0x80, hi = 0xbf;  // allowed range of the second byte
-  if (c >= 0xc2 && c <= 0xdf) len = 2;
-  else if (c == 0xe0) len = 3, lo = 0xa0;
-  else if (c == 0xed) len = 3, hi = 0x9f;
-  else if (c >= 0xe1 && c <= 0xef) len = 3;
-  else if (c == 0xf0) len = 4, lo = 0x90;
-  else if (c == 0xf4) len = 4, hi = 0x8f;
-  else if (c >= 0xf1 && c <= 0xf3) len = 4;
+  if (c >= 0xc2 && c <= 0xdf)
+    len = 2;
+  else if (c == 0xe0)
+    len = 3, lo = 0xa0;
+  else if (c == 0xed)
+    len = 3, hi = 0x9f;
+  else if (c >= 0xe1 && c <= 0xef)
+    len = 3;
+  else if (c == 0xf0)
+    len = 4, lo = 0x90;
+  else if (c == 0xf4)
+    len = 4, hi = 0x8f;
+  else if (c >= 0xf1 && c <= 0xf3)
+    len = 4;
   if (len == 0 || i + len > n || s[i + 1] < lo || s[i + 1] > hi) return 0;
   for (std::size_t k = 2; k < len; ++k)
     if ((s[i + k] & 0xc0) != 0x80) return 0;

@@ -13,8 +13,9 @@ using nlohmann::json;
 
 // JSON Schemas of the Foxglove message types this log writes (the subset of fields
 // it fills; Foxglove recognises the type by the schema's name).
-const json kTime = {{"type", "object"},
-                    {"properties", {{"sec", {{"type", "integer"}}}, {"nsec", {{"type", "integer"}}}}}};
+const json kTime = {
+    {"type", "object"},
+    {"properties", {{"sec", {{"type", "integer"}}}, {"nsec", {{"type", "integer"}}}}}};
 const json kVector3 = {
     {"type", "object"},
     {"properties",
@@ -257,8 +258,12 @@ void FoxgloveLog::marker(double t_s, const std::string& topic, const std::string
 }
 
 void FoxgloveLog::log(double t_s, const std::string& name, const std::string& text, int level) {
-  const json m = {{"timestamp", stamp(t_s)}, {"level", level}, {"message", text},
-                  {"name", name},            {"file", ""},     {"line", 0}};
+  const json m = {{"timestamp", stamp(t_s)},
+                  {"level", level},
+                  {"message", text},
+                  {"name", name},
+                  {"file", ""},
+                  {"line", 0}};
   writer_->add_message(channel("/log", "foxglove.Log"), to_nanoseconds(t_s), m.dump());
 }
 

@@ -11,7 +11,8 @@ namespace {
 // outside counts as set for the min, unset for the max). On 0/1 masks both are counts
 // over a sliding window: the min is set when every in-grid cell of it is, the max when
 // any is. O(1) a cell whatever r (a decision cycle opens the whole map).
-std::vector<std::uint8_t> filter(const std::vector<std::uint8_t>& in, int w, int h, int r, bool erode) {
+std::vector<std::uint8_t> filter(const std::vector<std::uint8_t>& in, int w, int h, int r,
+                                 bool erode) {
   std::vector<std::uint8_t> rows(in.size()), out(in.size());
   const auto at = [w](int i, int j) { return static_cast<std::size_t>(j) * w + i; };
   const auto decide = [erode](int count, int cells) -> std::uint8_t {
@@ -42,16 +43,19 @@ std::vector<std::uint8_t> filter(const std::vector<std::uint8_t>& in, int w, int
 
 }  // namespace
 
-std::vector<std::uint8_t> open_square(const std::vector<std::uint8_t>& mask, int width, int height, int r) {
+std::vector<std::uint8_t> open_square(const std::vector<std::uint8_t>& mask, int width, int height,
+                                      int r) {
   std::vector<std::uint8_t> unit(mask.size());
   for (std::size_t i = 0; i < mask.size(); ++i) unit[i] = mask[i] != 0;
-  std::vector<std::uint8_t> opened = filter(filter(unit, width, height, r, true), width, height, r, false);
+  std::vector<std::uint8_t> opened =
+      filter(filter(unit, width, height, r, true), width, height, r, false);
   for (std::size_t i = 0; i < opened.size(); ++i) opened[i] &= unit[i];
   return opened;
 }
 
-std::vector<std::uint8_t> grow_within(const std::vector<std::uint8_t>& seeds, const std::vector<std::uint8_t>& room,
-                                      int width, int height, double radius_cells) {
+std::vector<std::uint8_t> grow_within(const std::vector<std::uint8_t>& seeds,
+                                      const std::vector<std::uint8_t>& room, int width, int height,
+                                      double radius_cells) {
   // Breadth-first from every seed at once, each cell carrying the seed it came from;
   // a neighbour is taken when it is room and within the radius of that seed.
   std::vector<std::uint8_t> grown(room.size(), 0);

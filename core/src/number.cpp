@@ -1,8 +1,9 @@
 #include "ferret/core/number.hpp"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "ferret/core/error.hpp"
 
@@ -37,8 +38,8 @@ Parse parse_double(std::string_view text, double& value) {
   if (plus) t.remove_prefix(1);
   if (t.empty() || t.front() == '+' || t.front() == ' ' || (plus && t.front() == '-'))
     return Parse::kNotANumber;
-  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value,
-                                         std::chars_format::general);
+  const auto [end, ec] =
+      std::from_chars(t.data(), t.data() + t.size(), value, std::chars_format::general);
   if (ec == std::errc::result_out_of_range) {
     // from_chars reports 1e400 as out of range; 1e-400 (underflow) is a tiny number, fine.
     const auto e = t.find_first_of("eE");
@@ -75,7 +76,8 @@ std::string number_error(std::string_view text, const NumberRange& range) {
     case Parse::kNotANumber:
       return fmt::format("expected {} (got {})", range.describe(), got_text(text));
     case Parse::kNotFinite:
-      return fmt::format("expected {} (got {}, not finite)", range.describe(), got_text(trim(text)));
+      return fmt::format("expected {} (got {}, not finite)", range.describe(),
+                         got_text(trim(text)));
     case Parse::kOk:
       break;
   }

@@ -23,18 +23,21 @@ YAML::Node load_string(const std::string& text, const std::string& source) {
   // YAML is Unicode text; yaml-cpp passes other bytes through into keys and strings,
   // where they would reach messages and JSON outputs.
   if (const auto bad = first_invalid_utf8(text); bad != std::string::npos) {
-    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(bad), '\n');
+    const auto line =
+        1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(bad), '\n');
     const auto line_start = text.rfind('\n', bad == 0 ? 0 : bad - 1);
-    const auto column = bad - (line_start == std::string::npos || bad == 0 ? 0 : line_start + 1) + 1;
+    const auto column =
+        bad - (line_start == std::string::npos || bad == 0 ? 0 : line_start + 1) + 1;
     throw InputError(source, fmt::format("line {} column {}", line, column), "UTF-8 text",
                      fmt::format("the byte 0x{:02x}", static_cast<unsigned char>(text[bad])));
   }
   try {
     return YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw InputError(source, "line " + std::to_string(e.mark.line + 1) + " column " +
-                                 std::to_string(e.mark.column + 1),
-                     "valid YAML", e.msg);
+    throw InputError(
+        source,
+        "line " + std::to_string(e.mark.line + 1) + " column " + std::to_string(e.mark.column + 1),
+        "valid YAML", e.msg);
   }
 }
 
@@ -63,7 +66,8 @@ std::string MapReader::field_path(std::string_view key) const {
   return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
 }
 
-void MapReader::fail(std::string_view key, const std::string& expected, const std::string& got) const {
+void MapReader::fail(std::string_view key, const std::string& expected,
+                     const std::string& got) const {
   throw InputError(source_, field_path(key), expected, got);
 }
 
@@ -75,11 +79,13 @@ bool MapReader::given_empty(std::string_view key) const {
 double MapReader::get_in_range(std::string_view key, double lo, double hi) const {
   if (!has(key)) fail(key, "a number (required field missing)");
   const YAML::Node value = node_[std::string(key)];
-  if (!value.IsScalar()) fail(key, NumberRange::closed(lo, hi).describe(), internal::describe(value));
+  if (!value.IsScalar())
+    fail(key, NumberRange::closed(lo, hi).describe(), internal::describe(value));
   return parse_number(value.Scalar(), NumberRange::closed(lo, hi), source_, field_path(key));
 }
 
-double MapReader::get_in_range_or(std::string_view key, double lo, double hi, double fallback) const {
+double MapReader::get_in_range_or(std::string_view key, double lo, double hi,
+                                  double fallback) const {
   if (given_empty(key)) fail(key, NumberRange::closed(lo, hi).describe(), "a key without a value");
   return has(key) ? get_in_range(key, lo, hi) : fallback;
 }
@@ -123,7 +129,8 @@ void MapReader::allow_only(std::span<const std::string_view> allowed) const {
     if (!known) {
       std::string list;
       for (const auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      throw InputError(source_, field_path(key), "a known key (one of: " + list + ")", "unknown key");
+      throw InputError(source_, field_path(key), "a known key (one of: " + list + ")",
+                       "unknown key");
     }
   }
 }

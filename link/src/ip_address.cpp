@@ -19,7 +19,7 @@ std::string Ipv4Address::to_string() const {
 }
 
 Ipv4Address parse_ipv4_address(std::string_view text, const std::string& source,
-                             const std::string& field, bool allow_any_port) {
+                               const std::string& field, bool allow_any_port) {
   const auto bad = [&](std::string_view expected) {
     return InputError(source, field, std::string(expected), std::string(text));
   };

@@ -65,7 +65,9 @@ MessageStream MessageStream::connect(const Ipv4Address& address, double timeout_
   }
 }
 
-MessageStream::MessageStream(MessageStream&& o) noexcept : fd_(o.fd_), peer_(std::move(o.peer_)) { o.fd_ = -1; }
+MessageStream::MessageStream(MessageStream&& o) noexcept : fd_(o.fd_), peer_(std::move(o.peer_)) {
+  o.fd_ = -1;
+}
 MessageStream& MessageStream::operator=(MessageStream&& o) noexcept {
   if (this != &o) {
     if (fd_ >= 0) ::close(fd_);
@@ -126,8 +128,9 @@ std::optional<StreamMessage> MessageStream::receive(int timeout_ms) {
   read_exact(prefix, sizeof prefix);
   const std::uint32_t header_bytes = get_u32(prefix), blob_bytes = get_u32(prefix + 4);
   if (header_bytes > kMaxHeaderBytes || blob_bytes > kMaxBlobBytes)
-    throw StreamError(peer_ + " sent a frame beyond the limits (header " + std::to_string(header_bytes) +
-                      " B, blob " + std::to_string(blob_bytes) + " B): not a ferret stream?");
+    throw StreamError(peer_ + " sent a frame beyond the limits (header " +
+                      std::to_string(header_bytes) + " B, blob " + std::to_string(blob_bytes) +
+                      " B): not a ferret stream?");
   StreamMessage m;
   m.header.resize(header_bytes);
   read_exact(reinterpret_cast<std::uint8_t*>(m.header.data()), header_bytes);
@@ -143,7 +146,8 @@ MessageListener::MessageListener(const Ipv4Address& address, const std::string& 
   const int one = 1;
   (void)::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
   const sockaddr_in sa = to_sockaddr(address);
-  if (::bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 || ::listen(fd_, 4) != 0) {
+  if (::bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 ||
+      ::listen(fd_, 4) != 0) {
     const std::string why = errno_text();
     ::close(fd_);
     fd_ = -1;
@@ -155,7 +159,9 @@ MessageListener::MessageListener(const Ipv4Address& address, const std::string& 
   ::getsockname(fd_, reinterpret_cast<sockaddr*>(&bound), &len);
   port_ = ntohs(bound.sin_port);
 }
-MessageListener::MessageListener(MessageListener&& o) noexcept : fd_(o.fd_), port_(o.port_) { o.fd_ = -1; }
+MessageListener::MessageListener(MessageListener&& o) noexcept : fd_(o.fd_), port_(o.port_) {
+  o.fd_ = -1;
+}
 MessageListener& MessageListener::operator=(MessageListener&& o) noexcept {
   if (this != &o) {
     if (fd_ >= 0) ::close(fd_);
@@ -185,8 +191,8 @@ StreamMessage StreamRpcChannel::call(const std::string& request) {
   stream_.send(request);
   auto reply = stream_.receive(reply_timeout_ms_);
   if (!reply)
-    throw StreamError(stream_.peer() + " did not answer within " + std::to_string(reply_timeout_ms_) +
-                      " ms");
+    throw StreamError(stream_.peer() + " did not answer within " +
+                      std::to_string(reply_timeout_ms_) + " ms");
   return std::move(*reply);
 }
 
@@ -207,12 +213,15 @@ std::vector<std::vector<std::uint8_t>> unpack_datagrams(const std::vector<std::u
   while (at < blob.size()) {
     if (blob.size() - at < 4) throw StreamError("relayed datagrams: a length cut short");
     std::size_t n = 0;
-    for (int k = 0; k < 4; ++k) n |= static_cast<std::size_t>(blob[at + static_cast<std::size_t>(k)]) << (8 * k);
+    for (int k = 0; k < 4; ++k)
+      n |= static_cast<std::size_t>(blob[at + static_cast<std::size_t>(k)]) << (8 * k);
     at += 4;
     if (n > max_datagram_bytes || n > blob.size() - at)
       throw StreamError("relayed datagrams: a datagram of " + std::to_string(n) + " bytes where " +
-                        std::to_string(std::min(max_datagram_bytes, blob.size() - at)) + " remain allowed");
-    out.emplace_back(blob.begin() + static_cast<std::ptrdiff_t>(at), blob.begin() + static_cast<std::ptrdiff_t>(at + n));
+                        std::to_string(std::min(max_datagram_bytes, blob.size() - at)) +
+                        " remain allowed");
+    out.emplace_back(blob.begin() + static_cast<std::ptrdiff_t>(at),
+                     blob.begin() + static_cast<std::ptrdiff_t>(at + n));
     at += n;
   }
   return out;

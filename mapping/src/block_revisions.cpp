@@ -12,7 +12,8 @@ BlockRevisions::BlockRevisions(const GridGeometry& geometry, int block_cells)
       block_cells_(block_cells),
       blocks_x_(0),
       blocks_y_(0) {
-  if (block_cells < 1) throw std::invalid_argument("BlockRevisions: block_cells must be at least 1");
+  if (block_cells < 1)
+    throw std::invalid_argument("BlockRevisions: block_cells must be at least 1");
   blocks_x_ = (width_cells_ + block_cells_ - 1) / block_cells_;
   blocks_y_ = (height_cells_ + block_cells_ - 1) / block_cells_;
   blocks_.assign(static_cast<std::size_t>(blocks_x_) * static_cast<std::size_t>(blocks_y_), 0);
@@ -30,8 +31,8 @@ bool BlockRevisions::unchanged_since(std::uint64_t revision, Cell lo, Cell hi) c
   const int bj1 = std::clamp(hi.j, 0, height_cells_ - 1) / block_cells_;
   for (int bj = bj0; bj <= bj1; ++bj)
     for (int bi = bi0; bi <= bi1; ++bi)
-      if (blocks_[static_cast<std::size_t>(bj) * static_cast<std::size_t>(blocks_x_) + static_cast<std::size_t>(bi)] >
-          revision)
+      if (blocks_[static_cast<std::size_t>(bj) * static_cast<std::size_t>(blocks_x_) +
+                  static_cast<std::size_t>(bi)] > revision)
         return false;
   return true;
 }

@@ -214,10 +214,10 @@ MapCanvas::MapCanvas(const OccupancyMap2D& map, const RenderOptions& options)
     // Lines closer than 2 px are a solid fill, and a tiny spacing would loop for ever.
     const double min_step_m = 2.0 * g.resolution_m / s;
     if (!(std::isfinite(step) && step >= min_step_m))
-      throw InputError("render", "grid_spacing_m",
-                       fmt::format("a grid spacing of at least 2 pixels ({:g} m for this map)",
-                                   min_step_m),
-                       fmt::format("{:g} m", step));
+      throw InputError(
+          "render", "grid_spacing_m",
+          fmt::format("a grid spacing of at least 2 pixels ({:g} m for this map)", min_step_m),
+          fmt::format("{:g} m", step));
     const cv::Scalar grid_colour(200, 170, 140);
     for (double x = std::ceil(g.origin_x_m / step) * step; x <= g.origin_x_m + g.width_m();
          x += step) {

@@ -125,7 +125,8 @@ void ObjectMap::remember_viewpoint(std::size_t idx, const Pose2& X_WC, double ti
   last_x_[idx] = static_cast<float>(X_WC.x_m);
   last_y_[idx] = static_cast<float>(X_WC.y_m);
   last_yaw_[idx] = static_cast<float>(X_WC.yaw_rad);
-  if (!observed(idx)) revisions_.touch(idx);  // its mass in a search changes (unobserved to observed)
+  if (!observed(idx))
+    revisions_.touch(idx);  // its mass in a search changes (unobserved to observed)
   last_time_[idx] = static_cast<float>(time_s);
 }
 

@@ -1,6 +1,7 @@
 #include "ferret/mapping/occupancy_map_2d.hpp"
 
 #include <fmt/format.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +10,6 @@
 #include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <png.h>
 #include <sstream>
 
 #include "ferret/core/atomic_file.hpp"
@@ -36,7 +36,9 @@ std::string read_binary_file(const fs::path& path, const char* what) {
 }
 
 // Bytes of a header as a quoted, printable snippet (ferret::printable escapes them).
-std::string quoted_bytes(std::string_view bytes) { return fmt::format("'{}'", printable(bytes.substr(0, 16))); }
+std::string quoted_bytes(std::string_view bytes) {
+  return fmt::format("'{}'", printable(bytes.substr(0, 16)));
+}
 
 // Netpbm header/ASCII-raster tokenizer: whitespace and '#' comments separate
 // decimal numbers; every failure names the field being read.
@@ -107,8 +109,7 @@ GreyImage read_with_opencv(const std::string& data, const std::string& source) {
   if (img.depth() != CV_8U && img.depth() != CV_16U)
     throw InputError(source, "", "an 8- or 16-bit image", "another pixel depth");
   if (static_cast<std::uint64_t>(img.cols) * static_cast<std::uint64_t>(img.rows) > kMaxPixels)
-    throw InputError(source, "", fmt::format("at most {} pixels", kMaxPixels),
-                     "a larger image");
+    throw InputError(source, "", fmt::format("at most {} pixels", kMaxPixels), "a larger image");
   const int channels = img.channels();
   // Grey+alpha and BGRA: the alpha channel does not count towards the grey value.
   const int colour = (channels == 2 || channels == 4) ? channels - 1 : channels;
@@ -251,8 +252,8 @@ GreyImage parse_pgm(std::string bytes, const std::string& source) {
     }
     in.skip_space_and_comments();
     if (!in.at_end())
-      in.fail("pixels", fmt::format("{} x {} = {} samples and nothing after them", width, height,
-                                    samples),
+      in.fail("pixels",
+              fmt::format("{} x {} = {} samples and nothing after them", width, height, samples),
               "more samples");
   }
   return out;
@@ -337,10 +338,11 @@ OccupancyMap2D load_map_server(const fs::path& yaml_path) {
     throw InputError(yaml_path.string(), "image", "an existing image file", image_path.string());
   // A file called .pgm is read as PGM whatever it holds, so a broken one gets the PGM
   // reader's message naming the header field.
-  const GreyImage img = has_extension(image_path, ".pgm")
-                            ? read_pgm(image_path)
-                            : decode_map_image(read_binary_file(image_path, "a readable image file"),
-                                               image_path.string());
+  const GreyImage img =
+      has_extension(image_path, ".pgm")
+          ? read_pgm(image_path)
+          : decode_map_image(read_binary_file(image_path, "a readable image file"),
+                             image_path.string());
   return map_from_image(meta, img);
 }
 
@@ -381,7 +383,8 @@ bool is_map_server_yaml(const fs::path& path) {
   return false;
 }
 
-void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path, const std::string& extra_yaml) {
+void save_map_server(const OccupancyMap2D& map, const fs::path& yaml_path,
+                     const std::string& extra_yaml) {
   if (!has_extension(yaml_path, ".yaml"))
     throw InputError(yaml_path.string(), "", "an output path ending in .yaml");
   const GridGeometry& g = map.geometry;

@@ -356,14 +356,17 @@ std::unique_ptr<octomap::OcTree> build_world_octree(const WorldSpec& world,
   return tree;
 }
 
-std::unique_ptr<octomap::OcTree> extrude_map_2d(const OccupancyMap2D& map, const std::string& source,
+std::unique_ptr<octomap::OcTree> extrude_map_2d(const OccupancyMap2D& map,
+                                                const std::string& source,
                                                 const Map2DExtrusion& options) {
   const GridGeometry& g = map.geometry;
   const double res = g.resolution_m;
   if (!(std::isfinite(res) && res >= 0.001 && res <= 100.0))
-    throw InputError(source, "resolution", "metres per cell in [0.001, 100]", fmt::format("{}", res));
+    throw InputError(source, "resolution", "metres per cell in [0.001, 100]",
+                     fmt::format("{}", res));
   if (!(std::isfinite(options.height_m) && options.height_m > 0.0 && options.height_m <= 100.0))
-    throw InputError(source, "height_m", "a wall height in (0, 100] m", fmt::format("{}", options.height_m));
+    throw InputError(source, "height_m", "a wall height in (0, 100] m",
+                     fmt::format("{}", options.height_m));
   if (g.width < 1 || g.height < 1 || map.cells.size() != g.size())
     throw InputError(source, "", "a non-empty map whose cell count matches its geometry");
   if (!(std::isfinite(g.origin_x_m) && std::isfinite(g.origin_y_m)))
@@ -372,16 +375,19 @@ std::unique_ptr<octomap::OcTree> extrude_map_2d(const OccupancyMap2D& map, const
   const double ix = std::round(g.origin_x_m / res), iy = std::round(g.origin_y_m / res);
   const double reach = kKeyOffset - 1;
   if (ix < -reach || iy < -reach || ix + g.width > reach || iy + g.height > reach)
-    throw InputError(source, "origin",
-                     fmt::format("a map within OctoMap's key range, +-{:g} m at {:g} m cells", reach * res, res),
-                     fmt::format("[{:g}, {:g}] to [{:g}, {:g}]", g.origin_x_m, g.origin_y_m,
-                                 g.origin_x_m + g.width * res, g.origin_y_m + g.height * res));
+    throw InputError(
+        source, "origin",
+        fmt::format("a map within OctoMap's key range, +-{:g} m at {:g} m cells", reach * res, res),
+        fmt::format("[{:g}, {:g}] to [{:g}, {:g}]", g.origin_x_m, g.origin_y_m,
+                    g.origin_x_m + g.width * res, g.origin_y_m + g.height * res));
   const long layers = std::max(1L, static_cast<long>(std::ceil(options.height_m / res - 1e-9)));
   if (layers >= kKeyOffset) throw InputError(source, "height_m", "fewer than 2^15 voxel layers");
   const std::size_t known = map.count(CellState::kFree) + map.count(CellState::kOccupied);
-  if (static_cast<double>(known) * static_cast<double>(layers + 1) > static_cast<double>(options.max_voxels))
+  if (static_cast<double>(known) * static_cast<double>(layers + 1) >
+      static_cast<double>(options.max_voxels))
     throw InputError(source, "resolution",
-                     fmt::format("a map of at most {} voxels (known cells x {} layers)", options.max_voxels, layers + 1),
+                     fmt::format("a map of at most {} voxels (known cells x {} layers)",
+                                 options.max_voxels, layers + 1),
                      fmt::format("{} known cells", known));
   auto tree = std::make_unique<octomap::OcTree>(res);
   const float occupied = tree->getClampingThresMaxLog(), free = tree->getClampingThresMinLog();
@@ -432,8 +438,7 @@ std::unique_ptr<octomap::OcTree> parse_octree(const std::string& bytes, bool bin
   else
     tree->readData(in);
   if (tree->size() != h.size)
-    throw InputError(source, "data", fmt::format("{} nodes", h.size),
-                     std::to_string(tree->size()));
+    throw InputError(source, "data", fmt::format("{} nodes", h.size), std::to_string(tree->size()));
   return tree;
 }
 

@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <limits>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -18,13 +18,13 @@
 #include "ferret/core/foxglove_log.hpp"
 #include "ferret/core/output_set.hpp"
 #include "ferret/mapping/map_render.hpp"
-#include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/mapping/world_octree.hpp"
+#include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/sim/robot_backends.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/mission_run.hpp"
+#include "ferret/sim/robot_backends.hpp"
 #include "ferret/sim/search_robot.hpp"
 #include "ferret/sim/tether_sim.hpp"
 #include "ferret/sim/time_series_plot.hpp"
@@ -54,25 +54,26 @@ nlohmann::json report_json(std::uint64_t seed, const fs::path& world, const Miss
   if (!r.link_counters.empty()) j["link_counters"] = r.link_counters;
   j["outcome"] = to_string(r.outcome);
   j["time_s"] = r.time_s;
-  j["summary"] = {{"hidden_spaces_in_world", r.hidden_spaces_in_world},
-                  {"hidden_spaces_found", r.visits.size()},
-                  {"objects_in_world", r.objects_in_world},
-                  {"objects_retrieved", std::count_if(r.visits.begin(), r.visits.end(),
-                                                      [](const auto& v) { return v.object_retrieved; })},
-                  {"objects_dropped", r.objects_dropped},
-                  {"flown_m", r.flown_m},
-                  {"battery_left", r.battery_left},
-                  {"uav_collisions", r.uav_collisions},
-                  {"ugv_body_contacts", ugv_body_contacts(r)},
-                  {"tether_max_released_m", r.max_released_m},
-                  {"tether_required_over_length_steps", r.required_over_length},
-                  {"tether_over_tension_events", r.over_tension_events},
-                  {"tether_max_tension_n", r.max_tension_n},
-                  {"leg_spacing_m", r.leg_spacing_m},
-                  {"pattern_waypoints", r.pattern_waypoints},
-                  {"pattern_done", r.pattern_done},
-                  {"marker_frames", r.frames},
-                  {"marker_frames_rendered", r.marker_frames_rendered}};
+  j["summary"] = {
+      {"hidden_spaces_in_world", r.hidden_spaces_in_world},
+      {"hidden_spaces_found", r.visits.size()},
+      {"objects_in_world", r.objects_in_world},
+      {"objects_retrieved", std::count_if(r.visits.begin(), r.visits.end(),
+                                          [](const auto& v) { return v.object_retrieved; })},
+      {"objects_dropped", r.objects_dropped},
+      {"flown_m", r.flown_m},
+      {"battery_left", r.battery_left},
+      {"uav_collisions", r.uav_collisions},
+      {"ugv_body_contacts", ugv_body_contacts(r)},
+      {"tether_max_released_m", r.max_released_m},
+      {"tether_required_over_length_steps", r.required_over_length},
+      {"tether_over_tension_events", r.over_tension_events},
+      {"tether_max_tension_n", r.max_tension_n},
+      {"leg_spacing_m", r.leg_spacing_m},
+      {"pattern_waypoints", r.pattern_waypoints},
+      {"pattern_done", r.pattern_done},
+      {"marker_frames", r.frames},
+      {"marker_frames_rendered", r.marker_frames_rendered}};
   j["time_in_state_s"] = r.time_in_state;
   auto& visits = j["hidden_spaces"] = nlohmann::json::array();
   for (const HiddenSpaceVisit& v : r.visits) {
@@ -90,11 +91,13 @@ nlohmann::json report_json(std::uint64_t seed, const fs::path& world, const Miss
                         {"object_retrieved", v.object_retrieved},
                         {"object_dropped", v.object_dropped},
                         {"tether_max_released_m", v.max_released_m}};
-    e["landing_zone"] = v.landing_zone ? nlohmann::json{{"center_m", xyz(v.landing_zone->center_m)},
-                                                        {"slope_deg", v.landing_zone->slope_deg},
-                                                        {"clearance_m", v.landing_zone->clearance_m},
-                                                        {"distance_to_opening_m", v.landing_zone->distance_to_opening_m}}
-                                       : nlohmann::json();
+    e["landing_zone"] =
+        v.landing_zone
+            ? nlohmann::json{{"center_m", xyz(v.landing_zone->center_m)},
+                             {"slope_deg", v.landing_zone->slope_deg},
+                             {"clearance_m", v.landing_zone->clearance_m},
+                             {"distance_to_opening_m", v.landing_zone->distance_to_opening_m}}
+            : nlohmann::json();
     visits.push_back(e);
   }
   auto& deps = j["ugv_deployments"] = nlohmann::json::array();
@@ -117,13 +120,17 @@ nlohmann::json report_json(std::uint64_t seed, const fs::path& world, const Miss
   }
   auto& tr = j["transitions"] = nlohmann::json::array();
   for (const Transition& t : r.transitions)
-    tr.push_back({{"t_s", t.t_s}, {"component", t.component}, {"from", t.from}, {"to", t.to}, {"reason", t.reason}});
+    tr.push_back({{"t_s", t.t_s},
+                  {"component", t.component},
+                  {"from", t.from},
+                  {"to", t.to},
+                  {"reason", t.reason}});
   auto& samples = j["samples"] = nlohmann::json::array();  // every 0.5 s
   for (const MissionSample& s : r.samples)
-    samples.push_back({s.t_s, s.p_W.x(), s.p_W.y(), s.p_W.z(), s.yaw_rad, s.state, s.battery, s.released_m,
-                       s.required_m, s.tension_n, s.ugv_battery});
-  j["samples_columns"] = {"t_s", "x_m", "y_m", "z_m", "yaw_rad", "state", "battery", "released_m",
-                          "required_m", "tension_n", "ugv_battery"};
+    samples.push_back({s.t_s, s.p_W.x(), s.p_W.y(), s.p_W.z(), s.yaw_rad, s.state, s.battery,
+                       s.released_m, s.required_m, s.tension_n, s.ugv_battery});
+  j["samples_columns"] = {"t_s",     "x_m",        "y_m",        "z_m",       "yaw_rad",    "state",
+                          "battery", "released_m", "required_m", "tension_n", "ugv_battery"};
   return j;
 }
 
@@ -142,8 +149,10 @@ void write_aerial_png(const octomap::OcTree& tree, const WorldSpec& spec, const 
   for (const HiddenSpaceVisit& v : r.visits) {
     c.draw_marker(v.opening.p_WE.head<2>(), Rgb{230, 120, 0}, LegendMark::kDiamond, 7);
     c.draw_text(v.opening.p_WE.head<2>() + Eigen::Vector2d(0.8, 0.8),
-                fmt::format("#{} {}", v.marker_id, v.object_retrieved ? "object" : v.ugv_outcome), Rgb{120, 60, 0});
-    if (v.landing_zone) c.draw_marker(v.landing_zone->center_m.head<2>(), Rgb{0, 170, 0}, LegendMark::kSquare, 5);
+                fmt::format("#{} {}", v.marker_id, v.object_retrieved ? "object" : v.ugv_outcome),
+                Rgb{120, 60, 0});
+    if (v.landing_zone)
+      c.draw_marker(v.landing_zone->center_m.head<2>(), Rgb{0, 170, 0}, LegendMark::kSquare, 5);
   }
   c.add_legend("opening (from its marker)", Rgb{230, 120, 0}, LegendMark::kDiamond);
   c.add_legend("landing zone", Rgb{0, 170, 0}, LegendMark::kSquare);
@@ -151,14 +160,15 @@ void write_aerial_png(const octomap::OcTree& tree, const WorldSpec& spec, const 
     c.draw_circle(spec.drop_zone->center_m, spec.drop_zone->radius_m, Rgb{200, 0, 160});
     c.add_legend("drop zone", Rgb{200, 0, 160}, LegendMark::kRing);
   }
-  c.set_title(fmt::format("{}: {} in {:.0f} s, {:.0f} m flown, {} of {} hidden spaces found", spec.name,
-                          to_string(r.outcome), r.time_s, r.flown_m, r.visits.size(), r.hidden_spaces_in_world));
+  c.set_title(fmt::format("{}: {} in {:.0f} s, {:.0f} m flown, {} of {} hidden spaces found",
+                          spec.name, to_string(r.outcome), r.time_s, r.flown_m, r.visits.size(),
+                          r.hidden_spaces_in_world));
   c.save_png(path);
 }
 
 // The tether over the whole mission as the tether simulation's plot draws it.
-void write_tether_png(const MissionRunResult& r, const UavMissionOptions& uav, double total_length_m,
-                      const fs::path& path) {
+void write_tether_png(const MissionRunResult& r, const UavMissionOptions& uav,
+                      double total_length_m, const fs::path& path) {
   sim::TetherSimResult t;
   t.scenario = "mission";
   t.plot_title = "The mission's tether";
@@ -199,21 +209,25 @@ void write_tether_png(const MissionRunResult& r, const UavMissionOptions& uav, d
 
 // Both batteries over the mission: the UAV's with the reserve it keeps over the way home,
 // the miniUGV's while it works in a hidden space (a gap while it is aboard).
-void write_battery_png(const MissionRunResult& r, const UavMissionOptions& uav, const fs::path& path) {
+void write_battery_png(const MissionRunResult& r, const UavMissionOptions& uav,
+                       const fs::path& path) {
   sim::TimeSeriesPlot plot;
   plot.title = fmt::format("Batteries: the UAV's {:.0f} % left at the end", 100.0 * r.battery_left);
-  plot.subtitle = fmt::format("UAV endurance {:.0f} s, reserve {:.0f} % over the way home; {} miniUGV deployment(s)",
-                              uav.flight_endurance_s, 100.0 * uav.battery_reserve_fraction, r.deployments.size());
+  plot.subtitle = fmt::format(
+      "UAV endurance {:.0f} s, reserve {:.0f} % over the way home; {} miniUGV deployment(s)",
+      uav.flight_endurance_s, 100.0 * uav.battery_reserve_fraction, r.deployments.size());
   plot.y_label = "battery [%]";
   plot.y_min = 0.0;
   plot.y_max = 100.0;
   plot.levels.push_back({100.0 * uav.battery_reserve_fraction, "UAV reserve"});
-  sim::TimeSeries a{"UAV", {200, 90, 20}, {}, {}}, g{"miniUGV (while deployed)", {20, 140, 60}, {}, {}};
+  sim::TimeSeries a{"UAV", {200, 90, 20}, {}, {}},
+      g{"miniUGV (while deployed)", {20, 140, 60}, {}, {}};
   for (const MissionSample& s : r.samples) {
     a.t_s.push_back(s.t_s);
     a.y.push_back(100.0 * s.battery);
     g.t_s.push_back(s.t_s);
-    g.y.push_back(s.required_m > 0 ? 100.0 * s.ugv_battery : std::numeric_limits<double>::quiet_NaN());
+    g.y.push_back(s.required_m > 0 ? 100.0 * s.ugv_battery
+                                   : std::numeric_limits<double>::quiet_NaN());
   }
   plot.series = {a, g};
   if (!r.samples.empty()) sim::write_time_series_plot(plot, path);
@@ -224,7 +238,9 @@ void write_battery_png(const MissionRunResult& r, const UavMissionOptions& uav, 
 std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition>& transitions) {
   FoxgloveLog log;
   std::vector<std::pair<double, std::function<void()>>> queue;
-  const auto at = [&](double t_s, std::function<void()> write) { queue.emplace_back(t_s, std::move(write)); };
+  const auto at = [&](double t_s, std::function<void()> write) {
+    queue.emplace_back(t_s, std::move(write));
+  };
   const auto yawed = [](const Eigen::Vector3d& p, double yaw_rad) {
     Pose3 X = Pose3::Identity();
     X.translation() = p;
@@ -237,29 +253,36 @@ std::string mission_mcap(const MissionRunResult& r, const std::vector<Transition
     at(r.samples.back().t_s, [&] {
       std::vector<Eigen::Vector3d> flight;
       for (const MissionSample& s : r.samples) flight.push_back(s.p_W);
-      log.line(r.samples.back().t_s, "/uav/path", "world", "flight", flight, RgbaColor{0.1, 0.35, 0.9, 1.0});
+      log.line(r.samples.back().t_s, "/uav/path", "world", "flight", flight,
+               RgbaColor{0.1, 0.35, 0.9, 1.0});
     });
   for (const UgvDeployment& d : r.deployments) {
     const double t0 = d.deployed_s;
     for (std::size_t k = 0; k < d.result.trajectory.size(); k += 2) {
       const double t = t0 + 0.05 * static_cast<double>(k);
       const Pose2& p = d.result.trajectory[k];
-      at(t, [&log, t, &p, yawed] { log.transform(t, "world", "ugv", yawed({p.x_m, p.y_m, 0.03}, p.yaw_rad)); });
+      at(t, [&log, t, &p, yawed] {
+        log.transform(t, "world", "ugv", yawed({p.x_m, p.y_m, 0.03}, p.yaw_rad));
+      });
     }
     if (d.result.grid && d.result.objects)
       at(t0 + d.result.time_s, [&log, &d, t0] {
         log_search_maps(log, t0 + d.result.time_s, *d.result.grid, *d.result.objects,
-                        "/maps/" + (d.hidden_space.empty() ? std::string("none") : d.hidden_space), "world");
+                        "/maps/" + (d.hidden_space.empty() ? std::string("none") : d.hidden_space),
+                        "world");
       });
   }
   for (const HiddenSpaceVisit& v : r.visits)
     at(v.detected_s, [&log, &v] {
-      log.marker(v.detected_s, "/detections", "world", "opening_" + std::to_string(v.marker_id), v.opening.p_WE,
-                 0.3, {1.0, 0.5, 0.0, 1.0}, "marker " + std::to_string(v.marker_id));
+      log.marker(v.detected_s, "/detections", "world", "opening_" + std::to_string(v.marker_id),
+                 v.opening.p_WE, 0.3, {1.0, 0.5, 0.0, 1.0},
+                 "marker " + std::to_string(v.marker_id));
     });
   for (const Transition& t : transitions)
-    at(t.t_s, [&log, &t] { log.log(t.t_s, t.component, t.from + " -> " + t.to + " (" + t.reason + ")"); });
-  std::stable_sort(queue.begin(), queue.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    at(t.t_s,
+       [&log, &t] { log.log(t.t_s, t.component, t.from + " -> " + t.to + " (" + t.reason + ")"); });
+  std::stable_sort(queue.begin(), queue.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [t_s, write] : queue) write();
   return log.finish();
 }
@@ -274,17 +297,22 @@ int objects_retrieved(const MissionRunResult& r) {
 
 void print_mission_summary(const MissionRunResult& r) {
   const int retrieved = objects_retrieved(r);
-  std::printf("outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu of %d\nobjects_retrieved: %d of %d\n"
-              "objects_dropped: %d\nflown_m: %.1f\nbattery_left: %.3f\ntether_max_m: %.2f\n"
-              "tether_over_tension_events: %d\nuav_collisions: %d\nugv_body_contacts: %d\n",
-              std::string(to_string(r.outcome)).c_str(), r.time_s, r.visits.size(), r.hidden_spaces_in_world,
-              retrieved, r.objects_in_world, r.objects_dropped, r.flown_m, r.battery_left, r.max_released_m,
-              r.over_tension_events, r.uav_collisions, ugv_body_contacts(r));
+  std::printf(
+      "outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu of %d\nobjects_retrieved: %d of %d\n"
+      "objects_dropped: %d\nflown_m: %.1f\nbattery_left: %.3f\ntether_max_m: %.2f\n"
+      "tether_over_tension_events: %d\nuav_collisions: %d\nugv_body_contacts: %d\n",
+      std::string(to_string(r.outcome)).c_str(), r.time_s, r.visits.size(),
+      r.hidden_spaces_in_world, retrieved, r.objects_in_world, r.objects_dropped, r.flown_m,
+      r.battery_left, r.max_released_m, r.over_tension_events, r.uav_collisions,
+      ugv_body_contacts(r));
   for (const HiddenSpaceVisit& v : r.visits)
-    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, std::string(to_string(v.state)).c_str(),
+    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id,
+                std::string(to_string(v.state)).c_str(),
                 v.state == VisitState::kServiced ? (v.landed ? " (landed)" : " (hovered)") : "",
-                v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(), v.object_dropped ? ", object dropped" : "");
-  for (const auto& [state, n] : r.collisions_in) std::printf("  uav collision checks failed in %s: %d\n", state.c_str(), n);
+                v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(),
+                v.object_dropped ? ", object dropped" : "");
+  for (const auto& [state, n] : r.collisions_in)
+    std::printf("  uav collision checks failed in %s: %d\n", state.c_str(), n);
   if (r.uav_collisions > 0)
     std::printf("  first at (%.2f, %.2f, %.2f)\n", r.first_collision_W.x(), r.first_collision_W.y(),
                 r.first_collision_W.z());
@@ -292,21 +320,25 @@ void print_mission_summary(const MissionRunResult& r) {
   for (const auto& [state, t] : r.time_in_state) std::printf(" %s %.0f", state.c_str(), t);
   std::printf("\n");
   for (const UgvDeployment& d : r.deployments)
-    std::printf("  miniUGV in %s: %s in %.0f s, %.1f m driven, battery %.2f, %d body contacts (deepest %.3f m)\n",
-                d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(),
-                std::string(to_string(d.result.outcome)).c_str(), d.result.time_s, d.result.path_m,
-                d.result.battery_left, d.result.body_contacts, d.result.deepest_contact_m);
+    std::printf(
+        "  miniUGV in %s: %s in %.0f s, %.1f m driven, battery %.2f, %d body contacts (deepest "
+        "%.3f m)\n",
+        d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(),
+        std::string(to_string(d.result.outcome)).c_str(), d.result.time_s, d.result.path_m,
+        d.result.battery_left, d.result.body_contacts, d.result.deepest_contact_m);
   if (!r.link_counters.empty()) std::printf("link: %s\n", r.link_counters.c_str());
 }
 
-void write_mission_outputs(const fs::path& dir, const MissionOutputsInput& in, const MissionRunResult& r) {
+void write_mission_outputs(const fs::path& dir, const MissionOutputsInput& in,
+                           const MissionRunResult& r) {
   const PlanningWorld& world = in.world;
   const WorldSpec& spec = *world.spec;
   OutputSet files(dir, OutputKind::kDirectory);
   files.write_text("report.json", report_json(in.seed, in.world_path, r).dump(1) + "\n");
   files.write("aerial.png", [&](const fs::path& p) { write_aerial_png(*world.tree, spec, r, p); });
   files.write("battery.png", [&](const fs::path& p) { write_battery_png(r, in.uav, p); });
-  files.write("tether.png", [&](const fs::path& p) { write_tether_png(r, in.uav, in.tether_total_length_m, p); });
+  files.write("tether.png",
+              [&](const fs::path& p) { write_tether_png(r, in.uav, in.tether_total_length_m, p); });
   for (const UgvDeployment& d : r.deployments) {
     if (d.hidden_space.empty() || !d.result.grid) continue;
     EpisodeResult figure;
@@ -320,7 +352,8 @@ void write_mission_outputs(const fs::path& dir, const MissionOutputsInput& in, c
     figure.grid = d.result.grid;
     figure.objects = d.result.objects;
     const fs::path space_dir = files.path("spaces/" + d.hidden_space + "/G.png").parent_path();
-    write_exploration_images(d.truth, d.object_W.value_or(Eigen::Vector2d(-1e6, -1e6)), figure, space_dir,
+    write_exploration_images(d.truth, d.object_W.value_or(Eigen::Vector2d(-1e6, -1e6)), figure,
+                             space_dir,
                              fmt::format("{}: {}", d.hidden_space, to_string(d.result.outcome)));
   }
   files.write("map.bt", [&](const fs::path& p) { save_octree(*world.tree, p); });

@@ -65,8 +65,8 @@ class InProcessUgvLink final : public UgvLink {
     if (const auto a = m.explore_controller().tether_anchor()) {
       r.tether_anchor_W = a->first;
       r.tether_to_anchor_m = a->second;
-      r.tether_uncertainty_m =
-          std::max(0.0, m.explore_controller().reach_length_m() - m.explore_controller().tether_length_m());
+      r.tether_uncertainty_m = std::max(
+          0.0, m.explore_controller().reach_length_m() - m.explore_controller().tether_length_m());
     } else {
       r.tether_anchor_W = spaces_.entry_W();
     }
@@ -85,8 +85,8 @@ class InProcessUgvLink final : public UgvLink {
 // miniUGV from its telemetry, as it would from the robot.
 class SimLinkedUgv final : public UgvLink {
  public:
-  SimLinkedUgv(SimHiddenSpaces& spaces, const Clock& clock, const link::LossyChannelOptions& channel,
-               std::uint64_t seed)
+  SimLinkedUgv(SimHiddenSpaces& spaces, const Clock& clock,
+               const link::LossyChannelOptions& channel, std::uint64_t seed)
       : spaces_(spaces),
         uav_(clock),
         ugv_(clock, [this](const link::UavRequest&) { return set_down(); }),
@@ -100,7 +100,8 @@ class SimLinkedUgv final : public UgvLink {
   }
   void retracted() override {
     uav_.retracted();
-    if (const auto index = spaces_.lift()) pending_results_.emplace_back(uav_.last_request(), *index);
+    if (const auto index = spaces_.lift())
+      pending_results_.emplace_back(uav_.last_request(), *index);
   }
   void release_object() override {
     spaces_.release_object();
@@ -119,8 +120,10 @@ class SimLinkedUgv final : public UgvLink {
   bool receive() {
     for (const auto& d : up_.deliver()) ugv_.session().receive(d);
     const ImuReading& hanging = spaces_.touchdown();
-    if (spaces_.active()) ugv_.set_attitude(0.0, 0.0);
-    else ugv_.set_attitude(hanging.roll_rad, hanging.pitch_rad);
+    if (spaces_.active())
+      ugv_.set_attitude(0.0, 0.0);
+    else
+      ugv_.set_attitude(hanging.roll_rad, hanging.pitch_rad);
     const bool hold = ugv_.handle_requests();
     // A deployment's controller heard it was lifted out: its result is final now.
     std::erase_if(pending_results_, [&](const auto& p) {
@@ -138,11 +141,13 @@ class SimLinkedUgv final : public UgvLink {
     up_.send(uav_.session().take_outgoing());
   }
   [[nodiscard]] std::string summary() const {
-    return "UAV end: " + uav_.session().counters().summary() + "; miniUGV end: " + ugv_.session().counters().summary();
+    return "UAV end: " + uav_.session().counters().summary() +
+           "; miniUGV end: " + ugv_.session().counters().summary();
   }
 
  private:
-  static link::LossyChannelOptions seeded(link::LossyChannelOptions o, std::uint64_t seed, std::uint64_t way) {
+  static link::LossyChannelOptions seeded(link::LossyChannelOptions o, std::uint64_t seed,
+                                          std::uint64_t way) {
     o.seed = seed * 1000003u + way;
     return o;
   }
@@ -156,7 +161,8 @@ class SimLinkedUgv final : public UgvLink {
   LinkedUgv uav_;
   UgvLinkEndpoint ugv_;
   link::LossyChannel up_, down_;  // UAV -> miniUGV, miniUGV -> UAV
-  std::vector<std::pair<std::uint32_t, std::size_t>> pending_results_;  // (retracted request, deployment)
+  std::vector<std::pair<std::uint32_t, std::size_t>>
+      pending_results_;  // (retracted request, deployment)
 };
 
 }  // namespace
@@ -173,19 +179,22 @@ const UgvMissionSim* MissionSim::ugv() const { return impl_.world->spaces().acti
 double MissionSim::released_m() const { return impl_.world->winch().released_m(); }
 
 MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription& uav_robot,
-                             const MissionRunSettings& settings, std::uint64_t seed, TransitionLog* log) {
+                             const MissionRunSettings& settings, std::uint64_t seed,
+                             TransitionLog* log) {
   TransitionLog own_log;
   TransitionLog& transitions = log ? *log : own_log;
   internal::MissionWorld sim(world, uav_robot, settings, seed, transitions);
   const MissionAssembly assembly(world, uav_robot, settings, seed, "mission");
-  sim.spaces().set_ugv_controllers(MissionAssembly::ugv_controllers(sim.settings().ugv, sim.clock(), &transitions));
+  sim.spaces().set_ugv_controllers(
+      MissionAssembly::ugv_controllers(sim.settings().ugv, sim.clock(), &transitions));
   InProcessUgvLink in_process(sim.spaces());
   std::unique_ptr<SimLinkedUgv> linked;
   if (settings.link_channel)
-    linked = std::make_unique<SimLinkedUgv>(sim.spaces(), sim.clock(), *settings.link_channel, seed);
+    linked =
+        std::make_unique<SimLinkedUgv>(sim.spaces(), sim.clock(), *settings.link_channel, seed);
   UgvLink& link = linked ? static_cast<UgvLink&>(*linked) : in_process;
-  const std::unique_ptr<UavMission> uav = assembly.uav_mission({sim.flight(), sim.cameras(), sim.winch(), link},
-                                                               sim.clock(), &transitions);
+  const std::unique_ptr<UavMission> uav = assembly.uav_mission(
+      {sim.flight(), sim.cameras(), sim.winch(), link}, sim.clock(), &transitions);
   UavMission& mission = *uav;
   MissionSimImpl impl{&mission, &sim};
   const MissionSim view(impl);

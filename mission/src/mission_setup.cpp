@@ -43,18 +43,20 @@ MissionConfig load_mission_or_defaults(const std::string& path) {
   return mission;
 }
 
-void check_openings_admit(const WorldSpec& world, const std::string& source, const RobotDescription& ugv) {
+void check_openings_admit(const WorldSpec& world, const std::string& source,
+                          const RobotDescription& ugv) {
   // The miniUGV drives in along its x axis: its collision box's width (y) and height (z)
   // must pass the opening, or it would be lowered to a space it cannot enter.
   const Eigen::Vector3d size = ugv.bounding_box_B.sizes();
   for (std::size_t i = 0; i < world.hidden_spaces.size(); ++i) {
     const HiddenSpace& h = world.hidden_spaces[i];
     if (h.opening_width_m >= size.y() && h.opening_height_m >= size.z()) continue;
-    throw InputError(source, "hidden_spaces[" + std::to_string(i) + "].opening (" + h.name + ")",
-                     fmt::format("an opening the miniUGV passes through: at least {:.3f} m wide and {:.3f} m "
-                                 "high (the collision box of {})",
-                                 size.y(), size.z(), ugv.source),
-                     fmt::format("{:.3f} m wide, {:.3f} m high", h.opening_width_m, h.opening_height_m));
+    throw InputError(
+        source, "hidden_spaces[" + std::to_string(i) + "].opening (" + h.name + ")",
+        fmt::format("an opening the miniUGV passes through: at least {:.3f} m wide and {:.3f} m "
+                    "high (the collision box of {})",
+                    size.y(), size.z(), ugv.source),
+        fmt::format("{:.3f} m wide, {:.3f} m high", h.opening_width_m, h.opening_height_m));
   }
 }
 
@@ -64,21 +66,24 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   // The method with the frontier planner, or an InputError naming why not (the miniUGV's
   // ExploreController asks the same function).
   (void)exploration_policy_for(o.method, parse_frontier_planner(o.planner, "--planner"));
-  MissionSetup s{o.world.empty() ? data_path("worlds/default.yaml") : std::filesystem::path(o.world),
-                 load_mission_or_defaults(o.mission),
-                 {},
-                 {},
-                 {},
-                 {},
-                 {}};
+  MissionSetup s{
+      o.world.empty() ? data_path("worlds/default.yaml") : std::filesystem::path(o.world),
+      load_mission_or_defaults(o.mission),
+      {},
+      {},
+      {},
+      {},
+      {}};
   s.backends = o.mission.empty() ? RobotBackends{} : load_robot_backends(o.mission);
   s.uav = load_robot_description(resolve_robot(o.robot_uav, "m100.urdf"), s.mission);
   s.ugv = load_robot_description(resolve_robot(o.robot_ugv, "miniugv.urdf"), s.mission);
   s.world = load_planning_world(s.world_path);
   if (!s.world.spec)
-    throw InputError(s.world_path.string(), "", "a world YAML (an OctoMap file names no hidden spaces or markers)");
+    throw InputError(s.world_path.string(), "",
+                     "a world YAML (an OctoMap file names no hidden spaces or markers)");
   if (s.world.spec->hidden_spaces.empty())
-    throw InputError(s.world_path.string(), "hidden_spaces", "at least one hidden space with a marker");
+    throw InputError(s.world_path.string(), "hidden_spaces",
+                     "at least one hidden space with a marker");
   check_openings_admit(*s.world.spec, s.world_path.string(), s.ugv);
 
   MissionRunSettings& settings = s.settings;

@@ -34,22 +34,27 @@ class CaughtSignals {
   CaughtSignals& operator=(const CaughtSignals&) = delete;
 
  private:
-  struct sigaction old_int_ {}, old_term_ {};
+  struct sigaction old_int_ {
+  }, old_term_{};
 };
 
 }  // namespace
 
 std::string PeriodicLoopResult::summary(double period_s) const {
-  return fmt::format("{} steps of {:.0f} ms, {} overran, the longest {:.1f} ms; stopped: {}", steps, period_s * 1e3,
-                     overruns, worst_step_s * 1e3, why_stopped);
+  return fmt::format("{} steps of {:.0f} ms, {} overran, the longest {:.1f} ms; stopped: {}", steps,
+                     period_s * 1e3, overruns, worst_step_s * 1e3, why_stopped);
 }
 
-PeriodicLoopResult run_periodic(double period_s, double duration_s, const std::function<bool()>& step) {
-  if (!(period_s > 0.0) || !(duration_s >= 0.0)) throw std::invalid_argument("run_periodic: period > 0, duration >= 0");
+PeriodicLoopResult run_periodic(double period_s, double duration_s,
+                                const std::function<bool()>& step) {
+  if (!(period_s > 0.0) || !(duration_s >= 0.0))
+    throw std::invalid_argument("run_periodic: period > 0, duration >= 0");
   using Clock = std::chrono::steady_clock;
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s));
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s));
   const auto start = Clock::now();
-  const auto end = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(duration_s));
+  const auto end = start + std::chrono::duration_cast<Clock::duration>(
+                               std::chrono::duration<double>(duration_s));
   CaughtSignals signals;
   PeriodicLoopResult r;
   auto due = start;

@@ -1,9 +1,11 @@
 // One process a robot (docs/robots.md, "One process a robot"): the world's process and
 // the two robots' against it or on their hardware.
-//   ferret sim-world [--world W] [--mission M] [--seed N] [--listen ADDR] [--link-loss F --link-reorder F]
+//   ferret sim-world [--world W] [--mission M] [--seed N] [--listen ADDR] [--link-loss F
+//   --link-reorder F]
 //       the simulated world, serving both robots' hardware and the link between them
-//   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A --duration-s S]
-//   ferret ugv [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A --duration-s S]
+//   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A
+//   --duration-s S] ferret ugv [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind
+//   A --link-peer A --duration-s S]
 //       the UAV's and the miniUGV's mission controllers, each in its process, against
 //       the hardware interfaces the robots have: served by `ferret sim-world` when the
 //       mission YAML's backends are sim, the robot's own devices when they are hw
@@ -18,8 +20,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,7 +59,8 @@ std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_hand
 // The options of one mode given in the other are a mistake worth naming.
 void check_mode_options(const RobotProcessOptions& o, bool on_hardware) {
   if (on_hardware && o.sim_world_given)
-    throw InputError("--sim-world", "", "no --sim-world: the mission YAML's backends are hw (the robot's own loop)",
+    throw InputError("--sim-world", "",
+                     "no --sim-world: the mission YAML's backends are hw (the robot's own loop)",
                      o.address);
   if (on_hardware) {
     if (!(std::isfinite(o.duration_s) && o.duration_s >= 0.0 && o.duration_s <= 1e6))
@@ -69,7 +72,9 @@ void check_mode_options(const RobotProcessOptions& o, bool on_hardware) {
                                       std::pair{"--link-peer", !o.link_peer.empty()},
                                       std::pair{"--duration-s", o.duration_s != 0.0}})
     if (given)
-      throw InputError(option, "", "only with hw backends (under ferret sim-world the world relays the link and keeps the time)",
+      throw InputError(option, "",
+                       "only with hw backends (under ferret sim-world the world relays the link "
+                       "and keeps the time)",
                        "given");
 }
 
@@ -82,9 +87,11 @@ RobotOnHardwareOptions hardware_options(const RobotProcessOptions& o) {
 }  // namespace
 
 void run_sim_world_process(const RobotProcessOptions& o) {
-  for (const auto& [option, value] : {std::pair{"--link-loss", o.link_loss}, std::pair{"--link-reorder", o.link_reorder}})
+  for (const auto& [option, value] :
+       {std::pair{"--link-loss", o.link_loss}, std::pair{"--link-reorder", o.link_reorder}})
     if (!(std::isfinite(value) && value >= 0.0 && value <= 0.9))
-      throw InputError(option, "", "a fraction of the datagrams in [0, 0.9]", fmt::format("{}", value));
+      throw InputError(option, "", "a fraction of the datagrams in [0, 0.9]",
+                       fmt::format("{}", value));
   const link::Ipv4Address address = link::parse_ipv4_address(o.address, "--listen", "", true);
   MissionSetup setup = load_mission_setup(o.setup);
   MissionRunSettings& settings = setup.settings;
@@ -109,13 +116,17 @@ void run_sim_world_process(const RobotProcessOptions& o) {
       continue;
     }
     const json h = hello ? json::parse(hello->header, nullptr, false) : json();
-    const std::string role = h.is_object() && h.contains("role") && h["role"].is_string() ? h["role"].get<std::string>() : "";
-    const bool ours = h.is_object() && h.value("op", "") == "robot_hello" && h.value("protocol", 0) == kSimWorldProtocol;
+    const std::string role = h.is_object() && h.contains("role") && h["role"].is_string()
+                                 ? h["role"].get<std::string>()
+                                 : "";
+    const bool ours = h.is_object() && h.value("op", "") == "robot_hello" &&
+                      h.value("protocol", 0) == kSimWorldProtocol;
     std::optional<MessageStream>& slot = role == "uav" ? uav : ugv;
     if (!ours || (role != "uav" && role != "ugv") || slot) {
-      s->send(dump({{"ok", false},
-                    {"error", "expected robot_hello of protocol " + std::to_string(kSimWorldProtocol) +
-                                  " with role uav or ugv, each once"}}));
+      s->send(
+          dump({{"ok", false},
+                {"error", "expected robot_hello of protocol " + std::to_string(kSimWorldProtocol) +
+                              " with role uav or ugv, each once"}}));
       continue;
     }
     s->send(dump({{"ok", true}, {"protocol", kSimWorldProtocol}, {"seed", o.seed}}));
@@ -123,15 +134,19 @@ void run_sim_world_process(const RobotProcessOptions& o) {
     slot = std::move(s);
   }
   TransitionLog log;
-  const SimWorldReport r = run_sim_world(setup.world, setup.uav, settings, o.seed, *uav, *ugv, log, kReplyTimeoutMs);
+  const SimWorldReport r =
+      run_sim_world(setup.world, setup.uav, settings, o.seed, *uav, *ugv, log, kReplyTimeoutMs);
   const MissionRunResult& t = r.truth;
-  std::printf("time_s: %.1f\nobjects_dropped: %d of %d\nflown_m: %.1f\nbattery_left: %.3f\ntether_max_m: %.2f\n"
-              "tether_over_tension_events: %d\nuav_collisions: %d\nlink: %s\n",
-              t.time_s, t.objects_dropped, t.objects_in_world, t.flown_m, t.battery_left, t.max_released_m,
-              t.over_tension_events, t.uav_collisions, t.link_counters.c_str());
+  std::printf(
+      "time_s: %.1f\nobjects_dropped: %d of %d\nflown_m: %.1f\nbattery_left: %.3f\ntether_max_m: "
+      "%.2f\n"
+      "tether_over_tension_events: %d\nuav_collisions: %d\nlink: %s\n",
+      t.time_s, t.objects_dropped, t.objects_in_world, t.flown_m, t.battery_left, t.max_released_m,
+      t.over_tension_events, t.uav_collisions, t.link_counters.c_str());
   for (const UgvDeployment& d : t.deployments)
-    std::printf("  miniUGV in %s: %.1f m driven, battery %.2f%s\n", d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(),
-                d.result.path_m, d.result.battery_left, d.result.object_held ? ", holding the object" : "");
+    std::printf("  miniUGV in %s: %.1f m driven, battery %.2f%s\n",
+                d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(), d.result.path_m,
+                d.result.battery_left, d.result.object_held ? ", holding the object" : "");
   std::printf("uav: %s\nugv: %s\n", r.uav_summary.c_str(), r.ugv_summary.c_str());
 }
 
@@ -144,13 +159,17 @@ link::StreamRpcChannel connect_to_world(const RobotProcessOptions& o, const std:
   const link::Ipv4Address address = link::parse_ipv4_address(o.address, "--sim-world", "", false);
   link::StreamRpcChannel channel(MessageStream::connect(address, 30.0), kReplyTimeoutMs);
   const json hello = json::parse(
-      channel.call(dump({{"op", "robot_hello"}, {"role", role}, {"protocol", kSimWorldProtocol}})).header, nullptr, false);
+      channel.call(dump({{"op", "robot_hello"}, {"role", role}, {"protocol", kSimWorldProtocol}}))
+          .header,
+      nullptr, false);
   if (!hello.is_object() || !hello.value("ok", false))
     throw StreamError("sim-world at " + o.address + " refused the " + role + " process: " +
-                      (hello.is_object() ? hello.value("error", std::string("no reason given")) : "not a JSON reply"));
+                      (hello.is_object() ? hello.value("error", std::string("no reason given"))
+                                         : "not a JSON reply"));
   if (hello.value("seed", o.seed) != o.seed)
     std::fprintf(stderr, "%s: sim-world runs seed %llu, this process %llu\n", role.c_str(),
-                 static_cast<unsigned long long>(hello.value("seed", o.seed)), static_cast<unsigned long long>(o.seed));
+                 static_cast<unsigned long long>(hello.value("seed", o.seed)),
+                 static_cast<unsigned long long>(o.seed));
   return channel;
 }
 
@@ -180,7 +199,9 @@ class SimWorldUgvLink final : public UgvLink {
  public:
   SimWorldUgvLink(LinkedUgv& linked, link::RpcChannel& world) : linked_(linked), world_(world) {}
   void deploy(const Eigen::Vector3d& p_WE, double entry_yaw_rad) override {
-    effect({{"op", "ugv_put_down"}, {"p_WE", {p_WE.x(), p_WE.y(), p_WE.z()}}, {"entry_yaw_rad", entry_yaw_rad}});
+    effect({{"op", "ugv_put_down"},
+            {"p_WE", {p_WE.x(), p_WE.y(), p_WE.z()}},
+            {"entry_yaw_rad", entry_yaw_rad}});
     linked_.deploy(p_WE, entry_yaw_rad);
   }
   void retracted() override {
@@ -202,8 +223,9 @@ class SimWorldUgvLink final : public UgvLink {
   void effect(const json& request) {
     const json r = json::parse(world_.call(dump(request)).header, nullptr, false);
     if (!r.is_object() || !r.value("ok", false))
-      throw StreamError("sim-world refused '" + request["op"].get<std::string>() + "': " +
-                        (r.is_object() ? r.value("error", std::string("no reason given")) : "not a JSON reply"));
+      throw StreamError(
+          "sim-world refused '" + request["op"].get<std::string>() + "': " +
+          (r.is_object() ? r.value("error", std::string("no reason given")) : "not a JSON reply"));
     lonely_ = r.value("lonely", false);
   }
   LinkedUgv& linked_;
@@ -220,15 +242,17 @@ void run_uav_process(const RobotProcessOptions& o) {
   if (on_hardware) return run_uav_on_hardware(setup, hardware_options(o));
   (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);
   require_all_sim(setup.backends, o.setup.mission,
-                  "ferret uav under ferret sim-world: every interface simulated; all of the UAV's hw for its own loop");
+                  "ferret uav under ferret sim-world: every interface simulated; all of the UAV's "
+                  "hw for its own loop");
   const MissionAssembly assembly(setup.world, setup.uav, setup.settings, o.seed,
                                  o.setup.mission.empty() ? "(built-in defaults)" : o.setup.mission);
 
   if (!o.quiet)  // the log's first line: what drives each interface
-    std::fprintf(stderr,
-                 "backends: %s; served by sim-world at %s: uav.flight_controller (flight adapter protocol), "
-                 "uav.cameras, uav.winch; link: relayed by sim-world\n",
-                 setup.backends.summary().c_str(), o.address.c_str());
+    std::fprintf(
+        stderr,
+        "backends: %s; served by sim-world at %s: uav.flight_controller (flight adapter protocol), "
+        "uav.cameras, uav.winch; link: relayed by sim-world\n",
+        setup.backends.summary().c_str(), o.address.c_str());
   link::StreamRpcChannel channel = connect_to_world(o, "uav");
   RemoteWinch winch(channel);
   SimClock clock;
@@ -269,7 +293,8 @@ void run_uav_process(const RobotProcessOptions& o) {
     } else if (op == "link") {
       clock.set(time_of(j));
       for (const auto& d : link::unpack_datagrams(m.blob)) linked.session().receive(d);
-      stream.send(StreamMessage{R"({"op":"link_done"})", link::pack_datagrams(linked.session().take_outgoing())});
+      stream.send(StreamMessage{R"({"op":"link_done"})",
+                                link::pack_datagrams(linked.session().take_outgoing())});
     } else if (op == "end") {
       clock.set(time_of(j));
       UavMission& mission = mission_or_throw();
@@ -277,8 +302,11 @@ void run_uav_process(const RobotProcessOptions& o) {
       const int retrieved = print_uav_outcome(mission, clock.now_s());
       json visits = json::array();
       for (const HiddenSpaceVisit& v : mission.visits())
-        visits.push_back({{"marker_id", v.marker_id}, {"state", std::string(to_string(v.state))}, {"landed", v.landed},
-                          {"ugv_outcome", v.ugv_outcome}, {"object_retrieved", v.object_retrieved},
+        visits.push_back({{"marker_id", v.marker_id},
+                          {"state", std::string(to_string(v.state))},
+                          {"landed", v.landed},
+                          {"ugv_outcome", v.ugv_outcome},
+                          {"object_retrieved", v.object_retrieved},
                           {"object_dropped", v.object_dropped}});
       std::printf("link: UAV end: %s\n", linked.session().counters().summary().c_str());
       std::fflush(stdout);
@@ -302,11 +330,14 @@ void run_ugv_process(const RobotProcessOptions& o) {
   check_mode_options(o, on_hardware);
   if (on_hardware) return run_ugv_on_hardware(setup, hardware_options(o));
   (void)link::parse_ipv4_address(o.address, "--sim-world", "", false);
-  require_all_sim(setup.backends, o.setup.mission,
-                  "ferret ugv under ferret sim-world: every interface simulated; ugv.base hw for its own loop");
+  require_all_sim(
+      setup.backends, o.setup.mission,
+      "ferret ugv under ferret sim-world: every interface simulated; ugv.base hw for its own loop");
   const UgvMissionRunSettings& settings = setup.settings.ugv;
   if (!o.quiet)
-    std::fprintf(stderr, "backends: %s; served by sim-world at %s: ugv.base (base protocol); link: relayed by sim-world\n",
+    std::fprintf(stderr,
+                 "backends: %s; served by sim-world at %s: ugv.base (base protocol); link: relayed "
+                 "by sim-world\n",
                  setup.backends.summary().c_str(), o.address.c_str());
   link::StreamRpcChannel channel = connect_to_world(o, "ugv");
   std::optional<RemoteUgvBase> base;  // greets the world's base at "start"
@@ -318,18 +349,19 @@ void run_ugv_process(const RobotProcessOptions& o) {
   // it starts where it stands; here the world says where that is, with the search's seed.
   UgvLinkEndpoint endpoint(clock, [&](const link::UavRequest&) -> UgvLinkEndpoint::Deployment {
     const json d = json::parse(channel.call(R"({"op":"ugv_deployment"})").header, nullptr, false);
-    if (!d.is_object() || !d.value("ok", false)) throw StreamError("sim-world did not say where the miniUGV is");
+    if (!d.is_object() || !d.value("ok", false))
+      throw StreamError("sim-world did not say where the miniUGV is");
     if (!d.value("set_down", false)) return {};
     const json& s = d.at("start");
     const Pose2 start{s.at(0).get<double>(), s.at(1).get<double>(), s.at(2).get<double>()};
     const json& map = d.at("map");
-    GridGeometry truth{map.at("origin_m").at(0).get<double>(), map.at("origin_m").at(1).get<double>(),
-                       map.at("resolution_m").get<double>(), map.at("cells").at(0).get<int>(),
-                       map.at("cells").at(1).get<int>()};
+    GridGeometry truth{map.at("origin_m").at(0).get<double>(),
+                       map.at("origin_m").at(1).get<double>(), map.at("resolution_m").get<double>(),
+                       map.at("cells").at(0).get<int>(), map.at("cells").at(1).get<int>()};
     const std::uint64_t seed = d.at("seed").get<std::uint64_t>();
     if (!base) throw StreamError("sim-world asked the miniUGV to search before its 'start'");
-    missions.push_back(
-        MissionAssembly::ugv_mission(settings, *base, clock, ugv_mission_map(truth, start, settings), seed, std::nullopt, &log));
+    missions.push_back(MissionAssembly::ugv_mission(
+        settings, *base, clock, ugv_mission_map(truth, start, settings), seed, std::nullopt, &log));
     return {missions.back().get(), &*base};
   });
   MessageStream& stream = channel.stream();
@@ -349,12 +381,14 @@ void run_ugv_process(const RobotProcessOptions& o) {
       const bool set_down = j.value("set_down", false);
       // The world steps a base whose controller is done or waits to be lifted no more.
       const bool stopped = set_down && mission && (mission->done() || mission->wants_retraction());
-      if (set_down && !stopped && !hold && mission && mission->state() != UgvMissionState::kIdle) mission->tick();
+      if (set_down && !stopped && !hold && mission && mission->state() != UgvMissionState::kIdle)
+        mission->tick();
       stream.send(dump({{"op", "step_done"}, {"hold", hold}, {"stopped", stopped}}));
     } else if (op == "report") {
       clock.set(time_of(j));
       endpoint.report();
-      stream.send(StreamMessage{R"({"op":"report_done"})", link::pack_datagrams(endpoint.session().take_outgoing())});
+      stream.send(StreamMessage{R"({"op":"report_done"})",
+                                link::pack_datagrams(endpoint.session().take_outgoing())});
     } else if (op == "end") {
       clock.set(time_of(j));
       json deployments = json::array();
@@ -368,7 +402,8 @@ void run_ugv_process(const RobotProcessOptions& o) {
       stream.send(dump({{"op", "end_done"}, {"searches", deployments}}));
       return;
     } else {
-      throw StreamError("sim-world sent the miniUGV an op it does not know: '" + printable(op) + "'");
+      throw StreamError("sim-world sent the miniUGV an op it does not know: '" + printable(op) +
+                        "'");
     }
   }
 }

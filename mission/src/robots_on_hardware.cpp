@@ -1,12 +1,12 @@
 #include "ferret/mission/robots_on_hardware.hpp"
 
 #include <fmt/format.h>
+#include <octomap/OcTree.h>
 
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
-#include <octomap/OcTree.h>
 #include <vector>
 
 #include "ferret/core/clock.hpp"
@@ -37,7 +37,8 @@ constexpr double kUgvPeriodS = 0.05;  // the miniUGV's control and telemetry rat
 constexpr double kUavPeriodS = 0.02;  // the UAV's and the winch's control, 50 Hz
 constexpr int kAdapterReplyTimeoutMs = 2000;
 
-link::UdpLink open_link(const RobotOnHardwareOptions& o, std::string_view bind, std::string_view peer) {
+link::UdpLink open_link(const RobotOnHardwareOptions& o, std::string_view bind,
+                        std::string_view peer) {
   link::UdpLinkOptions u;
   u.bind = o.link_bind.empty() ? std::string(bind) : o.link_bind;
   u.peer = o.link_peer.empty() ? std::string(peer) : o.link_peer;
@@ -55,25 +56,31 @@ void receive_waiting(link::UdpLink& udp, link::LinkSession& session) {
 
 // A device the file names that is not there is the file's mistake (exit 2, the field
 // named); one that is there but silent or not what it should be fails the run (exit 1).
-std::unique_ptr<UgvBase> bring_up_ugv_base(const MissionSetup& setup, const std::string& mission_path) {
+std::unique_ptr<UgvBase> bring_up_ugv_base(const MissionSetup& setup,
+                                           const std::string& mission_path) {
   try {
-    return ugv::make_ugv_base(setup.backends.ugv_base, {setup.ugv, setup.mission.object_search, {}});
+    return ugv::make_ugv_base(setup.backends.ugv_base,
+                              {setup.ugv, setup.mission.object_search, {}});
   } catch (const ugv::HwUgvError& e) {
     if (e.kind() == ugv::HwUgvError::Kind::kSerialMissing)
-      throw InputError(mission_path, "ugv.base.serial.port", "a serial port that can be opened", e.what());
+      throw InputError(mission_path, "ugv.base.serial.port", "a serial port that can be opened",
+                       e.what());
     if (e.kind() == ugv::HwUgvError::Kind::kCameraMissing)
-      throw InputError(mission_path, "ugv.base.camera.device", "a camera that can be opened", e.what());
+      throw InputError(mission_path, "ugv.base.camera.device", "a camera that can be opened",
+                       e.what());
     throw CheckFailed(std::string("miniUGV bring-up: ") + e.what());
   }
 }
 
-std::unique_ptr<tether::Winch> bring_up_winch(const MissionSetup& setup, const std::string& mission_path) {
+std::unique_ptr<tether::Winch> bring_up_winch(const MissionSetup& setup,
+                                              const std::string& mission_path) {
   try {
     return tether::make_winch(setup.backends.winch);
   } catch (const tether::DynamixelError& e) {
     throw CheckFailed(std::string("winch bring-up: ") + e.what());
   } catch (const tether::SerialError& e) {
-    throw InputError(mission_path, "uav.winch.serial.port", "a serial port that can be opened", e.what());
+    throw InputError(mission_path, "uav.winch.serial.port", "a serial port that can be opened",
+                     e.what());
   }
 }
 
@@ -91,25 +98,33 @@ int print_uav_outcome(const UavMission& mission, double time_s) {
     retrieved += v.object_retrieved ? 1 : 0;
     dropped += v.object_dropped ? 1 : 0;
   }
-  std::printf("outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu\nobjects_retrieved: %d\nobjects_dropped: %d\n",
-              std::string(to_string(mission.outcome())).c_str(), time_s, mission.visits().size(), retrieved, dropped);
+  std::printf(
+      "outcome: %s\ntime_s: %.1f\nhidden_spaces_found: %zu\nobjects_retrieved: "
+      "%d\nobjects_dropped: %d\n",
+      std::string(to_string(mission.outcome())).c_str(), time_s, mission.visits().size(), retrieved,
+      dropped);
   for (const HiddenSpaceVisit& v : mission.visits())
-    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id, std::string(to_string(v.state)).c_str(),
+    std::printf("  marker %d: %s%s, miniUGV %s%s\n", v.marker_id,
+                std::string(to_string(v.state)).c_str(),
                 v.state == VisitState::kServiced ? (v.landed ? " (landed)" : " (hovered)") : "",
-                v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(), v.object_dropped ? ", object dropped" : "");
+                v.ugv_outcome.empty() ? "-" : v.ugv_outcome.c_str(),
+                v.object_dropped ? ", object dropped" : "");
   return retrieved;
 }
 
-bool ugv_on_hardware(const MissionSetup& setup) { return setup.backends.ugv_base.backend == Backend::kHw; }
+bool ugv_on_hardware(const MissionSetup& setup) {
+  return setup.backends.ugv_base.backend == Backend::kHw;
+}
 
 bool uav_on_hardware(const MissionSetup& setup, const std::string& mission_path) {
   const bool winch_hw = setup.backends.winch.backend == Backend::kHw;
   const bool flight_hw = setup.backends.flight_controller.backend == Backend::kHw;
   if (winch_hw != flight_hw)
-    throw InputError(mission_path, winch_hw ? "uav.flight_controller.backend" : "uav.winch.backend",
-                     "hw, as the other UAV interface (the UAV's own loop drives only hardware; ferret sim-world "
-                     "serves the simulated ones, all of them)",
-                     "sim");
+    throw InputError(
+        mission_path, winch_hw ? "uav.flight_controller.backend" : "uav.winch.backend",
+        "hw, as the other UAV interface (the UAV's own loop drives only hardware; ferret sim-world "
+        "serves the simulated ones, all of them)",
+        "sim");
   return winch_hw;
 }
 
@@ -117,13 +132,15 @@ bool uav_on_hardware(const MissionSetup& setup, const std::string& mission_path)
 
 void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions& o) {
   const UgvMissionRunSettings& settings = setup.settings.ugv;
-  if (!settings.map_window_m) throw std::logic_error("run_ugv_on_hardware: settings without the map window");
+  if (!settings.map_window_m)
+    throw std::logic_error("run_ugv_on_hardware: settings without the map window");
   const Eigen::Vector2d window_m = *settings.map_window_m;
   const double resolution_m = setup.world.tree->getResolution();
   link::UdpLink udp = open_link(o, link::kDefaultUgvAddress, link::kDefaultUavAddress);
   if (!o.quiet)
-    std::fprintf(stderr, "backends: %s; link: UDP %s, the UAV at %s\n", setup.backends.summary().c_str(),
-                 udp.local_address().to_string().c_str(), udp.peer()->to_string().c_str());
+    std::fprintf(stderr, "backends: %s; link: UDP %s, the UAV at %s\n",
+                 setup.backends.summary().c_str(), udp.local_address().to_string().c_str(),
+                 udp.peer()->to_string().c_str());
 
   // Brings the robot up (throws HwUgvError naming the device that is missing or wrong).
   const std::unique_ptr<UgvBase> hw = bring_up_ugv_base(setup, o.mission_path);
@@ -141,13 +158,17 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   UgvLinkEndpoint endpoint(clock, [&](const link::UavRequest& r) -> UgvLinkEndpoint::Deployment {
     const Pose2 entry{r.entry_x_m, r.entry_y_m, r.entry_yaw_rad};
     base.anchor(entry);
-    const GridGeometry map = GridGeometry::centred_on(entry.position(), window_m.x(), window_m.y(), resolution_m);
-    const std::uint64_t seed = derive_seed(o.seed, {static_cast<std::uint64_t>(missions.size() + 1)});
-    missions.push_back(MissionAssembly::ugv_mission(settings, base, clock, map, seed, std::nullopt, &log));
+    const GridGeometry map =
+        GridGeometry::centred_on(entry.position(), window_m.x(), window_m.y(), resolution_m);
+    const std::uint64_t seed =
+        derive_seed(o.seed, {static_cast<std::uint64_t>(missions.size() + 1)});
+    missions.push_back(
+        MissionAssembly::ugv_mission(settings, base, clock, map, seed, std::nullopt, &log));
     if (!o.quiet)
-      std::fprintf(stderr, "ugv: search %zu from (%.2f, %.2f) heading %.0f deg, a %.1f x %.1f m map\n",
-                   missions.size(), entry.x_m, entry.y_m, entry.yaw_rad * 180.0 / std::numbers::pi, window_m.x(),
-                   window_m.y());
+      std::fprintf(stderr,
+                   "ugv: search %zu from (%.2f, %.2f) heading %.0f deg, a %.1f x %.1f m map\n",
+                   missions.size(), entry.x_m, entry.y_m, entry.yaw_rad * 180.0 / std::numbers::pi,
+                   window_m.x(), window_m.y());
     return {missions.back().get(), &base};
   });
 
@@ -171,7 +192,8 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
     if (!mission->done()) mission->stop("the process ended (" + loop.why_stopped + ")");
 
   for (std::size_t k = 0; k < missions.size(); ++k)
-    std::printf("  miniUGV search %zu: %s\n", k + 1, std::string(to_string(missions[k]->outcome())).c_str());
+    std::printf("  miniUGV search %zu: %s\n", k + 1,
+                std::string(to_string(missions[k]->outcome())).c_str());
   std::printf("searches: %zu\nholds: %llu\nlink: miniUGV end: %s\nloop: %s\n", missions.size(),
               static_cast<unsigned long long>(endpoint.holds()),
               endpoint.session().counters().summary().c_str(), loop.summary(kUgvPeriodS).c_str());
@@ -186,24 +208,31 @@ void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   link::UdpLink udp = open_link(o, link::kDefaultUavAddress, link::kDefaultUgvAddress);
   const std::string& adapter_address = setup.backends.flight_controller.address;
   if (!o.quiet)
-    std::fprintf(stderr, "backends: %s; link: UDP %s, the miniUGV at %s\n", setup.backends.summary().c_str(),
-                 udp.local_address().to_string().c_str(), udp.peer()->to_string().c_str());
+    std::fprintf(stderr, "backends: %s; link: UDP %s, the miniUGV at %s\n",
+                 setup.backends.summary().c_str(), udp.local_address().to_string().c_str(),
+                 udp.peer()->to_string().c_str());
 
   // Connects to the servo (throws SerialError / DynamixelError naming the port).
   const std::unique_ptr<tether::Winch> winch = bring_up_winch(setup, o.mission_path);
-  if (!o.quiet) std::fprintf(stderr, "uav: winch up: l_t = %.3f m\n", winch->read_state().released_m);
+  if (!o.quiet)
+    std::fprintf(stderr, "uav: winch up: l_t = %.3f m\n", winch->read_state().released_m);
 
   link::StreamRpcChannel adapter_channel(
-      link::MessageStream::connect(link::parse_ipv4_address(adapter_address, "uav.flight_controller.address", o.mission_path),
-                                   5.0),
+      link::MessageStream::connect(
+          link::parse_ipv4_address(adapter_address, "uav.flight_controller.address",
+                                   o.mission_path),
+          5.0),
       kAdapterReplyTimeoutMs);
   AdapterFlightController flight(adapter_channel, "hw");
-  if (!o.quiet) std::fprintf(stderr, "uav: flight adapter '%s' at %s\n", flight.adapter_name().c_str(), adapter_address.c_str());
+  if (!o.quiet)
+    std::fprintf(stderr, "uav: flight adapter '%s' at %s\n", flight.adapter_name().c_str(),
+                 adapter_address.c_str());
   SteadyClock clock;
   LinkedUgv ugv(clock);
   TransitionLog log;
   print_transitions(log, o.quiet);
-  const std::unique_ptr<UavMission> uav = assembly.uav_mission({flight, flight, *winch, ugv}, clock, &log);
+  const std::unique_ptr<UavMission> uav =
+      assembly.uav_mission({flight, flight, *winch, ugv}, clock, &log);
   UavMission& mission = *uav;
   mission.start();
   const PeriodicLoopResult loop = run_periodic(kUavPeriodS, o.duration_s, [&] {

@@ -6,9 +6,9 @@
 namespace ferret {
 namespace {
 
-constexpr long kPoseEvery = 2;   // ticks (0.1 s at the 20 Hz IR rate)
-constexpr long kPathEvery = 20;  // 1 s
-constexpr long kMapsEvery = 100; // 5 s
+constexpr long kPoseEvery = 2;    // ticks (0.1 s at the 20 Hz IR rate)
+constexpr long kPathEvery = 20;   // 1 s
+constexpr long kMapsEvery = 100;  // 5 s
 const RgbaColor kPathColor{0.85, 0.1, 0.75, 1.0};
 const RgbaColor kFoundColor{1.0, 0.8, 0.0, 1.0};
 const RgbaColor kTruthColor{0.9, 0.0, 0.0, 0.6};

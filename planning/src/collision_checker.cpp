@@ -22,10 +22,14 @@ namespace {
 // Full extents of the part's bounding box in S.
 Eigen::Vector3d part_extent(const ShapePart& p) {
   switch (p.kind) {
-    case ShapePart::Kind::kBox: return p.box_size_m;
-    case ShapePart::Kind::kCylinder: return {2 * p.radius_m, 2 * p.radius_m, p.length_m};
-    case ShapePart::Kind::kCapsule: return {2 * p.radius_m, 2 * p.radius_m, p.length_m + 2 * p.radius_m};
-    case ShapePart::Kind::kSphere: return Eigen::Vector3d::Constant(2 * p.radius_m);
+    case ShapePart::Kind::kBox:
+      return p.box_size_m;
+    case ShapePart::Kind::kCylinder:
+      return {2 * p.radius_m, 2 * p.radius_m, p.length_m};
+    case ShapePart::Kind::kCapsule:
+      return {2 * p.radius_m, 2 * p.radius_m, p.length_m + 2 * p.radius_m};
+    case ShapePart::Kind::kSphere:
+      return Eigen::Vector3d::Constant(2 * p.radius_m);
   }
   return Eigen::Vector3d::Zero();
 }
@@ -39,7 +43,8 @@ struct SphereGroup {  // a ball around up to 4 x 4 x 4 covering spheres
 // Covering spheres ordered by group, and the groups: a part is cleared by its
 // bounding ball, else group by group, descending to the small balls of a group only
 // when the group's ball is not clear.
-std::vector<std::pair<Eigen::Vector3d, double>> covering_spheres(const ShapePart& p, std::vector<SphereGroup>& groups) {
+std::vector<std::pair<Eigen::Vector3d, double>> covering_spheres(const ShapePart& p,
+                                                                 std::vector<SphereGroup>& groups) {
   if (p.kind == ShapePart::Kind::kSphere) {
     groups.push_back({Eigen::Vector3d::Zero(), p.radius_m, 0, 1});
     return {{Eigen::Vector3d::Zero(), p.radius_m}};
@@ -48,7 +53,8 @@ std::vector<std::pair<Eigen::Vector3d, double>> covering_spheres(const ShapePart
   // Cubes about as large as the part's smallest extent (at least 5 cm), at most 64.
   const double edge = std::max(extent.minCoeff(), 0.05);
   Eigen::Vector3i n;
-  for (int a = 0; a < 3; ++a) n[a] = std::clamp(static_cast<int>(std::ceil(extent[a] / edge - 1e-9)), 1, 64);
+  for (int a = 0; a < 3; ++a)
+    n[a] = std::clamp(static_cast<int>(std::ceil(extent[a] / edge - 1e-9)), 1, 64);
   const Eigen::Vector3d cell = extent.cwiseQuotient(n.cast<double>());
   const double r = 0.5 * cell.norm();
   std::vector<std::pair<Eigen::Vector3d, double>> out;
@@ -62,7 +68,8 @@ std::vector<std::pair<Eigen::Vector3d, double>> covering_spheres(const ShapePart
         for (int k = g0.z(); k < g1.z(); ++k)
           for (int j = g0.y(); j < g1.y(); ++j)
             for (int i = g0.x(); i < g1.x(); ++i)
-              out.emplace_back(-0.5 * extent + cell.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5)), r);
+              out.emplace_back(
+                  -0.5 * extent + cell.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5)), r);
         group.end = out.size();
         groups.push_back(group);
       }
@@ -71,21 +78,26 @@ std::vector<std::pair<Eigen::Vector3d, double>> covering_spheres(const ShapePart
 
 // Points inside a part (in S): the centres of its covering spheres that lie inside
 // it. A part with such a point in an occupied voxel certainly collides.
-std::vector<Eigen::Vector3d> inner_points(const ShapePart& p,
-                                          const std::vector<std::pair<Eigen::Vector3d, double>>& spheres) {
+std::vector<Eigen::Vector3d> inner_points(
+    const ShapePart& p, const std::vector<std::pair<Eigen::Vector3d, double>>& spheres) {
   std::vector<Eigen::Vector3d> out{Eigen::Vector3d::Zero()};
   for (const auto& [c, r] : spheres) {
     (void)r;
     bool inside = false;
     switch (p.kind) {
-      case ShapePart::Kind::kBox: inside = true; break;
+      case ShapePart::Kind::kBox:
+        inside = true;
+        break;
       case ShapePart::Kind::kCylinder:
         inside = c.head<2>().norm() <= p.radius_m && std::abs(c.z()) <= 0.5 * p.length_m;
         break;
       case ShapePart::Kind::kCapsule:
-        inside = c.head<2>().norm() <= p.radius_m && std::abs(c.z()) <= 0.5 * p.length_m + p.radius_m;
+        inside =
+            c.head<2>().norm() <= p.radius_m && std::abs(c.z()) <= 0.5 * p.length_m + p.radius_m;
         break;
-      case ShapePart::Kind::kSphere: inside = c.norm() <= p.radius_m; break;
+      case ShapePart::Kind::kSphere:
+        inside = c.norm() <= p.radius_m;
+        break;
     }
     if (inside && c.norm() > 1e-12) out.push_back(c);
   }
@@ -93,7 +105,8 @@ std::vector<Eigen::Vector3d> inner_points(const ShapePart& p,
     // The corners pulled 2 % towards the centre: strictly inside, so a voxel holding
     // one overlaps the box with positive volume (a box dipping into the ground).
     for (int c = 0; c < 8; ++c)
-      out.push_back(0.49 * Eigen::Vector3d((c & 1 ? 1 : -1) * p.box_size_m.x(), (c & 2 ? 1 : -1) * p.box_size_m.y(),
+      out.push_back(0.49 * Eigen::Vector3d((c & 1 ? 1 : -1) * p.box_size_m.x(),
+                                           (c & 2 ? 1 : -1) * p.box_size_m.y(),
                                            (c & 4 ? 1 : -1) * p.box_size_m.z()));
   }
   return out;
@@ -101,10 +114,14 @@ std::vector<Eigen::Vector3d> inner_points(const ShapePart& p,
 
 std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry(const ShapePart& p) {
   switch (p.kind) {
-    case ShapePart::Kind::kBox: return std::make_shared<fcl::Boxd>(p.box_size_m);
-    case ShapePart::Kind::kCylinder: return std::make_shared<fcl::Cylinderd>(p.radius_m, p.length_m);
-    case ShapePart::Kind::kCapsule: return std::make_shared<fcl::Capsuled>(p.radius_m, p.length_m);
-    case ShapePart::Kind::kSphere: return std::make_shared<fcl::Sphered>(p.radius_m);
+    case ShapePart::Kind::kBox:
+      return std::make_shared<fcl::Boxd>(p.box_size_m);
+    case ShapePart::Kind::kCylinder:
+      return std::make_shared<fcl::Cylinderd>(p.radius_m, p.length_m);
+    case ShapePart::Kind::kCapsule:
+      return std::make_shared<fcl::Capsuled>(p.radius_m, p.length_m);
+    case ShapePart::Kind::kSphere:
+      return std::make_shared<fcl::Sphered>(p.radius_m);
   }
   return nullptr;
 }
@@ -148,8 +165,10 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const CollisionMap> map, Robo
     const Eigen::Vector3d half = 0.5 * part_extent(p);
     std::array<Eigen::Vector3d, 8> corners;
     for (int c = 0; c < 8; ++c)
-      corners[c] = Eigen::Vector3d((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(), (c & 4 ? 1 : -1) * half.z());
-    impl_->parts.push_back({p.X_BS, p.bounding_radius_m(), std::move(spheres), std::move(groups), std::move(inner), corners,
+      corners[c] = Eigen::Vector3d((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(),
+                                   (c & 4 ? 1 : -1) * half.z());
+    impl_->parts.push_back({p.X_BS, p.bounding_radius_m(), std::move(spheres), std::move(groups),
+                            std::move(inner), corners,
                             std::make_unique<fcl::CollisionObjectd>(fcl_geometry(p))});
   }
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
@@ -160,11 +179,13 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const CollisionMap> map, Robo
     }
   if (impl_->parts.empty()) lo = hi = Eigen::Vector3d::Zero();
   for (int c = 0; c < 8; ++c)
-    impl_->robot_corners[c] = Eigen::Vector3d(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
+    impl_->robot_corners[c] =
+        Eigen::Vector3d(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(), c & 4 ? hi.z() : lo.z());
   impl_->robot_center_B = 0.5 * (lo + hi);
   for (const auto& part : impl_->parts)
-    impl_->robot_radius_m = std::max(impl_->robot_radius_m, (part.X_BS.translation() - impl_->robot_center_B).norm() +
-                                                                part.bounding_radius_m);
+    impl_->robot_radius_m =
+        std::max(impl_->robot_radius_m,
+                 (part.X_BS.translation() - impl_->robot_center_B).norm() + part.bounding_radius_m);
   set_map(std::move(map));
 }
 
@@ -174,7 +195,8 @@ namespace {
 // Ground robots: a box (8 corners in S, placed by X_WS) that lies vertically inside
 // the band is free when no occupied column lies under its footprint: its bounding
 // rectangle for small footprints, the disc through its farthest corner for large ones.
-bool band_box_free(const BandField& band, const std::array<Eigen::Vector3d, 8>& corners, const Pose3& X_WS) {
+bool band_box_free(const BandField& band, const std::array<Eigen::Vector3d, 8>& corners,
+                   const Pose3& X_WS) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
   for (const Eigen::Vector3d& c : corners) {
     const Eigen::Vector3d w = X_WS * c;
@@ -182,9 +204,11 @@ bool band_box_free(const BandField& band, const std::array<Eigen::Vector3d, 8>& 
     hi = hi.cwiseMax(w);
   }
   if (!(lo.z() > band.z_lo + 1e-9 && hi.z() < band.z_hi - 1e-9)) return false;
-  if ((hi.head<2>() - lo.head<2>()).maxCoeff() < 32 * band.cell_m) return band.rect_free(lo.head<2>(), hi.head<2>());
+  if ((hi.head<2>() - lo.head<2>()).maxCoeff() < 32 * band.cell_m)
+    return band.rect_free(lo.head<2>(), hi.head<2>());
   const Eigen::Vector2d c = X_WS.translation().head<2>();
-  return band.disc_free(c, std::hypot(std::max(c.x() - lo.x(), hi.x() - c.x()), std::max(c.y() - lo.y(), hi.y() - c.y())));
+  return band.disc_free(c, std::hypot(std::max(c.x() - lo.x(), hi.x() - c.x()),
+                                      std::max(c.y() - lo.y(), hi.y() - c.y())));
 }
 }  // namespace
 

@@ -61,8 +61,8 @@ namespace {
 // Fills the unknown (non-existent) part of a node's subtree that lies inside `box`
 // with occupied nodes, as coarse as the box allows. `base` is the node's lowest key
 // per axis and `size` its extent in keys.
-void fill_unknown(octomap::OcTree& tree, octomap::OcTreeNode* node, const std::array<std::int64_t, 3>& base,
-                  std::int64_t size, const KeyBox& box) {
+void fill_unknown(octomap::OcTree& tree, octomap::OcTreeNode* node,
+                  const std::array<std::int64_t, 3>& base, std::int64_t size, const KeyBox& box) {
   const std::int64_t half = size / 2;
   for (unsigned i = 0; i < 8; ++i) {
     std::array<std::int64_t, 3> cb{};
@@ -186,7 +186,8 @@ DistanceField build_field(const octomap::OcTree& tree, const CollisionMapOptions
     std::array<std::int64_t, 3> a0{}, a1{};
     for (int a = 0; a < 3; ++a) {
       a0[a] = std::max<std::int64_t>((leaf.base[a] >> field.level) - c0[a], 0);
-      a1[a] = std::min<std::int64_t>(((leaf.base[a] + leaf.size - 1) >> field.level) - c0[a], field.dims[a] - 1);
+      a1[a] = std::min<std::int64_t>(((leaf.base[a] + leaf.size - 1) >> field.level) - c0[a],
+                                     field.dims[a] - 1);
     }
     for (std::int64_t z = a0[2]; z <= a1[2]; ++z)
       for (std::int64_t y = a0[1]; y <= a1[1]; ++y)
@@ -197,15 +198,18 @@ DistanceField build_field(const octomap::OcTree& tree, const CollisionMapOptions
   std::vector<double> zbuf, fbuf;
   float* d = d2.data();
   for (std::size_t z = 0; z < nz; ++z)
-    for (std::size_t y = 0; y < ny; ++y) edt_1d(d + (z * ny + y) * nx, static_cast<int>(nx), 1, v, zbuf, fbuf);
+    for (std::size_t y = 0; y < ny; ++y)
+      edt_1d(d + (z * ny + y) * nx, static_cast<int>(nx), 1, v, zbuf, fbuf);
   for (std::size_t z = 0; z < nz; ++z)
-    for (std::size_t x = 0; x < nx; ++x) edt_1d(d + z * ny * nx + x, static_cast<int>(ny), nx, v, zbuf, fbuf);
+    for (std::size_t x = 0; x < nx; ++x)
+      edt_1d(d + z * ny * nx + x, static_cast<int>(ny), nx, v, zbuf, fbuf);
   for (std::size_t y = 0; y < ny; ++y)
-    for (std::size_t x = 0; x < nx; ++x) edt_1d(d + y * nx + x, static_cast<int>(nz), nx * ny, v, zbuf, fbuf);
+    for (std::size_t x = 0; x < nx; ++x)
+      edt_1d(d + y * nx + x, static_cast<int>(nz), nx * ny, v, zbuf, fbuf);
   field.dist.resize(d2.size());
   for (std::size_t k = 0; k < d2.size(); ++k)
-    field.dist[k] = static_cast<std::uint16_t>(
-        std::min(65535.0, std::floor(std::sqrt(static_cast<double>(d2[k])) * DistanceField::kUnitsPerCell)));
+    field.dist[k] = static_cast<std::uint16_t>(std::min(
+        65535.0, std::floor(std::sqrt(static_cast<double>(d2[k])) * DistanceField::kUnitsPerCell)));
   return field;
 }
 
@@ -216,34 +220,44 @@ BandField build_band(const octomap::OcTree& tree, const Aabb3& region, double z_
   const double res = tree.getResolution();
   const KeyBox box = key_box(region, res);
   band.cell_m = res;
-  band.dims = Eigen::Vector2i(static_cast<int>(box.hi[0] - box.lo[0] + 3), static_cast<int>(box.hi[1] - box.lo[1] + 3));
+  band.dims = Eigen::Vector2i(static_cast<int>(box.hi[0] - box.lo[0] + 3),
+                              static_cast<int>(box.hi[1] - box.lo[1] + 3));
   const std::int64_t c0x = box.lo[0] - 1, c0y = box.lo[1] - 1;
   band.origin_m = Eigen::Vector2d(static_cast<double>(c0x - kKeySpan / 2) * res,
                                   static_cast<double>(c0y - kKeySpan / 2) * res);
   const std::size_t nx = band.dims.x(), ny = band.dims.y();
   std::vector<float> d2(nx * ny, std::numeric_limits<float>::infinity());
-  for (auto it = tree.begin_leafs_bbx(octomap::point3d(static_cast<float>(region.lo.x() - res), static_cast<float>(region.lo.y() - res), static_cast<float>(z_lo)),
-                                      octomap::point3d(static_cast<float>(region.hi.x() + res), static_cast<float>(region.hi.y() + res), static_cast<float>(z_hi))),
-            end = tree.end_leafs_bbx();
+  for (auto
+           it = tree.begin_leafs_bbx(
+               octomap::point3d(static_cast<float>(region.lo.x() - res),
+                                static_cast<float>(region.lo.y() - res), static_cast<float>(z_lo)),
+               octomap::point3d(static_cast<float>(region.hi.x() + res),
+                                static_cast<float>(region.hi.y() + res), static_cast<float>(z_hi))),
+           end = tree.end_leafs_bbx();
        it != end; ++it) {
     if (!tree.isNodeOccupied(*it)) continue;
     const double half = 0.5 * it.getSize();
-    if (it.getZ() + half <= z_lo || it.getZ() - half >= z_hi) continue;  // touches the band only at its edge
+    if (it.getZ() + half <= z_lo || it.getZ() - half >= z_hi)
+      continue;  // touches the band only at its edge
     const std::int64_t size = std::int64_t{1} << (kTreeDepth - it.getDepth());
     const octomap::OcTreeKey key = it.getKey();
     const std::int64_t bx = key[0] - size / 2 - c0x, by = key[1] - size / 2 - c0y;
-    for (std::int64_t y = std::max<std::int64_t>(by, 0); y < std::min<std::int64_t>(by + size, ny); ++y)
-      for (std::int64_t x = std::max<std::int64_t>(bx, 0); x < std::min<std::int64_t>(bx + size, nx); ++x)
+    for (std::int64_t y = std::max<std::int64_t>(by, 0); y < std::min<std::int64_t>(by + size, ny);
+         ++y)
+      for (std::int64_t x = std::max<std::int64_t>(bx, 0);
+           x < std::min<std::int64_t>(bx + size, nx); ++x)
         d2[y * nx + x] = 0.0f;
   }
   std::vector<int> v;
   std::vector<double> zbuf, fbuf;
-  for (std::size_t y = 0; y < ny; ++y) edt_1d(d2.data() + y * nx, static_cast<int>(nx), 1, v, zbuf, fbuf);
-  for (std::size_t x = 0; x < nx; ++x) edt_1d(d2.data() + x, static_cast<int>(ny), nx, v, zbuf, fbuf);
+  for (std::size_t y = 0; y < ny; ++y)
+    edt_1d(d2.data() + y * nx, static_cast<int>(nx), 1, v, zbuf, fbuf);
+  for (std::size_t x = 0; x < nx; ++x)
+    edt_1d(d2.data() + x, static_cast<int>(ny), nx, v, zbuf, fbuf);
   band.dist.resize(d2.size());
   for (std::size_t k = 0; k < d2.size(); ++k)
-    band.dist[k] = static_cast<std::uint16_t>(
-        std::min(65535.0, std::floor(std::sqrt(static_cast<double>(d2[k])) * DistanceField::kUnitsPerCell)));
+    band.dist[k] = static_cast<std::uint16_t>(std::min(
+        65535.0, std::floor(std::sqrt(static_cast<double>(d2[k])) * DistanceField::kUnitsPerCell)));
   return band;
 }
 
@@ -256,7 +270,8 @@ bool BandField::disc_free(const Eigen::Vector2d& c, double r) const {
   if ((c.array() - r <= origin_m.array()).any() ||
       (c.array() + r >= (origin_m + dims.cast<double>() * cell_m).array()).any())
     return false;
-  const std::uint16_t d = dist[static_cast<std::size_t>(fy) * dims.x() + static_cast<std::size_t>(fx)];
+  const std::uint16_t d =
+      dist[static_cast<std::size_t>(fy) * dims.x() + static_cast<std::size_t>(fx)];
   return cell_m * (d / DistanceField::kUnitsPerCell - std::sqrt(2.0)) - 1e-9 > r;
 }
 
@@ -296,7 +311,8 @@ double DistanceField::lower_bound_m(const Eigen::Vector3d& p) const {
   }
   // |p - occupied| >= |centre(c) - centre(o)| - |p - centre(c)| - half diagonal of o.
   constexpr double kHalfDiagonal = 0.8660254037844386;
-  return std::max(0.0, cell_m * (dist[static_cast<std::size_t>(idx)] / kUnitsPerCell - kHalfDiagonal - std::sqrt(off2)) -
+  return std::max(0.0, cell_m * (dist[static_cast<std::size_t>(idx)] / kUnitsPerCell -
+                                 kHalfDiagonal - std::sqrt(off2)) -
                            1e-9);
 }
 
@@ -305,7 +321,8 @@ bool DistanceField::sphere_free(const Eigen::Vector3d& c, double r) const {
   if (!covers_all) {
     // Voxels outside the region are not in the field: the ball must lie inside it.
     const Eigen::Vector3d hi = origin_m + dims.cast<double>() * cell_m;
-    if (((c.array() - r) <= origin_m.array()).any() || ((c.array() + r) >= hi.array()).any()) return false;
+    if (((c.array() - r) <= origin_m.array()).any() || ((c.array() + r) >= hi.array()).any())
+      return false;
   }
   return lower_bound_m(c) > r;
 }
@@ -320,19 +337,22 @@ int DistanceField::occupied_at(const Eigen::Vector3d& p) const {
   return level == 0 ? 1 : -1;
 }
 
-const char* to_string(UnknownPolicy policy) { return policy == UnknownPolicy::kFree ? "free" : "occupied"; }
+const char* to_string(UnknownPolicy policy) {
+  return policy == UnknownPolicy::kFree ? "free" : "occupied";
+}
 
 std::string collision_map_options_key(const CollisionMapOptions& o) {
   const auto box = [](const std::optional<Aabb3>& b) {
-    return b ? fmt::format("{:a},{:a},{:a},{:a},{:a},{:a}", b->lo.x(), b->lo.y(), b->lo.z(), b->hi.x(), b->hi.y(),
-                           b->hi.z())
+    return b ? fmt::format("{:a},{:a},{:a},{:a},{:a},{:a}", b->lo.x(), b->lo.y(), b->lo.z(),
+                           b->hi.x(), b->hi.y(), b->hi.z())
              : std::string("-");
   };
   return fmt::format("{}|{}|{}|{}|{}|{}|{}", to_string(o.unknown), box(o.bounds), o.max_field_cells,
                      o.max_fill_face_voxels, box(o.field_region),
                      o.field_floor_cut_z ? fmt::format("{:a}", *o.field_floor_cut_z) : "-",
-                     o.ground_band_z ? fmt::format("{:a},{:a}", o.ground_band_z->first, o.ground_band_z->second)
-                                     : "-");
+                     o.ground_band_z
+                         ? fmt::format("{:a},{:a}", o.ground_band_z->first, o.ground_band_z->second)
+                         : "-");
 }
 
 UnknownPolicy parse_unknown_policy(const std::string& text, const std::string& source) {
@@ -369,13 +389,16 @@ std::shared_ptr<const CollisionMap> CollisionMap::build(const octomap::OcTree& s
       for (int a = 0; a < 3; ++a) n[a] = static_cast<double>(box.hi[a] - box.lo[a] + 1);
       const double faces = 2.0 * (n[0] * n[1] + n[1] * n[2] + n[0] * n[2]);
       if (faces > static_cast<double>(options.max_fill_face_voxels))
-        throw InputError("map", "bounds",
-                         fmt::format("a box whose faces hold at most {} voxels at {:g} m (unknown space in "
-                                     "it is filled as occupied)",
-                                     options.max_fill_face_voxels, res),
-                         fmt::format("{:g} x {:g} x {:g} m: {:.3g} voxels", n[0] * res, n[1] * res, n[2] * res, faces));
+        throw InputError(
+            "map", "bounds",
+            fmt::format("a box whose faces hold at most {} voxels at {:g} m (unknown space in "
+                        "it is filled as occupied)",
+                        options.max_fill_face_voxels, res),
+            fmt::format("{:g} x {:g} x {:g} m: {:.3g} voxels", n[0] * res, n[1] * res, n[2] * res,
+                        faces));
       if (!tree.getRoot()) {
-        octomap::OcTreeKey k(static_cast<octomap::key_type>(box.lo[0]), static_cast<octomap::key_type>(box.lo[1]),
+        octomap::OcTreeKey k(static_cast<octomap::key_type>(box.lo[0]),
+                             static_cast<octomap::key_type>(box.lo[1]),
                              static_cast<octomap::key_type>(box.lo[2]));
         tree.setNodeValue(k, kOccupiedLogOdds, true);
       }
@@ -390,9 +413,11 @@ std::shared_ptr<const CollisionMap> CollisionMap::build(const octomap::OcTree& s
   if (options.ground_band_z) {
     if (!options.field_region)
       throw InputError("map", "field_region", "a field region for the ground band");
-    data->band = build_band(tree, *options.field_region, options.ground_band_z->first, options.ground_band_z->second);
+    data->band = build_band(tree, *options.field_region, options.ground_band_z->first,
+                            options.ground_band_z->second);
   }
-  data->fcl_tree = std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(data->tree));
+  data->fcl_tree =
+      std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(data->tree));
   return std::shared_ptr<const CollisionMap>(new CollisionMap(std::move(data)));
 }
 

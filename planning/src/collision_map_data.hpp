@@ -20,13 +20,13 @@ namespace ferret {
 /// every bound built on it stays a lower bound), saturating at 1023 cells.
 struct DistanceField {
   static constexpr double kUnitsPerCell = 64.0;
-  int level = 0;                ///< cell = 2^level voxels along each axis
+  int level = 0;  ///< cell = 2^level voxels along each axis
   double cell_m = 0.0;
   Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();  ///< lower corner of cell (0,0,0)
   Eigen::Vector3i dims = Eigen::Vector3i::Zero();
   std::vector<std::uint16_t> dist;
-  bool empty = true;        ///< nothing occupied (in the region, above the floor cut)
-  bool covers_all = true;   ///< every occupied voxel is in the grid (no region was given)
+  bool empty = true;                  ///< nothing occupied (in the region, above the floor cut)
+  bool covers_all = true;             ///< every occupied voxel is in the grid (no region was given)
   std::optional<double> floor_cut_z;  ///< voxels wholly below are not in the field
 
   /// Index of the cell holding p, or -1 outside the grid.

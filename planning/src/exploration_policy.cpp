@@ -15,12 +15,10 @@
 namespace ferret {
 
 void register_builtin_policies(ExplorationPolicies& p) {
-  p.add("cdos", "curiosity-driven object search", [](const PolicyOptions& o) {
-    return std::make_unique<CdosPolicy>(o, false);
-  });
-  p.add("cdos-literal", "the paper's section IV read to the letter", [](const PolicyOptions& o) {
-    return std::make_unique<CdosPolicy>(o, true);
-  });
+  p.add("cdos", "curiosity-driven object search",
+        [](const PolicyOptions& o) { return std::make_unique<CdosPolicy>(o, false); });
+  p.add("cdos-literal", "the paper's section IV read to the letter",
+        [](const PolicyOptions& o) { return std::make_unique<CdosPolicy>(o, true); });
   p.add("cdos-fg", "cdos scoring all of F_g", [](PolicyOptions o) {
     o.cdos_candidates_global = true;
     return std::make_unique<CdosPolicy>(o, false, "cdos-fg");
@@ -29,17 +27,14 @@ void register_builtin_policies(ExplorationPolicies& p) {
     o.curiosity.closest_approach = true;
     return std::make_unique<CdosPolicy>(o, false, "cdos-closest");
   });
-  p.add("rapid", "rapid frontier (Cieslewski et al. 2017)", [](const PolicyOptions& o) {
-    return std::make_unique<RapidFrontierPolicy>(o);
-  });
-  p.add("nearest", "nearest reachable frontier (Yamauchi 1997)", [](const PolicyOptions& o) {
-    return std::make_unique<NearestFrontierPolicy>(o);
-  });
+  p.add("rapid", "rapid frontier (Cieslewski et al. 2017)",
+        [](const PolicyOptions& o) { return std::make_unique<RapidFrontierPolicy>(o); });
+  p.add("nearest", "nearest reachable frontier (Yamauchi 1997)",
+        [](const PolicyOptions& o) { return std::make_unique<NearestFrontierPolicy>(o); });
   p.add("oracle", "knows the object, drives to the nearest pose that sees it",
         [](const PolicyOptions& o) { return std::make_unique<OraclePolicy>(o); });
-  p.add("bayes", "Bayesian viewpoint search", [](const PolicyOptions& o) {
-    return std::make_unique<ViewpointSearchPolicy>(o);
-  });
+  p.add("bayes", "Bayesian viewpoint search",
+        [](const PolicyOptions& o) { return std::make_unique<ViewpointSearchPolicy>(o); });
 }
 
 namespace {

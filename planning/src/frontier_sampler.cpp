@@ -1,7 +1,7 @@
 #include "ferret/planning/frontier_sampler.hpp"
 
-#include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/OptimizationObjective.h>
+#include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/datastructures/NearestNeighborsLinear.h>
@@ -27,11 +27,14 @@ void FrontierCandidates::finalize(std::optional<std::size_t> first) {
   double sum = 0.0;
   for (std::size_t k = 0; k < weights.size(); ++k) cumulative[k] = sum += weights[k];
   by_cell_.assign(geometry.size(), -1);
-  for (std::size_t k = 0; k < cells.size(); ++k) by_cell_[geometry.index(cells[k])] = static_cast<int>(k);
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    by_cell_[geometry.index(cells[k])] = static_cast<int>(k);
   order.resize(cells.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) { return weights[a] > weights[b]; });
-  if (const auto it = std::find(order.begin(), order.end(), first.value_or(order.size())); it != order.end())
+  std::stable_sort(order.begin(), order.end(),
+                   [this](std::size_t a, std::size_t b) { return weights[a] > weights[b]; });
+  if (const auto it = std::find(order.begin(), order.end(), first.value_or(order.size()));
+      it != order.end())
     std::rotate(order.begin(), it, it + 1);
 }
 
@@ -54,12 +57,15 @@ FrontierCandidates rapid_weights(const ExplorationState& s, double max_velocity_
   const Eigen::Vector2d p = s.X_WG.position();
   if (!s.frontier_sets().visible.empty()) {
     Eigen::Vector2d v = s.v_W;
-    if (v.norm() < 0.05) v = 0.05 * Eigen::Vector2d(std::cos(s.X_WG.yaw_rad), std::sin(s.X_WG.yaw_rad));
+    if (v.norm() < 0.05)
+      v = 0.05 * Eigen::Vector2d(std::cos(s.X_WG.yaw_rad), std::sin(s.X_WG.yaw_rad));
     for (const Cell& c : s.frontier_sets().visible) {
       const Eigen::Vector2d to = out.geometry.center(c) - p;
-      const Eigen::Vector2d u = to.norm() > 1e-9 ? Eigen::Vector2d(to.normalized()) : Eigen::Vector2d(v.normalized());
+      const Eigen::Vector2d u =
+          to.norm() > 1e-9 ? Eigen::Vector2d(to.normalized()) : Eigen::Vector2d(v.normalized());
       out.cells.push_back(c);
-      out.weights.push_back(std::exp(-(max_velocity_mps * u - v).norm() / (0.25 * max_velocity_mps)));
+      out.weights.push_back(
+          std::exp(-(max_velocity_mps * u - v).norm() / (0.25 * max_velocity_mps)));
     }
     out.rule = GoalRule::kRapid;
   } else {
@@ -74,7 +80,8 @@ FrontierCandidates rapid_weights(const ExplorationState& s, double max_velocity_
   std::optional<std::size_t> first;
   if (out.rule == GoalRule::kRapid)  // the rapid policy's goal, near-ties resolved as there
     if (const auto goal = RapidFrontierPolicy::choose_visible(s, max_velocity_mps))
-      first = static_cast<std::size_t>(std::find(out.cells.begin(), out.cells.end(), goal->cell) - out.cells.begin());
+      first = static_cast<std::size_t>(std::find(out.cells.begin(), out.cells.end(), goal->cell) -
+                                       out.cells.begin());
   out.finalize(first);
   return out;
 }
@@ -90,7 +97,8 @@ FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOpt
   const auto evidence = collect_evidence(s.objects);
   const std::vector<Cell>& set = global ? s.frontier_sets().global : s.frontier_sets().visible;
   if (!evidence.empty() && !set.empty()) {
-    const auto scored = score_frontiers(set, s.grid.geometry(), s.X_WG.position(), evidence, options);
+    const auto scored =
+        score_frontiers(set, s.grid.geometry(), s.X_WG.position(), evidence, options);
     double best = 0.0;
     for (const auto& f : scored) best = std::max(best, f.loss);
     if (best > 0.0) {
@@ -102,18 +110,21 @@ FrontierCandidates cdos_candidates(const ExplorationState& s, const CuriosityOpt
         out.weights.push_back(std::max(std::exp((f.loss - best) / (0.1 * best)), 1e-12));
       }
       out.rule = GoalRule::kCuriosity;
-      out.finalize(cdos_argmax(scored, strongest_evidence(evidence).p_W));  // the cdos policy's goal first
+      out.finalize(
+          cdos_argmax(scored, strongest_evidence(evidence).p_W));  // the cdos policy's goal first
       return out;
     }
   }
   return rapid_weights(s, max_velocity_mps);
 }
 
-FrontierValidStateSampler::FrontierValidStateSampler(const ob::SpaceInformation* si,
-                                                     std::shared_ptr<const FrontierCandidates> candidates,
-                                                     std::uint64_t seed,
-                                                     std::shared_ptr<std::atomic<std::size_t>> counter)
-    : ob::ValidStateSampler(si), candidates_(std::move(candidates)), rng_(seed), counter_(std::move(counter)) {
+FrontierValidStateSampler::FrontierValidStateSampler(
+    const ob::SpaceInformation* si, std::shared_ptr<const FrontierCandidates> candidates,
+    std::uint64_t seed, std::shared_ptr<std::atomic<std::size_t>> counter)
+    : ob::ValidStateSampler(si),
+      candidates_(std::move(candidates)),
+      rng_(seed),
+      counter_(std::move(counter)) {
   name_ = "frontier";
 }
 
@@ -121,7 +132,8 @@ bool FrontierValidStateSampler::fill(ob::State* state, std::size_t k) {
   const GridGeometry& g = candidates_->geometry;
   const Eigen::Vector2d c = g.center(candidates_->cells[k]);
   auto* se2 = state->as<ob::SE2StateSpace::StateType>();
-  se2->setXY(c.x() + rng_.uniform(-0.5, 0.5) * g.resolution_m, c.y() + rng_.uniform(-0.5, 0.5) * g.resolution_m);
+  se2->setXY(c.x() + rng_.uniform(-0.5, 0.5) * g.resolution_m,
+             c.y() + rng_.uniform(-0.5, 0.5) * g.resolution_m);
   se2->setYaw(rng_.uniform(-3.14159, 3.14159));
   if (counter_) ++*counter_;
   return si_->isValid(state);
@@ -134,7 +146,8 @@ bool FrontierValidStateSampler::sample(ob::State* state) {
   return false;
 }
 
-bool FrontierValidStateSampler::sampleNear(ob::State* state, const ob::State* near, double distance) {
+bool FrontierValidStateSampler::sampleNear(ob::State* state, const ob::State* near,
+                                           double distance) {
   if (candidates_->empty()) return false;
   const auto* n = near->as<ob::SE2StateSpace::StateType>();
   const Eigen::Vector2d p(n->getX(), n->getY());
@@ -146,19 +159,23 @@ bool FrontierValidStateSampler::sampleNear(ob::State* state, const ob::State* ne
   return false;
 }
 
-ob::ValidStateSamplerAllocator frontier_sampler_allocator(std::shared_ptr<const FrontierCandidates> candidates,
-                                                          std::uint64_t seed,
-                                                          std::shared_ptr<std::atomic<std::size_t>> counter) {
+ob::ValidStateSamplerAllocator frontier_sampler_allocator(
+    std::shared_ptr<const FrontierCandidates> candidates, std::uint64_t seed,
+    std::shared_ptr<std::atomic<std::size_t>> counter) {
   auto calls = std::make_shared<std::uint64_t>(0);
-  return [candidates, seed, counter, calls](const ob::SpaceInformation* si) -> ob::ValidStateSamplerPtr {
+  return [candidates, seed, counter,
+          calls](const ob::SpaceInformation* si) -> ob::ValidStateSamplerPtr {
     // Each allocated sampler gets its own stream, derived deterministically.
-    return std::make_shared<FrontierValidStateSampler>(si, candidates, derive_seed(seed, {(*calls)++}), counter);
+    return std::make_shared<FrontierValidStateSampler>(si, candidates,
+                                                       derive_seed(seed, {(*calls)++}), counter);
   };
 }
 
-FrontierGoal::FrontierGoal(const ob::SpaceInformationPtr& si, std::shared_ptr<const FrontierCandidates> candidates,
-                           Reach within_reach)
-    : ob::GoalSampleableRegion(si), candidates_(std::move(candidates)), within_reach_(std::move(within_reach)) {
+FrontierGoal::FrontierGoal(const ob::SpaceInformationPtr& si,
+                           std::shared_ptr<const FrontierCandidates> candidates, Reach within_reach)
+    : ob::GoalSampleableRegion(si),
+      candidates_(std::move(candidates)),
+      within_reach_(std::move(within_reach)) {
   // Satisfied on a candidate cell: within half a cell diagonal of its centre.
   setThreshold(0.75 * candidates_->geometry.resolution_m);
 }
@@ -168,7 +185,8 @@ double FrontierGoal::distanceGoal(const ob::State* state) const {
   if (candidates_->find(se2->getX(), se2->getY()) >= 0) return 0.0;
   double best = std::numeric_limits<double>::infinity();
   const Eigen::Vector2d p(se2->getX(), se2->getY());
-  for (const Cell& c : candidates_->cells) best = std::min(best, (candidates_->geometry.center(c) - p).norm());
+  for (const Cell& c : candidates_->cells)
+    best = std::min(best, (candidates_->geometry.center(c) - p).norm());
   return best;
 }
 
@@ -185,7 +203,9 @@ bool FrontierGoal::path_within_reach(const std::vector<Eigen::Vector2d>& path_W)
   return within_reach_(candidates_->geometry.cell_at(path_W.back().x(), path_W.back().y()), path_W);
 }
 
-unsigned int FrontierGoal::maxSampleCount() const { return static_cast<unsigned>(candidates_->cells.size()); }
+unsigned int FrontierGoal::maxSampleCount() const {
+  return static_cast<unsigned>(candidates_->cells.size());
+}
 
 namespace {
 
@@ -280,8 +300,8 @@ class BudgetedPrm final : public ompl::geometric::PRM {
                   work);
       // The next goal; a goal refused for the tether's reach does not use up the
       // round: the next one comes at once (up to kMaxRefusals a plan).
-      for (std::size_t refused = out_of_reach_ + 1; !solution && refused != out_of_reach_ &&
-                                                    out_of_reach_ < kMaxRefusals && !cap;) {
+      for (std::size_t refused = out_of_reach_ + 1;
+           !solution && refused != out_of_reach_ && out_of_reach_ < kMaxRefusals && !cap;) {
         refused = out_of_reach_;
         if (goal->maxSampleCount() > goalM_.size())
           if (const ob::State* st = pis_.nextGoal()) {
@@ -316,7 +336,7 @@ class BudgetedPrm final : public ompl::geometric::PRM {
   }
 
  private:
-  static constexpr unsigned kBounceSteps = 5;  // PRM's magic::MAX_RANDOM_BOUNCE_STEPS
+  static constexpr unsigned kBounceSteps = 5;      // PRM's magic::MAX_RANDOM_BOUNCE_STEPS
   static constexpr std::size_t kMaxRefusals = 32;  // goals refused for reach, a plan
 
   // The seed points as a chain from the start (besides their k-nearest connections:
@@ -445,7 +465,8 @@ FrontierPlan plan_to_frontier(const ExplorationState& s,
   out.samples_drawn = counter->load();
   out.out_of_reach = prm.out_of_reach();
   out.roadmap_W = prm.roadmap();
-  out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.planning_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!solution) return out;
   auto& path = *solution->as<ompl::geometric::PathGeometric>();
   for (const ob::State* st : path.getStates()) {

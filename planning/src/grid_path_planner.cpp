@@ -58,11 +58,13 @@ void GridPathPlanner::refresh_crossable(const IrGrid& grid, Traversal traversal,
   // (near_occupied): a block is looked at again when a block within that reach changed.
   const bool same = crossable_from_.valid && crossable_from_.lineage == revisions.lineage() &&
                     crossable_from_.traversal == traversal && blocked.empty();
-  const int reach = static_cast<int>(std::ceil(grid.options().clearance_m / geometry_.resolution_m)) + 1;
+  const int reach =
+      static_cast<int>(std::ceil(grid.options().clearance_m / geometry_.resolution_m)) + 1;
   const int b = revisions.block_cells();
   for (int j0 = 0; j0 < geometry_.height; j0 += b)
     for (int i0 = 0; i0 < geometry_.width; i0 += b) {
-      const int i1 = std::min(i0 + b, geometry_.width) - 1, j1 = std::min(j0 + b, geometry_.height) - 1;
+      const int i1 = std::min(i0 + b, geometry_.width) - 1,
+                j1 = std::min(j0 + b, geometry_.height) - 1;
       if (same && revisions.unchanged_since(crossable_from_.revision, {i0 - reach, j0 - reach},
                                             {i1 + reach, j1 + reach}))
         continue;
@@ -174,7 +176,8 @@ void GridPathPlanner::expand_bucket() const {
       if (k >= 4 && (!cross[e.padded + kDi[k]] || !cross[e.padded + kDj[k] * pw]))
         continue;  // no corner cutting
       const auto nidx = static_cast<std::size_t>(e.grid + grid_step_[k]);
-      const int nc = current_ + (k < 4 ? kStraight : kDiagonal) + (cross[np] == 2 ? kBandPenalty : 0);
+      const int nc =
+          current_ + (k < 4 ? kStraight : kDiagonal) + (cross[np] == 2 ? kBandPenalty : 0);
       if (cost_[nidx] >= 0 && cost_[nidx] <= nc) continue;
       if (cost_[nidx] < 0) reached_.push_back(nidx);
       cost_[nidx] = nc;

@@ -28,16 +28,18 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
 
   std::optional<ExplorationGoal> choose(const ExplorationState& s) override {
     // A curiosity goal is driven to (as cdos does: Algorithm 1's "goto g*").
-    if (committed_ && curious() && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell) &&
-        replan(s))
+    if (committed_ && curious() && s.paths.reachable(committed_->cell) &&
+        !s.tracker.blacklisted(committed_->cell) && replan(s))
       return committed_;
     auto candidates = std::make_shared<FrontierCandidates>(
-        cdos_ ? cdos_candidates(s, options_.curiosity, options_.max_velocity_mps, options_.cdos_candidates_global)
+        cdos_ ? cdos_candidates(s, options_.curiosity, options_.max_velocity_mps,
+                                options_.cdos_candidates_global)
               : rapid_candidates(s, options_.max_velocity_mps));
     // Any other goal is kept while it is a frontier, unless curiosity now speaks (as
     // rapid and nearest keep theirs).
-    if (committed_ && !curious() && candidates->rule != GoalRule::kCuriosity && s.tracker.is_frontier(committed_->cell) &&
-        !s.tracker.blacklisted(committed_->cell) && s.paths.reachable(committed_->cell) && replan(s))
+    if (committed_ && !curious() && candidates->rule != GoalRule::kCuriosity &&
+        s.tracker.is_frontier(committed_->cell) && !s.tracker.blacklisted(committed_->cell) &&
+        s.paths.reachable(committed_->cell) && replan(s))
       return committed_;
     committed_.reset();
     if (candidates->empty()) return std::nullopt;
@@ -60,7 +62,8 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
   }
 
   void goal_done() override { committed_.reset(); }
-  [[nodiscard]] bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const override {
+  [[nodiscard]] bool keeps_goal(const ObjectMap& objects,
+                                const FrontierTracker& tracker) const override {
     if (!committed_ || tracker.blacklisted(committed_->cell)) return false;
     if (curious()) return true;
     // New evidence calls for a curiosity decision (cdos).
@@ -73,7 +76,8 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
   }
 
   // The best-weighted candidate whose grid path is within reach (PRM found none).
-  static bool fallback(const ExplorationState& s, const FrontierCandidates& candidates, ExplorationGoal& goal) {
+  static bool fallback(const ExplorationState& s, const FrontierCandidates& candidates,
+                       ExplorationGoal& goal) {
     std::size_t tried = 0;
     for (const std::size_t k : candidates.order) {
       const Cell c = candidates.cells[k];
@@ -91,9 +95,10 @@ class OmplFrontierPolicy final : public ExplorationPolicy {
 
   // The way to the best-weighted candidate PRM connects within reach (or, where PRM
   // finds none, the best one whose grid path is within reach): goal's cell, path, reason.
-  bool plan(const ExplorationState& s, std::shared_ptr<const FrontierCandidates> candidates, ExplorationGoal& goal) {
-    const FrontierPlan plan =
-        plan_to_frontier(s, candidates, FrontierPlanBudget{}, derive_seed(options_.seed, {decisions_++}));
+  bool plan(const ExplorationState& s, std::shared_ptr<const FrontierCandidates> candidates,
+            ExplorationGoal& goal) {
+    const FrontierPlan plan = plan_to_frontier(s, candidates, FrontierPlanBudget{},
+                                               derive_seed(options_.seed, {decisions_++}));
     if (!plan.solved) return fallback(s, *candidates, goal);
     goal.cell = plan.goal;
     goal.path_W = plan.path_W;

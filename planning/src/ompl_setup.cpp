@@ -23,7 +23,8 @@ namespace og = ompl::geometric;
 
 namespace ferret {
 namespace {
-using Factory = std::function<std::shared_ptr<ompl::base::Planner>(const ompl::base::SpaceInformationPtr&)>;
+using Factory =
+    std::function<std::shared_ptr<ompl::base::Planner>(const ompl::base::SpaceInformationPtr&)>;
 const std::map<std::string, Factory>& factories() {
   static const std::map<std::string, Factory> f{
       {"rrtconnect", [](const auto& si) { return std::make_shared<og::RRTConnect>(si); }},
@@ -62,9 +63,9 @@ const std::vector<std::string>& ompl_planner_names() {
   return names;
 }
 
-std::shared_ptr<ompl::base::Planner> make_ompl_planner(const std::string& name,
-                                                       const std::shared_ptr<ompl::base::SpaceInformation>& si,
-                                                       const std::string& source) {
+std::shared_ptr<ompl::base::Planner> make_ompl_planner(
+    const std::string& name, const std::shared_ptr<ompl::base::SpaceInformation>& si,
+    const std::string& source) {
   const auto it = factories().find(name);
   if (it == factories().end()) {
     std::string list;

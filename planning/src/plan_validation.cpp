@@ -245,7 +245,8 @@ ValidationReport validate_plan(const PlanFile& plan, CollisionChecker& exact,
           report.violations.push_back(v);
         }
       }
-      if (const auto s = first_collision(exact, p, w, options.resolution, /*exact=*/true, options.cancelled))
+      if (const auto s =
+              first_collision(exact, p, w, options.resolution, /*exact=*/true, options.cancelled))
         add_collision(k - 1, k, *s, interpolate(p, w, *s));
       stop_if_cancelled();  // a check cut short found nothing: it must not pass as clear
       // The clearance at the poses the collision check visits.

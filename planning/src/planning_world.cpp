@@ -15,7 +15,8 @@
 namespace ferret {
 
 PlanningWorld load_planning_world(const std::filesystem::path& path) {
-  if (is_map_server_yaml(path)) return planning_world_from_map_2d(load_map_server(path), path.string());
+  if (is_map_server_yaml(path))
+    return planning_world_from_map_2d(load_map_server(path), path.string());
   PlanningWorld w;
   w.source = path;
   w.tree = load_or_build_octree(path, &w.spec);
@@ -243,8 +244,10 @@ std::vector<double> parse_number_list(const std::string& text, std::size_t count
   std::size_t start = 0;
   while (out.size() <= count) {
     const auto comma = text.find(',', start);
-    const std::string cell = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (!number_error(cell, NumberRange::finite()).empty()) throw InputError(option, "", expected, text);
+    const std::string cell =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (!number_error(cell, NumberRange::finite()).empty())
+      throw InputError(option, "", expected, text);
     out.push_back(parse_number(cell, NumberRange::finite(), option));
     if (comma == std::string::npos) break;
     start = comma + 1;

@@ -23,12 +23,16 @@ Eigen::Vector2d xy(const ob::State* s) {
 
 TetheredRRT::TetheredRRT(const ob::SpaceInformationPtr& si, TautTether tether, double max_taut_m,
                          std::uint64_t seed)
-    : ob::Planner(si, "TetheredRRT"), tether0_(std::move(tether)), max_taut_m_(max_taut_m), rng_(seed) {
+    : ob::Planner(si, "TetheredRRT"),
+      tether0_(std::move(tether)),
+      max_taut_m_(max_taut_m),
+      rng_(seed) {
   specs_.approximateSolutions = false;
   specs_.directed = true;
-  Planner::declareParam<double>("range", this, &TetheredRRT::setRange, &TetheredRRT::getRange, "0.:0.1:10.");
-  Planner::declareParam<double>("goal_bias", this, &TetheredRRT::setGoalBias, &TetheredRRT::getGoalBias,
-                                "0.:.05:1.");
+  Planner::declareParam<double>("range", this, &TetheredRRT::setRange, &TetheredRRT::getRange,
+                                "0.:0.1:10.");
+  Planner::declareParam<double>("goal_bias", this, &TetheredRRT::setGoalBias,
+                                &TetheredRRT::getGoalBias, "0.:.05:1.");
 }
 
 TetheredRRT::~TetheredRRT() { freeMemory(); }
@@ -37,7 +41,8 @@ void TetheredRRT::setup() {
   Planner::setup();
   if (!nn_) nn_ = std::make_shared<ompl::NearestNeighborsLinear<Motion*>>();
   // Nearest in the plane: the heading costs only a turn in place.
-  nn_->setDistanceFunction([](const Motion* a, const Motion* b) { return (xy(a->state) - xy(b->state)).norm(); });
+  nn_->setDistanceFunction(
+      [](const Motion* a, const Motion* b) { return (xy(a->state) - xy(b->state)).norm(); });
 }
 
 void TetheredRRT::freeMemory() {
@@ -86,7 +91,8 @@ ob::PlannerStatus TetheredRRT::solve(const ob::PlannerTerminationCondition& ptc)
     if (rng_.uniform01() < goal_bias_) {
       target = p_goal;
     } else {
-      target = {rng_.uniform(bounds.low[0], bounds.high[0]), rng_.uniform(bounds.low[1], bounds.high[1])};
+      target = {rng_.uniform(bounds.low[0], bounds.high[0]),
+                rng_.uniform(bounds.low[1], bounds.high[1])};
     }
     auto* c = candidate->as<ob::SE2StateSpace::StateType>();
     c->setXY(target.x(), target.y());

@@ -43,7 +43,8 @@ void check_request(const UavApproachRequest& r) {
 
 }  // namespace
 
-UavApproachSetup prepare_uav_approach(const PlanningWorld& world, const UavApproachRequest& request) {
+UavApproachSetup prepare_uav_approach(const PlanningWorld& world,
+                                      const UavApproachRequest& request) {
   const UavApproachRequest& r = request;
   if (r.tether_released_m && !(std::isfinite(*r.tether_released_m) && *r.tether_released_m >= 0.0 &&
                                *r.tether_released_m <= 100.0))
@@ -55,10 +56,12 @@ UavApproachSetup prepare_uav_approach(const PlanningWorld& world, const UavAppro
   UavApproachSetup setup;
   setup.robot = r.tether_released_m ? PlanRobot::kUavWithUgv : PlanRobot::kUav;
   setup.released_m = r.tether_released_m.value_or(0.0);
-  setup.model = load_plan_robot(setup.robot, r.robot, r.mission, setup.released_m, kSource, "robot");
+  setup.model =
+      load_plan_robot(setup.robot, r.robot, r.mission, setup.released_m, kSource, "robot");
   setup.geofence = r.bounds.value_or(default_uav_bounds(world));
   check_box_in_key_range(setup.geofence, world.tree->getResolution(), kSource, "bounds");
-  setup.map = CollisionMap::build(*world.tree, uav_map_options(world.spec, r.unknown, setup.geofence));
+  setup.map =
+      CollisionMap::build(*world.tree, uav_map_options(world.spec, r.unknown, setup.geofence));
   return setup;
 }
 

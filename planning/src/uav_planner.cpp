@@ -2,8 +2,8 @@
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/Planner.h>
-#include <ompl/base/ScopedState.h>
 #include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
@@ -45,14 +45,16 @@ void from_waypoint(const Waypoint& w, ob::State* s) {
 // the poses `ferret validate` checks.
 class LinearMotionValidator : public ob::MotionValidator {
  public:
-  LinearMotionValidator(const ob::SpaceInformationPtr& si, CollisionChecker& checker, CheckResolution res)
+  LinearMotionValidator(const ob::SpaceInformationPtr& si, CollisionChecker& checker,
+                        CheckResolution res)
       : ob::MotionValidator(si), checker_(checker), res_(res) {}
   bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
     const bool ok = !first_collision(checker_, to_waypoint(s1), to_waypoint(s2), res_);
     ++(ok ? valid_ : invalid_);
     return ok;
   }
-  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& last) const override {
+  bool checkMotion(const ob::State* s1, const ob::State* s2,
+                   std::pair<ob::State*, double>& last) const override {
     const Waypoint a = to_waypoint(s1), b = to_waypoint(s2);
     const auto hit = first_collision(checker_, a, b, res_);
     if (!hit) {
@@ -73,7 +75,8 @@ class LinearMotionValidator : public ob::MotionValidator {
 
 }  // namespace
 
-UavPlanner::UavPlanner(std::shared_ptr<const CollisionMap> map, RobotShape shape, const UavPlannerOptions& options)
+UavPlanner::UavPlanner(std::shared_ptr<const CollisionMap> map, RobotShape shape,
+                       const UavPlannerOptions& options)
     : map_(std::move(map)), options_(options) {
   checker_ = std::make_unique<CollisionChecker>(map_, std::move(shape));
 }
@@ -98,7 +101,8 @@ std::shared_ptr<ob::SpaceInformation> UavPlanner::space_information() {
     const Waypoint w = to_waypoint(s);
     return fence.contains(w.position()) && !checker->in_collision(w.pose());
   });
-  si->setMotionValidator(std::make_shared<LinearMotionValidator>(si, *checker, options_.resolution));
+  si->setMotionValidator(
+      std::make_shared<LinearMotionValidator>(si, *checker, options_.resolution));
   si->setup();
   return si;
 }
@@ -117,7 +121,8 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
   auto fail = [&](std::string why, PlanFailure failure) {
     out.status = std::move(why);
     out.failure = failure;
-    out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.planning_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
   };
   for (const bool is_start : {true, false}) {
@@ -141,7 +146,8 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
     planner->params().setParam("range", std::to_string(options_.range_m));
   planner->setProblemDefinition(pdef);
   planner->setup();
-  const ob::PlannerStatus status = planner->solve(internal::termination(options_.time_limit_s, options_.cancelled));
+  const ob::PlannerStatus status =
+      planner->solve(internal::termination(options_.time_limit_s, options_.cancelled));
   if (status != ob::PlannerStatus::EXACT_SOLUTION) {
     if (options_.cancelled && options_.cancelled())
       return fail("cancelled before a path was found", PlanFailure::kCancelled);
@@ -168,13 +174,15 @@ UavPlan UavPlanner::plan(const Waypoint& start, const Waypoint& goal) {
   // FCL) or, on request, with FCL alone.
   for (std::size_t k = 1; k < states.size(); ++k) {
     if (!options_.geofence.contains(states[k].position()) ||
-        first_collision(*checker_, states[k - 1], states[k], options_.resolution, options_.final_check_fcl_only))
+        first_collision(*checker_, states[k - 1], states[k], options_.resolution,
+                        options_.final_check_fcl_only))
       return fail("final path failed exact validation", PlanFailure::kNoPath);
   }
   out.solved = true;
   out.status = "solved";
   out.states = std::move(states);
-  out.planning_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.planning_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
 

@@ -50,9 +50,10 @@ HiddenSpaceFrame request_space(const PlanningWorld& world, const UgvPathRequest&
     // Within the map's key range (+-2^15 voxels), like every box the map is cut to.
     const double reach_m = 32767.0 * world.tree->getResolution();
     if (!(std::isfinite(*r.floor_z_m) && std::abs(*r.floor_z_m) < reach_m))
-      throw InputError(kSource, "floor_z_m",
-                       fmt::format("a finite height within +-{:g} m (the map's key range)", reach_m),
-                       fmt::format("{:g}", *r.floor_z_m));
+      throw InputError(
+          kSource, "floor_z_m",
+          fmt::format("a finite height within +-{:g} m (the map's key range)", reach_m),
+          fmt::format("{:g}", *r.floor_z_m));
     space.floor_z_m = *r.floor_z_m;
   }
   if (r.p_WE) {
@@ -66,7 +67,8 @@ HiddenSpaceFrame request_space(const PlanningWorld& world, const UgvPathRequest&
                      "a start inside one of the world's hidden spaces (or a box as bounds)",
                      world.source.string());
   if (!have_entry)
-    throw InputError(kSource, "p_WE", "the tether's entry point (a box or a 2D map alone does not give one)");
+    throw InputError(kSource, "p_WE",
+                     "the tether's entry point (a box or a 2D map alone does not give one)");
   return space;
 }
 
@@ -104,7 +106,8 @@ UgvPathSetup prepare_ugv_path(const PlanningWorld& world, const UgvPathRequest& 
                               const HiddenSpaceFrame& space) {
   UgvPathSetup setup;
   setup.space = space;
-  setup.model = load_plan_robot(PlanRobot::kUgv, request.robot, request.mission, 0.0, kSource, "robot");
+  setup.model =
+      load_plan_robot(PlanRobot::kUgv, request.robot, request.mission, 0.0, kSource, "robot");
   setup.map = [&] {
     try {
       return ugv_collision_map(*world.tree, space, setup.model.ugv);

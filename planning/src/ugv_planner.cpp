@@ -32,7 +32,8 @@ bool in_plane_bounds(const HiddenSpaceFrame& s, double x, double y) {
 // segments; this one checks exactly the turn-drive-turn motion that is executed).
 class TurnDriveTurnValidator : public ob::MotionValidator {
  public:
-  TurnDriveTurnValidator(const ob::SpaceInformationPtr& si, UgvPlanner& planner, CheckResolution res)
+  TurnDriveTurnValidator(const ob::SpaceInformationPtr& si, UgvPlanner& planner,
+                         CheckResolution res)
       : ob::MotionValidator(si), planner_(planner), res_(res) {}
 
   bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
@@ -52,7 +53,8 @@ class TurnDriveTurnValidator : public ob::MotionValidator {
     ++valid_;
     return true;
   }
-  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& last) const override {
+  bool checkMotion(const ob::State* s1, const ob::State* s2,
+                   std::pair<ob::State*, double>& last) const override {
     if (checkMotion(s1, s2)) return true;
     // Callers that want the last valid state get the start (conservative).
     if (last.first) si_->copyState(last.first, s1);
@@ -71,7 +73,8 @@ class TurnDriveTurnValidator : public ob::MotionValidator {
 
 }  // namespace
 
-std::shared_ptr<const TetherCorners> tether_corners_from_map(const CollisionMap& map, const HiddenSpaceFrame& space,
+std::shared_ptr<const TetherCorners> tether_corners_from_map(const CollisionMap& map,
+                                                             const HiddenSpaceFrame& space,
                                                              const UgvGeometry& ugv) {
   const double res = map.resolution_m();
   GridGeometry g;
@@ -102,15 +105,21 @@ int replay_tether(TautTether& tether, std::vector<Waypoint>& states, double max_
 UgvPlanner::UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space,
                        const UgvGeometry& ugv, const UgvPlannerOptions& options)
     : map_(std::move(map)), space_(space), ugv_(ugv), options_(options) {
-  checker_ = std::make_unique<CollisionChecker>(map_, options_.shape ? *options_.shape : ugv_shape(ugv_));
+  checker_ =
+      std::make_unique<CollisionChecker>(map_, options_.shape ? *options_.shape : ugv_shape(ugv_));
   corners_ = tether_corners_from_map(*map_, space_, ugv_);
 }
 
 UgvPlanner::UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space,
                        const UgvGeometry& ugv, const UgvPlannerOptions& options,
                        std::shared_ptr<const TetherCorners> corners)
-    : map_(std::move(map)), space_(space), ugv_(ugv), options_(options), corners_(std::move(corners)) {
-  checker_ = std::make_unique<CollisionChecker>(map_, options_.shape ? *options_.shape : ugv_shape(ugv_));
+    : map_(std::move(map)),
+      space_(space),
+      ugv_(ugv),
+      options_(options),
+      corners_(std::move(corners)) {
+  checker_ =
+      std::make_unique<CollisionChecker>(map_, options_.shape ? *options_.shape : ugv_shape(ugv_));
   if (!corners_) corners_ = tether_corners_from_map(*map_, space_, ugv_);
 }
 
@@ -194,7 +203,8 @@ UgvPlan UgvPlanner::plan(const UgvPlanRequest& request) {
   rrt.setGoalBias(options_.goal_bias);
   rrt.setProblemDefinition(pdef);
   rrt.setup();
-  const ob::PlannerStatus status = rrt.solve(internal::termination(options_.time_limit_s, options_.cancelled));
+  const ob::PlannerStatus status =
+      rrt.solve(internal::termination(options_.time_limit_s, options_.cancelled));
   out.tree_size = rrt.treeSize();
   if (status != ob::PlannerStatus::EXACT_SOLUTION) {
     if (options_.cancelled && options_.cancelled())
@@ -202,7 +212,8 @@ UgvPlan UgvPlanner::plan(const UgvPlanRequest& request) {
     return fail("no tether-feasible path found within the time limit", PlanFailure::kTimeout);
   }
   std::vector<Waypoint> nodes;
-  for (const ob::State* st : pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->getStates()) {
+  for (const ob::State* st :
+       pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->getStates()) {
     const auto* se2 = st->as<ob::SE2StateSpace::StateType>();
     nodes.push_back(waypoint({se2->getX(), se2->getY(), se2->getYaw()}));
   }
@@ -213,7 +224,8 @@ UgvPlan UgvPlanner::plan(const UgvPlanRequest& request) {
   return done;
 }
 
-UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether0, double max_taut_m, double t0_s) {
+UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether0,
+                           double max_taut_m, double t0_s) {
   UgvPlan out;
   auto motion_free = [&](const Waypoint& a, const Waypoint& b) {
     Waypoint from = a;
@@ -239,7 +251,8 @@ UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether
       for (std::size_t j = nodes.size() - 1; j > i + 1; --j) {
         if (!motion_free(nodes[i], nodes[j])) continue;
         std::vector<Waypoint> candidate = result;
-        candidate.insert(candidate.end(), nodes.begin() + static_cast<std::ptrdiff_t>(j), nodes.end());
+        candidate.insert(candidate.end(), nodes.begin() + static_cast<std::ptrdiff_t>(j),
+                         nodes.end());
         if (!tether_fits(candidate)) continue;
         next = j;
         break;
@@ -267,7 +280,8 @@ UgvPlan UgvPlanner::finish(std::vector<Waypoint> nodes, const TautTether& tether
   // (simplified paths can touch invalid regions when checks are coarse, OMPL #221),
   // with the checker (same answers as FCL) or, on request, with FCL alone.
   for (std::size_t k = 1; k < dense.size(); ++k) {
-    if (first_collision(*checker_, dense[k - 1], dense[k], options_.resolution, options_.final_check_fcl_only) ||
+    if (first_collision(*checker_, dense[k - 1], dense[k], options_.resolution,
+                        options_.final_check_fcl_only) ||
         !in_plane_bounds(space_, dense[k].x_m, dense[k].y_m)) {
       out.status = "final path failed exact validation";
       out.failure = PlanFailure::kNoPath;
@@ -291,13 +305,15 @@ UgvPlan UgvPlanner::plan_return(const UgvPlanRequest& request) {
   // the robot's half diagonal plus a margin.
   const double offset = 0.5 * ugv_.body_size_m.head<2>().norm() + 2.0 * map_->resolution_m();
   std::vector<Waypoint> nodes{waypoint(request.start)};
-  for (const Eigen::Vector2d& p : way_back_along_tether(tether, offset)) nodes.push_back(waypoint({p.x(), p.y(), 0.0}));
+  for (const Eigen::Vector2d& p : way_back_along_tether(tether, offset))
+    nodes.push_back(waypoint({p.x(), p.y(), 0.0}));
   nodes.push_back(waypoint(request.goal));
   bool ok = true;
   for (std::size_t k = 1; k < nodes.size() && ok; ++k) {
     Waypoint from = nodes[k - 1];
     for (const Waypoint& next : turn_drive_turn(nodes[k - 1], nodes[k])) {
-      if (!in_plane_bounds(space_, next.x_m, next.y_m) || first_collision(*checker_, from, next, options_.resolution)) {
+      if (!in_plane_bounds(space_, next.x_m, next.y_m) ||
+          first_collision(*checker_, from, next, options_.resolution)) {
         ok = false;
         break;
       }

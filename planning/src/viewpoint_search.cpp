@@ -21,11 +21,13 @@ double direction_rad(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x())
 // True when p_W lies within range_m of the robot and within half of fov_rad of its heading.
 bool in_sector(const Pose2& X_WG, const Eigen::Vector2d& p_W, double fov_rad, double range_m) {
   const Eigen::Vector2d to = p_W - X_WG.position();
-  return to.norm() <= range_m && std::abs(wrap_angle_rad(direction_rad(to) - X_WG.yaw_rad)) <= 0.5 * fov_rad;
+  return to.norm() <= range_m &&
+         std::abs(wrap_angle_rad(direction_rad(to) - X_WG.yaw_rad)) <= 0.5 * fov_rad;
 }
 
 // Along the ray from p in the unit direction u, the distance to where it leaves the map.
-double distance_to_edge_m(const GridGeometry& g, const Eigen::Vector2d& p, const Eigen::Vector2d& u) {
+double distance_to_edge_m(const GridGeometry& g, const Eigen::Vector2d& p,
+                          const Eigen::Vector2d& u) {
   const double c = u.x(), s = u.y();
   const double x0 = g.origin_x_m, x1 = g.origin_x_m + g.width * g.resolution_m;
   const double y0 = g.origin_y_m, y1 = g.origin_y_m + g.height * g.resolution_m;
@@ -41,7 +43,8 @@ double distance_to_edge_m(const GridGeometry& g, const Eigen::Vector2d& p, const
 std::vector<Eigen::Vector2d> ray_directions(int rays) {
   const double dphi = kTwoPi / rays;
   std::vector<Eigen::Vector2d> u(static_cast<std::size_t>(rays));
-  for (int k = 0; k < rays; ++k) u[static_cast<std::size_t>(k)] = {std::cos(k * dphi), std::sin(k * dphi)};
+  for (int k = 0; k < rays; ++k)
+    u[static_cast<std::size_t>(k)] = {std::cos(k * dphi), std::sin(k * dphi)};
   return u;
 }
 
@@ -66,24 +69,27 @@ double looks_per_log_odds(const ObjectMap& objects) {
   return 1.0 / std::log(miss / (1.0 - miss));
 }
 
-double mass_of(const IrGrid& grid, const ObjectMap& objects, std::size_t idx, double searched_weight,
-               double looks_per_log_odds) {
+double mass_of(const IrGrid& grid, const ObjectMap& objects, std::size_t idx,
+               double searched_weight, double looks_per_log_odds) {
   if (grid.label_at(idx) == GridLabel::kOccupied) return 0.0;
   if (!objects.observed(idx)) return 1.0;
   // Each further look leaves searched_weight of what was left: the looks are counted by
   // the object map's odds (one miss at close range lowers them by the miss likelihood's;
   // far looks count less), the first look whole. Most cells were looked at once or
   // from afar (looks <= 1): no power to take.
-  const double looks = std::min(0.0, static_cast<double>(objects.log_odds_at(idx))) * looks_per_log_odds;
+  const double looks =
+      std::min(0.0, static_cast<double>(objects.log_odds_at(idx))) * looks_per_log_odds;
   return looks <= 1.0 ? searched_weight : std::pow(searched_weight, looks);
 }
 }  // namespace
 
-double unsearched_mass(const IrGrid& grid, const ObjectMap& objects, std::size_t idx, double searched_weight) {
+double unsearched_mass(const IrGrid& grid, const ObjectMap& objects, std::size_t idx,
+                       double searched_weight) {
   return mass_of(grid, objects, idx, searched_weight, looks_per_log_odds(objects));
 }
 
-void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC, const ViewpointSearchOptions& options,
+void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC,
+                           const ViewpointSearchOptions& options,
                            const std::function<void(std::size_t)>& visit) {
   const GridGeometry& g = grid.geometry();
   const int rays = std::max(1, options.rays);
@@ -93,7 +99,8 @@ void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC, const Viewpoin
   const Eigen::Vector2d p = X_WC.position();
   for (int d = -half; d <= half; ++d) {
     const double phi = (centre + d) * dphi;
-    const Eigen::Vector2d to = p + options.camera_range_m * Eigen::Vector2d(std::cos(phi), std::sin(phi));
+    const Eigen::Vector2d to =
+        p + options.camera_range_m * Eigen::Vector2d(std::cos(phi), std::sin(phi));
     trace_ray(g, p, to, [&](Cell c, double) {
       const std::size_t idx = g.index(c);
       if (grid.label_at(idx) == GridLabel::kOccupied) return false;
@@ -107,7 +114,8 @@ namespace {
 // view_profile with m(c) from `mass_at(idx)` (the unseeable cells already 0).
 // `directions` is ray_directions(options.rays).
 template <class MassAt>
-std::vector<double> profile_with(const IrGrid& grid, const Eigen::Vector2d& p_W, const ViewpointSearchOptions& options,
+std::vector<double> profile_with(const IrGrid& grid, const Eigen::Vector2d& p_W,
+                                 const ViewpointSearchOptions& options,
                                  const std::vector<Eigen::Vector2d>& directions, MassAt&& mass_at) {
   const GridGeometry& g = grid.geometry();
   const int rays = static_cast<int>(directions.size());
@@ -136,7 +144,8 @@ std::vector<double> profile_with(const IrGrid& grid, const Eigen::Vector2d& p_W,
       }
       mass = transmission * mass_at(idx);
       // An unknown cell may hold what ends the view: the view beyond it is worth less.
-      if (grid.label_at(idx) == GridLabel::kUnknown) transmission *= 1.0 - options.unknown_block_probability;
+      if (grid.label_at(idx) == GridLabel::kUnknown)
+        transmission *= 1.0 - options.unknown_block_probability;
       return true;
     });
     if (!blocked) close_cell(std::min(options.camera_range_m, distance_to_edge_m(g, p_W, u)));
@@ -146,16 +155,20 @@ std::vector<double> profile_with(const IrGrid& grid, const Eigen::Vector2d& p_W,
 }
 }  // namespace
 
-std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects, const Eigen::Vector2d& p_W,
-                                 const ViewpointSearchOptions& options, const std::vector<std::uint8_t>& unseeable) {
+std::vector<double> view_profile(const IrGrid& grid, const ObjectMap& objects,
+                                 const Eigen::Vector2d& p_W, const ViewpointSearchOptions& options,
+                                 const std::vector<std::uint8_t>& unseeable) {
   const double looks_per_m = looks_per_log_odds(objects);
-  return profile_with(grid, p_W, options, ray_directions(std::max(1, options.rays)), [&](std::size_t idx) {
-    return !unseeable.empty() && unseeable[idx] != 0 ? 0.0
-                                                     : mass_of(grid, objects, idx, options.searched_weight, looks_per_m);
-  });
+  return profile_with(
+      grid, p_W, options, ray_directions(std::max(1, options.rays)), [&](std::size_t idx) {
+        return !unseeable.empty() && unseeable[idx] != 0
+                   ? 0.0
+                   : mass_of(grid, objects, idx, options.searched_weight, looks_per_m);
+      });
 }
 
-std::vector<double> ViewpointSearchPolicy::cached_profile(const IrGrid& grid, const ObjectMap& objects,
+std::vector<double> ViewpointSearchPolicy::cached_profile(const IrGrid& grid,
+                                                          const ObjectMap& objects,
                                                           const Eigen::Vector2d& p_W) {
   const double looks_per_m = looks_per_log_odds(objects);
   return profile_with(grid, p_W, options_, directions_, [&](std::size_t idx) {
@@ -169,23 +182,28 @@ std::vector<double> ViewpointSearchPolicy::cached_profile(const IrGrid& grid, co
   });
 }
 
-HeadingValue ViewpointSearchPolicy::view_from(const IrGrid& grid, const ObjectMap& objects, Cell c) {
+HeadingValue ViewpointSearchPolicy::view_from(const IrGrid& grid, const ObjectMap& objects,
+                                              Cell c) {
   const GridGeometry& g = grid.geometry();
   // Every cell a ray from c's centre can reach (D_cam, and a cell for the ray's end).
   const int reach = static_cast<int>(std::ceil(options_.camera_range_m / g.resolution_m)) + 1;
   const Cell lo{c.i - reach, c.j - reach}, hi{c.i + reach, c.j + reach};
   const std::uint64_t unseeable = unseeable_revisions_ ? unseeable_revisions_->revision() : 0;
   const auto it = keep_views_ ? kept_views_.find(g.index(c)) : kept_views_.end();
-  if (it != kept_views_.end() && grid.label_revisions().unchanged_since(it->second.labels, lo, hi) &&
+  if (it != kept_views_.end() &&
+      grid.label_revisions().unchanged_since(it->second.labels, lo, hi) &&
       objects.revisions().unchanged_since(it->second.odds, lo, hi) &&
-      (!unseeable_revisions_ || unseeable_revisions_->unchanged_since(it->second.unseeable, lo, hi))) {
+      (!unseeable_revisions_ ||
+       unseeable_revisions_->unchanged_since(it->second.unseeable, lo, hi))) {
     ++views_kept_;
     return it->second.view;
   }
   ++views_computed_;
-  const HeadingValue view = best_heading(cached_profile(grid, objects, g.center(c)), options_.camera_fov_rad);
+  const HeadingValue view =
+      best_heading(cached_profile(grid, objects, g.center(c)), options_.camera_fov_rad);
   if (keep_views_)
-    kept_views_[g.index(c)] = {view, grid.label_revisions().revision(), objects.revisions().revision(), unseeable};
+    kept_views_[g.index(c)] = {view, grid.label_revisions().revision(),
+                               objects.revisions().revision(), unseeable};
   return view;
 }
 
@@ -207,7 +225,8 @@ double mass_in_view(const std::vector<double>& profile, double heading_rad, doub
   const int half = static_cast<int>(std::floor(0.5 * fov_rad / (kTwoPi / rays) + 1e-9));
   const int centre = ray_of(heading_rad, rays);
   double sum = 0.0;
-  for (int d = -half; d <= half; ++d) sum += profile[static_cast<std::size_t>(((centre + d) % rays + rays) % rays)];
+  for (int d = -half; d <= half; ++d)
+    sum += profile[static_cast<std::size_t>(((centre + d) % rays + rays) % rays)];
   return sum;
 }
 
@@ -218,7 +237,8 @@ HeadingValue best_heading(const std::vector<double>& profile, double fov_rad) {
   const int half = static_cast<int>(std::floor(0.5 * fov_rad / (kTwoPi / rays) + 1e-9));
   // A sliding window over the circle.
   double window = 0.0;
-  for (int d = -half; d <= half; ++d) window += profile[static_cast<std::size_t>(((d % rays) + rays) % rays)];
+  for (int d = -half; d <= half; ++d)
+    window += profile[static_cast<std::size_t>(((d % rays) + rays) % rays)];
   best.mass = window;
   for (int k = 1; k < rays; ++k) {
     window += profile[static_cast<std::size_t>((k + half) % rays)] -
@@ -244,7 +264,8 @@ void ViewpointSearchPolicy::goal_done() {
     const Pose2 view{committed_->p_W.x(), committed_->p_W.y(), *committed_->heading_rad};
     visited_.push_back(view);
     // Reached (not given up): what its view did not show, no view of it can.
-    if (grid_ && objects_ && (last_robot_W_ - committed_->p_W).norm() <= options_.revisit_radius_m) {
+    if (grid_ && objects_ &&
+        (last_robot_W_ - committed_->p_W).norm() <= options_.revisit_radius_m) {
       if (unseeable_.empty()) {
         unseeable_.assign(grid_->geometry().size(), 0);
         unseeable_revisions_.emplace(grid_->geometry());
@@ -262,7 +283,8 @@ void ViewpointSearchPolicy::goal_done() {
   cdos_.goal_done();
 }
 
-bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const {
+bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects,
+                                       const FrontierTracker& tracker) const {
   if (!objects.evidence_cells().empty()) return !committed_ && cdos_.keeps_goal(objects, tracker);
   // Without evidence the viewpoint is kept by choose() (its mass is looked at again
   // there, which the maps alone cannot tell).
@@ -271,7 +293,8 @@ bool ViewpointSearchPolicy::keeps_goal(const ObjectMap& objects, const FrontierT
 }
 
 std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationState& s) {
-  if (grid_ != &s.grid || objects_ != &s.objects) kept_views_.clear();  // other maps: nothing kept holds
+  if (grid_ != &s.grid || objects_ != &s.objects)
+    kept_views_.clear();  // other maps: nothing kept holds
   grid_ = &s.grid;
   objects_ = &s.objects;
   begin_cycle(s.grid.geometry().size());
@@ -295,12 +318,15 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     return cdos_.choose(s);
   }
   if (recheck_) {
-    if (s.paths.reachable(recheck_->cell) && !s.tracker.blacklisted(recheck_->cell)) return recheck_;
+    if (s.paths.reachable(recheck_->cell) && !s.tracker.blacklisted(recheck_->cell))
+      return recheck_;
     recheck_.reset();
   }
-  if (committed_ && s.paths.reachable(committed_->cell) && !s.tracker.blacklisted(committed_->cell)) {
+  if (committed_ && s.paths.reachable(committed_->cell) &&
+      !s.tracker.blacklisted(committed_->cell)) {
     const auto profile = cached_profile(s.grid, s.objects, committed_->p_W);
-    const double mass = mass_in_view(profile, committed_->heading_rad.value_or(0.0), options_.camera_fov_rad);
+    const double mass =
+        mass_in_view(profile, committed_->heading_rad.value_or(0.0), options_.camera_fov_rad);
     if (mass >= options_.keep_fraction * committed_mass_ && mass > 0.0) return committed_;
   }
   committed_.reset();
@@ -322,8 +348,9 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose(const ExplorationSt
     const bool far = (at - s.X_WG.position()).norm() > 1.5 * view_distance_m_;
     const bool in_view = in_sector(s.X_WG, at, options_.camera_fov_rad, options_.camera_range_m);
     if (!in_view || !far) last_evidence_W_.reset();
-    const bool rechecked = std::any_of(rechecked_W_.begin(), rechecked_W_.end(),
-                                       [&](const Eigen::Vector2d& r) { return (r - at).norm() < 0.5; });
+    const bool rechecked =
+        std::any_of(rechecked_W_.begin(), rechecked_W_.end(),
+                    [&](const Eigen::Vector2d& r) { return (r - at).norm() < 0.5; });
     if (!in_view && far && !rechecked)
       if (auto goal = viewing_goal(s.grid, s.tracker, s.paths, at, view_distance_m_)) {
         rechecked_W_.push_back(at);
@@ -345,15 +372,18 @@ bool ViewpointSearchPolicy::fresh_view(const ExplorationState& s) const {
   const Eigen::Vector2d p = s.X_WG.position();
   ViewpointSearchOptions all = options_;
   all.searched_weight = 1.0;
-  const double full = mass_in_view(view_profile(s.grid, s.objects, p, all), s.X_WG.yaw_rad, options_.camera_fov_rad);
-  const double left = mass_in_view(view_profile(s.grid, s.objects, p, options_), s.X_WG.yaw_rad, options_.camera_fov_rad);
+  const double full = mass_in_view(view_profile(s.grid, s.objects, p, all), s.X_WG.yaw_rad,
+                                   options_.camera_fov_rad);
+  const double left = mass_in_view(view_profile(s.grid, s.objects, p, options_), s.X_WG.yaw_rad,
+                                   options_.camera_fov_rad);
   return full > 0.0 && left >= options_.fresh_view_fraction * full;
 }
 
 std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const ExplorationState& s) {
   const GridGeometry& g = s.grid.geometry();
   std::vector<Cell> candidates;
-  const int stride = std::max(1, static_cast<int>(std::lround(options_.lattice_m / g.resolution_m)));
+  const int stride =
+      std::max(1, static_cast<int>(std::lround(options_.lattice_m / g.resolution_m)));
   for (int j = stride / 2; j < g.height; j += stride)
     for (int i = stride / 2; i < g.width; i += stride) {
       const Cell c{i, j};
@@ -361,7 +391,8 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const Exp
     }
   for (const auto* set : {&s.frontier_sets().visible, &s.frontier_sets().global}) {
     const std::size_t n = set->size();
-    const std::size_t limit = static_cast<std::size_t>(std::max(1, options_.max_frontier_candidates));
+    const std::size_t limit =
+        static_cast<std::size_t>(std::max(1, options_.max_frontier_candidates));
     const std::size_t step = std::max<std::size_t>(1, (n + limit - 1) / limit);
     for (std::size_t k = 0; k < n; k += step) {
       const Cell c = (*set)[k];
@@ -382,10 +413,11 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const Exp
     const Eigen::Vector2d to = g.center(c) - p;
     const bool moves = to.norm() > 1e-6;
     const double along = moves ? direction_rad(to) : s.X_WG.yaw_rad;
-    const double leave_turn = std::abs(wrap_angle_rad(along - s.X_WG.yaw_rad)) * (moves ? 1.0 : 0.0);
+    const double leave_turn =
+        std::abs(wrap_angle_rad(along - s.X_WG.yaw_rad)) * (moves ? 1.0 : 0.0);
     timed.push_back({c, along, leave_turn,
-                     s.paths.distance_m(c) / options_.max_velocity_mps + leave_turn / options_.max_yaw_rate_radps +
-                         options_.overhead_s});
+                     s.paths.distance_m(c) / options_.max_velocity_mps +
+                         leave_turn / options_.max_yaw_rate_radps + options_.overhead_s});
   }
   // No view holds more than every cell of the field of view's sectors at mass 1, seen
   // whole (a ray's segments sum to the integral of r dr over at most D_cam): a
@@ -394,9 +426,10 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const Exp
   const int rays = static_cast<int>(directions_.size());
   const double dphi = kTwoPi / rays;
   const int half = static_cast<int>(std::floor(0.5 * options_.camera_fov_rad / dphi + 1e-9));
-  const double most_mass = (1.0 + 1e-9) * (2 * half + 1) * 0.5 * options_.camera_range_m * options_.camera_range_m *
-                           dphi / (g.resolution_m * g.resolution_m);
-  std::stable_sort(timed.begin(), timed.end(), [](const Timed& a, const Timed& b) { return a.least_s < b.least_s; });
+  const double most_mass = (1.0 + 1e-9) * (2 * half + 1) * 0.5 * options_.camera_range_m *
+                           options_.camera_range_m * dphi / (g.resolution_m * g.resolution_m);
+  std::stable_sort(timed.begin(), timed.end(),
+                   [](const Timed& a, const Timed& b) { return a.least_s < b.least_s; });
   std::optional<ExplorationGoal> best;
   double best_rate = 0.0;
   for (const Timed& t : timed) {
@@ -410,9 +443,10 @@ std::optional<ExplorationGoal> ViewpointSearchPolicy::choose_viewpoint(const Exp
              std::abs(wrap_angle_rad(v.yaw_rad - view.heading_rad)) < 0.5 * options_.camera_fov_rad;
     });
     if (seen_from_here) continue;
-    const double turns = t.leave_turn_rad + std::abs(wrap_angle_rad(view.heading_rad - t.along_rad));
-    const double time_s = s.paths.distance_m(c) / options_.max_velocity_mps + turns / options_.max_yaw_rate_radps +
-                          options_.overhead_s;
+    const double turns =
+        t.leave_turn_rad + std::abs(wrap_angle_rad(view.heading_rad - t.along_rad));
+    const double time_s = s.paths.distance_m(c) / options_.max_velocity_mps +
+                          turns / options_.max_yaw_rate_radps + options_.overhead_s;
     const double rate = view.mass / time_s;
     if (!best || rate > best_rate + 1e-12) {
       best_rate = rate;

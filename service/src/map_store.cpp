@@ -88,7 +88,10 @@ std::shared_ptr<MapEntry> PlannerService::Impl::find_map(const std::string& name
   const std::lock_guard lock(maps_mutex);
   const auto it = maps.find(name);
   if (it == maps.end())
-    throw ApiError{404, "UNKNOWN_MAP", fmt::format("map: no map called '{}' (PUT /v1/maps/{{name}} first)", printable(name, 64)), "map"};
+    throw ApiError{
+        404, "UNKNOWN_MAP",
+        fmt::format("map: no map called '{}' (PUT /v1/maps/{{name}} first)", printable(name, 64)),
+        "map"};
   return it->second;
 }
 
@@ -97,7 +100,9 @@ std::size_t PlannerService::Impl::map_count() const {
   return maps.size();
 }
 
-std::shared_ptr<MapEntry> PlannerService::Impl::load_map(const std::string& name, const MapUpload& upload, const std::string& source) {
+std::shared_ptr<MapEntry> PlannerService::Impl::load_map(const std::string& name,
+                                                         const MapUpload& upload,
+                                                         const std::string& source) {
   auto entry = std::make_shared<MapEntry>();
   entry->name = name;
   entry->loaded_at = utc_now();
@@ -111,8 +116,8 @@ std::shared_ptr<MapEntry> PlannerService::Impl::load_map(const std::string& name
     const MapServerMeta meta = parse_map_server_meta(u.yaml, u.yaml_source);
     Map2DExtrusion extrusion;
     extrusion.max_voxels = options.max_map_nodes;
-    entry->world = planning_world_from_map_2d(map_from_image(meta, decode_map_image(u.image, u.image_source)),
-                                              u.yaml_source, extrusion);
+    entry->world = planning_world_from_map_2d(
+        map_from_image(meta, decode_map_image(u.image, u.image_source)), u.yaml_source, extrusion);
   } else if (bt || ot) {
     entry->bytes = body.size();
     entry->format = bt ? "octomap_bt" : "octomap_ot";
@@ -120,7 +125,9 @@ std::shared_ptr<MapEntry> PlannerService::Impl::load_map(const std::string& name
   } else {
     entry->bytes = body.size();
     if (first_invalid_utf8(body) != std::string::npos)
-      throw InputError(source, "", "an OctoMap file (it starts '# Octomap OcTree') or a world YAML (UTF-8 text)");
+      throw InputError(
+          source, "",
+          "an OctoMap file (it starts '# Octomap OcTree') or a world YAML (UTF-8 text)");
     entry->format = "world_yaml";
     WorldSpec spec = parse_world(body, source);
     WorldBuildOptions build;

@@ -166,7 +166,7 @@ class MapBuilder {
 // InputError naming `source` (for a map_server map: "yaml" or "image") when the
 // bytes are not a map.
 struct Map2DUpload {
-  std::string yaml, image;                      // the YAML's text, the image's bytes
+  std::string yaml, image;                                   // the YAML's text, the image's bytes
   std::string yaml_source = "yaml", image_source = "image";  // what errors name
 };
 struct MapUpload {

@@ -23,7 +23,9 @@
 
 // After every header that includes Eigen: httplib pulls in <resolv.h>, whose `_res`
 // macro breaks Eigen's templates that name a parameter _res.
+// clang-format off: httplib after every header that includes Eigen
 #include <httplib.h>
+// clang-format on
 
 namespace ferret {
 namespace internal {

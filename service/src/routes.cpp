@@ -2,8 +2,8 @@
 // request_parsing.cpp, its work done holding a worker, its answer or error as JSON;
 // authentication, draining and the service's own error pages before and around them.
 
-#include <fmt/format.h>
 #include <arpa/inet.h>
+#include <fmt/format.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 
@@ -44,15 +44,23 @@ using Clock = internal::Clock;
 // planner server: each a reason a client can act on.
 const char* failure_code(PlanFailure f) {
   switch (f) {
-    case PlanFailure::kStartInvalid: return "START_OCCUPIED";
-    case PlanFailure::kGoalInvalid: return "GOAL_OCCUPIED";
-    case PlanFailure::kStartOutside: return "START_OUTSIDE_MAP";
-    case PlanFailure::kGoalOutside: return "GOAL_OUTSIDE_MAP";
-    case PlanFailure::kTetherTooShort: return "TETHER_TOO_SHORT";
-    case PlanFailure::kTimeout: return "TIMEOUT";
-    case PlanFailure::kCancelled: return "CANCELLED";
+    case PlanFailure::kStartInvalid:
+      return "START_OCCUPIED";
+    case PlanFailure::kGoalInvalid:
+      return "GOAL_OCCUPIED";
+    case PlanFailure::kStartOutside:
+      return "START_OUTSIDE_MAP";
+    case PlanFailure::kGoalOutside:
+      return "GOAL_OUTSIDE_MAP";
+    case PlanFailure::kTetherTooShort:
+      return "TETHER_TOO_SHORT";
+    case PlanFailure::kTimeout:
+      return "TIMEOUT";
+    case PlanFailure::kCancelled:
+      return "CANCELLED";
     case PlanFailure::kNoPath:
-    case PlanFailure::kNone: break;
+    case PlanFailure::kNone:
+      break;
   }
   return "NO_VALID_PATH";
 }
@@ -115,11 +123,13 @@ bool peer_closed(int fd) {
 void PlannerService::Impl::send(httplib::Response& res, int status, const json& body) {
   res.status = status;
   // A string that is not UTF-8 is a bug upstream; it must not turn the answer into a 500.
-  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace) + "\n", "application/json");
+  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace) + "\n",
+                  "application/json");
 }
 
 // A deadline from the request (seconds from arrival), within the service's bounds.
-Clock::time_point PlannerService::Impl::deadline_of(const Body& body, Clock::time_point arrived) const {
+Clock::time_point PlannerService::Impl::deadline_of(const Body& body,
+                                                    Clock::time_point arrived) const {
   double d = options.default_deadline_s;
   if (body.has("deadline_s"))
     d = body.number("deadline_s", 1e-3, options.max_deadline_s,
@@ -129,13 +139,16 @@ Clock::time_point PlannerService::Impl::deadline_of(const Body& body, Clock::tim
 
 // Runs `work` holding a worker, or answers 503 / TIMEOUT without it.
 template <typename Work>
-void PlannerService::Impl::with_worker(httplib::Response& res, Clock::time_point deadline, Work work) {
+void PlannerService::Impl::with_worker(httplib::Response& res, Clock::time_point deadline,
+                                       Work work) {
   switch (admission.enter(deadline)) {
     case Admission::Result::kOverloaded:
       res.set_header("Retry-After", "1");
-      throw ApiError{503, "OVERLOADED", "every worker is busy and the queue is full: retry later", ""};
+      throw ApiError{503, "OVERLOADED", "every worker is busy and the queue is full: retry later",
+                     ""};
     case Admission::Result::kDeadline:
-      throw ApiError{422, "TIMEOUT", "the deadline passed while the request waited for a worker", "deadline_s"};
+      throw ApiError{422, "TIMEOUT", "the deadline passed while the request waited for a worker",
+                     "deadline_s"};
     case Admission::Result::kAdmitted:
       break;
   }
@@ -172,14 +185,18 @@ std::function<bool()> PlannerService::Impl::cancel_flag(const httplib::Request& 
     const auto now = Clock::now();
     if (now < watch->next) return false;
     watch->next = now + std::chrono::milliseconds(10);
-    if (watch->fd == -2) watch->fd = connection_fd(watch->remote_addr, watch->remote_port, watch->local_port);
+    if (watch->fd == -2)
+      watch->fd = connection_fd(watch->remote_addr, watch->remote_port, watch->local_port);
     watch->gone = watch->fd >= 0 && peer_closed(watch->fd);
     return watch->gone;
   };
 }
 
-json PlannerService::Impl::plan_response(const PlanResult& r, double wall_s, httplib::Response& res) {
-  metrics.record_plan(r.solved ? "solved" : r.failure == PlanFailure::kCancelled ? "cancelled" : "failed");
+json PlannerService::Impl::plan_response(const PlanResult& r, double wall_s,
+                                         httplib::Response& res) {
+  metrics.record_plan(r.solved                               ? "solved"
+                      : r.failure == PlanFailure::kCancelled ? "cancelled"
+                                                             : "failed");
   if (!r.solved) {
     const ApiError e{422, failure_code(r.failure), r.status, ""};
     json body = error_body(e);
@@ -188,7 +205,9 @@ json PlannerService::Impl::plan_response(const PlanResult& r, double wall_s, htt
     return body;
   }
   res.status = 200;
-  return json{{"status", "solved"}, {"planning_time_s", wall_s}, {"plan", json::parse(plan_to_json(r.plan))}};
+  return json{{"status", "solved"},
+              {"planning_time_s", wall_s},
+              {"plan", json::parse(plan_to_json(r.plan))}};
 }
 
 // A PUT's map: the whole body, or a map_server map as multipart/form-data with the
@@ -201,10 +220,17 @@ internal::MapUpload PlannerService::Impl::map_upload(const httplib::Request& req
   }
   for (const auto& [key, part] : req.files)
     if (key != "yaml" && key != "image")
-      throw ApiError{400, "INVALID_MAP", fmt::format("{}: expected only the parts yaml and image (a map_server map)", printable(key, 64)), printable(key, 64)};
+      throw ApiError{400, "INVALID_MAP",
+                     fmt::format("{}: expected only the parts yaml and image (a map_server map)",
+                                 printable(key, 64)),
+                     printable(key, 64)};
   for (const char* key : {"yaml", "image"}) {
     if (req.files.count(key) != 1)
-      throw ApiError{400, "INVALID_MAP", fmt::format("{0}: expected one part called {0} (a map_server map: its YAML and its image)", key), key};
+      throw ApiError{
+          400, "INVALID_MAP",
+          fmt::format(
+              "{0}: expected one part called {0} (a map_server map: its YAML and its image)", key),
+          key};
   }
   u.map_2d = Map2DUpload{req.get_file_value("yaml").content, req.get_file_value("image").content};
   return u;
@@ -218,11 +244,12 @@ UgvPathRequest PlannerService::Impl::ugv_defaults() const {
 }
 
 std::string PlannerService::Impl::ugv_key(const HiddenSpaceFrame& s) {
-  return fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", s.lo_m.x(), s.lo_m.y(),
-                     s.hi_m.x(), s.hi_m.y(), s.floor_z_m, s.p_WE.x(), s.p_WE.y());
+  return fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", s.lo_m.x(),
+                     s.lo_m.y(), s.hi_m.x(), s.hi_m.y(), s.floor_z_m, s.p_WE.x(), s.p_WE.y());
 }
 
-void PlannerService::Impl::plan_ugv(const httplib::Request& req, httplib::Response& res, bool return_path) {
+void PlannerService::Impl::plan_ugv(const httplib::Request& req, httplib::Response& res,
+                                    bool return_path) {
   const auto arrived = Clock::now();
   const Body body(req.body, {"map", "start", "goal", "hidden_space", "bounds", "floor_z_m", "entry",
                              "tether_budget_m", "driven", "deadline_s", "seed"});
@@ -232,10 +259,14 @@ void PlannerService::Impl::plan_ugv(const httplib::Request& req, httplib::Respon
   read_ugv_request(body, r);
   r.mode = return_path ? UgvPathMode::kReturnAlongTether : UgvPathMode::kPlan;
   r.cancelled = cancel_flag(req);
-  const std::map<std::string, std::string> fields{{"start", "start"}, {"goal", "goal"},
-                                                  {"hidden_space", "hidden_space"}, {"bounds", "bounds"},
-                                                  {"p_WE", "entry"}, {"floor_z_m", "floor_z_m"},
-                                                  {"tether_budget_m", "tether_budget_m"}, {"driven", "driven"},
+  const std::map<std::string, std::string> fields{{"start", "start"},
+                                                  {"goal", "goal"},
+                                                  {"hidden_space", "hidden_space"},
+                                                  {"bounds", "bounds"},
+                                                  {"p_WE", "entry"},
+                                                  {"floor_z_m", "floor_z_m"},
+                                                  {"tether_budget_m", "tether_budget_m"},
+                                                  {"driven", "driven"},
                                                   {"time_limit_s", "deadline_s"}};
   with_worker(res, deadline, [&] {
     try {
@@ -245,10 +276,13 @@ void PlannerService::Impl::plan_ugv(const httplib::Request& req, httplib::Respon
         return prepare_ugv_path(map->world, r, space);
       });
       const double left_s = seconds_left(deadline);
-      if (left_s < 1e-3) throw ApiError{422, "TIMEOUT", "the deadline passed before the search could start", "deadline_s"};
+      if (left_s < 1e-3)
+        throw ApiError{422, "TIMEOUT", "the deadline passed before the search could start",
+                       "deadline_s"};
       r.time_limit_s = std::min(left_s, 3600.0);
       const UgvPathResult result = plan_ugv_path(map->world, r, *setup);
-      json out = plan_response(result, std::chrono::duration<double>(Clock::now() - arrived).count(), res);
+      json out =
+          plan_response(result, std::chrono::duration<double>(Clock::now() - arrived).count(), res);
       if (result.solved) {
         json wraps = json::array();
         for (const WrapPoint& w : result.final_wraps) wraps.push_back({w.p_W.x(), w.p_W.y()});
@@ -264,17 +298,20 @@ void PlannerService::Impl::plan_ugv(const httplib::Request& req, httplib::Respon
 }
 
 std::string PlannerService::Impl::uav_key(const UavApproachRequest& r) {
-  std::string k = fmt::format("{},{}", to_string(r.unknown), r.tether_released_m ? fmt::format("{:.17g}", *r.tether_released_m) : "-");
+  std::string k =
+      fmt::format("{},{}", to_string(r.unknown),
+                  r.tether_released_m ? fmt::format("{:.17g}", *r.tether_released_m) : "-");
   if (r.bounds)
-    k += fmt::format(",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", r.bounds->lo.x(), r.bounds->lo.y(),
-                     r.bounds->lo.z(), r.bounds->hi.x(), r.bounds->hi.y(), r.bounds->hi.z());
+    k += fmt::format(",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", r.bounds->lo.x(),
+                     r.bounds->lo.y(), r.bounds->lo.z(), r.bounds->hi.x(), r.bounds->hi.y(),
+                     r.bounds->hi.z());
   return k;
 }
 
 void PlannerService::Impl::plan_uav(const httplib::Request& req, httplib::Response& res) {
   const auto arrived = Clock::now();
-  const Body body(req.body, {"map", "start", "goal", "hidden_space", "tether_released_m", "bounds", "unknown",
-                             "planner", "deadline_s", "seed"});
+  const Body body(req.body, {"map", "start", "goal", "hidden_space", "tether_released_m", "bounds",
+                             "unknown", "planner", "deadline_s", "seed"});
   const auto deadline = deadline_of(body, arrived);
   const auto map = find_map(body.required_text("map"));
   UavApproachRequest r;
@@ -282,9 +319,13 @@ void PlannerService::Impl::plan_uav(const httplib::Request& req, httplib::Respon
   r.mission = options.mission;
   read_uav_request(body, r);
   r.cancelled = cancel_flag(req);
-  const std::map<std::string, std::string> fields{{"start", "start"}, {"goal", "goal"}, {"hidden_space", "hidden_space"},
-                                                  {"tether_released_m", "tether_released_m"}, {"bounds", "bounds"},
-                                                  {"planner", "planner"}, {"time_limit_s", "deadline_s"}};
+  const std::map<std::string, std::string> fields{{"start", "start"},
+                                                  {"goal", "goal"},
+                                                  {"hidden_space", "hidden_space"},
+                                                  {"tether_released_m", "tether_released_m"},
+                                                  {"bounds", "bounds"},
+                                                  {"planner", "planner"},
+                                                  {"time_limit_s", "deadline_s"}};
   with_worker(res, deadline, [&] {
     try {
       const auto setup = cached_setup(map->uav, uav_key(r), [&] {
@@ -292,16 +333,20 @@ void PlannerService::Impl::plan_uav(const httplib::Request& req, httplib::Respon
         UavApproachSetup made = prepare_uav_approach(map->world, r);
         // The same collision map checks this map's UAV plans: validating a plan
         // just made costs no second build.
-        offer_setup(map->validation,
-                    collision_map_options_key(uav_map_options(map->world.spec, r.unknown, made.geofence)),
-                    MapEntry::ValidationMap{made.map});
+        offer_setup(
+            map->validation,
+            collision_map_options_key(uav_map_options(map->world.spec, r.unknown, made.geofence)),
+            MapEntry::ValidationMap{made.map});
         return made;
       });
       const double left_s = seconds_left(deadline);
-      if (left_s < 1e-3) throw ApiError{422, "TIMEOUT", "the deadline passed before the search could start", "deadline_s"};
+      if (left_s < 1e-3)
+        throw ApiError{422, "TIMEOUT", "the deadline passed before the search could start",
+                       "deadline_s"};
       r.time_limit_s = std::min(left_s, 3600.0);
       const PlanResult result = plan_uav_approach(map->world, r, *setup);
-      const json out = plan_response(result, std::chrono::duration<double>(Clock::now() - arrived).count(), res);
+      const json out =
+          plan_response(result, std::chrono::duration<double>(Clock::now() - arrived).count(), res);
       send(res, res.status, out);
     } catch (const InputError& e) {
       throw from_input_error(e, fields);
@@ -311,8 +356,8 @@ void PlannerService::Impl::plan_uav(const httplib::Request& req, httplib::Respon
 
 void PlannerService::Impl::validate(const httplib::Request& req, httplib::Response& res) {
   const auto arrived = Clock::now();
-  const Body body(req.body, {"map", "plan", "builtin_shapes", "bounds", "tether_budget_m", "entry", "unknown",
-                             "floor_z_m", "deadline_s"});
+  const Body body(req.body, {"map", "plan", "builtin_shapes", "bounds", "tether_budget_m", "entry",
+                             "unknown", "floor_z_m", "deadline_s"});
   const auto deadline = deadline_of(body, arrived);
   const auto map = find_map(body.required_text("map"));
   PlanFile plan = read_plan(body);
@@ -320,17 +365,20 @@ void PlannerService::Impl::validate(const httplib::Request& req, httplib::Respon
   // The robot is the service's, by the plan's kind: a request never names a file
   // on the server.
   v.robot_urdf = plan.robot == PlanRobot::kUgv ? options.robot_ugv : options.robot_uav;
-  if (v.robot_urdf->empty()) v.robot_urdf = find_model(plan.robot == PlanRobot::kUgv ? "miniugv.urdf" : "m100.urdf");
+  if (v.robot_urdf->empty())
+    v.robot_urdf = find_model(plan.robot == PlanRobot::kUgv ? "miniugv.urdf" : "m100.urdf");
   v.mission = options.mission_path;
   read_validate_request(body, v);
   // A plan can ask for a million collision checks: the deadline bounds them too.
   const auto stop = cancel_flag(req);
   v.cancelled = [stop, deadline] { return Clock::now() >= deadline || stop(); };
   v.collision_map = [this, &map](const octomap::OcTree& tree, const CollisionMapOptions& o) {
-    return cached_setup(map->validation, collision_map_options_key(o), [&] {
-             metrics.record_setup_built("validation");
-             return MapEntry::ValidationMap{CollisionMap::build(tree, o)};
-           })->map;
+    return cached_setup(map->validation, collision_map_options_key(o),
+                        [&] {
+                          metrics.record_setup_built("validation");
+                          return MapEntry::ValidationMap{CollisionMap::build(tree, o)};
+                        })
+        ->map;
   };
   with_worker(res, deadline, [&] {
     try {
@@ -339,10 +387,12 @@ void PlannerService::Impl::validate(const httplib::Request& req, httplib::Respon
       out["planning_time_s"] = std::chrono::duration<double>(Clock::now() - arrived).count();
       send(res, 200, out);
     } catch (const InputError& e) {
-      throw ApiError{400, "INVALID_REQUEST", printable(e.what()), e.field().empty() ? "plan" : e.field()};
+      throw ApiError{400, "INVALID_REQUEST", printable(e.what()),
+                     e.field().empty() ? "plan" : e.field()};
     } catch (const ValidationCancelled&) {
       if (Clock::now() >= deadline)
-        throw ApiError{422, "TIMEOUT", "the deadline passed before the plan was checked whole", "deadline_s"};
+        throw ApiError{422, "TIMEOUT", "the deadline passed before the plan was checked whole",
+                       "deadline_s"};
       throw ApiError{503, "CANCELLED", "the validation was stopped (the service is stopping)", ""};
     }
   });
@@ -350,8 +400,9 @@ void PlannerService::Impl::validate(const httplib::Request& req, httplib::Respon
 
 void PlannerService::Impl::next_goal(const httplib::Request& req, httplib::Response& res) {
   const auto arrived = Clock::now();
-  const Body body(req.body, {"grid", "object_probability", "object_confidence", "pose", "velocity", "method",
-                             "ir_fov_rad", "ir_range_m", "camera_range_m", "seed", "deadline_s"});
+  const Body body(req.body,
+                  {"grid", "object_probability", "object_confidence", "pose", "velocity", "method",
+                   "ir_fov_rad", "ir_range_m", "camera_range_m", "seed", "deadline_s"});
   const auto deadline = deadline_of(body, arrived);
   NextGoalRequest r;
   r.mission = options.mission;
@@ -361,15 +412,17 @@ void PlannerService::Impl::next_goal(const httplib::Request& req, httplib::Respo
       const auto goal = next_exploration_goal(r);
       const double wall_s = std::chrono::duration<double>(Clock::now() - arrived).count();
       if (!goal) {
-        json out = error_body({422, "NO_FRONTIER", "no frontier is reachable: nothing left to explore from here", ""});
+        json out = error_body({422, "NO_FRONTIER",
+                               "no frontier is reachable: nothing left to explore from here", ""});
         out["planning_time_s"] = wall_s;
         send(res, 422, out);
         return;
       }
       json path = json::array();
       for (const Eigen::Vector2d& q : goal->path_W) path.push_back({q.x(), q.y()});
-      json g{{"x_m", goal->p_W.x()}, {"y_m", goal->p_W.y()}, {"cell", {goal->cell.i, goal->cell.j}},
-             {"score", goal->score}, {"reason", goal->reason}, {"path_m", path}};
+      json g{
+          {"x_m", goal->p_W.x()}, {"y_m", goal->p_W.y()},   {"cell", {goal->cell.i, goal->cell.j}},
+          {"score", goal->score}, {"reason", goal->reason}, {"path_m", path}};
       g["heading_rad"] = goal->heading_rad ? json(*goal->heading_rad) : json(nullptr);
       send(res, 200, json{{"goal", g}, {"method", r.method}, {"planning_time_s", wall_s}});
     } catch (const InputError& e) {
@@ -390,7 +443,9 @@ httplib::Server::Handler PlannerService::Impl::route(const std::string& label, H
     } catch (const InputError& e) {
       send(res, 400, error_body({400, "INVALID_REQUEST", printable(e.what()), e.field()}));
     } catch (const std::bad_alloc&) {
-      send(res, 507, error_body({507, "INSUFFICIENT_STORAGE", "the request needs more memory than the service has", ""}));
+      send(res, 507,
+           error_body({507, "INSUFFICIENT_STORAGE",
+                       "the request needs more memory than the service has", ""}));
     } catch (const std::exception& e) {
       send(res, 500, error_body({500, "INTERNAL", printable(e.what()), ""}));
     }
@@ -419,7 +474,11 @@ void PlannerService::Impl::install_routes() {
       const std::string prefix = "Bearer ";
       if (auth.rfind(prefix, 0) != 0 || !same_token(auth.substr(prefix.size()), options.token)) {
         res.set_header("WWW-Authenticate", "Bearer realm=\"ferret-plannerd\"");
-        send(res, 401, error_body({401, "UNAUTHORIZED", auth.empty() ? "Authorization: expected a bearer token" : "Authorization: the bearer token is not the service's", "Authorization"}));
+        send(res, 401,
+             error_body({401, "UNAUTHORIZED",
+                         auth.empty() ? "Authorization: expected a bearer token"
+                                      : "Authorization: the bearer token is not the service's",
+                         "Authorization"}));
         metrics.record("auth", 401, 0.0);
         return httplib::Server::HandlerResponse::Handled;
       }
@@ -434,7 +493,8 @@ void PlannerService::Impl::install_routes() {
   });
   // An exception that escapes a route (none should): a JSON 500, without cpp-httplib's
   // default EXCEPTION_WHAT header, which would hand the client the exception's text.
-  s.set_exception_handler([this](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+  s.set_exception_handler([this](const httplib::Request&, httplib::Response& res,
+                                 std::exception_ptr) {
     res.headers.clear();
     send(res, 500, error_body({500, "INTERNAL", "the service failed to answer this request", ""}));
     metrics.record("other", 500, 0.0);
@@ -458,98 +518,119 @@ void PlannerService::Impl::install_routes() {
   });
 
   s.Get("/healthz", route("/healthz", [](const httplib::Request&, httplib::Response& res) {
-    send(res, 200, json{{"status", "ok"}});
-  }));
+          send(res, 200, json{{"status", "ok"}});
+        }));
   s.Get("/readyz", route("/readyz", [this](const httplib::Request&, httplib::Response& res) {
-    if (draining) {
-      send(res, 503, json{{"status", "draining"}});
-      return;
-    }
-    send(res, 200, json{{"status", "ready"}, {"maps", map_count()}});
-  }));
+          if (draining) {
+            send(res, 503, json{{"status", "draining"}});
+            return;
+          }
+          send(res, 200, json{{"status", "ready"}, {"maps", map_count()}});
+        }));
   s.Get("/metrics", route("/metrics", [this](const httplib::Request&, httplib::Response& res) {
-    const auto [active, waiting] = admission.load();
-    res.status = 200;
-    res.set_content(metrics.text(waiting, active, map_count(), draining), "text/plain; version=0.0.4");
-  }));
+          const auto [active, waiting] = admission.load();
+          res.status = 200;
+          res.set_content(metrics.text(waiting, active, map_count(), draining),
+                          "text/plain; version=0.0.4");
+        }));
 
   const std::string name_re = "/v1/maps/([^/]+)";
-  s.Put(name_re, route("/v1/maps/{name}", [this](const httplib::Request& req, httplib::Response& res) {
-    const auto arrived = Clock::now();
-    const std::string name = req.matches[1];
-    if (!valid_map_name(name))
-      bad_request("name", "1 to 64 letters, digits, '_', '-' or '.'", name);
-    {
-      const std::lock_guard lock(maps_mutex);
-      if (!maps.count(name) && maps.size() >= options.max_maps)
-        throw ApiError{507, "TOO_MANY_MAPS", fmt::format("maps: the service holds its limit of {} (DELETE one first)", options.max_maps), "name"};
-    }
-    // Loading a map is work like planning: it takes a worker, within the longest deadline.
-    const auto deadline = arrived + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.max_deadline_s));
-    with_worker(res, deadline, [&] {
-      std::shared_ptr<MapEntry> entry;
-      const MapUpload upload = map_upload(req);
-      try {
-        entry = map_builder.run_here([&] { return load_map(name, upload, "body"); });
-      } catch (const InputError& e) {
-        // A map_server map's errors name their part (yaml, image), a whole body's "body".
-        const std::string part = upload.map_2d ? e.source() : "body";
-        throw ApiError{400, "INVALID_MAP", printable(e.what()), e.field().empty() ? part : part + "." + e.field()};
-      }
-      bool replaced = false;
-      {
-        const std::lock_guard lock(maps_mutex);
-        replaced = maps.count(name) > 0;
-        if (!replaced && maps.size() >= options.max_maps)
-          throw ApiError{507, "TOO_MANY_MAPS", fmt::format("maps: the service holds its limit of {}", options.max_maps), "name"};
-        maps[name] = entry;
-      }
-      send(res, replaced ? 200 : 201, map_metadata(*entry));
-    });
-  }));
-  s.Get(name_re, route("/v1/maps/{name}", [this](const httplib::Request& req, httplib::Response& res) {
-    send(res, 200, map_metadata(*find_map(req.matches[1])));
-  }));
-  s.Delete(name_re, route("/v1/maps/{name}", [this](const httplib::Request& req, httplib::Response& res) {
-    const std::string name = req.matches[1];
-    const std::lock_guard lock(maps_mutex);
-    if (maps.erase(name) == 0)
-      throw ApiError{404, "UNKNOWN_MAP", fmt::format("map: no map called '{}'", printable(name, 64)), "name"};
-    res.status = 204;
-  }));
+  s.Put(
+      name_re,
+      route("/v1/maps/{name}", [this](const httplib::Request& req, httplib::Response& res) {
+        const auto arrived = Clock::now();
+        const std::string name = req.matches[1];
+        if (!valid_map_name(name))
+          bad_request("name", "1 to 64 letters, digits, '_', '-' or '.'", name);
+        {
+          const std::lock_guard lock(maps_mutex);
+          if (!maps.count(name) && maps.size() >= options.max_maps)
+            throw ApiError{507, "TOO_MANY_MAPS",
+                           fmt::format("maps: the service holds its limit of {} (DELETE one first)",
+                                       options.max_maps),
+                           "name"};
+        }
+        // Loading a map is work like planning: it takes a worker, within the longest deadline.
+        const auto deadline = arrived + std::chrono::duration_cast<Clock::duration>(
+                                            std::chrono::duration<double>(options.max_deadline_s));
+        with_worker(res, deadline, [&] {
+          std::shared_ptr<MapEntry> entry;
+          const MapUpload upload = map_upload(req);
+          try {
+            entry = map_builder.run_here([&] { return load_map(name, upload, "body"); });
+          } catch (const InputError& e) {
+            // A map_server map's errors name their part (yaml, image), a whole body's "body".
+            const std::string part = upload.map_2d ? e.source() : "body";
+            throw ApiError{400, "INVALID_MAP", printable(e.what()),
+                           e.field().empty() ? part : part + "." + e.field()};
+          }
+          bool replaced = false;
+          {
+            const std::lock_guard lock(maps_mutex);
+            replaced = maps.count(name) > 0;
+            if (!replaced && maps.size() >= options.max_maps)
+              throw ApiError{
+                  507, "TOO_MANY_MAPS",
+                  fmt::format("maps: the service holds its limit of {}", options.max_maps), "name"};
+            maps[name] = entry;
+          }
+          send(res, replaced ? 200 : 201, map_metadata(*entry));
+        });
+      }));
+  s.Get(name_re,
+        route("/v1/maps/{name}", [this](const httplib::Request& req, httplib::Response& res) {
+          send(res, 200, map_metadata(*find_map(req.matches[1])));
+        }));
+  s.Delete(name_re,
+           route("/v1/maps/{name}", [this](const httplib::Request& req, httplib::Response& res) {
+             const std::string name = req.matches[1];
+             const std::lock_guard lock(maps_mutex);
+             if (maps.erase(name) == 0)
+               throw ApiError{404, "UNKNOWN_MAP",
+                              fmt::format("map: no map called '{}'", printable(name, 64)), "name"};
+             res.status = 204;
+           }));
   s.Get("/v1/maps", route("/v1/maps", [this](const httplib::Request&, httplib::Response& res) {
-    std::vector<std::shared_ptr<MapEntry>> all;
-    {
-      const std::lock_guard lock(maps_mutex);
-      for (const auto& [name, m] : maps) all.push_back(m);
-    }
-    json list = json::array();
-    for (const auto& m : all) list.push_back(map_metadata(*m));
-    send(res, 200, json{{"maps", list}});
-  }));
-  s.Post("/v1/plan/ugv", route("/v1/plan/ugv", [this](const httplib::Request& req, httplib::Response& res) {
-    plan_ugv(req, res, false);
-  }));
-  s.Post("/v1/plan/ugv/return", route("/v1/plan/ugv/return", [this](const httplib::Request& req, httplib::Response& res) {
-    plan_ugv(req, res, true);
-  }));
-  s.Post("/v1/plan/uav", route("/v1/plan/uav", [this](const httplib::Request& req, httplib::Response& res) {
-    plan_uav(req, res);
-  }));
-  s.Post("/v1/explore/next-goal", route("/v1/explore/next-goal", [this](const httplib::Request& req, httplib::Response& res) {
-    next_goal(req, res);
-  }));
-  s.Post("/v1/validate", route("/v1/validate", [this](const httplib::Request& req, httplib::Response& res) {
-    validate(req, res);
-  }));
+          std::vector<std::shared_ptr<MapEntry>> all;
+          {
+            const std::lock_guard lock(maps_mutex);
+            for (const auto& [name, m] : maps) all.push_back(m);
+          }
+          json list = json::array();
+          for (const auto& m : all) list.push_back(map_metadata(*m));
+          send(res, 200, json{{"maps", list}});
+        }));
+  s.Post("/v1/plan/ugv",
+         route("/v1/plan/ugv", [this](const httplib::Request& req, httplib::Response& res) {
+           plan_ugv(req, res, false);
+         }));
+  s.Post("/v1/plan/ugv/return",
+         route("/v1/plan/ugv/return", [this](const httplib::Request& req, httplib::Response& res) {
+           plan_ugv(req, res, true);
+         }));
+  s.Post("/v1/plan/uav",
+         route("/v1/plan/uav", [this](const httplib::Request& req, httplib::Response& res) {
+           plan_uav(req, res);
+         }));
+  s.Post("/v1/explore/next-goal",
+         route("/v1/explore/next-goal", [this](const httplib::Request& req,
+                                               httplib::Response& res) { next_goal(req, res); }));
+  s.Post("/v1/validate",
+         route("/v1/validate", [this](const httplib::Request& req, httplib::Response& res) {
+           validate(req, res);
+         }));
 
   if (options.json_log)
     s.set_logger([](const httplib::Request& req, const httplib::Response& res) {
-      json line{{"ts", utc_now()}, {"method", req.method}, {"path", printable(req.path, 200)},
-                {"status", res.status}, {"remote", req.remote_addr}};
+      json line{{"ts", utc_now()},
+                {"method", req.method},
+                {"path", printable(req.path, 200)},
+                {"status", res.status},
+                {"remote", req.remote_addr}};
       if (res.status >= 400) {
         const auto body = json::parse(res.body, nullptr, false);
-        if (body.is_object() && body.contains("error")) line["code"] = body["error"].value("code", "");
+        if (body.is_object() && body.contains("error"))
+          line["code"] = body["error"].value("code", "");
       }
       std::cerr << line.dump() << "\n";
     });

@@ -45,18 +45,24 @@ std::string ServiceMetrics::text(int queue_depth, int active, std::size_t maps_l
                          route, kBuckets_s[k], h.counts[k]);
     out += fmt::format("ferret_request_duration_seconds_bucket{{route=\"{}\",le=\"+Inf\"}} {}\n",
                        route, h.count);
-    out += fmt::format("ferret_request_duration_seconds_sum{{route=\"{}\"}} {:.6f}\n", route,
-                       h.sum_s);
-    out += fmt::format("ferret_request_duration_seconds_count{{route=\"{}\"}} {}\n", route, h.count);
+    out +=
+        fmt::format("ferret_request_duration_seconds_sum{{route=\"{}\"}} {:.6f}\n", route, h.sum_s);
+    out +=
+        fmt::format("ferret_request_duration_seconds_count{{route=\"{}\"}} {}\n", route, h.count);
   }
-  out += "# HELP ferret_plans_total Plans answered: solved, failed, or cancelled (client gone, shutdown).\n";
+  out +=
+      "# HELP ferret_plans_total Plans answered: solved, failed, or cancelled (client gone, "
+      "shutdown).\n";
   out += "# TYPE ferret_plans_total counter\n";
   out += fmt::format("ferret_plans_total{{result=\"solved\"}} {}\n", plans_solved_);
   out += fmt::format("ferret_plans_total{{result=\"failed\"}} {}\n", plans_failed_);
   out += fmt::format("ferret_plans_total{{result=\"cancelled\"}} {}\n", plans_cancelled_);
-  out += "# HELP ferret_setups_built_total What the maps' plans and validations share, built (cache misses).\n";
+  out +=
+      "# HELP ferret_setups_built_total What the maps' plans and validations share, built (cache "
+      "misses).\n";
   out += "# TYPE ferret_setups_built_total counter\n";
-  for (const auto& [kind, n] : setups_built_) out += fmt::format("ferret_setups_built_total{{kind=\"{}\"}} {}\n", kind, n);
+  for (const auto& [kind, n] : setups_built_)
+    out += fmt::format("ferret_setups_built_total{{kind=\"{}\"}} {}\n", kind, n);
   out += "# HELP ferret_queue_depth Requests waiting for a worker.\n";
   out += "# TYPE ferret_queue_depth gauge\n";
   out += fmt::format("ferret_queue_depth {}\n", queue_depth);

@@ -1,5 +1,4 @@
 #include "ferret/sim/experiment.hpp"
-#include "ferret/sim/hidden_space_generator.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -19,6 +18,7 @@
 #include "ferret/core/random.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/sim/hidden_space_generator.hpp"
 #include "ferret/sim/search_robot.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -151,7 +151,8 @@ ExperimentMap read_map(const yaml::MapReader& r, const fs::path& base, double cl
   if (!r.has("start") && !r.has("zones")) {
     const YAML::Node search = YAML::LoadFile(m.map_path.string())["search"];
     if (!search || !search.IsMap())
-      r.fail("start", "start and zones, here or in the map YAML's search section (required field missing)");
+      r.fail("start",
+             "start and zones, here or in the map YAML's search section (required field missing)");
     const yaml::MapReader sr(search, m.map_path.string(), "search");
     sr.allow_only({"start", "zones", "generator"});  // generator: what made it, for people
     read_search(sr, m, clearance_m);
@@ -184,10 +185,12 @@ std::vector<ExperimentMap> generate_maps(const yaml::MapReader& entry, double cl
   }
   o.resolution_m = g.get_in_range_or("resolution_m", 0.02, 0.2, o.resolution_m);
   // Every map is held for the whole experiment: 10^8 cells (100 MB) in all at most.
-  const double cells = std::round(o.width_m / o.resolution_m) * std::round(o.height_m / o.resolution_m);
+  const double cells =
+      std::round(o.width_m / o.resolution_m) * std::round(o.height_m / o.resolution_m);
   if (count * cells > 1e8)
-    g.fail("count", fmt::format("at most {:.0f} maps of this size and resolution (10^8 cells in all)",
-                                std::floor(1e8 / cells)),
+    g.fail("count",
+           fmt::format("at most {:.0f} maps of this size and resolution (10^8 cells in all)",
+                       std::floor(1e8 / cells)),
            std::to_string(count));
   std::vector<ExperimentMap> maps;
   for (int k = 0; k < count; ++k) {
@@ -201,8 +204,11 @@ std::vector<ExperimentMap> generate_maps(const yaml::MapReader& entry, double cl
     m.zones = h.zones;
     for (const ZoneSpec& z : m.zones)
       if (zone_cells(m.map, z, clearance_m).empty())
-        g.fail("clutter", fmt::format("maps whose zones have free cells {} m from obstacles (seed {} zone {} has none)",
-                                      clearance_m, o.seed, z.id));
+        g.fail(
+            "clutter",
+            fmt::format(
+                "maps whose zones have free cells {} m from obstacles (seed {} zone {} has none)",
+                clearance_m, o.seed, z.id));
     maps.push_back(std::move(m));
   }
   return maps;
@@ -333,8 +339,8 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
   for (std::size_t a = 0; a < c.maps.size(); ++a)
     for (std::size_t b = 0; b < a; ++b)
       if (c.maps[a].name == c.maps[b].name)
-        maps[entry_of[a]].fail(maps[entry_of[a]].has("generate") ? "generate" : "name", "a name no other map has",
-                               c.maps[a].name);
+        maps[entry_of[a]].fail(maps[entry_of[a]].has("generate") ? "generate" : "name",
+                               "a name no other map has", c.maps[a].name);
   // The sweeps' default: the methods without the reference that knows the object.
   for (const auto& m : c.methods)
     if (!make_exploration_policy(m, PolicyOptions{})->needs_oracle()) c.sweep_methods.push_back(m);

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <optional>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "ferret/core/random.hpp"
@@ -14,7 +14,7 @@
 namespace ferret {
 
 UgvSensorGeometry sensor_geometry(const SensorOptions& s) {
-  return {s.ir_fov_rad,     s.ir_range_m,     s.ir_rate_hz,      s.camera_range_m,
+  return {s.ir_fov_rad,     s.ir_range_m,      s.ir_rate_hz,    s.camera_range_m,
           s.camera_rate_hz, s.object_radius_m, s.camera_fov_rad};
 }
 

@@ -62,7 +62,8 @@ class Layout {
       for (int i = flo.i; i <= fhi.i; ++i)
         if (!blocked_[g_.index({i, j})]) newly.push_back(g_.index({i, j}));
     if (check) {
-      if (start_.i >= flo.i && start_.i <= fhi.i && start_.j >= flo.j && start_.j <= fhi.j) return false;
+      if (start_.i >= flo.i && start_.i <= fhi.i && start_.j >= flo.j && start_.j <= fhi.j)
+        return false;
       for (const std::size_t c : newly) blocked_[c] = 1;
       if (!ring_stays_connected(flo, fhi)) {
         for (const std::size_t c : newly) blocked_[c] = 0;
@@ -115,7 +116,8 @@ class Layout {
     while (!queue.empty() && left > 0) {
       const Cell c = queue.front();
       queue.pop_front();
-      for (const Cell d : {Cell{c.i + 1, c.j}, Cell{c.i - 1, c.j}, Cell{c.i, c.j + 1}, Cell{c.i, c.j - 1}}) {
+      for (const Cell d :
+           {Cell{c.i + 1, c.j}, Cell{c.i - 1, c.j}, Cell{c.i, c.j + 1}, Cell{c.i, c.j - 1}}) {
         if (!open(d) || seen_[g_.index(d)] == stamp_) continue;
         seen_[g_.index(d)] = stamp_;
         if (std::find(targets.begin(), targets.end(), g_.index(d)) != targets.end()) --left;
@@ -136,7 +138,8 @@ class Layout {
 
 void check_option(double v, double lo, double hi, const char* option, const char* unit) {
   if (!(std::isfinite(v) && v >= lo && v <= hi))
-    throw InputError(option, "", fmt::format("{} in [{:g}, {:g}]", unit, lo, hi), fmt::format("{}", v));
+    throw InputError(option, "", fmt::format("{} in [{:g}, {:g}]", unit, lo, hi),
+                     fmt::format("{}", v));
 }
 
 }  // namespace
@@ -189,13 +192,17 @@ GeneratedHiddenSpace generate_hidden_space(const HiddenSpaceGeneratorOptions& o)
 
   // Rooms: partitions across the far part, each with a door or two; dense spaces get
   // more, and walls along them that split a room in two.
-  const int partitions =
-      dense ? static_cast<int>(rng.uniform_int(1, std::max<std::int64_t>(1, std::lround((W - far_x0) / 4.0))))
-            : static_cast<int>(rng.uniform_int(0, std::max<std::int64_t>(1, std::lround((W - far_x0) / 7.0))));
+  const int partitions = dense
+                             ? static_cast<int>(rng.uniform_int(
+                                   1, std::max<std::int64_t>(1, std::lround((W - far_x0) / 4.0))))
+                             : static_cast<int>(rng.uniform_int(
+                                   0, std::max<std::int64_t>(1, std::lround((W - far_x0) / 7.0))));
   std::vector<double> walls_x;
   for (int p = 0; p < partitions; ++p) {
     const double x = rng.uniform(far_x0 + 0.8, W - 1.5);
-    if (std::any_of(walls_x.begin(), walls_x.end(), [&](double w) { return std::abs(w - x) < 2.0; })) continue;
+    if (std::any_of(walls_x.begin(), walls_x.end(),
+                    [&](double w) { return std::abs(w - x) < 2.0; }))
+      continue;
     walls_x.push_back(x);
   }
   std::sort(walls_x.begin(), walls_x.end());
@@ -220,16 +227,19 @@ GeneratedHiddenSpace generate_hidden_space(const HiddenSpaceGeneratorOptions& o)
     wall_with_doors(true, walls_x[w], kWall, H - kWall);
     if (dense && rng.bernoulli(0.6)) {
       const double x1 = w + 1 < walls_x.size() ? walls_x[w + 1] : W - kWall;
-      if (x1 - walls_x[w] > 2.5) wall_with_doors(false, rng.uniform(0.3 * H, 0.7 * H), walls_x[w] + 0.2, x1);
+      if (x1 - walls_x[w] > 2.5)
+        wall_with_doors(false, rng.uniform(0.3 * H, 0.7 * H), walls_x[w] + 0.2, x1);
     }
   }
 
   // Boxes, pillars and debris, anywhere but the start's view of its zones.
   const Rect inside{kWall, kWall, W - kWall, H - kWall};
-  const auto scatter = [&](int n, double min_side, double max_side, const Rect& region, bool near_allowed) {
+  const auto scatter = [&](int n, double min_side, double max_side, const Rect& region,
+                           bool near_allowed) {
     for (int k = 0, tries = 0; k < n && tries < 20 * n; ++tries) {
       const double sx = rng.uniform(min_side, max_side), sy = rng.uniform(min_side, max_side);
-      const double x = rng.uniform(region.x0, region.x1 - sx), y = rng.uniform(region.y0, region.y1 - sy);
+      const double x = rng.uniform(region.x0, region.x1 - sx),
+                   y = rng.uniform(region.y0, region.y1 - sy);
       const Rect r{x, y, x + sx, y + sy};
       if (r.overlaps(near) && !near_allowed) continue;
       if (r.overlaps(z1, 0.3) || r.overlaps(z2, 0.3) || r.overlaps(z4, 0.3)) continue;
@@ -237,21 +247,25 @@ GeneratedHiddenSpace generate_hidden_space(const HiddenSpaceGeneratorOptions& o)
       if (layout.add(r)) ++k;
     }
   };
-  scatter(count(dense ? 0.13 : 0.055, far_area), 0.3, 1.0, inside, false);   // boxes
-  scatter(count(dense ? 0.04 : 0.01, area), 0.15, 0.25, inside, false);      // pillars
+  scatter(count(dense ? 0.13 : 0.055, far_area), 0.3, 1.0, inside, false);  // boxes
+  scatter(count(dense ? 0.04 : 0.01, area), 0.15, 0.25, inside, false);     // pillars
   if (dense)  // thin pillars in the start's view, beside its zones
     scatter(2 + static_cast<int>(rng.uniform_int(0, 2)), 0.15, 0.2,
-            Rect{near.x0 + kWall, std::max(near.y0, kWall), near.x1, std::min(near.y1, H - kWall)}, true);
-  scatter(count(dense ? 0.2 : 0.05, area), 0.05, 0.15, inside, false);       // debris
+            Rect{near.x0 + kWall, std::max(near.y0, kWall), near.x1, std::min(near.y1, H - kWall)},
+            true);
+  scatter(count(dense ? 0.2 : 0.05, area), 0.05, 0.15, inside, false);  // debris
   out.map = layout.map();
   return out;
 }
 
 std::string GeneratedHiddenSpace::search_yaml() const {
-  std::string y = fmt::format("search:\n  start: [{}, {}, {}]\n  zones:\n", start.x_m, start.y_m, start.yaw_rad);
-  for (const ZoneSpec& z : zones) y += fmt::format("    {}: [{}, {}, {}, {}]\n", z.id, z.xmin_m, z.ymin_m, z.xmax_m, z.ymax_m);
-  y += fmt::format("  generator: {{seed: {}, size_m: [{}, {}], resolution_m: {}, clutter: {}}}\n", options.seed,
-                   options.width_m, options.height_m, options.resolution_m, to_string(options.clutter));
+  std::string y = fmt::format("search:\n  start: [{}, {}, {}]\n  zones:\n", start.x_m, start.y_m,
+                              start.yaw_rad);
+  for (const ZoneSpec& z : zones)
+    y += fmt::format("    {}: [{}, {}, {}, {}]\n", z.id, z.xmin_m, z.ymin_m, z.xmax_m, z.ymax_m);
+  y += fmt::format("  generator: {{seed: {}, size_m: [{}, {}], resolution_m: {}, clutter: {}}}\n",
+                   options.seed, options.width_m, options.height_m, options.resolution_m,
+                   to_string(options.clutter));
   return y;
 }
 

@@ -35,7 +35,8 @@ MissionRunSettings mission_settings_for(const RobotDescription& uav, const Robot
   // Tethered, the miniUGV drives no faster than the winch pays out (less a margin for
   // the controller), or it drags the line taut: the spool's 0.6 m/s against 2 m/s.
   const double spool_mps = s.uav.winch_control.limits.max_speed_mps;
-  s.ugv.exploration.robot.max_velocity_mps = std::min(s.ugv.exploration.robot.max_velocity_mps, 0.8 * spool_mps);
+  s.ugv.exploration.robot.max_velocity_mps =
+      std::min(s.ugv.exploration.robot.max_velocity_mps, 0.8 * spool_mps);
   // And no faster than the winch can follow a catch on a corner no map holds, before the
   // pull passes the tension limit less the hanging weight and the guard's threshold:
   // it notices after two control periods and the servo's lag.
@@ -44,7 +45,8 @@ MissionRunSettings mission_settings_for(const RobotDescription& uav, const Robot
   // The winch's reel-in guard counts on the miniUGV's real limits.
   if (s.uav.winch_control.reel_in_guard.on()) {
     s.uav.winch_control.reel_in_guard.ugv_speed_mps = s.ugv.exploration.robot.max_velocity_mps;
-    s.uav.winch_control.reel_in_guard.ugv_acceleration_mps2 = s.ugv.exploration.robot.max_acceleration_mps2;
+    s.uav.winch_control.reel_in_guard.ugv_acceleration_mps2 =
+        s.ugv.exploration.robot.max_acceleration_mps2;
   }
   s.uav.landing = LandingZoneDetector::Options::for_robot(uav, &mission);
   s.uav.tether = mission.tether;  // (the world's run sets it again; validation needs it now)

@@ -12,10 +12,12 @@
 namespace ferret::internal {
 
 MissionWorld::MissionWorld(const PlanningWorld& world, const RobotDescription& uav_robot,
-                           const MissionRunSettings& settings, std::uint64_t seed, TransitionLog& log)
+                           const MissionRunSettings& settings, std::uint64_t seed,
+                           TransitionLog& log)
     : world_(world), settings_(settings), sensors_(world.spec ? *world.spec : WorldSpec{}) {
   if (!world.spec)
-    throw InputError(world.source.string(), "", "a world YAML (an OctoMap file names no hidden spaces)");
+    throw InputError(world.source.string(), "",
+                     "a world YAML (an OctoMap file names no hidden spaces)");
   const WorldSpec& spec = *world.spec;
   UavMissionOptions& uo = settings_.uav;
   fill_uav_mission_from_world(uo, spec, settings_.ugv.exploration.mission);
@@ -28,16 +30,19 @@ MissionWorld::MissionWorld(const PlanningWorld& world, const RobotDescription& u
 
   // Home: the drop zone's edge if there is one, else the area's south-west corner.
   const Eigen::Vector2d home_xy =
-      spec.drop_zone ? Eigen::Vector2d(spec.drop_zone->center_m + Eigen::Vector2d(spec.drop_zone->radius_m + 1.0, 0.0))
+      spec.drop_zone ? Eigen::Vector2d(spec.drop_zone->center_m +
+                                       Eigen::Vector2d(spec.drop_zone->radius_m + 1.0, 0.0))
                      : Eigen::Vector2d(uo.search_area_m[0], uo.search_area_m[1]);
   double home_z = 0.0;
   if (const auto d = sensors_.cast_ray({home_xy.x(), home_xy.y(), spec.bounds_max_m.z() - 0.01},
                                        -Eigen::Vector3d::UnitZ(), 1e3))
     home_z = spec.bounds_max_m.z() - 0.01 - *d;
   flight_ = std::make_unique<SimFlightController>(
-      sensors_, Eigen::Vector3d(home_xy.x(), home_xy.y(), home_z + settings_.landed_height_m), settings_);
-  cameras_ = std::make_unique<SimUavCameras>(sensors_, *flight_, marker_sensor, marker_model_, depth_sensor,
-                                             depth_model_, seed, settings_.render_markerless_frames);
+      sensors_, Eigen::Vector3d(home_xy.x(), home_xy.y(), home_z + settings_.landed_height_m),
+      settings_);
+  cameras_ = std::make_unique<SimUavCameras>(sensors_, *flight_, marker_sensor, marker_model_,
+                                             depth_sensor, depth_model_, seed,
+                                             settings_.render_markerless_frames);
   tether::SimulatedWinch::Options wo;
   wo.total_length_m = uo.tether.total_length_m;
   winch_ = std::make_unique<tether::SimulatedWinch>(wo);
@@ -45,19 +50,22 @@ MissionWorld::MissionWorld(const PlanningWorld& world, const RobotDescription& u
   // The truth check of the UAV's shape (every 0.1 s of flight) on the world's OctoMap.
   const Aabb3 fence = default_uav_bounds(world);
   map_ = CollisionMap::build(*world.tree, uav_map_options(world.spec, UnknownPolicy::kFree, fence));
-  const LoadedPlanRobot alone = load_plan_robot(PlanRobot::kUav, PlanRobotModel{uav_robot.source, false},
-                                                settings_.ugv.exploration.mission, 0.0, "UAV");
+  const LoadedPlanRobot alone =
+      load_plan_robot(PlanRobot::kUav, PlanRobotModel{uav_robot.source, false},
+                      settings_.ugv.exploration.mission, 0.0, "UAV");
   truth_checker_ = std::make_unique<CollisionChecker>(map_, alone.shape);
 
   result_.hidden_spaces_in_world = static_cast<int>(spec.hidden_spaces.size());
   for (const WorldObject& o : spec.objects) result_.objects_in_world += o.hidden_space >= 0 ? 1 : 0;
 }
 
-void MissionWorld::run(const MissionControllers& controllers, const std::function<void(double t_s)>& on_sample) {
+void MissionWorld::run(const MissionControllers& controllers,
+                       const std::function<void(double t_s)>& on_sample) {
   const UavMissionOptions& uo = settings_.uav;
   MissionRunResult& result = result_;
   const tether::TensionModel tension_model = uo.winch_control.slack_estimator.tension;
-  const auto ugv_every = static_cast<long>(std::lround(1.0 / settings_.ugv.exploration.sensors.ir_rate_hz / kDt));
+  const auto ugv_every =
+      static_cast<long>(std::lround(1.0 / settings_.ugv.exploration.sensors.ir_rate_hz / kDt));
   const auto max_steps = static_cast<long>(std::ceil(settings_.time_limit_s / kDt));
   bool over_tension = false;
   double tension_n = tension_model.hanging_weight_n;
@@ -78,7 +86,8 @@ void MissionWorld::run(const MissionControllers& controllers, const std::functio
       const bool hold = controllers.link_receive && controllers.link_receive();
       if (spaces.active()) {
         if (controllers.ugv_tick) controllers.ugv_tick();
-        if (!controllers.ugv_stopped || !controllers.ugv_stopped()) spaces.step(ugv_every * kDt, hold);
+        if (!controllers.ugv_stopped || !controllers.ugv_stopped())
+          spaces.step(ugv_every * kDt, hold);
       }
       if (controllers.link_send) controllers.link_send();
     }
@@ -88,8 +97,9 @@ void MissionWorld::run(const MissionControllers& controllers, const std::functio
     const auto required = spaces.true_required_m();
     for (int k = 0; k < static_cast<int>(std::lround(kDt / kWinchDt)); ++k) {
       const double l = winch.released_m();
-      tension_n = required ? tension_model.tension_n(l, l - *required) + tension_model.hanging_weight_n
-                           : tension_model.hanging_weight_n;
+      tension_n = required
+                      ? tension_model.tension_n(l, l - *required) + tension_model.hanging_weight_n
+                      : tension_model.hanging_weight_n;
       winch.advance(kWinchDt, tension_n);
     }
     result.max_released_m = std::max(result.max_released_m, winch.released_m());
@@ -126,7 +136,8 @@ void MissionWorld::run(const MissionControllers& controllers, const std::functio
   const WorldSpec& spec = *world_.spec;
   if (spec.drop_zone)
     for (const Eigen::Vector3d& p : spaces.released_at())
-      result.objects_dropped += (p.head<2>() - spec.drop_zone->center_m).norm() <= spec.drop_zone->radius_m ? 1 : 0;
+      result.objects_dropped +=
+          (p.head<2>() - spec.drop_zone->center_m).norm() <= spec.drop_zone->radius_m ? 1 : 0;
 }
 
 }  // namespace ferret::internal

@@ -14,7 +14,6 @@
 
 namespace ferret::sim::internal {
 
-
 struct Panel {
   cv::Rect area;
   double t0, t1, y0, y1;

@@ -127,14 +127,16 @@ void gaussian_blur(std::vector<std::uint8_t>& img, int w, int h, int channels, d
     std::uint8_t* row = img.data() + static_cast<std::size_t>(y) * stride;
     for (int x = -r; x < w + r; ++x)
       for (std::size_t ch = 0; ch < c; ++ch)
-        padded[c * static_cast<std::size_t>(x + r) + ch] = row[c * static_cast<std::size_t>(std::clamp(x, 0, w - 1)) + ch];
+        padded[c * static_cast<std::size_t>(x + r) + ch] =
+            row[c * static_cast<std::size_t>(std::clamp(x, 0, w - 1)) + ch];
     for (int k = 0; k <= 2 * r; ++k) {
       const std::uint8_t* p = padded.data() + c * static_cast<std::size_t>(k);
       const std::uint16_t wt = wk[k];
       for (std::size_t i = 0; i < stride; ++i)
         acc[i] = static_cast<std::uint16_t>(acc[i] + wt * p[i]);
     }
-    for (std::size_t i = 0; i < stride; ++i) row[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
+    for (std::size_t i = 0; i < stride; ++i)
+      row[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
   });
   // Vertical, from a copy of the horizontally blurred frame.
   const std::vector<std::uint8_t> src = img;
@@ -148,7 +150,8 @@ void gaussian_blur(std::vector<std::uint8_t>& img, int w, int h, int channels, d
         acc[i] = static_cast<std::uint16_t>(acc[i] + wt * p[i]);
     }
     std::uint8_t* row = img.data() + static_cast<std::size_t>(y) * stride;
-    for (std::size_t i = 0; i < stride; ++i) row[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
+    for (std::size_t i = 0; i < stride; ++i)
+      row[i] = static_cast<std::uint8_t>((acc[i] + 128u) >> 8);
   });
 }
 
@@ -163,7 +166,8 @@ std::vector<std::int32_t> noise_q4(double sigma) {
 }
 
 std::uint8_t noisy(std::uint8_t v, std::int32_t noise_q4) {
-  return static_cast<std::uint8_t>(std::clamp((16 * v + noise_q4 + 8) >> 4, 0, 255));  // round half up
+  return static_cast<std::uint8_t>(
+      std::clamp((16 * v + noise_q4 + 8) >> 4, 0, 255));  // round half up
 }
 
 }  // namespace
@@ -260,14 +264,16 @@ std::vector<std::uint8_t> shade_frame(const internal::Scene& scene, const intern
               c = albedo(Material::kCylinder, options.draw_objects);
               break;
             case PrimKind::kMarker: {
-              const float r = marker_pixel(scene.markers[internal::code_index(code)], rays, R, o, u, v);
+              const float r =
+                  marker_pixel(scene.markers[internal::code_index(code)], rays, R, o, u, v);
               c = {r, r, r};
               break;
             }
           }
         }
         if constexpr (C == 3) {
-          last = {to_u8(c.r * shade * scale), to_u8(c.g * shade * scale), to_u8(c.b * shade * scale)};
+          last = {to_u8(c.r * shade * scale), to_u8(c.g * shade * scale),
+                  to_u8(c.b * shade * scale)};
         } else {
           last = {to_u8((0.299 * c.r + 0.587 * c.g + 0.114 * c.b) * shade * scale)};
         }
@@ -302,13 +308,15 @@ RgbImage SensorSimulator::render_camera(const CameraModel& camera, const Pose3& 
   const std::uint8_t* src = frame.data();
   for (std::size_t k = 0; k < frame.size(); k += 3) {
     const std::uint64_t bits = rng.next_u64();  // one draw a pixel: 16 bits a channel
-    for (int ch = 0; ch < 3; ++ch) dst[k + ch] = noisy(src[k + ch], noise[(bits >> (16 * ch)) & 0xffff]);
+    for (int ch = 0; ch < 3; ++ch)
+      dst[k + ch] = noisy(src[k + ch], noise[(bits >> (16 * ch)) & 0xffff]);
   }
   return out;
 }
 
 GrayImage SensorSimulator::render_gray(const CameraModel& camera, const Pose3& X_WC,
-                                       const CameraFrameOptions& options, std::uint64_t seed) const {
+                                       const CameraFrameOptions& options,
+                                       std::uint64_t seed) const {
   camera.check();
   const auto rays = scene_->rays(camera);
   thread_local CastBuffers cast;
@@ -326,7 +334,8 @@ GrayImage SensorSimulator::render_gray(const CameraModel& camera, const Pose3& X
   const std::size_t n = out.data.size();
   for (std::size_t k = 0; k < n; k += 4) {
     const std::uint64_t bits = rng.next_u64();  // one draw four pixels: 16 bits each
-    for (std::size_t q = 0; q < 4 && k + q < n; ++q) px[k + q] = noisy(px[k + q], noise[(bits >> (16 * q)) & 0xffff]);
+    for (std::size_t q = 0; q < 4 && k + q < n; ++q)
+      px[k + q] = noisy(px[k + q], noise[(bits >> (16 * q)) & 0xffff]);
   }
   return out;
 }

@@ -259,7 +259,8 @@ std::shared_ptr<const RayTable> Scene::rays(const CameraModel& camera) const {
 }
 
 void for_each_interleaved(int n, const std::function<void(int)>& body) {
-  static const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));
+  static const int threads =
+      static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));
   const int t_count = std::min(threads, n);
   if (t_count <= 1) {
     for (int k = 0; k < n; ++k) body(k);
@@ -416,7 +417,7 @@ void Scene::cast_frame(const RayTable& rays, const Pose3& X_WC, bool with_marker
                                                                                           : best);
           out.code[i] = code;
         }
-    }
+      }
   });
 }
 

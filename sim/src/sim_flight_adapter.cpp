@@ -6,8 +6,8 @@
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
 #include "ferret/link/json_dispatcher.hpp"
-#include "ferret/uav/flight_adapter_service.hpp"
 #include "ferret/sim/mission_world.hpp"
+#include "ferret/uav/flight_adapter_service.hpp"
 
 namespace ferret {
 
@@ -65,7 +65,8 @@ link::StreamMessage SimFlightAdapter::handle(const link::StreamMessage& request)
 void SimFlightAdapter::serve(link::MessageStream& stream, const std::function<bool()>& keep_going) {
   impl_->service.serve(stream, keep_going);
 }
-void SimFlightAdapter::serve_in_real_time(link::MessageStream& stream, const std::function<bool()>& keep_going) {
+void SimFlightAdapter::serve_in_real_time(link::MessageStream& stream,
+                                          const std::function<bool()>& keep_going) {
   const SteadyClock wall;
   const double t0_s = now_s();
   while (keep_going()) {

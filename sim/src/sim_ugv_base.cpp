@@ -14,8 +14,8 @@ SimUgvBase::SimUgvBase(HiddenSpaceSim& sim, const Pose2& start, SimUgvOptions op
 void SimUgvBase::command_velocity(double v_mps, double w_radps) {
   const RobotOptions& r = options_.robot;
   // A base clips, it does not refuse; NaN (a controller's bug) stops the robot.
-  command_.v_mps = std::isfinite(v_mps) ? std::clamp(v_mps, -r.max_velocity_mps, r.max_velocity_mps)
-                                        : 0.0;
+  command_.v_mps =
+      std::isfinite(v_mps) ? std::clamp(v_mps, -r.max_velocity_mps, r.max_velocity_mps) : 0.0;
   command_.w_radps = std::isfinite(w_radps)
                          ? std::clamp(w_radps, -r.max_yaw_rate_radps, r.max_yaw_rate_radps)
                          : 0.0;

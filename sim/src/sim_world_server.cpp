@@ -6,10 +6,10 @@
 #include "ferret/core/error.hpp"
 #include "ferret/link/json_dispatcher.hpp"
 #include "ferret/link/lossy_channel.hpp"
+#include "ferret/sim/mission_world.hpp"
 #include "ferret/uav/flight_adapter_service.hpp"
 #include "ferret/uav/remote_winch.hpp"
 #include "ferret/ugv/remote_ugv_base.hpp"
-#include "ferret/sim/mission_world.hpp"
 
 namespace ferret {
 namespace {
@@ -31,7 +31,9 @@ class ActiveBase final : public UgvBase {
   double speed_mps() const override { return base().speed_mps(); }
   RangeScan ir_scan() override { return base().ir_scan(); }
   CameraFrame camera_frame(double time_s) override { return base().camera_frame(time_s); }
-  void command_velocity(double v_mps, double w_radps) override { base().command_velocity(v_mps, w_radps); }
+  void command_velocity(double v_mps, double w_radps) override {
+    base().command_velocity(v_mps, w_radps);
+  }
   void set_epm(bool on) override { base().set_epm(on); }
   UgvStatus status() const override { return base().status(); }
 
@@ -45,24 +47,29 @@ class ActiveBase final : public UgvBase {
 };
 
 bool flag_at(const json& j, const char* key) {
-  if (!j.contains(key) || !j[key].is_boolean()) throw std::runtime_error(std::string("'") + key + "': expected a boolean");
+  if (!j.contains(key) || !j[key].is_boolean())
+    throw std::runtime_error(std::string("'") + key + "': expected a boolean");
   return j[key].get<bool>();
 }
 
 // One lockstep exchange: `message` to the robot, then its hardware requests answered by
 // `serve` until its reply to the message ("<op>_done") comes.
 template <class Serve>
-std::pair<json, std::vector<std::uint8_t>> exchange(MessageStream& robot, const std::string& role, const json& message,
-                                                    const std::vector<std::uint8_t>& blob, int timeout_ms,
-                                                    Serve&& serve) {
+std::pair<json, std::vector<std::uint8_t>> exchange(MessageStream& robot, const std::string& role,
+                                                    const json& message,
+                                                    const std::vector<std::uint8_t>& blob,
+                                                    int timeout_ms, Serve&& serve) {
   const std::string done = message.at("op").get<std::string>() + "_done";
   robot.send(StreamMessage{dump(message), blob});
   for (;;) {
     std::optional<StreamMessage> m = robot.receive(timeout_ms);
-    if (!m) throw StreamError("the " + role + " process did not answer '" + done.substr(0, done.size() - 5) + "' for " +
-                              std::to_string(timeout_ms / 1000) + " s");
+    if (!m)
+      throw StreamError("the " + role + " process did not answer '" +
+                        done.substr(0, done.size() - 5) + "' for " +
+                        std::to_string(timeout_ms / 1000) + " s");
     json j = json::parse(m->header, nullptr, false);
-    if (j.is_object() && j.contains("op") && j["op"] == done) return {std::move(j), std::move(m->blob)};
+    if (j.is_object() && j.contains("op") && j["op"] == done)
+      return {std::move(j), std::move(m->blob)};
     robot.send(serve(*m));
   }
 }
@@ -70,12 +77,14 @@ std::pair<json, std::vector<std::uint8_t>> exchange(MessageStream& robot, const 
 }  // namespace
 
 SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription& uav_robot,
-                             const MissionRunSettings& settings, std::uint64_t seed, MessageStream& uav,
-                             MessageStream& ugv, TransitionLog& log, int reply_timeout_ms) {
+                             const MissionRunSettings& settings, std::uint64_t seed,
+                             MessageStream& uav, MessageStream& ugv, TransitionLog& log,
+                             int reply_timeout_ms) {
   internal::MissionWorld sim(world, uav_robot, settings, seed, log);
   internal::SimHiddenSpaces& spaces = sim.spaces();
   // The robot link's network, as `ferret mission --link messages` simulates it.
-  const link::LossyChannelOptions channel = settings.link_channel.value_or(link::LossyChannelOptions{});
+  const link::LossyChannelOptions channel =
+      settings.link_channel.value_or(link::LossyChannelOptions{});
   const auto seeded = [&](std::uint64_t way) {
     link::LossyChannelOptions o = channel;
     o.seed = seed * 1000003u + way;
@@ -132,7 +141,8 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
   std::string uav_state;
   bool uav_done = false, ugv_stopped = false;
   const auto uav_said = [&](const json& j) {
-    if (!j.contains("state") || !j["state"].is_string()) throw StreamError("the UAV process's reply has no 'state'");
+    if (!j.contains("state") || !j["state"].is_string())
+      throw StreamError("the UAV process's reply has no 'state'");
     uav_state = j["state"].get<std::string>();
     uav_done = flag_at(j, "done");
   };
@@ -141,7 +151,8 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
 
   internal::MissionControllers controllers;
   controllers.uav_tick = [&] {
-    uav_said(exchange(uav, "UAV", {{"op", "tick"}, {"t_s", sim.clock().now_s()}, {"lonely", lonely()}}, {},
+    uav_said(exchange(uav, "UAV",
+                      {{"op", "tick"}, {"t_s", sim.clock().now_s()}, {"lonely", lonely()}}, {},
                       reply_timeout_ms, serve_uav)
                  .first);
   };
@@ -154,20 +165,25 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
     // touch down (the UAV's check while it lowers).
     const ImuReading& hanging = spaces.touchdown();
     const bool set_down = spaces.active() != nullptr;
-    const json step{{"op", "step"},
-                    {"t_s", sim.clock().now_s()},
-                    {"set_down", set_down},
-                    {"attitude_rad", set_down ? json::array({0.0, 0.0}) : json::array({hanging.roll_rad, hanging.pitch_rad})}};
-    const auto [r, blob] = exchange(ugv, "miniUGV", step, link::pack_datagrams(up.deliver()), reply_timeout_ms, serve_ugv);
+    const json step{
+        {"op", "step"},
+        {"t_s", sim.clock().now_s()},
+        {"set_down", set_down},
+        {"attitude_rad",
+         set_down ? json::array({0.0, 0.0}) : json::array({hanging.roll_rad, hanging.pitch_rad})}};
+    const auto [r, blob] = exchange(ugv, "miniUGV", step, link::pack_datagrams(up.deliver()),
+                                    reply_timeout_ms, serve_ugv);
     ugv_stopped = flag_at(r, "stopped");
     return flag_at(r, "hold");
   };
   controllers.link_send = [&] {
     const auto [r, sent] =
-        exchange(ugv, "miniUGV", {{"op", "report"}, {"t_s", sim.clock().now_s()}}, {}, reply_timeout_ms, serve_ugv);
+        exchange(ugv, "miniUGV", {{"op", "report"}, {"t_s", sim.clock().now_s()}}, {},
+                 reply_timeout_ms, serve_ugv);
     down.send(link::unpack_datagrams(sent));
-    const auto [r2, reply] = exchange(uav, "UAV", {{"op", "link"}, {"t_s", sim.clock().now_s()}},
-                                      link::pack_datagrams(down.deliver()), reply_timeout_ms, serve_uav);
+    const auto [r2, reply] =
+        exchange(uav, "UAV", {{"op", "link"}, {"t_s", sim.clock().now_s()}},
+                 link::pack_datagrams(down.deliver()), reply_timeout_ms, serve_uav);
     up.send(link::unpack_datagrams(reply));
   };
   sim.run(controllers, {});
@@ -183,8 +199,9 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
                            {"uav.winch", "sim (served)"},
                            {"ugv.base", "sim (served)"},
                            {"link", "messages (relayed)"}};
-  report.truth.link_counters = "UAV -> miniUGV: " + std::to_string(up.counters().delivered) +
-                               " delivered; miniUGV -> UAV: " + std::to_string(down.counters().delivered) + " delivered";
+  report.truth.link_counters =
+      "UAV -> miniUGV: " + std::to_string(up.counters().delivered) +
+      " delivered; miniUGV -> UAV: " + std::to_string(down.counters().delivered) + " delivered";
   return report;
 }
 

@@ -293,10 +293,10 @@ void write_tether_sim_csv(const TetherSimResult& result, const std::filesystem::
       "t_s,released_m,required_m,slack_m,ugv_tension_n,winch_tension_n,command_mps,speed_mps,"
       "snagged,reachable_slack_m\n";
   for (const auto& r : result.log)
-    text += fmt::format("{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.5f},{:.5f},{},{:.5f}\n",
-                        r.t_s, r.released_m, r.required_m, r.slack_m, r.ugv_tension_n,
-                        r.winch_tension_n, r.command_mps, r.speed_mps, r.snagged ? 1 : 0,
-                        r.reachable_slack_m);
+    text +=
+        fmt::format("{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.5f},{:.5f},{},{:.5f}\n", r.t_s,
+                    r.released_m, r.required_m, r.slack_m, r.ugv_tension_n, r.winch_tension_n,
+                    r.command_mps, r.speed_mps, r.snagged ? 1 : 0, r.reachable_slack_m);
   write_text_atomically(path, text);
 }
 

@@ -33,10 +33,9 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
   if (const auto r = root.optional_child("control")) {
     r->allow_only({"slack_reference_m", "max_slack_m", "pose_filter_gain", "guard_n",
                    "max_tension_n", "max_speed_mps", "max_acceleration_mps2", "ugv_velocity_lag_s",
-                   "ugv_tracking_time_s", "identify_ugv_response",
-                   "tension_fusion", "observer_pose_noise_m", "observer_tension_noise_n",
-                   "observer_speed_noise_mps", "observer_model_offset_decay_mps",
-                   "servo_time_constant_s"});
+                   "ugv_tracking_time_s", "identify_ugv_response", "tension_fusion",
+                   "observer_pose_noise_m", "observer_tension_noise_n", "observer_speed_noise_mps",
+                   "observer_model_offset_decay_mps", "servo_time_constant_s"});
     ctl.slack_reference_m =
         r->get_in_range_or("slack_reference_m", -0.1, 1.0, ctl.slack_reference_m);
     ctl.max_slack_m = r->get_in_range_or("max_slack_m", 0.0, 10.0, ctl.max_slack_m);
@@ -56,8 +55,8 @@ void apply_tether_run_config(const std::filesystem::path& path, TetherRunConfig&
         r->get_in_range_or("observer_tension_noise_n", 1e-3, 100.0, obs.tension_noise_n);
     obs.ugv_speed_noise_mps =
         r->get_in_range_or("observer_speed_noise_mps", 0.0, 10.0, obs.ugv_speed_noise_mps);
-    obs.model_offset_decay_mps =
-        r->get_in_range_or("observer_model_offset_decay_mps", 0.0, 10.0, obs.model_offset_decay_mps);
+    obs.model_offset_decay_mps = r->get_in_range_or("observer_model_offset_decay_mps", 0.0, 10.0,
+                                                    obs.model_offset_decay_mps);
     ctl.slack_estimator.guard_n =
         r->get_in_range_or("guard_n", 0.0, 1e3, ctl.slack_estimator.guard_n);
     ctl.slack_estimator.tension.max_tension_n =

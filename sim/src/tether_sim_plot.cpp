@@ -16,11 +16,11 @@
 #include "plot_panel.hpp"
 
 namespace ferret::sim {
-using internal::Key;
-using internal::Panel;
 using internal::draw_axes;
 using internal::draw_keys;
+using internal::Key;
 using internal::nice_step;
+using internal::Panel;
 namespace {
 
 template <class Get>
@@ -81,7 +81,8 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
                              kLimit}};
   std::vector<Key> bottom_keys{
       {"slack", kReleased},
-      {r.band_label.empty() ? fmt::format("allowed [0, s_max = {:g} mm]", 1e3 * max_slack_m) : r.band_label,
+      {r.band_label.empty() ? fmt::format("allowed [0, s_max = {:g} mm]", 1e3 * max_slack_m)
+                            : r.band_label,
        kBand, true}};
   if (std::any_of(r.log.begin(), r.log.end(), [](const auto& s) { return s.snagged; })) {
     top_keys.push_back({"snagged", kSnag, true});
@@ -101,13 +102,13 @@ void write_tether_sim_plot(const TetherSimResult& r, double max_slack_m, double 
   cv::line(img, bottom.to_px(t0, 0.0), bottom.to_px(t1, 0.0), cv::Scalar(0, 0, 0), 1);
   const auto& m = r.metrics;
   // Two lines: what ran, then how it went.
-  cv::putText(img,
-              fmt::format("{}, {}: slack RMS {:.2f} mm, peak {:.1f} N",
-                          r.plot_title.empty() ? fmt::format("tether-sim {} trajectory", r.scenario) : r.plot_title,
-                          tether::tether_controllers().label(r.controller),
-                          1e3 * m.slack_rms_m, m.max_tension_n),
-              cv::Point(20, 26), cv::FONT_HERSHEY_SIMPLEX, 0.62, cv::Scalar(0, 0, 0), 1,
-              cv::LINE_AA);
+  cv::putText(
+      img,
+      fmt::format(
+          "{}, {}: slack RMS {:.2f} mm, peak {:.1f} N",
+          r.plot_title.empty() ? fmt::format("tether-sim {} trajectory", r.scenario) : r.plot_title,
+          tether::tether_controllers().label(r.controller), 1e3 * m.slack_rms_m, m.max_tension_n),
+      cv::Point(20, 26), cv::FONT_HERSHEY_SIMPLEX, 0.62, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   cv::putText(img,
               fmt::format("slack max {:.1f} mm, min {:.1f} mm; {} over-tension events; l_t at L "
                           "for {:.2f} s",

@@ -12,7 +12,8 @@ void write_time_series_plot(const TimeSeriesPlot& plot, const std::filesystem::p
   if (!(plot.y_max > plot.y_min)) throw std::invalid_argument("time series plot: y_max <= y_min");
   double t0 = std::numeric_limits<double>::infinity(), t1 = -t0;
   for (const TimeSeries& s : plot.series) {
-    if (s.t_s.size() != s.y.size()) throw std::invalid_argument("time series plot: t_s and y differ in length");
+    if (s.t_s.size() != s.y.size())
+      throw std::invalid_argument("time series plot: t_s and y differ in length");
     for (const double t : s.t_s) t0 = std::min(t0, t), t1 = std::max(t1, t);
   }
   if (!(t1 >= t0)) throw std::invalid_argument("time series plot: no samples");
@@ -44,12 +45,12 @@ void write_time_series_plot(const TimeSeriesPlot& plot, const std::filesystem::p
     flush();
   }
   internal::draw_keys(img, panel, keys);
-  cv::putText(img, plot.title, cv::Point(20, 26), cv::FONT_HERSHEY_SIMPLEX, 0.62, cv::Scalar(0, 0, 0), 1,
-              cv::LINE_AA);
-  cv::putText(img, plot.subtitle, cv::Point(20, 50), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(40, 40, 40), 1,
-              cv::LINE_AA);
-  cv::putText(img, "time [s]", cv::Point(540, 465), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(40, 40, 40), 1,
-              cv::LINE_AA);
+  cv::putText(img, plot.title, cv::Point(20, 26), cv::FONT_HERSHEY_SIMPLEX, 0.62,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, plot.subtitle, cv::Point(20, 50), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+              cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
+  cv::putText(img, "time [s]", cv::Point(540, 465), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+              cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
   internal::write_png_atomically(img, path);
 }
 

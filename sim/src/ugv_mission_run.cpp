@@ -28,17 +28,21 @@ UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
                              const UgvMissionRunSettings& settings, std::uint64_t seed,
                              const UgvControllerFactory& make_controller)
     : UgvMissionSim(truth, start, object_W, settings, seed) {
-  mission_ = make_controller(*base_, ugv_mission_map(truth.geometry, start, settings), seed, object_W);
+  mission_ =
+      make_controller(*base_, ugv_mission_map(truth.geometry, start, settings), seed, object_W);
 }
 
-GridGeometry ugv_mission_map(const GridGeometry& truth, const Pose2& start, const UgvMissionRunSettings& settings) {
-  return settings.map_window_m ? GridGeometry::centred_on(start.position(), settings.map_window_m->x(),
-                                                          settings.map_window_m->y(), truth.resolution_m)
-                               : truth;
+GridGeometry ugv_mission_map(const GridGeometry& truth, const Pose2& start,
+                             const UgvMissionRunSettings& settings) {
+  return settings.map_window_m
+             ? GridGeometry::centred_on(start.position(), settings.map_window_m->x(),
+                                        settings.map_window_m->y(), truth.resolution_m)
+             : truth;
 }
 
 UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std::uint64_t seed,
-                                      const std::optional<Eigen::Vector2d>& object_W, const GridGeometry& truth) {
+                                      const std::optional<Eigen::Vector2d>& object_W,
+                                      const GridGeometry& truth) {
   // An empty hidden space: the object far outside the map (the oracle's option only).
   const Eigen::Vector2d far_W(truth.origin_x_m - 1e6, truth.origin_y_m - 1e6);
   UgvMissionOptions options = settings.ugv;

@@ -146,9 +146,12 @@ TEST(Cli, EveryNumericOptionRejectsNonNumbers) {
       std::vector<std::string> bad;
       // The parser's cases are in Number.*; here one of each kind per option, to prove
       // that every option goes through it.
-      if (o.type == "FLOAT") bad = {"nan", "-inf", "1e400", "''"};
-      else if (o.type == "UINT") bad = {"-1", "99999999999999999999"};
-      else if (o.type == "INT") bad = {"1.5"};
+      if (o.type == "FLOAT")
+        bad = {"nan", "-inf", "1e400", "''"};
+      else if (o.type == "UINT")
+        bad = {"-1", "99999999999999999999"};
+      else if (o.type == "INT")
+        bad = {"1.5"};
       for (const auto& value : bad) {
         const auto r = run_cli(command + " " + o.long_name + "=" + value);
         ++checked;

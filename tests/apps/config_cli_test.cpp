@@ -136,8 +136,8 @@ TEST(ConfigCli, TheUavMissionSectionShowsTheFilesValuesAndTheDefaults) {
   const std::string uav = section(r.out, "uav_mission:");
   EXPECT_TRUE(contains(uav, "search_altitude_m: 6.5\n")) << r.out;
   EXPECT_TRUE(contains(uav, "release: hover\n")) << r.out;
-  EXPECT_TRUE(contains(uav, "passes: 2\n")) << r.out;         // a default
-  EXPECT_FALSE(contains(uav, "search_area_m")) << r.out;     // the world's, not given
+  EXPECT_TRUE(contains(uav, "passes: 2\n")) << r.out;     // a default
+  EXPECT_FALSE(contains(uav, "search_area_m")) << r.out;  // the world's, not given
   write_text(dir / "bad.yaml", "uav:\n  passes: 0\n");
   const auto bad = run_cli("config --dump --config '" + dir / "bad.yaml" + "'");
   EXPECT_EQ(bad.exit_code, 2);
@@ -375,7 +375,8 @@ TEST(ConfigCli, BadBackendsExitTwoNamingFileAndField) {
     std::string name, text, field;
   };
   const Case cases[] = {
-      {"unknown.yaml", "ugv: {base: {backend: real}}\n", "ugv.base.backend: expected one of sim, hw"},
+      {"unknown.yaml", "ugv: {base: {backend: real}}\n",
+       "ugv.base.backend: expected one of sim, hw"},
       {"no_port.yaml", "uav: {winch: {backend: hw}}\n", "uav.winch.serial: expected a mapping"},
       {"nan.yaml",
        "ugv: {base: {backend: hw, serial: {port: /dev/ttyAMA0}, camera: {device: '0'}, "

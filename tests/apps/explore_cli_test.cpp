@@ -72,7 +72,8 @@ TEST(ExploreCli, ListMethodsPrintsEveryRegisteredMethodAndNeedsNoMap) {
   for (std::string line; std::getline(in, line);) names.push_back(line);
   // The same names --method accepts, in the same order.
   Room room;
-  const auto bad = run_cli("explore --map " + room.map + " --start 0.5,1,0 --object 4,1 --method bogus");
+  const auto bad =
+      run_cli("explore --map " + room.map + " --start 0.5,1,0 --object 4,1 --method bogus");
   EXPECT_EQ(bad.exit_code, 2);
   std::string joined;
   for (const auto& n : names) joined += (joined.empty() ? "" : ", ") + n;
@@ -173,8 +174,8 @@ TEST(ExploreCli, RetrieveRunsTheWholeMissionAndLogsEveryTransition) {
 
 TEST(ExploreCli, RetrieveInAnEmptySpaceReportsNoObject) {
   Room room;
-  const auto r = run_cli("explore --map " + room.map +
-                         " --start 0.5,1,0 --object none --retrieve --seed 3");
+  const auto r =
+      run_cli("explore --map " + room.map + " --start 0.5,1,0 --object none --retrieve --seed 3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("outcome: no_object"));
   // "none" is a mission's word: the plain search needs an object.

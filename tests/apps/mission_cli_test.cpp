@@ -11,8 +11,8 @@
 
 namespace {
 
-using ::testing::HasSubstr;
 using ferret::test::run_cli;
+using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) {
@@ -23,7 +23,8 @@ fs::path fresh_dir(const std::string& name) {
 
 TEST(MissionCli, AWorldWithoutHiddenSpacesExits2AndWritesNothing) {
   const fs::path world = fs::temp_directory_path() / "ferret_mission_cli_empty_world.yaml";
-  std::ofstream(world) << "name: empty\nresolution_m: 0.1\nbounds_m: {min: [-5, -5, -0.5], max: [5, 5, 5]}\n";
+  std::ofstream(world)
+      << "name: empty\nresolution_m: 0.1\nbounds_m: {min: [-5, -5, -0.5], max: [5, 5, 5]}\n";
   const fs::path out = fresh_dir("empty");
   const auto r = run_cli("mission --world " + world.string() + " -o " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
@@ -82,10 +83,11 @@ TEST(MissionCli, AnUnknownChoiceExits2) {
   EXPECT_EQ(m.exit_code, 2);
   EXPECT_THAT(m.err, HasSubstr("/nonexistent/world.yaml"));
   // The robot link: a way it cannot run, a loss it cannot have, a loss with no messages.
-  for (const auto& [args, named] : {std::pair{"--link carrier-pigeon", "--link: expected in-process or messages"},
-                                    std::pair{"--link messages --link-loss 1.5", "--link-loss: expected a fraction"},
-                                    std::pair{"--link messages --link-reorder nan", "--link-reorder"},
-                                    std::pair{"--link-loss 0.1", "--link-loss: expected --link messages"}}) {
+  for (const auto& [args, named] :
+       {std::pair{"--link carrier-pigeon", "--link: expected in-process or messages"},
+        std::pair{"--link messages --link-loss 1.5", "--link-loss: expected a fraction"},
+        std::pair{"--link messages --link-reorder nan", "--link-reorder"},
+        std::pair{"--link-loss 0.1", "--link-loss: expected --link messages"}}) {
     const auto l = run_cli(std::string("mission -q ") + args);
     EXPECT_EQ(l.exit_code, 2) << args;
     EXPECT_THAT(l.err, HasSubstr(named)) << args;

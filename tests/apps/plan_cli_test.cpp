@@ -85,7 +85,8 @@ nlohmann::json plan_back_to_the_entry(const TempDir& dir, const std::string& ugv
 TEST(PlanCli, UgvInAMapServerMapNeedsTheEntryAndValidates) {
   TempDir dir;
   const std::string map = "examples/maps/sparse.yaml";
-  const auto r = run_cli("plan ugv --world " + map + " --from 1,4,0 --to 10,4,0 --entry 0.2,4 -o " + dir / "p.json");
+  const auto r = run_cli("plan ugv --world " + map + " --from 1,4,0 --to 10,4,0 --entry 0.2,4 -o " +
+                         dir / "p.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto plan = nlohmann::json::parse(slurp(dir / "p.json"));
   EXPECT_EQ(plan["bounds"]["max"][0], 12.0);
@@ -93,12 +94,15 @@ TEST(PlanCli, UgvInAMapServerMapNeedsTheEntryAndValidates) {
   const auto v = run_cli("validate --world " + map + " --plan " + dir / "p.json");
   EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
   // Across the block at x 8.5..9.3 on y = 4: the straight line collides.
-  std::ofstream(dir / "straight.json") << R"({"states": [{"t_s": 0, "x_m": 1, "y_m": 4, "z_m": 0, "yaw_rad": 0},
+  std::ofstream(dir / "straight.json")
+      << R"({"states": [{"t_s": 0, "x_m": 1, "y_m": 4, "z_m": 0, "yaw_rad": 0},
     {"t_s": 10, "x_m": 10, "y_m": 4, "z_m": 0, "yaw_rad": 0}]})";
-  const auto bad = run_cli("validate --world " + map + " --robot miniugv --entry 0.2,4 --plan " + dir / "straight.json");
+  const auto bad = run_cli("validate --world " + map + " --robot miniugv --entry 0.2,4 --plan " +
+                           dir / "straight.json");
   EXPECT_EQ(bad.exit_code, 1) << bad.out << bad.err;
   EXPECT_NE(bad.out.find("collision"), std::string::npos) << bad.out;
-  const auto no_entry = run_cli("plan ugv --world " + map + " --from 1,4,0 --to 10,4,0 -o " + dir / "q.json");
+  const auto no_entry =
+      run_cli("plan ugv --world " + map + " --from 1,4,0 --to 10,4,0 -o " + dir / "q.json");
   EXPECT_EQ(no_entry.exit_code, 2);
   EXPECT_NE(no_entry.err.find("--entry"), std::string::npos) << no_entry.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "q.json"));

@@ -44,13 +44,17 @@ std::map<std::string, std::string> summary(const std::string& text) {
 void run_three(const TempDir& dir, const std::string& world, const std::string& world_args) {
   const std::string d = dir.path().string();
   const std::string script =
-      "F='" + std::string(FERRET_CLI) + "'; D='" + d + "'; W='" + world + "'\n"
-      "timeout 900 \"$F\" sim-world --world \"$W\" --seed 1 --listen 127.0.0.1:0 " + world_args +
+      "F='" + std::string(FERRET_CLI) + "'; D='" + d + "'; W='" + world +
+      "'\n"
+      "timeout 900 \"$F\" sim-world --world \"$W\" --seed 1 --listen 127.0.0.1:0 " +
+      world_args +
       " >\"$D/sw.out\" 2>\"$D/sw.err\" & SW=$!\n"
       "for i in $(seq 1200); do grep -q 'listening on' \"$D/sw.err\" && break; sleep 0.1; done\n"
       "P=$(sed -n 's/.*listening on 127.0.0.1:\\([0-9]*\\).*/\\1/p' \"$D/sw.err\")\n"
-      "timeout 900 \"$F\" ugv --world \"$W\" --seed 1 --sim-world 127.0.0.1:$P >\"$D/ugv.out\" 2>\"$D/ugv.err\" & UGV=$!\n"
-      "timeout 900 \"$F\" uav --world \"$W\" --seed 1 --sim-world 127.0.0.1:$P >\"$D/uav.out\" 2>\"$D/uav.err\"; U=$?\n"
+      "timeout 900 \"$F\" ugv --world \"$W\" --seed 1 --sim-world 127.0.0.1:$P >\"$D/ugv.out\" "
+      "2>\"$D/ugv.err\" & UGV=$!\n"
+      "timeout 900 \"$F\" uav --world \"$W\" --seed 1 --sim-world 127.0.0.1:$P >\"$D/uav.out\" "
+      "2>\"$D/uav.err\"; U=$?\n"
       "wait $UGV; G=$?; wait $SW; S=$?\n"
       "echo \"$S $U $G\" >\"$D/codes\"\n";
   std::ofstream(dir.path() / "run.sh") << script;
@@ -62,27 +66,33 @@ TEST(RobotProcesses, ThreeProcessesOnLoopbackEndAsOneProcessDoesWithATenthLostAn
   const std::string world = std::string(FERRET_SOURCE_DIR) + "/examples/worlds/two_sites.yaml";
   const std::string faults = "--link-loss 0.1 --link-reorder 0.1";
   run_three(dir, world, faults);
-  EXPECT_EQ(slurp(dir.path() / "codes"), "0 0 0\n") << slurp(dir.path() / "sw.err") << slurp(dir.path() / "uav.err")
-                                                    << slurp(dir.path() / "ugv.err");
-  const auto one = run_cli("mission --world " + world + " --seed 1 --link messages " + faults + " -q");
+  EXPECT_EQ(slurp(dir.path() / "codes"), "0 0 0\n")
+      << slurp(dir.path() / "sw.err") << slurp(dir.path() / "uav.err")
+      << slurp(dir.path() / "ugv.err");
+  const auto one =
+      run_cli("mission --world " + world + " --seed 1 --link messages " + faults + " -q");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const auto expect = summary(one.out);
   const auto uav = summary(slurp(dir.path() / "uav.out"));
   const auto world_said = summary(slurp(dir.path() / "sw.out"));
   // The UAV's mission: the same outcome at the same time, the same finds.
-  for (const char* key : {"outcome", "time_s", "hidden_spaces_found", "objects_retrieved", "objects_dropped"})
+  for (const char* key :
+       {"outcome", "time_s", "hidden_spaces_found", "objects_retrieved", "objects_dropped"})
     EXPECT_EQ(uav.at(key), expect.at(key)) << key;
   EXPECT_EQ(expect.at("outcome"), "search_complete");
   EXPECT_EQ(expect.at("objects_dropped"), "1");
   // The world's truth: the same flight, tether and collisions.
-  for (const char* key : {"time_s", "flown_m", "battery_left", "tether_max_m", "tether_over_tension_events", "uav_collisions"})
+  for (const char* key : {"time_s", "flown_m", "battery_left", "tether_max_m",
+                          "tether_over_tension_events", "uav_collisions"})
     EXPECT_EQ(world_said.at(key), expect.at(key)) << key;
   // The link's datagrams: lost and held back alike, so both ends counted the same.
   const std::string uav_link = slurp(dir.path() / "uav.out");
   const auto at = one.out.find("link: UAV end: ");
   ASSERT_NE(at, std::string::npos);
   const std::string counters = one.out.substr(at + 15, one.out.find(';', at) - at - 15);
-  EXPECT_NE(uav_link.find("link: UAV end: " + counters + "\n"), std::string::npos) << counters << "\n" << uav_link;
+  EXPECT_NE(uav_link.find("link: UAV end: " + counters + "\n"), std::string::npos)
+      << counters << "\n"
+      << uav_link;
   EXPECT_NE(slurp(dir.path() / "ugv.out").find("object_retrieved"), std::string::npos);
 }
 

@@ -42,14 +42,16 @@ int free_udp_port() {
   return link::UdpLink(o).local_address().port;
 }
 
-std::filesystem::path write_file(const TempDir& dir, const std::string& name, const std::string& text) {
+std::filesystem::path write_file(const TempDir& dir, const std::string& name,
+                                 const std::string& text) {
   const auto path = dir.path() / name;
   std::ofstream(path) << text;
   return path;
 }
 
 std::string ugv_mission(const std::string& port, const std::string& camera = "none") {
-  return "ugv:\n  base:\n    backend: hw\n    serial: {port: " + port + "}\n    camera: {device: " + camera + "}\n";
+  return "ugv:\n  base:\n    backend: hw\n    serial: {port: " + port +
+         "}\n    camera: {device: " + camera + "}\n";
 }
 
 // The UAV's end of the link in the test: a LinkedUgv on the wall clock over UDP.
@@ -84,8 +86,9 @@ TEST(RobotsOnHardware, TheMiniUgvSearchesWhereTheUavSetItDownAndHoldsWhileTheUav
   TestUav uav(ugv_port);
   test::CliResult result;
   std::thread process([&] {
-    result = run_cli("ugv --mission " + mission.string() + " --seed 3 --duration-s 12 --link-bind 127.0.0.1:" +
-                     std::to_string(ugv_port) + " --link-peer " + uav.udp.local_address().to_string());
+    result = run_cli("ugv --mission " + mission.string() +
+                     " --seed 3 --duration-s 12 --link-bind 127.0.0.1:" + std::to_string(ugv_port) +
+                     " --link-peer " + uav.udp.local_address().to_string());
   });
   // The robot is up when its telemetry arrives (it reports from the start: the UAV's
   // touchdown check reads its attitude while it is lowered).
@@ -118,7 +121,8 @@ TEST(RobotsOnHardware, TheMiniUgvSearchesWhereTheUavSetItDownAndHoldsWhileTheUav
   process.join();
   ASSERT_TRUE(heard) << result.err;
   EXPECT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_EQ(first_line(result.err).rfind("backends: ugv.base: hw (" + mcu.port(), 0), 0u) << result.err;
+  EXPECT_EQ(first_line(result.err).rfind("backends: ugv.base: hw (" + mcu.port(), 0), 0u)
+      << result.err;
   EXPECT_NE(result.out.find("searches: 1\n"), std::string::npos) << result.out;
   // It held at least once: while the UAV was silent. More holds are right too: a test
   // thread starved past the 0.5 s timeout on a loaded machine is, to the robot, a silent
@@ -139,23 +143,31 @@ TEST(RobotsOnHardware, TheUavTakesOffWithTheFlightAdapterAndTheWinchsServo) {
   // a loaded machine under the sanitizer starved it past the default 3 x 30 ms once.
   write_file(dir, "uav.yaml.in",
              "uav:\n  winch:\n    backend: hw\n    serial: {port: " + servo.port() +
-                 ", timeout_ms: 500}\n  flight_controller:\n    backend: hw\n    address: 127.0.0.1:ADAPTER_PORT\n");
+                 ", timeout_ms: 500}\n  flight_controller:\n    backend: hw\n    address: "
+                 "127.0.0.1:ADAPTER_PORT\n");
   const std::string script =
-      "F='" + std::string(FERRET_CLI) + "'; D='" + d + "'\n"
-      "timeout 300 \"$F\" flight-adapter serve --real-time --listen 127.0.0.1:0 --clients 1 --seed 2 "
+      "F='" + std::string(FERRET_CLI) + "'; D='" + d +
+      "'\n"
+      "timeout 300 \"$F\" flight-adapter serve --real-time --listen 127.0.0.1:0 --clients 1 --seed "
+      "2 "
       ">\"$D/fa.out\" 2>\"$D/fa.err\" & FA=$!\n"
       "for i in $(seq 1200); do grep -q 'listening on' \"$D/fa.err\" && break; sleep 0.1; done\n"
       "P=$(sed -n 's/.*listening on 127.0.0.1:\\([0-9]*\\).*/\\1/p' \"$D/fa.err\")\n"
       "sed \"s/ADAPTER_PORT/$P/\" \"$D/uav.yaml.in\" >\"$D/uav.yaml\"\n"
-      "timeout 300 \"$F\" uav --mission \"$D/uav.yaml\" --seed 2 --duration-s 10 --link-bind 127.0.0.1:0 "
-      "--link-peer 127.0.0.1:" + std::to_string(free_udp_port()) + " >\"$D/uav.out\" 2>\"$D/uav.err\"; U=$?\n"
+      "timeout 300 \"$F\" uav --mission \"$D/uav.yaml\" --seed 2 --duration-s 10 --link-bind "
+      "127.0.0.1:0 "
+      "--link-peer 127.0.0.1:" +
+      std::to_string(free_udp_port()) +
+      " >\"$D/uav.out\" 2>\"$D/uav.err\"; U=$?\n"
       "wait $FA; A=$?\n"
       "echo \"$U $A\" >\"$D/codes\"\n";
   write_file(dir, "run.sh", script);
   ASSERT_EQ(std::system(("bash '" + d + "/run.sh'").c_str()), 0);
   const std::string err = slurp(dir.path() / "uav.err"), out = slurp(dir.path() / "uav.out");
   EXPECT_EQ(slurp(dir.path() / "codes"), "0 0\n") << err << slurp(dir.path() / "fa.err");
-  EXPECT_EQ(first_line(err).rfind("backends: ugv.base: sim, uav.winch: hw (" + servo.port() + ")", 0), 0u) << err;
+  EXPECT_EQ(
+      first_line(err).rfind("backends: ugv.base: sim, uav.winch: hw (" + servo.port() + ")", 0), 0u)
+      << err;
   EXPECT_NE(err.find("uav: flight adapter 'sim'"), std::string::npos) << err;
   // Within its ten seconds the vehicle took off and began its search pattern.
   EXPECT_NE(err.find("-> takeoff"), std::string::npos) << err;
@@ -197,11 +209,13 @@ TEST(RobotsOnHardware, BadConfigurationExits2NamingTheField) {
   EXPECT_NE(r.err.find("192.0.2.1:47811"), std::string::npos) << r.err;
   // No flight adapter where the file says: the run fails (exit 1), naming the address.
   test::FakeDynamixel servo;
-  const auto no_adapter = write_file(dir, "no_adapter.yaml",
-                                     "uav:\n  winch:\n    backend: hw\n    serial: {port: " + servo.port() +
-                                         "}\n  flight_controller:\n    backend: hw\n    address: 127.0.0.1:" +
-                                         std::to_string(free_udp_port()) + "\n");
-  r = run_cli("uav --mission " + no_adapter.string() + " --link-bind 127.0.0.1:0 --link-peer 127.0.0.1:9");
+  const auto no_adapter =
+      write_file(dir, "no_adapter.yaml",
+                 "uav:\n  winch:\n    backend: hw\n    serial: {port: " + servo.port() +
+                     "}\n  flight_controller:\n    backend: hw\n    address: 127.0.0.1:" +
+                     std::to_string(free_udp_port()) + "\n");
+  r = run_cli("uav --mission " + no_adapter.string() +
+              " --link-bind 127.0.0.1:0 --link-peer 127.0.0.1:9");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("127.0.0.1:"), std::string::npos) << r.err;
 }

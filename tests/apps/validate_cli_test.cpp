@@ -244,11 +244,14 @@ TEST(ValidateCli, ABoxTooLargeToFillIsBadInputNamingItsOrigin) {
   // 3 x 3 km and 0.2 m high with unknown space occupied: billions of voxels to fill.
   TempDir dir;
   const std::string huge = R"( "bounds": {"min": [-1500, -1500, 0], "max": [1500, 1500, 0.2]},)";
-  const auto plan = write(dir, "huge.json", ugv_plan(state(0, 1, 6.5, 0) + "," + state(10, 11, 6.5, 0), 15.0, huge));
-  expect_bad_plan(validate(plan), "huge.json: bounds: expected a box whose faces hold at most 10000000 voxels");
-  expect_bad_plan(validate(write(dir, "ok.json", ugv_plan(state(0, 1, 6.5, 0) + "," + state(10, 11, 6.5, 0))),
-                           "--bounds -1500,-1500,0,1500,1500,0.2"),
-                  "--bounds: expected a box whose faces hold at most 10000000 voxels");
+  const auto plan = write(dir, "huge.json",
+                          ugv_plan(state(0, 1, 6.5, 0) + "," + state(10, 11, 6.5, 0), 15.0, huge));
+  expect_bad_plan(validate(plan),
+                  "huge.json: bounds: expected a box whose faces hold at most 10000000 voxels");
+  expect_bad_plan(
+      validate(write(dir, "ok.json", ugv_plan(state(0, 1, 6.5, 0) + "," + state(10, 11, 6.5, 0))),
+               "--bounds -1500,-1500,0,1500,1500,0.2"),
+      "--bounds: expected a box whose faces hold at most 10000000 voxels");
 }
 
 TEST(ValidateCli, MessagesNameThePlanNotAnOptionNeverGiven) {

@@ -172,15 +172,21 @@ TEST(WorldCli, GenerateHiddenWritesAMapWithItsSearchAndIsReproducible) {
   EXPECT_EQ(m.geometry.width, 240);
   EXPECT_GT(m.count(CellState::kOccupied), 0u);
   EXPECT_THAT(read(dir / "a.yaml"), HasSubstr("search:\n  start: [1, "));
-  ASSERT_EQ(run_cli("world generate-hidden --seed 4 --clutter dense -o " + (dir / "b.yaml")).exit_code, 0);
+  ASSERT_EQ(
+      run_cli("world generate-hidden --seed 4 --clutter dense -o " + (dir / "b.yaml")).exit_code,
+      0);
   EXPECT_EQ(read(dir / "a.pgm"), read(dir / "b.pgm"));
-  ASSERT_EQ(run_cli("world generate-hidden --seed 5 --clutter dense -o " + (dir / "c.yaml")).exit_code, 0);
+  ASSERT_EQ(
+      run_cli("world generate-hidden --seed 5 --clutter dense -o " + (dir / "c.yaml")).exit_code,
+      0);
   EXPECT_NE(read(dir / "a.pgm"), read(dir / "c.pgm"));
-  const auto big = run_cli("world generate-hidden --size 24,10 --resolution 0.1 -o " + (dir / "d.yaml"));
+  const auto big =
+      run_cli("world generate-hidden --size 24,10 --resolution 0.1 -o " + (dir / "d.yaml"));
   ASSERT_EQ(big.exit_code, 0) << big.err;
   EXPECT_THAT(big.out, HasSubstr("240 x 100 cells"));
   // A search with it runs: ferret explore takes the map as any other.
-  const auto e = run_cli("explore --map " + (dir / "a.yaml") + " --start 1,4,0 --object 10,1.5 --time-limit 5");
+  const auto e = run_cli("explore --map " + (dir / "a.yaml") +
+                         " --start 1,4,0 --object 10,1.5 --time-limit 5");
   EXPECT_NE(e.exit_code, 2) << e.err;
   EXPECT_EQ(dir.count(), 8u);
 }

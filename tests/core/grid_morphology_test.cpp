@@ -21,10 +21,10 @@ void set(std::vector<std::uint8_t>& m, int i0, int j0, int i1, int j1) {  // inc
 
 TEST(GridMorphology, OpeningKeepsBlocksTheSquareFitsAndDropsSpecksAndThinStrips) {
   auto m = empty_mask();
-  set(m, 2, 2, 7, 7);    // 6 x 6: a 5 x 5 square fits everywhere in it
-  set(m, 10, 5, 10, 5);  // a speck
-  set(m, 12, 0, 19, 1);  // a strip two cells high, along the border
-  set(m, 12, 4, 13, 11); // a strip two cells wide
+  set(m, 2, 2, 7, 7);     // 6 x 6: a 5 x 5 square fits everywhere in it
+  set(m, 10, 5, 10, 5);   // a speck
+  set(m, 12, 0, 19, 1);   // a strip two cells high, along the border
+  set(m, 12, 4, 13, 11);  // a strip two cells wide
   const auto o = open_square(m, kW, kH, 2);
   auto expected = empty_mask();
   set(expected, 2, 2, 7, 7);
@@ -43,8 +43,11 @@ TEST(GridMorphology, TheBorderDoesNotShaveARegionOffAndRadiusZeroChangesNothing)
 
 // The opening by its definition, cell by cell: a cell stays when some r-square of
 // in-grid cells (the outside counting as set) that holds it is all set.
-std::vector<std::uint8_t> open_by_definition(const std::vector<std::uint8_t>& m, int w, int h, int r) {
-  const auto set_at = [&](int i, int j) { return i < 0 || j < 0 || i >= w || j >= h || m[static_cast<std::size_t>(j) * w + i] != 0; };
+std::vector<std::uint8_t> open_by_definition(const std::vector<std::uint8_t>& m, int w, int h,
+                                             int r) {
+  const auto set_at = [&](int i, int j) {
+    return i < 0 || j < 0 || i >= w || j >= h || m[static_cast<std::size_t>(j) * w + i] != 0;
+  };
   std::vector<std::uint8_t> out(m.size(), 0);
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
@@ -69,14 +72,16 @@ TEST(GridMorphology, RandomMasksOpenAsTheDefinitionSays) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     return static_cast<std::uint32_t>(state >> 33);
   };
-  for (const auto& [w, h] : {std::pair{17, 9}, std::pair{5, 23}, std::pair{1, 1}, std::pair{30, 30}}) {
+  for (const auto& [w, h] :
+       {std::pair{17, 9}, std::pair{5, 23}, std::pair{1, 1}, std::pair{30, 30}}) {
     for (int trial = 0; trial < 6; ++trial) {
       std::vector<std::uint8_t> m(static_cast<std::size_t>(w) * h);
       const std::uint32_t density = 40 + 10 * static_cast<std::uint32_t>(trial);  // percent set
       for (auto& c : m) c = static_cast<std::uint8_t>(next() % 100 < density ? 1 + next() % 3 : 0);
       for (const int r : {0, 1, 2, 4, 40}) {
         if (r > 4 && w * h > 300) continue;  // the definition is slow; 40 > either side already
-        EXPECT_EQ(open_square(m, w, h, r), open_by_definition(m, w, h, r)) << w << "x" << h << " r " << r << " trial " << trial;
+        EXPECT_EQ(open_square(m, w, h, r), open_by_definition(m, w, h, r))
+            << w << "x" << h << " r " << r << " trial " << trial;
       }
     }
   }
@@ -114,7 +119,8 @@ TEST(GridMorphology, GrowingDoesNotJumpAGapInTheRoom) {
   // Radius 0: nothing grows; no seeds: nothing either.
   EXPECT_EQ(grow_within(seeds, room, kW, kH, 0.0), empty_mask());
   EXPECT_EQ(grow_within(empty_mask(), room, kW, kH, 6.0), empty_mask());
-  EXPECT_EQ(grow_within(seeds, room, kW, kH, std::numeric_limits<double>::quiet_NaN()), empty_mask());
+  EXPECT_EQ(grow_within(seeds, room, kW, kH, std::numeric_limits<double>::quiet_NaN()),
+            empty_mask());
 }
 
 }  // namespace

@@ -43,7 +43,8 @@ TEST(McapWriter, WritesChunksIndexesSummaryAndCrcsAReaderCanFollow) {
   const auto schema = w.add_schema("foo.Bar", "jsonschema", "{}");
   const auto a = w.add_channel(schema, "/a", "json", {{"k", "v"}});
   const auto b = w.add_channel(schema, "/b", "json");
-  for (int k = 0; k < 10; ++k) w.add_message(k % 3 ? a : b, 1000u * (10 - k), "{\"k\":" + std::to_string(k) + "}");
+  for (int k = 0; k < 10; ++k)
+    w.add_message(k % 3 ? a : b, 1000u * (10 - k), "{\"k\":" + std::to_string(k) + "}");
   EXPECT_THROW(w.add_message(7, 0, "x"), std::invalid_argument);
   const std::string f = w.finish();
 
@@ -63,9 +64,11 @@ TEST(McapWriter, WritesChunksIndexesSummaryAndCrcsAReaderCanFollow) {
             crc32(std::string_view(f).substr(summary_start, footer.at + 16 - summary_start)));
 
   // Data End's CRC covers everything before it.
-  const auto data_end = std::find_if(all.begin(), all.end(), [](const Record& r) { return r.op == 0x0F; });
+  const auto data_end =
+      std::find_if(all.begin(), all.end(), [](const Record& r) { return r.op == 0x0F; });
   ASSERT_NE(data_end, all.end());
-  EXPECT_EQ(get<std::uint32_t>(f, data_end->at), crc32(std::string_view(f).substr(0, data_end->start)));
+  EXPECT_EQ(get<std::uint32_t>(f, data_end->at),
+            crc32(std::string_view(f).substr(0, data_end->start)));
   EXPECT_EQ(std::next(data_end)->start, summary_start);
 
   // Chunks: their CRC, and every message index entry points at a message of its channel
@@ -113,11 +116,12 @@ TEST(McapWriter, WritesChunksIndexesSummaryAndCrcsAReaderCanFollow) {
   std::sort(distinct.begin(), distinct.end());
   EXPECT_EQ(std::unique(distinct.begin(), distinct.end()), distinct.end());
   EXPECT_EQ(runs.size(), 4u);  // schemas, channels, statistics, chunk indexes
-  const auto stats = std::find_if(all.begin(), all.end(), [](const Record& r) { return r.op == 0x0B; });
+  const auto stats =
+      std::find_if(all.begin(), all.end(), [](const Record& r) { return r.op == 0x0B; });
   ASSERT_NE(stats, all.end());
-  EXPECT_EQ(get<std::uint64_t>(f, stats->at), 10u);          // messages
-  EXPECT_EQ(get<std::uint16_t>(f, stats->at + 8), 1u);       // schemas
-  EXPECT_EQ(get<std::uint32_t>(f, stats->at + 10), 2u);      // channels
+  EXPECT_EQ(get<std::uint64_t>(f, stats->at), 10u);      // messages
+  EXPECT_EQ(get<std::uint16_t>(f, stats->at + 8), 1u);   // schemas
+  EXPECT_EQ(get<std::uint32_t>(f, stats->at + 10), 2u);  // channels
   EXPECT_EQ(get<std::uint32_t>(f, stats->at + 22), static_cast<std::uint32_t>(chunks));
   EXPECT_EQ(get<std::uint64_t>(f, stats->at + 26), 1000u);   // earliest
   EXPECT_EQ(get<std::uint64_t>(f, stats->at + 34), 10000u);  // latest

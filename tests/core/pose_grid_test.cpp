@@ -1,7 +1,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <numbers>
 
 #include "ferret/core/grid.hpp"

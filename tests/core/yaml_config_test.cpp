@@ -5,7 +5,9 @@
 namespace ferret::yaml {
 namespace {
 
-MapReader reader(const std::string& text) { return MapReader(load_string(text, "mission.yaml"), "mission.yaml"); }
+MapReader reader(const std::string& text) {
+  return MapReader(load_string(text, "mission.yaml"), "mission.yaml");
+}
 
 TEST(YamlConfig, ReadsTypedFieldsAndDefaults) {
   const auto r = reader("a: 1.5\nb: 3\nname: x\nnested: {c: true}\nlist: [1, 2, 3]\n");
@@ -25,7 +27,8 @@ TEST(YamlConfig, WrongTypeNamesFileFieldAndExpectation) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.source(), "mission.yaml");
     EXPECT_EQ(e.field(), "sensors.camera_fov_deg");
-    EXPECT_STREQ(e.what(), "mission.yaml: sensors.camera_fov_deg: expected a finite number (got 'wide')");
+    EXPECT_STREQ(e.what(),
+                 "mission.yaml: sensors.camera_fov_deg: expected a finite number (got 'wide')");
   }
 }
 

@@ -154,7 +154,8 @@ namespace {
 
 // The robot link's datagrams relayed in a stream message's blob (sim-world's network).
 TEST(RelayedDatagrams, PackAndUnpackAreInverseAndABrokenBlobIsRefused) {
-  const std::vector<std::vector<std::uint8_t>> datagrams = {{1, 2, 3}, {}, std::vector<std::uint8_t>(300, 7)};
+  const std::vector<std::vector<std::uint8_t>> datagrams = {
+      {1, 2, 3}, {}, std::vector<std::uint8_t>(300, 7)};
   const std::vector<std::uint8_t> blob = pack_datagrams(datagrams);
   ASSERT_EQ(blob.size(), 3u * 4u + 3u + 300u);
   EXPECT_EQ(blob[0], 3);  // little-endian length first
@@ -163,7 +164,7 @@ TEST(RelayedDatagrams, PackAndUnpackAreInverseAndABrokenBlobIsRefused) {
   EXPECT_TRUE(unpack_datagrams({}).empty());
   std::vector<std::uint8_t> cut(blob.begin(), blob.end() - 1);  // the last datagram one byte short
   EXPECT_THROW((void)unpack_datagrams(cut), StreamError);
-  EXPECT_THROW((void)unpack_datagrams({5, 0}), StreamError);  // a length cut short
+  EXPECT_THROW((void)unpack_datagrams({5, 0}), StreamError);     // a length cut short
   EXPECT_THROW((void)unpack_datagrams(blob, 100), StreamError);  // 300 bytes over a limit of 100
   const std::vector<std::uint8_t> huge = {0xff, 0xff, 0xff, 0xff, 1};
   EXPECT_THROW((void)unpack_datagrams(huge), StreamError);  // 4 GiB claimed, 1 byte there

@@ -58,11 +58,14 @@ TEST(BlockRevisions, TheMapsTouchWhatAViewDependsOn) {
   frame.view.max_range_m = 1.0;
   for (int k = -10; k <= 10; ++k) frame.view.beams.push_back({deg_to_rad(2.0 * k), 1.0});
   objects.integrate_frame(frame);  // cells east of (1, 1.5) looked at without a detection
-  EXPECT_FALSE(objects.revisions().unchanged_since(o0, kGeo.cell_at(1.5, 1.5), kGeo.cell_at(1.5, 1.5)));
-  EXPECT_TRUE(objects.revisions().unchanged_since(o0, kGeo.cell_at(3.5, 0.0), kGeo.cell_at(5.0, 3.0)));
+  EXPECT_FALSE(
+      objects.revisions().unchanged_since(o0, kGeo.cell_at(1.5, 1.5), kGeo.cell_at(1.5, 1.5)));
+  EXPECT_TRUE(
+      objects.revisions().unchanged_since(o0, kGeo.cell_at(3.5, 0.0), kGeo.cell_at(5.0, 3.0)));
   const std::uint64_t o1 = objects.revisions().revision();
   objects.set_cell(kGeo.cell_at(4.0, 2.5), 0.2, 0.0);
-  EXPECT_FALSE(objects.revisions().unchanged_since(o1, kGeo.cell_at(4.0, 2.5), kGeo.cell_at(4.0, 2.5)));
+  EXPECT_FALSE(
+      objects.revisions().unchanged_since(o1, kGeo.cell_at(4.0, 2.5), kGeo.cell_at(4.0, 2.5)));
 }
 
 }  // namespace

@@ -80,9 +80,9 @@ TEST(Frontier, OneKindOfBlacklistMarkCanBeLiftedAndLeavesTheOthers) {
   IrGrid g = half_known();
   FrontierTracker t(geometry(), {0.05});
   t.update(g);
-  t.blacklist({9, 3});      // kind 1: a goal reached
-  t.blacklist({9, 3}, 2);   // already marked: keeps kind 1
-  t.blacklist({9, 6}, 2);   // kind 2: out of the tether's reach
+  t.blacklist({9, 3});     // kind 1: a goal reached
+  t.blacklist({9, 3}, 2);  // already marked: keeps kind 1
+  t.blacklist({9, 6}, 2);  // kind 2: out of the tether's reach
   EXPECT_TRUE(t.blacklisted({9, 6}));
   t.clear_blacklist(2);
   EXPECT_FALSE(t.blacklisted({9, 6}));

@@ -86,7 +86,8 @@ TEST(MapCanvas, PngRoundTripAndScaleBar) {
   EXPECT_EQ(back.data, img.data);
   // The scale bar is black on white in the lower-left corner, over the occupied cell.
   bool white_seen = false;
-  for (int c = 0; c < 60; ++c) white_seen = white_seen || same(pixel(back, c, 180), Rgb{255, 255, 255});
+  for (int c = 0; c < 60; ++c)
+    white_seen = white_seen || same(pixel(back, c, 180), Rgb{255, 255, 255});
   EXPECT_TRUE(white_seen);
   EXPECT_THROW(canvas.save_png(dir / "m.jpg"), InputError);
   EXPECT_EQ(dir.count(), 1u);
@@ -104,7 +105,8 @@ TEST(MapCanvas, WorldAnnotationsMarkObjectsAndDropZone) {
   const RgbImage img = canvas.image();
   auto at_m = [&](double x, double y) {
     const Eigen::Vector2d p = canvas.to_pixel({x, y});
-    return ferret::pixel(img, static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
+    return ferret::pixel(img, static_cast<int>(std::lround(p.x())),
+                         static_cast<int>(std::lround(p.y())));
   };
   EXPECT_TRUE(same(at_m(1.0, -0.7), Rgb{220, 20, 20}));     // the canister
   EXPECT_TRUE(same(at_m(-2.0, -2.5), Rgb{255, 140, 0}));    // bottom of the drop zone's circle
@@ -118,7 +120,8 @@ TEST(MapCanvas, WorldAnnotationsMarkObjectsAndDropZone) {
     const PixelRect l = c.legend_area();
     int n = 0;
     for (int r = l.y; r < l.y + l.height; ++r)
-      for (int col = l.x; col < l.x + l.width; ++col) n += same(ferret::pixel(im, col, r), Rgb{255, 140, 0});
+      for (int col = l.x; col < l.x + l.width; ++col)
+        n += same(ferret::pixel(im, col, r), Rgb{255, 140, 0});
     return n;
   };
   EXPECT_GT(orange_in_legend(canvas), 5);

@@ -3,9 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <sstream>
-
 #include <fstream>
+#include <sstream>
 
 #include "ferret/core/error.hpp"
 #include "support/cli_runner.hpp"
@@ -229,13 +228,15 @@ TEST(OccupancyMap2D, BadYamlFieldsNameTheField) {
 
 TEST(OccupancyMap2D, ExtraYamlIsWrittenAfterTheMapServerKeys) {
   TempDir dir;
-  const OccupancyMap2D map = OccupancyMap2D::filled(GridGeometry{0, 0, 0.1, 3, 2}, CellState::kFree);
+  const OccupancyMap2D map =
+      OccupancyMap2D::filled(GridGeometry{0, 0, 0.1, 3, 2}, CellState::kFree);
   save_map_server(map, dir / "s.yaml", "search:\n  start: [0.1, 0.1, 0]\n");
   EXPECT_TRUE(load_map_server(dir / "s.yaml") == map);
   std::ifstream in(dir / "s.yaml");
   std::stringstream text;
   text << in.rdbuf();
-  EXPECT_NE(text.str().find("free_thresh: 0.196\nsearch:\n  start: [0.1, 0.1, 0]\n"), std::string::npos)
+  EXPECT_NE(text.str().find("free_thresh: 0.196\nsearch:\n  start: [0.1, 0.1, 0]\n"),
+            std::string::npos)
       << text.str();
 }
 
@@ -250,7 +251,8 @@ TEST(OccupancyMap2D, CorruptPngIsInputError) {
 // and the YAML's image key is never opened.
 TEST(OccupancyMap2D, TheYamlAndImageFromBytesGiveTheSameMapAsTheFiles) {
   TempDir dir;
-  const std::string pgm = std::string("P5\n3 2\n255\n") + std::string{'\0', '\xfe', '\xcd', '\xfe', '\0', '\0'};
+  const std::string pgm =
+      std::string("P5\n3 2\n255\n") + std::string{'\0', '\xfe', '\xcd', '\xfe', '\0', '\0'};
   write_bytes(dir / "m.pgm", pgm);
   write_bytes(dir / "m.yaml", yaml_for("m.pgm"));
   const OccupancyMap2D from_files = load_map_server(dir / "m.yaml");
@@ -282,10 +284,15 @@ TEST(OccupancyMap2D, ImageBytesAreRecognisedByTheirContentNotTheirName) {
   // Not an image at all, an empty body, a broken PNG: the source is named.
   expect_input_error([] { (void)decode_map_image("hello, not an image", "image"); }, "image", "");
   expect_input_error([] { (void)decode_map_image("", "image"); }, "image", "");
-  expect_input_error([] { (void)decode_map_image("\x89PNG\r\n\x1a\nbroken", "image"); }, "image", "");
-  expect_input_error([] { (void)decode_map_image("P5\n3 2\n255\n\x01", "image"); }, "image", "pixels");
-  expect_input_error([] { (void)parse_map_server_meta("image: m.pgm\nresolution: -1\norigin: [0, 0, 0]\n", "yaml"); },
-                     "yaml", "resolution");
+  expect_input_error([] { (void)decode_map_image("\x89PNG\r\n\x1a\nbroken", "image"); }, "image",
+                     "");
+  expect_input_error([] { (void)decode_map_image("P5\n3 2\n255\n\x01", "image"); }, "image",
+                     "pixels");
+  expect_input_error(
+      [] {
+        (void)parse_map_server_meta("image: m.pgm\nresolution: -1\norigin: [0, 0, 0]\n", "yaml");
+      },
+      "yaml", "resolution");
   try {
     (void)parse_map_server_meta("image: [unclosed", "yaml");
     ADD_FAILURE() << "broken YAML accepted";

@@ -394,7 +394,9 @@ TEST(ExtrudeMap2D, WallsFreeSpaceFloorAndUnknownAtTheirCells) {
   e.height_m = 0.3;  // three layers
   const auto tree = extrude_map_2d(map, "m.yaml", e);
   EXPECT_DOUBLE_EQ(tree->getResolution(), 0.1);
-  const auto centre = [&](int i, int j) { return std::pair{-0.2 + 0.1 * i + 0.05, 0.3 + 0.1 * j + 0.05}; };
+  const auto centre = [&](int i, int j) {
+    return std::pair{-0.2 + 0.1 * i + 0.05, 0.3 + 0.1 * j + 0.05};
+  };
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 4; ++i) {
       const auto [x, y] = centre(i, j);
@@ -402,9 +404,11 @@ TEST(ExtrudeMap2D, WallsFreeSpaceFloorAndUnknownAtTheirCells) {
       const Voxel above = s == CellState::kOccupied ? Voxel::kOccupied
                           : s == CellState::kFree   ? Voxel::kFree
                                                     : Voxel::kUnknown;
-      for (double z : {0.05, 0.15, 0.25}) EXPECT_EQ(voxel_at(*tree, x, y, z), above) << i << "," << j << " z " << z;
+      for (double z : {0.05, 0.15, 0.25})
+        EXPECT_EQ(voxel_at(*tree, x, y, z), above) << i << "," << j << " z " << z;
       // The floor under every known cell; nothing above the walls' height.
-      EXPECT_EQ(voxel_at(*tree, x, y, -0.05), s == CellState::kUnknown ? Voxel::kUnknown : Voxel::kOccupied);
+      EXPECT_EQ(voxel_at(*tree, x, y, -0.05),
+                s == CellState::kUnknown ? Voxel::kUnknown : Voxel::kOccupied);
       EXPECT_EQ(voxel_at(*tree, x, y, 0.35), Voxel::kUnknown);
       EXPECT_EQ(voxel_at(*tree, x, y, -0.15), Voxel::kUnknown);
     }
@@ -445,18 +449,24 @@ TEST(ExtrudeMap2D, ImpossibleMapsAreRefusedNamingTheField) {
     }
     return std::string("(accepted)");
   };
-  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 1e-5, 2, 2}, CellState::kFree)), "resolution");
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 1e-5, 2, 2}, CellState::kFree)),
+            "resolution");
   // Beyond OctoMap's key range: 2^15 cells of 0.05 m is 1638 m.
-  EXPECT_EQ(field_of(OccupancyMap2D::filled({1700.0, 0.0, 0.05, 2, 2}, CellState::kFree)), "origin");
-  EXPECT_EQ(field_of(OccupancyMap2D::filled({-1637.0, 0.0, 0.05, 2, 2}, CellState::kFree)), "(accepted)");
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({1700.0, 0.0, 0.05, 2, 2}, CellState::kFree)),
+            "origin");
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({-1637.0, 0.0, 0.05, 2, 2}, CellState::kFree)),
+            "(accepted)");
   Map2DExtrusion small;
   small.max_voxels = 100;  // 10 x 10 known cells x (1 floor + 10 layers) = 1100
-  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 10, 10}, CellState::kFree), small), "resolution");
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 10, 10}, CellState::kFree), small),
+            "resolution");
   // Unknown cells cost nothing.
-  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 10, 10}, CellState::kUnknown), small), "(accepted)");
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 10, 10}, CellState::kUnknown), small),
+            "(accepted)");
   Map2DExtrusion flat;
   flat.height_m = std::nan("");
-  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 2, 2}, CellState::kFree), flat), "height_m");
+  EXPECT_EQ(field_of(OccupancyMap2D::filled({0.0, 0.0, 0.05, 2, 2}, CellState::kFree), flat),
+            "height_m");
 }
 
 }  // namespace

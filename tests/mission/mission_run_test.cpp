@@ -49,8 +49,9 @@ struct MissionRunOut {
 };
 
 MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::uint64_t seed = 1,
-        const std::string& no_landing_zone = "hover", const std::string& planner = "grid",
-        double flight_endurance_s = 0.0, std::optional<link::LossyChannelOptions> link = std::nullopt) {
+                  const std::string& no_landing_zone = "hover", const std::string& planner = "grid",
+                  double flight_endurance_s = 0.0,
+                  std::optional<link::LossyChannelOptions> link = std::nullopt) {
   const RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), mission);
   const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
   MissionRunOut r{{}, load_planning_world(world_path)};
@@ -79,7 +80,8 @@ void expect_safe(const MissionRunResult& r, const MissionConfig& mission) {
   EXPECT_LE(r.max_released_m, mission.tether.total_length_m + 1e-3);
   EXPECT_EQ(r.required_over_length, 0);
   EXPECT_EQ(r.over_tension_events, 0) << "peak " << r.max_tension_n << " N";
-  for (const auto& d : r.deployments) EXPECT_NE(d.result.outcome, UgvMissionOutcome::kNone) << d.hidden_space;
+  for (const auto& d : r.deployments)
+    EXPECT_NE(d.result.outcome, UgvMissionOutcome::kNone) << d.hidden_space;
 }
 
 // The miniUGV kept its body off the walls: at most `allowed` contacts with the truth,
@@ -121,7 +123,8 @@ TEST(MissionRun, FindsBothSpacesRetrievesTheObjectAndReportsTheEmptyOne) {
       << shed->ugv_outcome;
   EXPECT_EQ(kiln->state, VisitState::kServiced);
   EXPECT_FALSE(kiln->object_retrieved);
-  EXPECT_TRUE(kiln->ugv_outcome == "no_object" || kiln->ugv_outcome == "return_failed") << kiln->ugv_outcome;
+  EXPECT_TRUE(kiln->ugv_outcome == "no_object" || kiln->ugv_outcome == "return_failed")
+      << kiln->ugv_outcome;
   EXPECT_EQ(r.objects_dropped, 1);
   ASSERT_EQ(r.deployments.size(), 2u);
   EXPECT_GT(r.battery_left, 0.0);
@@ -166,7 +169,8 @@ TEST(MissionRun, NoFlightToTheDropZoneEndsAsDeliveryFailedNotAsTheFlightBudget) 
   EXPECT_TRUE(r.visits[0].object_retrieved);
   EXPECT_FALSE(r.visits[0].object_dropped);
   EXPECT_EQ(r.objects_dropped, 0);
-  EXPECT_NE(r.visits[0].note.find("no flight to the drop zone"), std::string::npos) << r.visits[0].note;
+  EXPECT_NE(r.visits[0].note.find("no flight to the drop zone"), std::string::npos)
+      << r.visits[0].note;
   EXPECT_GT(r.battery_left, 0.5);  // not the budget
 }
 
@@ -190,7 +194,10 @@ TEST(MissionRun, TheSameSeedGivesTheSameMission) {
 }
 
 TEST(MissionRun, NoObjectAnywhereEndsWithEverySpaceEmpty) {
-  const fs::path w = world_variant("no_object", "  - {name: canister, hidden_space: shed_void, position_m: [1.8, 1.0], size_m: [0.08, 0.08, 0.05]}\n", "");
+  const fs::path w = world_variant("no_object",
+                                   "  - {name: canister, hidden_space: shed_void, position_m: "
+                                   "[1.8, 1.0], size_m: [0.08, 0.08, 0.05]}\n",
+                                   "");
   const MissionRunResult r = run(w).result;
   expect_safe(r, {});
   EXPECT_EQ(r.outcome, UavMissionOutcome::kSearchComplete);
@@ -225,12 +232,14 @@ TEST(MissionRun, UnsafeGroundByAnOpeningHoversOrSkips) {
   // A survey hover that found nothing in 8 frames, then 16, then 32, looked on to
   // uav.survey_frames_max (64) before the next view: the kiln's three views at least.
   const auto said = [&](const std::string& words) {
-    return std::count_if(hover.transitions.begin(), hover.transitions.end(), [&](const Transition& t) {
-      return t.component == "uav" && t.from == "survey" && t.reason.find(words) != std::string::npos;
-    });
+    return std::count_if(hover.transitions.begin(), hover.transitions.end(),
+                         [&](const Transition& t) {
+                           return t.component == "uav" && t.from == "survey" &&
+                                  t.reason.find(words) != std::string::npos;
+                         });
   };
   EXPECT_GE(said("in 64 frames, next view"), 2);  // views 1 and 2 of 3
-  EXPECT_EQ(said("(64 frames a view)"), 1);        // and the third
+  EXPECT_EQ(said("(64 frames a view)"), 1);       // and the third
   EXPECT_EQ(said("in 8 frames, next view") + said("in 16 frames, next view") +
                 said("in 32 frames, next view"),
             0);
@@ -265,8 +274,9 @@ TEST(MissionRun, AHoverReleaseFromTheMissionYamlNeverLands) {
     EXPECT_FALSE(v.landing_zone.has_value()) << v.marker_id;
   }
   EXPECT_EQ(r.objects_dropped, 1);
-  EXPECT_FALSE(std::any_of(r.transitions.begin(), r.transitions.end(),
-                           [](const Transition& t) { return t.to == "survey" && t.component == "uav"; }));
+  EXPECT_FALSE(std::any_of(r.transitions.begin(), r.transitions.end(), [](const Transition& t) {
+    return t.to == "survey" && t.component == "uav";
+  }));
 }
 
 TEST(MissionRun, HoveringOnALowBatteryRecallsTheMiniUgvInTime) {
@@ -299,7 +309,8 @@ TEST(MissionRun, AnObjectBeyondTheTethersReachIsNeverReached) {
   const HiddenSpaceVisit* shed = visit_of(r, 5);
   ASSERT_TRUE(shed);
   EXPECT_FALSE(shed->object_retrieved);
-  EXPECT_TRUE(shed->ugv_outcome == "no_object" || shed->ugv_outcome == "return_failed") << shed->ugv_outcome;
+  EXPECT_TRUE(shed->ugv_outcome == "no_object" || shed->ugv_outcome == "return_failed")
+      << shed->ugv_outcome;
   for (const auto& d : r.deployments) EXPECT_FALSE(d.result.object_held) << d.hidden_space;
 }
 
@@ -312,7 +323,8 @@ TEST(MissionRun, OverTheLinkWithATenthLostAndReorderedTheOutcomeIsTheSame) {
   link::LossyChannelOptions lossy;
   lossy.drop_fraction = 0.1;
   lossy.reorder_fraction = 0.1;
-  const auto linked = run(data_path("worlds/two_sites.yaml"), mission, 1, "hover", "grid", 0.0, lossy);
+  const auto linked =
+      run(data_path("worlds/two_sites.yaml"), mission, 1, "hover", "grid", 0.0, lossy);
   const MissionRunResult& a = direct.result;
   const MissionRunResult& b = linked.result;
   expect_safe(b, mission);
@@ -327,7 +339,8 @@ TEST(MissionRun, OverTheLinkWithATenthLostAndReorderedTheOutcomeIsTheSame) {
   }
   ASSERT_EQ(b.deployments.size(), a.deployments.size());
   for (std::size_t k = 0; k < a.deployments.size(); ++k)
-    EXPECT_EQ(b.deployments[k].result.outcome, a.deployments[k].result.outcome) << a.deployments[k].hidden_space;
+    EXPECT_EQ(b.deployments[k].result.outcome, a.deployments[k].result.outcome)
+        << a.deployments[k].hidden_space;
   EXPECT_EQ(b.backends.at("link"), "messages");
   EXPECT_EQ(a.backends.at("link"), "in-process");
   // The network did lose and reorder: the UAV's end dropped late telemetry as stale.

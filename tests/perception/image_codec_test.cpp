@@ -70,8 +70,9 @@ TEST(ImageCodec, GreyPngAndJpegDecode) {
 }
 
 // A PNG with one more chunk after IHDR: `type`, the given length field, `body` and its CRC.
-std::vector<std::uint8_t> with_chunk_after_ihdr(const std::vector<std::uint8_t>& png, const char* type,
-                                                std::uint32_t length, const std::string& body) {
+std::vector<std::uint8_t> with_chunk_after_ihdr(const std::vector<std::uint8_t>& png,
+                                                const char* type, std::uint32_t length,
+                                                const std::string& body) {
   std::string chunk(type, 4);
   chunk += body;
   const std::uint32_t crc = crc32(chunk);

@@ -24,13 +24,15 @@ using test::fill_box;
 Pose3 pose(const Eigen::Vector3d& p, double yaw, double roll = 0.0) {
   Pose3 X = Pose3::Identity();
   X.translation() = p;
-  X.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+  X.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
                    .toRotationMatrix();
   return X;
 }
 
 // Plain FCL on an OcTree as a user would call it (the pitfalls' reference behaviour).
-bool raw_fcl_box_collides(const octomap::OcTree& source, const Eigen::Vector3d& size, const Pose3& X) {
+bool raw_fcl_box_collides(const octomap::OcTree& source, const Eigen::Vector3d& size,
+                          const Pose3& X) {
   auto tree = std::make_shared<const octomap::OcTree>(source);
   fcl::CollisionObjectd map(std::make_shared<fcl::OcTreed>(tree));
   fcl::CollisionObjectd box(std::make_shared<fcl::Boxd>(size), X);
@@ -82,14 +84,16 @@ TEST_P(Agreement, FastPathEqualsFclOnRandomPoses) {
 }
 
 INSTANTIATE_TEST_SUITE_P(FieldResolutions, Agreement,
-                         ::testing::Values(AgreementCase{"fine", 16'000'000}, AgreementCase{"coarse", 5'000},
+                         ::testing::Values(AgreementCase{"fine", 16'000'000},
+                                           AgreementCase{"coarse", 5'000},
                                            AgreementCase{"floor_cut", 16'000'000, true}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 // The ground-robot fast path (2D band field, floor cut, field region) agrees with
 // FCL too: poses on and off the floor, tilted and level, in and near obstacles.
 TEST(Agreement, GroundRobotMapEqualsFcl) {
-  const auto tree = test::hidden_space({{3, 4, 0, 6}, {7, 8, 2, 8}, {5.02, 5.33, 1.01, 1.29}}, {{9, 11, 1, 3}});
+  const auto tree =
+      test::hidden_space({{3, 4, 0, 6}, {7, 8, 2, 8}, {5.02, 5.33, 1.01, 1.29}}, {{9, 11, 1, 3}});
   HiddenSpaceFrame space;
   const auto map = ugv_collision_map(*tree, space);
   Rng rng(9);
@@ -98,8 +102,8 @@ TEST(Agreement, GroundRobotMapEqualsFcl) {
   for (int k = 0; k < 6000; ++k) {
     const bool level = k % 3 != 0;
     const double z = level ? 0.0 : rng.uniform(-0.03, 0.08);
-    const Pose3 X = pose({rng.uniform(-0.3, 12.3), rng.uniform(-0.3, 8.3), z}, rng.uniform(-3.2, 3.2),
-                         level ? 0.0 : rng.uniform(-0.4, 0.4));
+    const Pose3 X = pose({rng.uniform(-0.3, 12.3), rng.uniform(-0.3, 8.3), z},
+                         rng.uniform(-3.2, 3.2), level ? 0.0 : rng.uniform(-0.4, 0.4));
     const bool exact = checker.in_collision_fcl(X);
     disagreements += checker.in_collision(X) != exact;
     collisions += exact;
@@ -161,7 +165,7 @@ TEST(CollisionMap, FieldIsALowerBoundOnTheTrueDistance) {
 // policy "occupied" makes it solid inside the bounds, for FCL and the fast path alike.
 TEST(CollisionMap, UnknownSpaceIsAPolicy) {
   octomap::OcTree tree(0.05);
-  fill_box(tree, {0, 0, 0}, {2, 2, 0.3}, false);  // known free
+  fill_box(tree, {0, 0, 0}, {2, 2, 0.3}, false);   // known free
   fill_box(tree, {0, 0, -0.05}, {4, 2, 0}, true);  // floor; x in [2, 4] is unknown above it
   const Pose3 in_unknown = pose({3.0, 1.0, 0.05}, 0.3);
   const Pose3 in_known_free = pose({1.0, 1.0, 0.05}, 0.3);

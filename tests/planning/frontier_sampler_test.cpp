@@ -111,8 +111,9 @@ TEST(FrontierSampler, PrmCallsItRrtConnectDoesNot) {
     planner.setup();
     // Until the first exact solution, with a generous wall-clock cap: a fixed 1 s budget
     // made PRM fail on a loaded machine (the test is about which sampler is called).
-    const auto status = planner.solve(ob::plannerOrTerminationCondition(
-        ob::timedPlannerTerminationCondition(60.0), ob::exactSolnPlannerTerminationCondition(pdef)));
+    const auto status = planner.solve(
+        ob::plannerOrTerminationCondition(ob::timedPlannerTerminationCondition(60.0),
+                                          ob::exactSolnPlannerTerminationCondition(pdef)));
     return std::pair{status == ob::PlannerStatus::EXACT_SOLUTION, pdef};
   };
   ompl::geometric::RRTConnect rrt(si);
@@ -132,7 +133,8 @@ TEST(FrontierSampler, PrmCallsItRrtConnectDoesNot) {
 using Room = test::HalfSeenRoom;
 
 std::size_t heaviest(const FrontierCandidates& c) {
-  return static_cast<std::size_t>(std::max_element(c.weights.begin(), c.weights.end()) - c.weights.begin());
+  return static_cast<std::size_t>(std::max_element(c.weights.begin(), c.weights.end()) -
+                                  c.weights.begin());
 }
 
 // A weak detection of `object` from the robot's pose, folded into O.
@@ -216,7 +218,8 @@ TEST(FrontierWeights, AGoalOutOfTheTethersReachIsNeverChosen) {
   ASSERT_FALSE(asked.empty());
   EXPECT_EQ(asked.back(), plan.goal);  // the chosen path was asked, and passed
   // The best of the rest: no candidate within reach outweighs it.
-  const double w = c->weights[static_cast<std::size_t>(c->find(r.geo.center(plan.goal).x(), r.geo.center(plan.goal).y()))];
+  const double w = c->weights[static_cast<std::size_t>(
+      c->find(r.geo.center(plan.goal).x(), r.geo.center(plan.goal).y()))];
   for (std::size_t k = 0; k < c->cells.size(); ++k)
     if (!out_of_reach(c->cells[k])) {
       EXPECT_LE(c->weights[k], w);

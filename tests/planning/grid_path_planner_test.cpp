@@ -1,6 +1,8 @@
 // The path field kept from cycle to cycle (which cells may be crossed is refreshed only
 // where the grid's labels changed) against a field computed by a new planner each time.
 
+#include "ferret/planning/grid_path_planner.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,13 +11,12 @@
 #include <vector>
 
 #include "ferret/mapping/ir_grid.hpp"
-#include "ferret/planning/grid_path_planner.hpp"
 
 namespace ferret {
 namespace {
 
-void expect_same_field(const GridPathPlanner& kept, const GridPathPlanner& fresh, const GridGeometry& geo,
-                       int step) {
+void expect_same_field(const GridPathPlanner& kept, const GridPathPlanner& fresh,
+                       const GridGeometry& geo, int step) {
   const auto a = kept.distances_m(), b = fresh.distances_m();
   ASSERT_EQ(a.size(), b.size());
   int differ = 0;
@@ -24,7 +25,8 @@ void expect_same_field(const GridPathPlanner& kept, const GridPathPlanner& fresh
   // The same paths too (the same parents, the same shortcuts over crossable cells).
   for (std::size_t k = 0; k < a.size(); k += 97) {
     const Cell c = geo.cell_of_index(k);
-    EXPECT_EQ(kept.path_to(c), fresh.path_to(c)) << "step " << step << " cell " << c.i << "," << c.j;
+    EXPECT_EQ(kept.path_to(c), fresh.path_to(c))
+        << "step " << step << " cell " << c.i << "," << c.j;
   }
 }
 
@@ -78,7 +80,7 @@ TEST(GridPathPlanner, QuestionsInAnyOrderGetTheWholeFieldsAnswers) {
   IrGrid g = labelled_grid(geo, 0.1, [&](IrGrid& grid, Cell c) {
     grid.update_cell(c, ui(rng) < 2);  // scattered walls
   });
-  for (int j = 0; j < geo.height; ++j) g.update_cell({40, j}, true);      // a wall cutting off x > 40
+  for (int j = 0; j < geo.height; ++j) g.update_cell({40, j}, true);  // a wall cutting off x > 40
   for (int round = 0; round < 20; ++round) {
     const Cell start{ui(rng) % 38, uj(rng)};
     const double escape_m = round % 2 == 0 ? 0.0 : 0.3;
@@ -92,9 +94,15 @@ TEST(GridPathPlanner, QuestionsInAnyOrderGetTheWholeFieldsAnswers) {
                                        std::clamp(start.j + uj(rng) % 9 - 4, 0, geo.height - 1)}
                                 : Cell{ui(rng), uj(rng)};
       switch (q % 3) {
-        case 0: EXPECT_EQ(asked.distance_m(c), all[geo.index(c)]) << round << " " << q; break;
-        case 1: EXPECT_EQ(asked.reachable(c), all[geo.index(c)] != kUnreachable) << round << " " << q; break;
-        default: EXPECT_EQ(asked.path_to(c), whole.path_to(c)) << round << " " << q; break;
+        case 0:
+          EXPECT_EQ(asked.distance_m(c), all[geo.index(c)]) << round << " " << q;
+          break;
+        case 1:
+          EXPECT_EQ(asked.reachable(c), all[geo.index(c)] != kUnreachable) << round << " " << q;
+          break;
+        default:
+          EXPECT_EQ(asked.path_to(c), whole.path_to(c)) << round << " " << q;
+          break;
       }
     }
     const auto rest = asked.distances_m();

@@ -20,7 +20,8 @@ NextGoalRequest request_from(const World& w) {
   r.geometry = w.geo;
   for (std::size_t k = 0; k < w.geo.size(); ++k) {
     const Cell c = w.geo.cell_of_index(k);
-    r.occupancy.push_back(w.grid.label(c) == GridLabel::kUnknown ? -1.0f : static_cast<float>(w.grid.probability(c)));
+    r.occupancy.push_back(
+        w.grid.label(c) == GridLabel::kUnknown ? -1.0f : static_cast<float>(w.grid.probability(c)));
     r.object_probability.push_back(static_cast<float>(w.objects.probability(c)));
     r.object_confidence.push_back(static_cast<float>(w.objects.last_confidence(k)));
   }
@@ -96,7 +97,8 @@ TEST(NextGoal, ARoomSeenWholeHasNothingLeftToExplore) {
   NextGoalRequest r;
   r.geometry = {0.0, 0.0, 0.05, 20, 20};
   for (int j = 0; j < 20; ++j)
-    for (int i = 0; i < 20; ++i) r.occupancy.push_back(i == 0 || j == 0 || i == 19 || j == 19 ? 0.97f : 0.12f);
+    for (int i = 0; i < 20; ++i)
+      r.occupancy.push_back(i == 0 || j == 0 || i == 19 || j == 19 ? 0.97f : 0.12f);
   r.pose = {0.5, 0.5, 0.0};
   EXPECT_FALSE(next_exploration_goal(r).has_value());
   // One unknown cell in the room makes its neighbours a frontier again.

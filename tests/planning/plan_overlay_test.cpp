@@ -55,7 +55,7 @@ TEST(PlanOverlay, PathTetherAndMarkersLandWhereThePosesProject) {
   // World (x, y) is at column m.x + 50 x, row m.y + 50 (4 - y), by hand.
   const auto at_m = [&](double x, double y) {
     return ferret::pixel(img, m.x + static_cast<int>(std::lround(50 * x)),
-                  m.y + static_cast<int>(std::lround(50 * (4.0 - y))));
+                         m.y + static_cast<int>(std::lround(50 * (4.0 - y))));
   };
   EXPECT_TRUE(same(at_m(2.5, 3.5), style.path));   // mid first leg
   EXPECT_TRUE(same(at_m(4.0, 2.25), style.path));  // mid second leg
@@ -121,7 +121,7 @@ TEST(PlanOverlay, FarSegmentsAreClippedToWhatIsSeen) {
   const PixelRect m = canvas.map_area();
   const auto at_m = [&](double x, double y) {
     return ferret::pixel(img, m.x + static_cast<int>(std::lround(50 * x)),
-                  m.y + static_cast<int>(std::lround(50 * (4.0 - y))));
+                         m.y + static_cast<int>(std::lround(50 * (4.0 - y))));
   };
   for (const double x : {0.2, 3.0, 5.8}) EXPECT_TRUE(same(at_m(x, 1.0), style.path)) << x;
   EXPECT_FALSE(same(at_m(3.0, 3.0), style.path));  // the far legs stay off the map

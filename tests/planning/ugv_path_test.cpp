@@ -147,7 +147,7 @@ TEST(UgvPath, WithoutAHiddenSpaceOrAnEntryTheRequestIsAnInputError) {
     return "(no error)";
   };
   UgvPathRequest outside = detour_request();
-  outside.start = {-0.5, -0.5, 0.0};  // outside the cellar, no box given
+  outside.start = {-0.5, -0.5, 0.0};      // outside the cellar, no box given
   EXPECT_EQ(field_of(outside), "start");  // where the search for a hidden space failed
   UgvPathRequest no_entry = outside;
   no_entry.bounds = Aabb3{{-1, -1, 0}, {0, 0, 0.4}};  // a box alone gives no entry
@@ -209,7 +209,8 @@ TEST(UgvPath, AMapServerMapIsOneHiddenSpaceWhoseWallsThePlanGoesRound) {
   req.p_WE = Eigen::Vector2d(0.2, 4.0);
   // The straight line crosses the block at x 8.5..9.3: the plan must go round it.
   bool blocked = false;
-  for (double x = 1.0; x <= 10.0; x += 0.01) blocked |= truth.state_at(x, 4.0) == CellState::kOccupied;
+  for (double x = 1.0; x <= 10.0; x += 0.01)
+    blocked |= truth.state_at(x, 4.0) == CellState::kOccupied;
   ASSERT_TRUE(blocked);
   const UgvPathResult r = plan_ugv_path(world, req);
   ASSERT_TRUE(r.solved) << r.status;
@@ -220,7 +221,8 @@ TEST(UgvPath, AMapServerMapIsOneHiddenSpaceWhoseWallsThePlanGoesRound) {
   double length = 0.0;
   const double r_in = 0.06, res = truth.geometry.resolution_m;
   for (std::size_t k = 1; k < r.plan.states.size(); ++k) {
-    const Eigen::Vector2d a = r.plan.states[k - 1].position().head<2>(), b = r.plan.states[k].position().head<2>();
+    const Eigen::Vector2d a = r.plan.states[k - 1].position().head<2>(),
+                          b = r.plan.states[k].position().head<2>();
     length += (b - a).norm();
     const int n = static_cast<int>(std::ceil((b - a).norm() / 0.01)) + 1;
     for (int q = 0; q <= n; ++q) {

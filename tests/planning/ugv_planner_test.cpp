@@ -39,7 +39,9 @@ void expect_valid(UgvPlanner& planner, const UgvPlan& plan, const TetherParams& 
     EXPECT_LE(tether.entry_offset_m + w.tether_length_m, tether.total_length_m + 1e-9) << k;
     if (k > 0) {
       EXPECT_GE(w.t_s, plan.states[k - 1].t_s);
-      EXPECT_FALSE(first_collision(planner.checker(), plan.states[k - 1], w, CheckResolution{}, true)) << k;
+      EXPECT_FALSE(
+          first_collision(planner.checker(), plan.states[k - 1], w, CheckResolution{}, true))
+          << k;
       // Turn in place or drive straight along the heading, never both.
       const Waypoint& p = plan.states[k - 1];
       const bool turns = std::abs(wrap_angle_rad(w.yaw_rad - p.yaw_rad)) > 1e-9;
@@ -73,7 +75,8 @@ TEST(UgvPlanner, PlansAroundObstaclesWithinTheTether) {
   // Deterministic given the seed.
   const UgvPlan again = planner.plan(req);
   ASSERT_EQ(again.states.size(), plan.states.size());
-  for (std::size_t k = 0; k < plan.states.size(); ++k) EXPECT_EQ(again.states[k].x_m, plan.states[k].x_m);
+  for (std::size_t k = 0; k < plan.states.size(); ++k)
+    EXPECT_EQ(again.states[k].x_m, plan.states[k].x_m);
 }
 
 TEST(UgvPlanner, RejectsBadEndpoints) {
@@ -114,7 +117,8 @@ TEST(UgvPlanner, ShortestPathInfeasibleForTheTether) {
   // It went round the left: the tether now bends at the block's bottom-left corner only.
   ASSERT_EQ(plan.final_wraps.size(), 1u);
   EXPECT_TRUE(plan.final_wraps[0].p_W.isApprox(V{3, 2.5}));
-  EXPECT_NEAR(plan.states.back().tether_length_m, std::hypot(3.0, 1.5) + std::hypot(7.0, 1.0), 1e-9);
+  EXPECT_NEAR(plan.states.back().tether_length_m, std::hypot(3.0, 1.5) + std::hypot(7.0, 1.0),
+              1e-9);
   double driven = 0.0;
   for (std::size_t k = 1; k < plan.states.size(); ++k)
     driven += (plan.states[k].position() - plan.states[k - 1].position()).norm();
@@ -189,7 +193,8 @@ TEST(UgvPlanner, MotionClippingACornerIsRejected) {
   auto si = std::make_shared<ob::SpaceInformation>(space);
   si->setStateValidityChecker([&](const ob::State* s) {
     const auto* se2 = s->as<ob::SE2StateSpace::StateType>();
-    return !planner.checker().in_collision(planner.waypoint({se2->getX(), se2->getY(), se2->getYaw()}).pose());
+    return !planner.checker().in_collision(
+        planner.waypoint({se2->getX(), se2->getY(), se2->getYaw()}).pose());
   });
   // A coarse resolution (3% of the space's extent, ~0.5 m), as is common to save time.
   si->setStateValidityCheckingResolution(0.03);

@@ -63,7 +63,8 @@ TEST(ViewpointSearch, AnUnsearchedViewHoldsItsAreaInCells) {
 TEST(ViewpointSearch, NegativeEvidenceLowersARegionsValue) {
   OpenRoom room;
   const auto o = options(2.0);
-  const double before = mass_in_view(view_profile(room.grid, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
+  const double before =
+      mass_in_view(view_profile(room.grid, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
   // The camera looked east from here and saw nothing: what it saw keeps searched_weight.
   room.look({4.0, 4.0, 0.0}, 2.0);
   const auto profile = view_profile(room.grid, room.objects, {4.0, 4.0}, o);
@@ -72,7 +73,8 @@ TEST(ViewpointSearch, NegativeEvidenceLowersARegionsValue) {
   // West was not looked at: its value is untouched, and it is the best heading now.
   EXPECT_NEAR(mass_in_view(profile, kPi, o.camera_fov_rad), before, 0.02 * before);
   const HeadingValue best = best_heading(profile, o.camera_fov_rad);
-  EXPECT_GT(std::abs(wrap_angle_rad(best.heading_rad)), kPi / 2 - 0.05);  // facing away from the searched side
+  EXPECT_GT(std::abs(wrap_angle_rad(best.heading_rad)),
+            kPi / 2 - 0.05);  // facing away from the searched side
   EXPECT_NEAR(best.mass, before, 0.05 * before);
 }
 
@@ -80,7 +82,8 @@ TEST(ViewpointSearch, AWallEndsTheViewAndHoldsNoMass) {
   OpenRoom room;
   const auto o = options(2.0);
   // A wall 1 m east of the viewpoint, across the whole view.
-  for (int j = 0; j < room.geo.height; ++j) room.grid.update_cell(room.geo.cell_at(5.0, j * 0.05 + 0.025), true);
+  for (int j = 0; j < room.geo.height; ++j)
+    room.grid.update_cell(room.geo.cell_at(5.0, j * 0.05 + 0.025), true);
   const auto profile = view_profile(room.grid, room.objects, {4.0, 4.0}, o);
   // East: a triangle-ish sector cut at x = 5: the 90-degree view to 1 m ahead holds the
   // triangle of half-width 1 m, 1 m^2 = 400 cells (up to the rays' sampling).
@@ -88,8 +91,12 @@ TEST(ViewpointSearch, AWallEndsTheViewAndHoldsNoMass) {
   // West sees its whole quarter disc.
   EXPECT_GT(mass_in_view(profile, kPi, o.camera_fov_rad), 1200.0);
   // unsearched_mass: an occupied cell holds none, a free unseen cell 1.
-  EXPECT_EQ(unsearched_mass(room.grid, room.objects, room.geo.index(room.geo.cell_at(5.0, 4.0)), 0.1), 0.0);
-  EXPECT_EQ(unsearched_mass(room.grid, room.objects, room.geo.index(room.geo.cell_at(3.0, 4.0)), 0.1), 1.0);
+  EXPECT_EQ(
+      unsearched_mass(room.grid, room.objects, room.geo.index(room.geo.cell_at(5.0, 4.0)), 0.1),
+      0.0);
+  EXPECT_EQ(
+      unsearched_mass(room.grid, room.objects, room.geo.index(room.geo.cell_at(3.0, 4.0)), 0.1),
+      1.0);
 }
 
 TEST(ViewpointSearch, BestHeadingFindsTheRichestWindowAcrossTheWrap) {
@@ -126,8 +133,10 @@ TEST(ViewpointSearch, ThePolicyFacesTheUnsearchedHalfOfTheRoom) {
   EXPECT_LT(goal->p_W.x(), 2.0);
   // A viewpoint that sees more mass wins: nearer the unknown half than the robot.
   const auto o = options(4.0);
-  const double there = best_heading(view_profile(w.grid, w.objects, goal->p_W, o), o.camera_fov_rad).mass;
-  const double here = best_heading(view_profile(w.grid, w.objects, w.pose.position(), o), o.camera_fov_rad).mass;
+  const double there =
+      best_heading(view_profile(w.grid, w.objects, goal->p_W, o), o.camera_fov_rad).mass;
+  const double here =
+      best_heading(view_profile(w.grid, w.objects, w.pose.position(), o), o.camera_fov_rad).mass;
   EXPECT_GT(there, here);
   // It keeps the goal while the goal still holds its mass.
   const auto again = policy->choose(w.state());
@@ -217,7 +226,8 @@ TEST(ViewpointSearch, EvidenceNearOrOutOfReachIsLeftToCdos) {
 TEST(ViewpointSearch, FarEvidenceInsideTheIrFanIsLeftToCdos) {
   const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
   const Eigen::Vector2d object{1.9, 1.1};
-  for (const double yaw : {0.0, 0.75}) {  // the state's IR fan is 60 degrees: +-30 about the heading
+  for (const double yaw :
+       {0.0, 0.75}) {  // the state's IR fan is 60 degrees: +-30 about the heading
     test::HalfSeenRoom w;
     w.pose = {0.2, 1.0, yaw};
     w.refresh();
@@ -225,7 +235,8 @@ TEST(ViewpointSearch, FarEvidenceInsideTheIrFanIsLeftToCdos) {
     CameraFrame frame;
     frame.view = {w.pose, 4.0, {}};
     const Eigen::Vector2d to = object - w.pose.position();
-    frame.detections = {{wrap_angle_rad(std::atan2(to.y(), to.x()) - yaw), to.norm(), 1.0 / to.norm()}};
+    frame.detections = {
+        {wrap_angle_rad(std::atan2(to.y(), to.x()) - yaw), to.norm(), 1.0 / to.norm()}};
     w.objects.integrate_frame(frame);
     ASSERT_FALSE(w.objects.evidence_cells().empty());
     auto bayes = make_exploration_policy("bayes", po);
@@ -250,15 +261,15 @@ TEST(ViewpointSearch, EvidenceDismissedFromAfarIsLookedAtOnceMore) {
   const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
   const Eigen::Vector2d object{1.8, 1.6};
   struct Case {
-    Pose2 at;                    // where it saw the object and the frames dismissed it (facing +x)
-    std::vector<double> yaws;    // where it faces at each choice after (the last one decides)
+    Pose2 at;                  // where it saw the object and the frames dismissed it (facing +x)
+    std::vector<double> yaws;  // where it faces at each choice after (the last one decides)
     bool recheck;
   };
-  for (const Case& c : {Case{{0.2, 0.4, 0.0}, {-0.6}, true},        // 2 m away, facing what it searched
-                        Case{{0.2, 0.4, 0.0}, {0.5, -0.6}, true},   // facing the place first: later
-                        Case{{0.2, 0.4, 0.0}, {2.0}, false},        // facing the unsearched north-west
-                        Case{{0.2, 0.4, 0.0}, {0.5}, false},        // facing the place
-                        Case{{1.2, 1.2, 0.0}, {-1.2}, false}}) {    // 0.7 m away
+  for (const Case& c : {Case{{0.2, 0.4, 0.0}, {-0.6}, true},  // 2 m away, facing what it searched
+                        Case{{0.2, 0.4, 0.0}, {0.5, -0.6}, true},  // facing the place first: later
+                        Case{{0.2, 0.4, 0.0}, {2.0}, false},  // facing the unsearched north-west
+                        Case{{0.2, 0.4, 0.0}, {0.5}, false},  // facing the place
+                        Case{{1.2, 1.2, 0.0}, {-1.2}, false}}) {  // 0.7 m away
     test::HalfSeenRoom w;
     w.pose = c.at;
     w.refresh();
@@ -339,11 +350,13 @@ TEST(ViewpointSearch, UnknownCellsDimTheViewBeyondThem) {
   OpenRoom room;
   auto o = options(2.0);
   o.unknown_block_probability = 0.02;
-  const double open = mass_in_view(view_profile(room.grid, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
+  const double open =
+      mass_in_view(view_profile(room.grid, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
   // The same space unknown to G (a grid nothing was integrated into): each cell's view is
   // dimmed by the unknown cells before it.
   const IrGrid unknown(room.geo, {});
-  const double dim = mass_in_view(view_profile(unknown, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
+  const double dim =
+      mass_in_view(view_profile(unknown, room.objects, {4.0, 4.0}, o), 0.0, o.camera_fov_rad);
   EXPECT_LT(dim, 0.6 * open);
   EXPECT_GT(dim, 0.2 * open);  // about 0.98^(r / 5 cm) over the area: ~0.45 of it at 2 m
 }
@@ -368,7 +381,8 @@ TEST(ViewpointSearch, AReachedViewpointIsNotChosenAgainNorWhatItCouldNotShow) {
   policy->goal_done();
   const auto second = policy->choose(w.state());
   ASSERT_TRUE(second);
-  EXPECT_GT((second->p_W - first->p_W).norm() + std::abs(wrap_angle_rad(*second->heading_rad - *first->heading_rad)),
+  EXPECT_GT((second->p_W - first->p_W).norm() +
+                std::abs(wrap_angle_rad(*second->heading_rad - *first->heading_rad)),
             0.3);
   // What the first view held is no longer counted: the second view's mass is not the
   // first's region again (it faces elsewhere or sees less of it).
@@ -389,7 +403,7 @@ TEST(ViewpointSearch, KeptViewsChooseExactlyAsViewsComputedAfresh) {
   GridPathPlanner paths(geo);
   const auto solid = [](const Eigen::Vector2d& p) {
     return (p.x() > 4.0 && p.x() < 4.6 && p.y() > 2.0 && p.y() < 3.2) ||  // a box
-           (p.x() > 8.0 && p.x() < 8.15 && p.y() > 1.0);                   // a wall with a gap at the bottom
+           (p.x() > 8.0 && p.x() < 8.15 && p.y() > 1.0);  // a wall with a gap at the bottom
   };
   for (int j = 0; j < geo.height; ++j)
     for (int i = 0; i < geo.width / 2; ++i) grid.update_cell({i, j}, solid(geo.center({i, j})));
@@ -416,8 +430,8 @@ TEST(ViewpointSearch, KeptViewsChooseExactlyAsViewsComputedAfresh) {
     sets = tracker.extract(paths.distances_m(), pose, deg_to_rad(30), 4.0);
   };
   const auto state = [&] {
-    return ExplorationState{grid, objects, tracker, sets, paths, pose, {0.0, 0.0}, deg_to_rad(30), 4.0,
-                            std::nullopt};
+    return ExplorationState{grid, objects,    tracker,        sets, paths,
+                            pose, {0.0, 0.0}, deg_to_rad(30), 4.0,  std::nullopt};
   };
   const PolicyOptions po = PolicyOptions::from(MissionConfig{}, 4.0, 2.0);
   ViewpointSearchPolicy kept(po, true), afresh(po, false);
@@ -438,7 +452,8 @@ TEST(ViewpointSearch, KeptViewsChooseExactlyAsViewsComputedAfresh) {
     // Every view on a 0.25 m lattice, kept or not, is the one computed afresh.
     for (int j = 2; j < geo.height; j += 5)
       for (int i = 2; i < geo.width; i += 5) {
-        const HeadingValue x = kept.view_from(grid, objects, {i, j}), y = afresh.view_from(grid, objects, {i, j});
+        const HeadingValue x = kept.view_from(grid, objects, {i, j}),
+                           y = afresh.view_from(grid, objects, {i, j});
         ASSERT_EQ(x.mass, y.mass) << "step " << step << " cell " << i << "," << j;
         ASSERT_EQ(x.heading_rad, y.heading_rad) << "step " << step << " cell " << i << "," << j;
       }

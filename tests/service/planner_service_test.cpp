@@ -3,6 +3,8 @@
 // drain while busy. Plans are checked against collision ground truth (the library's
 // validator, FCL on the world's OctoMap), not against themselves.
 
+#include "ferret/service/planner_service.hpp"
+
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -11,7 +13,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <vector>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -19,16 +20,18 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "ferret/mapping/world_octree.hpp"
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/planning/plan_file.hpp"
 #include "ferret/planning/plan_validation.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/service/planner_service.hpp"
 #include "support/cli_runner.hpp"
 
+// clang-format off: httplib after every header that includes Eigen
 #include <httplib.h>  // after Eigen (see service/src/planner_service_impl.hpp)
+// clang-format on
 
 namespace ferret {
 namespace {
@@ -47,10 +50,11 @@ std::string slurp(const std::string& path) {
 
 // A service on a free loopback port, and a client for it.
 struct Served {
-  explicit Served(PlannerServiceOptions o = {}) : service([&] {
-    o.port = 0;
-    return o;
-  }()) {
+  explicit Served(PlannerServiceOptions o = {})
+      : service([&] {
+          o.port = 0;
+          return o;
+        }()) {
     port = service.start();
   }
   [[nodiscard]] httplib::Client client(double read_timeout_s = 30.0) const {
@@ -102,7 +106,8 @@ json detour_request() {
 void expect_collision_free(const json& plan, const std::string& world) {
   const PlanningWorld w = load_planning_world(world);
   ValidateRequest v;
-  const ValidationReport report = validate_plan(parse_plan(plan.dump(), "response"), w, v, "response");
+  const ValidationReport report =
+      validate_plan(parse_plan(plan.dump(), "response"), w, v, "response");
   EXPECT_TRUE(report.valid()) << (report.violations.empty() ? "" : report.violations[0].describe());
 }
 
@@ -123,10 +128,12 @@ TEST(PlannerService, HealthReadinessAndMetricsAnswer) {
   EXPECT_EQ(m->status, 200);
   EXPECT_NE(m->get_header_value("Content-Type").find("text/plain"), std::string::npos);
   // The 404 just asked for is counted under its route pattern, not its raw path.
-  EXPECT_NE(m->body.find("ferret_requests_total{route=\"/v1/maps/{name}\",code=\"404\"} 1"), std::string::npos)
+  EXPECT_NE(m->body.find("ferret_requests_total{route=\"/v1/maps/{name}\",code=\"404\"} 1"),
+            std::string::npos)
       << m->body;
-  EXPECT_NE(m->body.find("ferret_request_duration_seconds_bucket{route=\"/healthz\",le=\"+Inf\"} 1"),
-            std::string::npos);
+  EXPECT_NE(
+      m->body.find("ferret_request_duration_seconds_bucket{route=\"/healthz\",le=\"+Inf\"} 1"),
+      std::string::npos);
   EXPECT_NE(m->body.find("ferret_maps_loaded 0"), std::string::npos);
   EXPECT_NE(m->body.find("process_resident_memory_bytes "), std::string::npos);
   EXPECT_EQ(m->body.find("/v1/maps/none"), std::string::npos);
@@ -173,7 +180,8 @@ TEST(PlannerService, BadMapsAreRefusedNamingTheBodyAndKeepNothing) {
   Served s(o);
   auto c = s.client();
   // Not a map at all.
-  auto r = c.Put("/v1/maps/junk", std::string("\x89PNG\r\n\x1a\n\xff\xfe", 10), "application/octet-stream");
+  auto r = c.Put("/v1/maps/junk", std::string("\x89PNG\r\n\x1a\n\xff\xfe", 10),
+                 "application/octet-stream");
   EXPECT_EQ(r->status, 400);
   EXPECT_EQ(error_code(r), "INVALID_MAP");
   EXPECT_EQ(error_field(r), "body");
@@ -190,7 +198,8 @@ TEST(PlannerService, BadMapsAreRefusedNamingTheBodyAndKeepNothing) {
   EXPECT_EQ(r->status, 400);
   EXPECT_EQ(error_code(r), "INVALID_MAP");
   // A name that could be a path, and a body past the limit.
-  EXPECT_EQ(c.Put("/v1/maps/..%2Fetc", slurp(kDetour), "application/yaml")->status, 404);  // no such route
+  EXPECT_EQ(c.Put("/v1/maps/..%2Fetc", slurp(kDetour), "application/yaml")->status,
+            404);  // no such route
   r = c.Put("/v1/maps/a%20b", slurp(kDetour), "application/yaml");
   EXPECT_EQ(r->status, 400);
   EXPECT_EQ(error_field(r), "name");
@@ -204,15 +213,16 @@ TEST(PlannerService, BadMapsAreRefusedNamingTheBodyAndKeepNothing) {
   r = c.Put("/v1/maps/c", slurp(kDetour), "application/yaml");
   EXPECT_EQ(r->status, 507);
   EXPECT_EQ(error_code(r), "TOO_MANY_MAPS");
-  EXPECT_EQ(c.Put("/v1/maps/a", slurp(kDetour), "application/yaml")->status, 200);  // replacing is fine
+  EXPECT_EQ(c.Put("/v1/maps/a", slurp(kDetour), "application/yaml")->status,
+            200);  // replacing is fine
 }
 
 // A multipart/form-data body as curl -F sends it: one part a (name, content).
 std::string multipart(const std::vector<std::pair<std::string, std::string>>& parts) {
   std::string body;
   for (const auto& [name, content] : parts)
-    body += "--ferret-test\r\nContent-Disposition: form-data; name=\"" + name + "\"; filename=\"" + name +
-            "\"\r\nContent-Type: application/octet-stream\r\n\r\n" + content + "\r\n";
+    body += "--ferret-test\r\nContent-Disposition: form-data; name=\"" + name + "\"; filename=\"" +
+            name + "\"\r\nContent-Type: application/octet-stream\r\n\r\n" + content + "\r\n";
   return body + "--ferret-test--\r\n";
 }
 const char* kMultipart = "multipart/form-data; boundary=ferret-test";
@@ -225,7 +235,8 @@ TEST(PlannerService, AMapServerMapIsUploadedAsItsYamlAndImageAndPlannedIn) {
   // The YAML's image key names a file the service must never open: the part is the image.
   std::string yaml = slurp(kSparse);
   yaml.replace(yaml.find("image: sparse.pgm"), 17, "image: /etc/shadow");
-  auto r = c.Put("/v1/maps/sparse", multipart({{"yaml", yaml}, {"image", slurp(kSparsePgm)}}), kMultipart);
+  auto r = c.Put("/v1/maps/sparse", multipart({{"yaml", yaml}, {"image", slurp(kSparsePgm)}}),
+                 kMultipart);
   ASSERT_EQ(r->status, 201) << r->body;
   const json meta = body_of(r);
   EXPECT_EQ(meta["format"], "map_server");
@@ -233,8 +244,11 @@ TEST(PlannerService, AMapServerMapIsUploadedAsItsYamlAndImageAndPlannedIn) {
   EXPECT_EQ(meta["map_2d"]["height"], 160);
   EXPECT_EQ(meta["map_2d"]["bounds_xy_m"], json({0.0, 0.0, 12.0, 8.0}));
   // Round the block at x 8.5..9.3 on y = 4; the entry comes with the request.
-  json req{{"map", "sparse"}, {"start", {1.0, 4.0, 0.0}}, {"goal", {10.0, 4.0, 0.0}},
-           {"entry", {0.2, 4.0}}, {"deadline_s", 5.0}};
+  json req{{"map", "sparse"},
+           {"start", {1.0, 4.0, 0.0}},
+           {"goal", {10.0, 4.0, 0.0}},
+           {"entry", {0.2, 4.0}},
+           {"deadline_s", 5.0}};
   r = c.Post("/v1/plan/ugv", req.dump(), "application/json");
   ASSERT_EQ(r->status, 200) << r->body;
   const json plan = body_of(r)["plan"];
@@ -271,7 +285,9 @@ TEST(PlannerService, ABrokenMapServerUploadNamesItsPart) {
   EXPECT_EQ(error_field(r), "image") << r->body;
   // A key that is not UTF-8 (fuzz/regressions/service_request/map_yaml_key_not_utf8.bin):
   // the answer named it in bytes JSON cannot hold, and turned into a 500.
-  r = put({{"yaml", std::string("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nne\0Ngate: 0\n", 59)}, {"image", pgm}});
+  r = put({{"yaml",
+            std::string("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nne\0Ngate: 0\n", 59)},
+           {"image", pgm}});
   EXPECT_EQ(r->status, 400) << r->body;
   EXPECT_EQ(error_field(r).rfind("yaml.ne", 0), 0u) << r->body;
   EXPECT_TRUE(r->get_header_value("EXCEPTION_WHAT").empty());
@@ -284,7 +300,11 @@ json half_seen_grid() {
   json occupancy = json::array();
   for (int j = 0; j < 40; ++j)
     for (int i = 0; i < 80; ++i) occupancy.push_back(i < 40 ? 0 : -1);
-  return json{{"origin", {0.0, 0.0}}, {"resolution_m", 0.05}, {"width", 80}, {"height", 40}, {"occupancy", occupancy}};
+  return json{{"origin", {0.0, 0.0}},
+              {"resolution_m", 0.05},
+              {"width", 80},
+              {"height", 40},
+              {"occupancy", occupancy}};
 }
 
 TEST(PlannerService, ExploreNextGoalAnswersThePolicysChoiceOrWhyNot) {
@@ -303,7 +323,8 @@ TEST(PlannerService, ExploreNextGoalAnswersThePolicysChoiceOrWhyNot) {
   // Evidence near the frontier's top end draws CDOS there.
   json p = json::array();
   for (int j = 0; j < 40; ++j)
-    for (int i = 0; i < 80; ++i) p.push_back(std::hypot(0.05 * i + 0.025 - 3.0, 0.05 * j + 0.025 - 1.8) < 0.3 ? 0.8 : 0.5);
+    for (int i = 0; i < 80; ++i)
+      p.push_back(std::hypot(0.05 * i + 0.025 - 3.0, 0.05 * j + 0.025 - 1.8) < 0.3 ? 0.8 : 0.5);
   req["method"] = "cdos";
   req["object_probability"] = p;
   r = c.Post("/v1/explore/next-goal", req.dump(), "application/json");
@@ -387,7 +408,9 @@ TEST(PlannerService, UgvPlanFailuresCarryTheirCodes) {
   Served s;
   auto c = s.client();
   put_detour(c);
-  const auto post = [&](const json& j) { return c.Post("/v1/plan/ugv", j.dump(), "application/json"); };
+  const auto post = [&](const json& j) {
+    return c.Post("/v1/plan/ugv", j.dump(), "application/json");
+  };
   json j = detour_request();
   j["start"] = {6.0, 4.0, 0.0};  // inside the block
   auto r = post(j);
@@ -418,7 +441,9 @@ TEST(PlannerService, MalformedRequestsGet400NamingTheField) {
   Served s;
   auto c = s.client();
   put_detour(c);
-  const auto post = [&](const std::string& body) { return c.Post("/v1/plan/ugv", body, "application/json"); };
+  const auto post = [&](const std::string& body) {
+    return c.Post("/v1/plan/ugv", body, "application/json");
+  };
   auto r = post("{\"map\": \"detour\", ");
   EXPECT_EQ(r->status, 400);
   EXPECT_EQ(error_field(r), "body");
@@ -436,7 +461,8 @@ TEST(PlannerService, MalformedRequestsGet400NamingTheField) {
   j["goal"] = {10.0, 1e300, 0.0};  // absurd
   EXPECT_EQ(error_field(post(j.dump())), "goal[1]");
   // JSON has no infinity: 1e999 is either a parse error or a number out of range.
-  const std::string inf_field = error_field(post(R"({"map":"detour","start":[10,4.5,0],"goal":[10,1.5,1e999]})"));
+  const std::string inf_field =
+      error_field(post(R"({"map":"detour","start":[10,4.5,0],"goal":[10,1.5,1e999]})"));
   EXPECT_TRUE(inf_field == "body" || inf_field == "goal[2]") << inf_field;
   j = detour_request();
   j["deadline_s"] = 1e6;  // past the service's longest
@@ -470,7 +496,9 @@ TEST(PlannerService, UavPlansAndValidationAgreeWithGroundTruth) {
   auto c = s.client(60.0);
   const auto put = c.Put("/v1/maps/site", slurp(kDefault), "application/yaml");
   ASSERT_EQ(put->status, 201) << put->body;
-  const json req{{"map", "site"}, {"start", {-20.0, -20.0, 3.0, 0.0}}, {"hidden_space", "house_void"},
+  const json req{{"map", "site"},
+                 {"start", {-20.0, -20.0, 3.0, 0.0}},
+                 {"hidden_space", "house_void"},
                  {"deadline_s", 20.0}};
   const auto r = c.Post("/v1/plan/uav", req.dump(), "application/json");
   ASSERT_TRUE(r);
@@ -478,7 +506,9 @@ TEST(PlannerService, UavPlansAndValidationAgreeWithGroundTruth) {
   const json plan = body_of(r)["plan"];
   expect_collision_free(plan, kDefault);
   // /v1/validate agrees, and finds the collision in a plan moved into the container.
-  const auto ok = c.Post("/v1/validate", json{{"map", "site"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(), "application/json");
+  const auto ok =
+      c.Post("/v1/validate", json{{"map", "site"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(),
+             "application/json");
   ASSERT_EQ(ok->status, 200) << ok->body;
   EXPECT_EQ(body_of(ok)["verdict"], "valid") << ok->body;
   json bad = plan;
@@ -487,7 +517,9 @@ TEST(PlannerService, UavPlansAndValidationAgreeWithGroundTruth) {
     st["y_m"] = 15.0;
     st["z_m"] = 1.5;
   }
-  const auto hit = c.Post("/v1/validate", json{{"map", "site"}, {"plan", bad}, {"deadline_s", 30.0}}.dump(), "application/json");
+  const auto hit =
+      c.Post("/v1/validate", json{{"map", "site"}, {"plan", bad}, {"deadline_s", 30.0}}.dump(),
+             "application/json");
   ASSERT_EQ(hit->status, 200) << hit->body;
   EXPECT_EQ(body_of(hit)["verdict"], "invalid");
   EXPECT_FALSE(body_of(hit)["violations"].empty());
@@ -501,9 +533,10 @@ TEST(PlannerService, UavPlansAndValidationAgreeWithGroundTruth) {
   EXPECT_EQ(built(), 0);
   json boxed = bad;
   boxed["bounds"] = {{"min", {-10.0, 0.0, 0.5}}, {"max", {20.0, 25.0, 5.0}}};
-  const auto hit2 = c.Post("/v1/validate",
-                           json{{"map", "site"}, {"plan", boxed}, {"unknown", "occupied"}, {"deadline_s", 30.0}}.dump(),
-                           "application/json");
+  const auto hit2 = c.Post(
+      "/v1/validate",
+      json{{"map", "site"}, {"plan", boxed}, {"unknown", "occupied"}, {"deadline_s", 30.0}}.dump(),
+      "application/json");
   ASSERT_EQ(hit2->status, 200) << hit2->body;
   EXPECT_EQ(body_of(hit2)["verdict"], "invalid");
   EXPECT_EQ(built(), 1);
@@ -530,27 +563,37 @@ TEST(PlannerService, AValidationPastItsDeadlineIsATimeoutAndAnAbsurdBoxIsRefused
   // Back and forth along y = 6.5 (above the block) 400 times: 4 km, 200 000 poses.
   json states = json::array();
   for (int k = 0; k <= 400; ++k)
-    states.push_back({{"t_s", 10.0 * k}, {"x_m", k % 2 ? 11.0 : 1.0}, {"y_m", 6.5}, {"z_m", 0.0}, {"yaw_rad", 0.0}});
-  json plan{{"format", "ferret-plan"}, {"version", 1}, {"robot", "ugv"}, {"frame", "world"},
+    states.push_back({{"t_s", 10.0 * k},
+                      {"x_m", k % 2 ? 11.0 : 1.0},
+                      {"y_m", 6.5},
+                      {"z_m", 0.0},
+                      {"yaw_rad", 0.0}});
+  json plan{{"format", "ferret-plan"},
+            {"version", 1},
+            {"robot", "ugv"},
+            {"frame", "world"},
             {"bounds", {{"min", {0.0, 0.0, 0.0}}, {"max", {12.0, 8.0, 0.2}}}},
             {"tether", {{"entry", {-0.1, 4.0}}, {"total_length_m", 13.0}, {"entry_offset_m", 1.0}}},
             {"states", states}};
   auto t0 = std::chrono::steady_clock::now();
-  auto r = c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 0.02}}.dump(),
-                  "application/json");
+  auto r =
+      c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 0.02}}.dump(),
+             "application/json");
   double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 422) << r->body.substr(0, 300);
   EXPECT_EQ(error_code(r), "TIMEOUT") << r->body.substr(0, 300);
   EXPECT_LT(took_s, 2.0);  // a bound with room for a slow machine, not a benchmark
   // With time enough, the same plan is checked whole.
-  r = c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(), "application/json");
+  r = c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(),
+             "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200) << r->body.substr(0, 300);
   // 3 x 3 km, 0.2 m high, unknown filled as occupied: billions of voxels. Refused.
   plan["bounds"] = {{"min", {-1500.0, -1500.0, 0.0}}, {"max", {1500.0, 1500.0, 0.2}}};
   t0 = std::chrono::steady_clock::now();
-  r = c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(), "application/json");
+  r = c.Post("/v1/validate", json{{"map", "detour"}, {"plan", plan}, {"deadline_s", 30.0}}.dump(),
+             "application/json");
   took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400) << r->body.substr(0, 300);
@@ -624,7 +667,7 @@ TEST(PlannerService, PastTheQueueRequestsAreShedWith503) {
   EXPECT_EQ(shed->status, 503);
   EXPECT_EQ(error_code(shed), "OVERLOADED");
   EXPECT_EQ(shed->get_header_value("Retry-After"), "1");
-  EXPECT_EQ(busy.get(), 422);   // its own deadline
+  EXPECT_EQ(busy.get(), 422);    // its own deadline
   EXPECT_EQ(queued.get(), 200);  // waited, then planned
   // A queued request whose deadline passes before a worker frees gives up.
   auto busy2 = std::async(std::launch::async, [&] {
@@ -654,15 +697,18 @@ TEST(PlannerService, AClientThatHangsUpCancelsItsSearch) {
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
   const std::string body = slow_request(60.0).dump();
-  const std::string request = "POST /v1/plan/ugv HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n"
-                              "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+  const std::string request =
+      "POST /v1/plan/ugv HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n"
+      "Content-Length: " +
+      std::to_string(body.size()) + "\r\n\r\n" + body;
   ASSERT_EQ(::send(fd, request.data(), request.size(), 0), static_cast<ssize_t>(request.size()));
   wait_for_load(s, 1, 0);
   ::close(fd);
   // The search notices and stops: counted as cancelled, its worker free again.
   wait_for_load(s, 0, 0);
   const auto m = c.Get("/metrics");
-  EXPECT_NE(m->body.find("ferret_plans_total{result=\"cancelled\"} 1"), std::string::npos) << m->body;
+  EXPECT_NE(m->body.find("ferret_plans_total{result=\"cancelled\"} 1"), std::string::npos)
+      << m->body;
 }
 
 TEST(PlannerService, AMapReplacedOrDeletedWhilePlansRunOnItIsSafe) {
@@ -681,7 +727,8 @@ TEST(PlannerService, AMapReplacedOrDeletedWhilePlansRunOnItIsSafe) {
   EXPECT_EQ(put->status, 200);
   EXPECT_EQ(c.Delete("/v1/maps/detour")->status, 204);
   EXPECT_EQ(running.get(), "TIMEOUT");  // finished on its snapshot
-  EXPECT_EQ(error_code(c.Post("/v1/plan/ugv", detour_request().dump(), "application/json")), "UNKNOWN_MAP");
+  EXPECT_EQ(error_code(c.Post("/v1/plan/ugv", detour_request().dump(), "application/json")),
+            "UNKNOWN_MAP");
   put_detour(c);
   EXPECT_EQ(c.Post("/v1/plan/ugv", detour_request().dump(), "application/json")->status, 200);
 }

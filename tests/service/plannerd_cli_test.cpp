@@ -15,7 +15,9 @@
 
 #include "support/cli_runner.hpp"
 
+// clang-format off: httplib after every header that includes Eigen
 #include <httplib.h>
+// clang-format on
 
 namespace ferret {
 namespace {
@@ -33,8 +35,9 @@ void write_file(const std::string& path, const std::string& text, mode_t mode) {
 TEST(PlannerdCli, CheckConfigLoadsEverythingAndSaysWhatItWouldServe) {
   TempDir dir;
   write_file(dir / "token", "0123456789abcdef0123\n", 0600);
-  const auto r = plannerd("--check-config --listen 127.0.0.1:9999 --workers 3 --token-file " + (dir / "token") +
-                          " --map site=examples/scenarios/tether_detour.yaml --mission config/mission.yaml");
+  const auto r = plannerd(
+      "--check-config --listen 127.0.0.1:9999 --workers 3 --token-file " + (dir / "token") +
+      " --map site=examples/scenarios/tether_detour.yaml --mission config/mission.yaml");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("listen 127.0.0.1:9999, 3 workers"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("auth bearer token, 1 map(s) preloaded"), std::string::npos) << r.out;
@@ -76,9 +79,10 @@ TEST(PlannerdCli, BadOptionsExitTwoNamingTheOption) {
 TEST(PlannerdCli, TheProcessServesAndDrainsOnSigterm) {
   TempDir dir;
   const std::string err = dir / "stderr", rc = dir / "rc", pid = dir / "pid";
-  const std::string cmd = std::string("cd '") + FERRET_SOURCE_DIR + "' && ( ( '" + FERRET_PLANNERD +
-                          "' --listen 127.0.0.1:0 --map detour=examples/scenarios/tether_detour.yaml 2>'" + err +
-                          "' & echo $! > '" + pid + "'; wait $!; echo $? > '" + rc + "' ) & )";
+  const std::string cmd =
+      std::string("cd '") + FERRET_SOURCE_DIR + "' && ( ( '" + FERRET_PLANNERD +
+      "' --listen 127.0.0.1:0 --map detour=examples/scenarios/tether_detour.yaml 2>'" + err +
+      "' & echo $! > '" + pid + "'; wait $!; echo $? > '" + rc + "' ) & )";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   // The port it bound is on its first line.
   int port = 0;
@@ -87,7 +91,8 @@ TEST(PlannerdCli, TheProcessServesAndDrainsOnSigterm) {
     std::string line;
     std::getline(in, line);
     std::smatch m;
-    if (std::regex_search(line, m, std::regex("serving on 127\\.0\\.0\\.1:([0-9]+)"))) port = std::stoi(m[1]);
+    if (std::regex_search(line, m, std::regex("serving on 127\\.0\\.0\\.1:([0-9]+)")))
+      port = std::stoi(m[1]);
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   ASSERT_GT(port, 0) << "never served";
@@ -121,15 +126,19 @@ TEST(PlannerdCli, TheProcessServesAndDrainsOnSigterm) {
 TEST(PlannerdCli, TheSystemdUnitIsLockedDown) {
   std::ifstream in(FERRET_SOURCE_DIR "/deploy/ferret-plannerd.service");
   const std::string unit((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* line : {"DynamicUser=yes", "ProtectSystem=strict", "Restart=on-failure", "NoNewPrivileges=yes",
-                           "LoadCredential=token:", "--check-config", "--listen 127.0.0.1:"})
+  for (const char* line :
+       {"DynamicUser=yes", "ProtectSystem=strict", "Restart=on-failure", "NoNewPrivileges=yes",
+        "LoadCredential=token:", "--check-config", "--listen 127.0.0.1:"})
     EXPECT_NE(unit.find(line), std::string::npos) << line;
-  if (std::system("command -v systemd-analyze >/dev/null 2>&1") != 0) GTEST_SKIP() << "no systemd-analyze";
+  if (std::system("command -v systemd-analyze >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "no systemd-analyze";
   // systemd's own check of the unit, with ExecStart pointing at the built binary.
   TempDir dir;
-  std::string copy = std::regex_replace(unit, std::regex("/usr/local/bin/ferret-plannerd"), FERRET_PLANNERD);
+  std::string copy =
+      std::regex_replace(unit, std::regex("/usr/local/bin/ferret-plannerd"), FERRET_PLANNERD);
   std::ofstream(dir / "ferret-plannerd.service") << copy;
-  const auto r = run_program("systemd-analyze", "verify '" + (dir / "ferret-plannerd.service") + "'");
+  const auto r =
+      run_program("systemd-analyze", "verify '" + (dir / "ferret-plannerd.service") + "'");
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }
 

@@ -15,7 +15,9 @@
 
 #include "ferret/service/planner_service.hpp"
 
+// clang-format off: httplib after every header that includes Eigen
 #include <httplib.h>  // after Eigen (see service/src/planner_service_impl.hpp)
+// clang-format on
 
 namespace ferret {
 namespace {
@@ -59,7 +61,8 @@ void expect_shown(const json& shown, const json& got, const std::string& path) {
   } else if (shown.is_array()) {
     ASSERT_TRUE(got.is_array()) << path;
     ASSERT_GE(got.size(), shown.size()) << path;
-    for (std::size_t k = 0; k < shown.size(); ++k) expect_shown(shown[k], got[k], path + "[" + std::to_string(k) + "]");
+    for (std::size_t k = 0; k < shown.size(); ++k)
+      expect_shown(shown[k], got[k], path + "[" + std::to_string(k) + "]");
   } else if (shown.is_string()) {
     ASSERT_TRUE(got.is_string()) << path;
     if (!shown.get<std::string>().empty()) {
@@ -96,7 +99,10 @@ TEST(PlannerServiceDocs, EveryExampleAnswersAsDocumented) {
       std::istringstream lines(body);
       std::string wire;
       while (std::getline(lines, line))
-        wire += (!line.empty() && line[0] == '@' ? slurp(std::string(FERRET_SOURCE_DIR "/") + line.substr(1)) : line) + "\r\n";
+        wire += (!line.empty() && line[0] == '@'
+                     ? slurp(std::string(FERRET_SOURCE_DIR "/") + line.substr(1))
+                     : line) +
+                "\r\n";
       body = wire;
     } else if (!body.empty() && body[0] == '@') {
       body = slurp(std::string(FERRET_SOURCE_DIR "/") + body.substr(1));

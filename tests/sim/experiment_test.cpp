@@ -153,8 +153,10 @@ TEST(Experiment, AGenerateEntryIsThatManyGeneratedMaps) {
   ExperimentDir s;
   {
     std::ofstream out(s.dir.path() / "exp.yaml");
-    out << "methods: [cdos, rapid]\nobjects_per_zone: 1\nmaps:\n  - generate: {count: 3, seed: 10, clutter: dense}\n"
-           "  - {name: room, map: room.yaml, start: [0.5, 1.0, 0.0], zones: {1: [1.0, 0.5, 1.8, 1.5]}}\n";
+    out << "methods: [cdos, rapid]\nobjects_per_zone: 1\nmaps:\n  - generate: {count: 3, seed: 10, "
+           "clutter: dense}\n"
+           "  - {name: room, map: room.yaml, start: [0.5, 1.0, 0.0], zones: {1: [1.0, 0.5, 1.8, "
+           "1.5]}}\n";
   }
   const auto c = load_experiment_config(s.dir.path() / "exp.yaml");
   ASSERT_EQ(c.maps.size(), 4u);
@@ -180,11 +182,13 @@ TEST(Experiment, AGenerateEntryIsThatManyGeneratedMaps) {
   expect_input_error(entry("{count: 1, size_m: [4, 4]}"), "maps[0].generate.size_m");
   expect_input_error(entry("{count: 1, seed: -1}"), "maps[0].generate.seed");
   expect_input_error(entry("{count: 1, colour: red}"), "maps[0].generate.colour");
-  expect_input_error(entry("{count: 200, size_m: [64, 64]}"), "maps[0].generate.count");  // 3.3e8 cells
+  expect_input_error(entry("{count: 200, size_m: [64, 64]}"),
+                     "maps[0].generate.count");  // 3.3e8 cells
   // Two entries that generate the same map names are one map twice.
   {
     std::ofstream out(s.dir.path() / "exp.yaml");
-    out << "methods: [cdos]\nmaps:\n  - generate: {count: 2, seed: 1}\n  - generate: {count: 1, seed: 2}\n";
+    out << "methods: [cdos]\nmaps:\n  - generate: {count: 2, seed: 1}\n  - generate: {count: 1, "
+           "seed: 2}\n";
   }
   expect_input_error(s.dir.path() / "exp.yaml", "maps[1].generate");
 }

@@ -81,7 +81,8 @@ TEST(ExplorationRun, TimingTheDecisionCyclesChangesNothing) {
     // two IR steps) but for a goal dropped on the way (then one at the next step).
     EXPECT_GE(timed.decision_cycle_s.size(), static_cast<std::size_t>(timed.decisions)) << method;
     EXPECT_LE(timed.decision_cycle_s.size(), timed.trajectory.size()) << method;
-    EXPECT_GE(timed.decision_cycle_s.size(), static_cast<std::size_t>(timed.time_s)) << method;  // >= 1 a second
+    EXPECT_GE(timed.decision_cycle_s.size(), static_cast<std::size_t>(timed.time_s))
+        << method;  // >= 1 a second
     for (const double t : timed.decision_cycle_s) {
       EXPECT_GT(t, 0.0);
       EXPECT_LT(t, 10.0);

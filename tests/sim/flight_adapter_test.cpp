@@ -3,8 +3,6 @@
 // M100 (sim/sim_flight_adapter.hpp), over TCP on loopback as `ferret uav` meets a DJI
 // adapter; and both halves against peers that break the protocol.
 
-#include "ferret/sim/sim_flight_adapter.hpp"
-
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -16,6 +14,7 @@
 #include "ferret/core/data_path.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/sensor_sim.hpp"
+#include "ferret/sim/sim_flight_adapter.hpp"
 #include "ferret/uav/adapter_flight_controller.hpp"
 #include "ferret/uav/flight_adapter_check.hpp"
 #include "ferret/urdf/mission_config.hpp"
@@ -48,10 +47,12 @@ class ServedAdapter {
  public:
   explicit ServedAdapter(std::uint64_t seed)
       : adapter_(world().world, world().uav, world().settings, seed),
-        listener_(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test", "listen"),
+        listener_(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test",
+                  "listen"),
         thread_([this] {
           while (!stop_) {
-            if (auto stream = listener_.accept(50)) adapter_.serve(*stream, [this] { return !stop_.load(); });
+            if (auto stream = listener_.accept(50))
+              adapter_.serve(*stream, [this] { return !stop_.load(); });
           }
         }) {}
   ~ServedAdapter() {
@@ -78,7 +79,8 @@ class DirectChannel final : public link::RpcChannel {
 };
 
 void advance(link::RpcChannel& channel, double seconds) {
-  const json r = json::parse(channel.call(json{{"op", "sim_advance"}, {"seconds", seconds}}.dump()).header);
+  const json r =
+      json::parse(channel.call(json{{"op", "sim_advance"}, {"seconds", seconds}}.dump()).header);
   ASSERT_TRUE(r.value("ok", false)) << r.dump();
 }
 
@@ -151,7 +153,8 @@ TEST(FlightAdapter, FramesCrossTheSocketBitForBit) {
   EXPECT_EQ(da.image.data, db.image.data);
   // Looking down from 3 m at flat ground: most pixels have a return near 3 m.
   int near_3m = 0;
-  for (const std::uint16_t mm : da.image.data) near_3m += std::abs(static_cast<int>(mm) - 3000) < 400;
+  for (const std::uint16_t mm : da.image.data)
+    near_3m += std::abs(static_cast<int>(mm) - 3000) < 400;
   EXPECT_GT(near_3m, static_cast<int>(da.image.data.size()) / 2);
 }
 
@@ -165,7 +168,8 @@ TEST(FlightAdapter, TheAdapterRefusesBadRequestsNamingTheField) {
   SimFlightAdapter a(world().world, world().uav, world().settings, 1);
   EXPECT_NE(refused(a, "takeoff").value("error", "").find("not a JSON object"), std::string::npos);
   EXPECT_NE(refused(a, R"({"op": 5})").value("error", "").find("'op'"), std::string::npos);
-  EXPECT_NE(refused(a, R"({"op": "fly"})").value("error", "").find("'fly' is not an op"), std::string::npos);
+  EXPECT_NE(refused(a, R"({"op": "fly"})").value("error", "").find("'fly' is not an op"),
+            std::string::npos);
   EXPECT_NE(refused(a, R"({"op": "takeoff"})").value("error", "").find("'z_m'"), std::string::npos);
   EXPECT_NE(refused(a, R"({"op": "position", "p_W": [1, 2], "yaw_rad": 0, "speed_mps": 1})")
                 .value("error", "")
@@ -181,8 +185,9 @@ TEST(FlightAdapter, TheAdapterRefusesBadRequestsNamingTheField) {
             std::string::npos);
   EXPECT_NE(refused(a, R"({"op": "hello", "protocol": 2})").value("error", "").find("speaks 1"),
             std::string::npos);
-  EXPECT_NE(refused(a, R"({"op": "sim_advance", "seconds": -1})").value("error", "").find("'seconds'"),
-            std::string::npos);
+  EXPECT_NE(
+      refused(a, R"({"op": "sim_advance", "seconds": -1})").value("error", "").find("'seconds'"),
+      std::string::npos);
   // Nothing refused moved the vehicle.
   const json s = json::parse(a.handle({R"({"op": "state"})", {}}).header);
   EXPECT_TRUE(s.value("on_ground", false));
@@ -192,7 +197,8 @@ TEST(FlightAdapter, TheAdapterRefusesBadRequestsNamingTheField) {
 class FakeAdapter {
  public:
   explicit FakeAdapter(std::optional<StreamMessage> reply)
-      : listener_(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test", "listen"),
+      : listener_(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test",
+                  "listen"),
         thread_([this, reply] {
           auto stream = listener_.accept(5000);
           if (!stream) return;
@@ -227,20 +233,26 @@ std::string client_error(const std::optional<StreamMessage>& reply, int timeout_
 }
 
 TEST(FlightAdapter, TheClientRefusesAnAdapterThatBreaksTheProtocol) {
-  EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": 2, "adapter": "x"})", {}}).find("protocol 2"),
+  EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": 2, "adapter": "x"})", {}})
+                .find("protocol 2"),
             std::string::npos);
-  EXPECT_NE(client_error(StreamMessage{R"({"ok": false, "error": "motors locked"})", {}}).find("motors locked"),
+  EXPECT_NE(client_error(StreamMessage{R"({"ok": false, "error": "motors locked"})", {}})
+                .find("motors locked"),
             std::string::npos);
   EXPECT_NE(client_error(StreamMessage{"[1, 2]", {}}).find("not a JSON object"), std::string::npos);
-  EXPECT_NE(client_error(std::nullopt, 300).find("did not answer within 300 ms"), std::string::npos);
-  // Fields of the wrong type are the adapter's error, named (not a JSON library's).
-  EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": 1, "adapter": 0})", {}}).find("'adapter'"),
+  EXPECT_NE(client_error(std::nullopt, 300).find("did not answer within 300 ms"),
             std::string::npos);
-  EXPECT_NE(client_error(StreamMessage{R"({"ok": "yes", "protocol": 1})", {}}).find("'ok'"), std::string::npos);
+  // Fields of the wrong type are the adapter's error, named (not a JSON library's).
+  EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": 1, "adapter": 0})", {}})
+                .find("'adapter'"),
+            std::string::npos);
+  EXPECT_NE(client_error(StreamMessage{R"({"ok": "yes", "protocol": 1})", {}}).find("'ok'"),
+            std::string::npos);
   EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": "1"})", {}}).find("'protocol'"),
             std::string::npos);
   // An adapter whose hello is right but whose state is not: every field is checked.
-  EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": 1, "p_W": [0, 0]})", {}}).find("'p_W'"),
+  EXPECT_NE(client_error(StreamMessage{R"({"ok": true, "protocol": 1, "p_W": [0, 0]})", {}})
+                .find("'p_W'"),
             std::string::npos);
 }
 
@@ -264,11 +276,11 @@ TEST(FlightAdapter, TheGroundChecksCatchAnAdapterThatSaysYesToEverything) {
   link::StreamRpcChannel channel(MessageStream::connect(yes.address(), 5.0), 2000);
   const std::vector<AdapterCheck> checks = check_flight_adapter(channel);
   ASSERT_EQ(checks.size(), 9u);
-  EXPECT_TRUE(checks[0].passed) << checks[0].detail;     // hello
-  EXPECT_FALSE(checks[1].passed);                        // state without p_W
+  EXPECT_TRUE(checks[0].passed) << checks[0].detail;  // hello
+  EXPECT_FALSE(checks[1].passed);                     // state without p_W
   EXPECT_NE(checks[1].detail.find("'p_W'"), std::string::npos) << checks[1].detail;
-  EXPECT_FALSE(checks[2].passed);                        // no frame
-  for (std::size_t i = 4; i < 8; ++i) {                  // the refusals: all accepted
+  EXPECT_FALSE(checks[2].passed);        // no frame
+  for (std::size_t i = 4; i < 8; ++i) {  // the refusals: all accepted
     EXPECT_FALSE(checks[i].passed) << checks[i].name;
     EXPECT_NE(checks[i].detail.find("accepted"), std::string::npos) << checks[i].detail;
   }
@@ -282,13 +294,16 @@ TEST(FlightAdapter, ASilentAdapterFailsHelloAndNothingElseRuns) {
   ASSERT_FALSE(checks.empty());
   EXPECT_EQ(passed(checks), 0);
   EXPECT_NE(checks[0].detail.find("did not answer"), std::string::npos) << checks[0].detail;
-  for (std::size_t i = 1; i < checks.size(); ++i) EXPECT_EQ(checks[i].detail.rfind("not run", 0), 0u);
+  for (std::size_t i = 1; i < checks.size(); ++i)
+    EXPECT_EQ(checks[i].detail.rfind("not run", 0), 0u);
 }
 
 TEST(FlightAdapter, NothingListeningIsAnErrorNamingTheAddress) {
-  MessageListener probe(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test", "listen");
+  MessageListener probe(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test",
+                        "listen");
   const link::Ipv4Address free{{127, 0, 0, 1}, probe.port()};
-  probe = MessageListener(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test", "listen");
+  probe = MessageListener(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test",
+                          "listen");
   try {
     (void)MessageStream::connect(free, 0.2);
     FAIL() << "connected to a closed port";

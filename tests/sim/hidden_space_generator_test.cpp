@@ -31,7 +31,8 @@ std::vector<char> reachable(const OccupancyMap2D& map, Cell from, double radius_
   while (!q.empty()) {
     const Cell c = q.front();
     q.pop_front();
-    for (const Cell d : {Cell{c.i + 1, c.j}, Cell{c.i - 1, c.j}, Cell{c.i, c.j + 1}, Cell{c.i, c.j - 1}}) {
+    for (const Cell d :
+         {Cell{c.i + 1, c.j}, Cell{c.i - 1, c.j}, Cell{c.i, c.j + 1}, Cell{c.i, c.j - 1}}) {
       if (!g.contains(d) || !stand[g.index(d)] || seen[g.index(d)]) continue;
       seen[g.index(d)] = 1;
       q.push_back(d);
@@ -139,14 +140,18 @@ TEST(GeneratedHiddenSpace, OtherSizesKeepTheRules) {
   o.height_m = 5.0;
   const auto small = generate_hidden_space(o);
   EXPECT_EQ(small.map.geometry.width, 160);
-  EXPECT_FALSE(reachable(small.map, small.map.geometry.cell_at(small.start.x_m, small.start.y_m), 0.1).empty());
+  EXPECT_FALSE(
+      reachable(small.map, small.map.geometry.cell_at(small.start.x_m, small.start.y_m), 0.1)
+          .empty());
   o.width_m = 24.0;
   o.height_m = 16.0;
   o.resolution_m = 0.1;
   const auto large = generate_hidden_space(o);
   EXPECT_EQ(large.map.geometry.width, 240);
   EXPECT_EQ(large.map.geometry.height, 160);
-  EXPECT_FALSE(reachable(large.map, large.map.geometry.cell_at(large.start.x_m, large.start.y_m), 0.1).empty());
+  EXPECT_FALSE(
+      reachable(large.map, large.map.geometry.cell_at(large.start.x_m, large.start.y_m), 0.1)
+          .empty());
   EXPECT_NEAR(large.zones[2].xmax_m, 23.5, 1e-9);  // zone 3 reaches 0.5 m short of the far wall
 }
 

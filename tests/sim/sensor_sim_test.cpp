@@ -425,7 +425,8 @@ TEST(SensorSim, AFrameNoMarkerIsInIsTheSameWhateverTheMarker) {
           ++out_of_frame;
           EXPECT_TRUE(a3.data == a4.data) << deg << " deg at " << distance_m << " m";
           EXPECT_TRUE(visible.empty()) << deg;
-        } else if (!visible.empty() && visible[0].visible_fraction == 1.0) {  // (the border is every id's)
+        } else if (!visible.empty() &&
+                   visible[0].visible_fraction == 1.0) {  // (the border is every id's)
           ++seen;
           EXPECT_FALSE(a3.data == a4.data) << deg << " deg at " << distance_m << " m";
         }
@@ -433,7 +434,8 @@ TEST(SensorSim, AFrameNoMarkerIsInIsTheSameWhateverTheMarker) {
   EXPECT_GT(out_of_frame, 20);
   EXPECT_GT(seen, 20);
   // Behind the camera, and facing away: not in the frame.
-  EXPECT_FALSE(sim3.markers_in_frame(kCam, look_at(c + Eigen::Vector3d(1, 0, 0), c + Eigen::Vector3d(2, 0, 0))));
+  EXPECT_FALSE(sim3.markers_in_frame(
+      kCam, look_at(c + Eigen::Vector3d(1, 0, 0), c + Eigen::Vector3d(2, 0, 0))));
 }
 
 TEST(SensorSim, AMarkerHalfBehindAPostIsPartlyVisible) {

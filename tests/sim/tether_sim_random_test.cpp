@@ -78,7 +78,10 @@ struct RandomScenario {
     for (std::size_t i = 0; i < scenario.wrap_points.size(); ++i) {
       const auto& w = scenario.wrap_points[i];
       out << (i ? ", " : "") << "{xy_m: [" << w.p_W.x() << ", " << w.p_W.y() << "], side: "
-          << (w.side > 0 ? "left" : w.side < 0 ? "right" : "always") << "}";
+          << (w.side > 0   ? "left"
+              : w.side < 0 ? "right"
+                           : "always")
+          << "}";
     }
     out << "], snags: [";
     for (const auto& s : scenario.snags)
@@ -92,8 +95,8 @@ struct RandomScenario {
 double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                            const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
-  const double t = ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
-                                          : 0.0;
+  const double t =
+      ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
   return (a + t * ab - p).norm();
 }
 
@@ -117,8 +120,8 @@ std::string infeasibility(const TetherScenario& scn) {
     max_bend_m =
         std::max(max_bend_m, required[i] - (kEntryOffsetM + (s[i].p_WG - scn.p_WE).norm()));
     // Continuous: the taut length cannot change by more than the miniUGV moved.
-    if (i > 0 && std::abs(required[i] - required[i - 1]) >
-                     (s[i].p_WG - s[i - 1].p_WG).norm() + 1e-9)
+    if (i > 0 &&
+        std::abs(required[i] - required[i - 1]) > (s[i].p_WG - s[i - 1].p_WG).norm() + 1e-9)
       return "required length jumps";
   }
   if (std::find(bent.begin(), bent.end(), false) != bent.end()) return "a wrap point never bends";
@@ -127,7 +130,8 @@ std::string infeasibility(const TetherScenario& scn) {
   constexpr std::size_t kStride = 5;
   for (std::size_t i = kStride; i + kStride < s.size(); ++i) {
     const double h = s[i + kStride].t_s - s[i].t_s;
-    const double acc = (required[i + kStride] - 2.0 * required[i] + required[i - kStride]) / (h * h);
+    const double acc =
+        (required[i + kStride] - 2.0 * required[i] + required[i - kStride]) / (h * h);
     if (std::abs(acc) > kMaxRequiredAccelerationMps2) return "required length accelerates too fast";
   }
   return "";
@@ -159,9 +163,9 @@ std::optional<TetherSnag> draw_snag(const TetherScenario& scn, std::mt19937_64& 
   std::vector<std::size_t> starts;
   for (std::size_t i = 0; i + 1 < s.size(); ++i) {
     if (taut.engaged_count(s[i].p_WG) <= k || taut.engaged_count(s[i + 1].p_WG) <= k) continue;
-    const double reel_in_mps = std::max(
-        0.0, (taut.required_length_m(s[i].p_WG) - taut.required_length_m(s[i + 1].p_WG)) /
-                 (s[i + 1].t_s - s[i].t_s));
+    const double reel_in_mps =
+        std::max(0.0, (taut.required_length_m(s[i].p_WG) - taut.required_length_m(s[i + 1].p_WG)) /
+                          (s[i + 1].t_s - s[i].t_s));
     const double stopping_stretch_m =
         reel_in_mps * period_s + reel_in_mps * reel_in_mps / (2.0 * winch.max_acceleration_mps2);
     if (winch_side_npm * stopping_stretch_m > tension.max_tension_n) continue;
@@ -181,7 +185,8 @@ std::optional<TetherSnag> draw_snag(const TetherScenario& scn, std::mt19937_64& 
     if (!receding && beyond.required_length_m(s[i].p_WG) - previous >= 0.2) starts.push_back(i);
   }
   if (starts.empty()) return std::nullopt;
-  const std::size_t i = starts[std::uniform_int_distribution<std::size_t>(0, starts.size() - 1)(rng)];
+  const std::size_t i =
+      starts[std::uniform_int_distribution<std::size_t>(0, starts.size() - 1)(rng)];
   // Half a physics step after the sample: engaged on both sides of the start.
   return TetherSnag{k, s[i].t_s + 0.0005, duration_s};
 }
@@ -199,8 +204,10 @@ bool wraps_and_unwraps(const TetherScenario& scn) {
 }
 
 std::optional<RandomScenario> try_draw(std::mt19937_64& rng, int index, int wrap_count,
-                                      bool with_snag, bool must_unwrap) {
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+                                       bool with_snag, bool must_unwrap) {
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
   auto integer = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
   RandomScenario r;
   r.index = index;
@@ -212,14 +219,13 @@ std::optional<RandomScenario> try_draw(std::mt19937_64& rng, int index, int wrap
   scn.name = "random_" + std::to_string(index);
   scn.p_WE = Eigen::Vector2d::Zero();
   // Segments sized so the drive takes about kPathTimeS at the drawn cruise speed.
-  const double segment_m =
-      std::clamp(r.cruise_mps * kPathTimeS / (waypoint_count - 1), 0.6, 4.0);
+  const double segment_m = std::clamp(r.cruise_mps * kPathTimeS / (waypoint_count - 1), 0.6, 4.0);
   r.waypoints.push_back({uniform(kAreaMinX, kAreaMaxX), uniform(kAreaMinY, kAreaMaxY)});
   while (static_cast<int>(r.waypoints.size()) < waypoint_count) {
     const double heading = uniform(-std::numbers::pi, std::numbers::pi);
-    const Eigen::Vector2d next = r.waypoints.back() + uniform(0.5, 1.0) * segment_m *
-                                                          Eigen::Vector2d(std::cos(heading),
-                                                                          std::sin(heading));
+    const Eigen::Vector2d next =
+        r.waypoints.back() +
+        uniform(0.5, 1.0) * segment_m * Eigen::Vector2d(std::cos(heading), std::sin(heading));
     if (!inside_area(next)) return std::nullopt;
     r.waypoints.push_back(next);
   }
@@ -230,8 +236,8 @@ std::optional<RandomScenario> try_draw(std::mt19937_64& rng, int index, int wrap
     const Eigen::Vector2d to =
         r.waypoints[static_cast<std::size_t>(integer(0, waypoint_count - 1))] - anchor;
     const Eigen::Vector2d normal = Eigen::Vector2d(-to.y(), to.x()).normalized();
-    const Eigen::Vector2d corner = anchor + uniform(0.3, 0.8) * to +
-                                   (integer(0, 1) ? 1.0 : -1.0) * uniform(0.2, 1.5) * normal;
+    const Eigen::Vector2d corner =
+        anchor + uniform(0.3, 0.8) * to + (integer(0, 1) ? 1.0 : -1.0) * uniform(0.2, 1.5) * normal;
     if (!inside_area(corner)) return std::nullopt;
     scn.wrap_points.push_back({corner, integer(-1, 1)});
     anchor = corner;
@@ -345,13 +351,12 @@ TEST_P(RandomTetherScenario, TheMpcMeetsItsTargetsAndKeepsUpWithTheBaseline) {
   RecordProperty("mpc_slack_rms_mm", std::to_string(1e3 * m.slack_rms_m));
   RecordProperty("baseline_slack_rms_mm", std::to_string(1e3 * b.slack_rms_m));
   RecordProperty("has_snag", r.has_snag() ? 1 : 0);
-  SCOPED_TRACE("mpc: slack rms " + std::to_string(1e3 * m.slack_rms_m) + " mm, max " +
-               std::to_string(1e3 * m.max_slack_m) + " mm, min " +
-               std::to_string(1e3 * m.min_slack_m) + " mm, max tension " +
-               std::to_string(m.max_tension_n) + " N; baseline: slack rms " +
-               std::to_string(1e3 * b.slack_rms_m) + " mm, max tension " +
-               std::to_string(b.max_tension_n) + " N, over-tension events " +
-               std::to_string(b.over_tension_events));
+  SCOPED_TRACE(
+      "mpc: slack rms " + std::to_string(1e3 * m.slack_rms_m) + " mm, max " +
+      std::to_string(1e3 * m.max_slack_m) + " mm, min " + std::to_string(1e3 * m.min_slack_m) +
+      " mm, max tension " + std::to_string(m.max_tension_n) + " N; baseline: slack rms " +
+      std::to_string(1e3 * b.slack_rms_m) + " mm, max tension " + std::to_string(b.max_tension_n) +
+      " N, over-tension events " + std::to_string(b.over_tension_events));
 
   EXPECT_EQ(m.over_tension_events, 0);
   EXPECT_EQ(m.released_over_limit, 0);

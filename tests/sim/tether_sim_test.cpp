@@ -256,7 +256,8 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
   check("control: {observer_tension_noise_n: 0}\n", "control.observer_tension_noise_n");
   check("sim: {ugv_preview_step_s: 0}\n", "sim.ugv_preview_step_s");
   check("mpc: {use_preview: maybe}\n", "mpc.use_preview");
-  check("mpc: {rate_penalty_about_tracking_command: 2}\n", "mpc.rate_penalty_about_tracking_command");
+  check("mpc: {rate_penalty_about_tracking_command: 2}\n",
+        "mpc.rate_penalty_about_tracking_command");
   check("mpc: {give_back_at_stopping_speed: soon}\n", "mpc.give_back_at_stopping_speed");
   for (const char* bad : {".nan", "0.5", ".inf"})
     check(std::string("mpc: {give_back_stiffness_factor: ") + bad + "}\n",
@@ -269,9 +270,9 @@ sim: {link_latency_s: 0.1, pose_noise_m: 0.0, ugv_velocity_lag_s: 0.15, ugv_slip
     for (const char* bad : {".nan", "-0.1", ".inf", "fast"})
       check(std::string("mpc: {") + key + ": " + bad + "}\n", std::string("mpc.") + key);
   }
-  for (const char* key : {"ugv_response_window_s", "ugv_response_prior_log_odds",
-                          "ugv_velocity_error_prior_log_odds_with_lag",
-                          "ugv_velocity_error_long_window_s"}) {
+  for (const char* key :
+       {"ugv_response_window_s", "ugv_response_prior_log_odds",
+        "ugv_velocity_error_prior_log_odds_with_lag", "ugv_velocity_error_long_window_s"}) {
     for (const char* bad : {".nan", "-0.1", ".inf", "fast"})
       check(std::string("mpc: {") + key + ": " + bad + "}\n", std::string("mpc.") + key);
   }
@@ -580,7 +581,8 @@ TEST(TetherSim, ThePlanPreviewHelpsTheMpcItsRatePenaltyDampsOnlyCorrections) {
     for (std::size_t i = 1; i + 1 < log.size(); ++i) {
       if (log[i].t_s < 2.0) continue;
       const double h = log[i + 1].t_s - log[i].t_s;
-      const double a = (log[i + 1].required_m - 2.0 * log[i].required_m + log[i - 1].required_m) / (h * h);
+      const double a =
+          (log[i + 1].required_m - 2.0 * log[i].required_m + log[i - 1].required_m) / (h * h);
       sa += a, saa += a * a, ss += log[i].slack_m, ssa += log[i].slack_m * a, n += 1;
     }
     return Run{r.metrics.slack_rms_m, (ssa - sa * ss / n) / (saa - sa * sa / n)};

@@ -27,8 +27,9 @@ inline CliResult run_program(const std::string& program, const std::string& args
                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::create_directories(dir);
   const auto out_path = dir / "stdout", err_path = dir / "stderr";
-  const std::string cmd = std::string("cd '") + FERRET_SOURCE_DIR + "' && '" + program + "' " + args +
-                          " >'" + out_path.string() + "' 2>'" + err_path.string() + "' </dev/null";
+  const std::string cmd = std::string("cd '") + FERRET_SOURCE_DIR + "' && '" + program + "' " +
+                          args + " >'" + out_path.string() + "' 2>'" + err_path.string() +
+                          "' </dev/null";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -62,7 +63,9 @@ class TempDir {
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
-  [[nodiscard]] std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+  [[nodiscard]] std::string operator/(const std::string& name) const {
+    return (path_ / name).string();
+  }
   /// Number of entries in the directory (to prove no partial output was left).
   [[nodiscard]] std::size_t count() const {
     return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(path_),

@@ -17,7 +17,7 @@ FeedForwardPid::Options gains(double kp, double ki, double kd) {
   o.kd = kd;
   o.control.pose_filter_gain = 1.0;
   o.control.slack_observer.tension_fusion = false;  // the control law on geometric slack
-  o.control.limits.max_acceleration_mps2 = 100.0;  // no rate limit unless a test wants one
+  o.control.limits.max_acceleration_mps2 = 100.0;   // no rate limit unless a test wants one
   o.control.slack_reference_m = 0.005;
   return o;
 }

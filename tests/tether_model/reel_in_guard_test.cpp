@@ -56,7 +56,8 @@ TEST(ReelInGuard, RaisesAReelInThatWouldLeaveTooLittleSlack) {
   EXPECT_DOUBLE_EQ(g.limit(0.1, 0.10, 0.0, limits, -0.6, 0.6), 0.1);
   EXPECT_DOUBLE_EQ(g.limit(-0.05, 1.0, 0.0, limits, -0.6, 0.6), -0.05);
   EXPECT_DOUBLE_EQ(ReelInGuard{}.limit(-0.6, 0.10, 0.0, limits, -0.6, 0.6), -0.6);
-  EXPECT_DOUBLE_EQ(g.limit(-0.6, std::numeric_limits<double>::quiet_NaN(), 0.0, limits, -0.6, 0.6), -0.6);
+  EXPECT_DOUBLE_EQ(g.limit(-0.6, std::numeric_limits<double>::quiet_NaN(), 0.0, limits, -0.6, 0.6),
+                   -0.6);
   // Below min_slack_m of slack even a stop is too little: it pays out as fast as allowed.
   EXPECT_DOUBLE_EQ(g.limit(0.3, 0.0, 0.0, limits, -0.6, 0.6), 0.6);
 }
@@ -104,7 +105,8 @@ TEST(ReelInGuard, AMiniUgvDrivingOffWhileTheWinchReelsInNeverPullsTheLineOverIts
     double worst_guarded = 0.0, worst_unguarded = 0.0;
     for (double restart_s = 0.0; restart_s <= 1.5; restart_s += 0.04) {
       worst_guarded = std::max(worst_guarded, peak_tension_n(controller, true, 0.5, restart_s));
-      worst_unguarded = std::max(worst_unguarded, peak_tension_n(controller, false, 0.5, restart_s));
+      worst_unguarded =
+          std::max(worst_unguarded, peak_tension_n(controller, false, 0.5, restart_s));
     }
     EXPECT_LT(worst_guarded, limit_n) << controller;
     // Without the guard the same restarts overload the line (what the mission saw).

@@ -1,10 +1,10 @@
+#include "ferret/tether_model/slack_observer.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <random>
-
-#include "ferret/tether_model/slack_observer.hpp"
 
 namespace ferret::tether {
 namespace {

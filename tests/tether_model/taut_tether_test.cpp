@@ -15,7 +15,8 @@ using V = Eigen::Vector2d;
 // A 10 x 10 m room at 0.1 m with one 2 x 2 m block at [4, 6] x [4, 6].
 std::shared_ptr<const TetherCorners> block_world() {
   const GridGeometry g{0.0, 0.0, 0.1, 100, 100};
-  return TetherCorners::from_grid(g, [](Cell c) { return c.i >= 40 && c.i < 60 && c.j >= 40 && c.j < 60; });
+  return TetherCorners::from_grid(
+      g, [](Cell c) { return c.i >= 40 && c.i < 60 && c.j >= 40 && c.j < 60; });
 }
 
 TEST(TetherCorners, ConvexCornersOnlyWithTheirObstacleSide) {
@@ -24,15 +25,17 @@ TEST(TetherCorners, ConvexCornersOnlyWithTheirObstacleSide) {
   OccupancyMap2D map;
   map.geometry = {0.0, 0.0, 1.0, 5, 5};
   map.cells.assign(25, CellState::kFree);
-  for (Cell c : {Cell{1, 1}, Cell{2, 1}, Cell{1, 2}}) map.cells[map.geometry.index(c)] = CellState::kOccupied;
+  for (Cell c : {Cell{1, 1}, Cell{2, 1}, Cell{1, 2}})
+    map.cells[map.geometry.index(c)] = CellState::kOccupied;
   const auto corners = TetherCorners::from_map(map);
   std::vector<V> got;
   for (const auto& c : corners->all()) got.push_back(c.p_W);
   const std::vector<V> want{{1, 1}, {3, 1}, {3, 2}, {2, 3}, {1, 3}};
   ASSERT_EQ(got.size(), want.size());
   for (const V& w : want) {
-    EXPECT_TRUE(std::any_of(got.begin(), got.end(), [&](const V& p) { return (p - w).norm() < 1e-12; }))
-        << w.transpose();
+    EXPECT_TRUE(std::any_of(got.begin(), got.end(), [&](const V& p) {
+      return (p - w).norm() < 1e-12;
+    })) << w.transpose();
   }
   // (1,1) has the obstacle up and right: quadrant 0 only.
   for (const auto& c : corners->all()) {
@@ -163,8 +166,10 @@ TEST(TautTether, RandomDrivesStayTautAndUnwind) {
   std::vector<char> occ(g.size(), 0);
   Rng rng(7);
   for (int b = 0; b < 10; ++b) {
-    const int i0 = static_cast<int>(rng.uniform_int(5, 100)), j0 = static_cast<int>(rng.uniform_int(5, 60));
-    const int w = static_cast<int>(rng.uniform_int(3, 15)), h = static_cast<int>(rng.uniform_int(3, 15));
+    const int i0 = static_cast<int>(rng.uniform_int(5, 100)),
+              j0 = static_cast<int>(rng.uniform_int(5, 60));
+    const int w = static_cast<int>(rng.uniform_int(3, 15)),
+              h = static_cast<int>(rng.uniform_int(3, 15));
     for (int j = j0; j < std::min(j0 + h, g.height); ++j)
       for (int i = i0; i < std::min(i0 + w, g.width); ++i) occ[g.index({i, j})] = 1;
   }
@@ -212,8 +217,8 @@ TEST(TautTether, RandomDrivesStayTautAndUnwind) {
       const auto line = t.polyline();
       for (std::size_t k = 0; k + 1 < line.size(); ++k) {
         ASSERT_TRUE(tether_clear(line[k], line[k + 1]))
-            << "run " << run << " step " << path.size() << " segment " << line[k].transpose() << " -> "
-            << line[k + 1].transpose();
+            << "run " << run << " step " << path.size() << " segment " << line[k].transpose()
+            << " -> " << line[k + 1].transpose();
       }
     }
     wrapped_runs += t.wrap_points().empty() ? 0 : 1;

@@ -1,3 +1,5 @@
+#include "ferret/tether_model/ugv_position_filter.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <vector>
 
 #include "ferret/core/random.hpp"
-#include "ferret/tether_model/ugv_position_filter.hpp"
 #include "ferret/tether_model/ugv_response_identifier.hpp"
 
 namespace ferret::tether {

@@ -22,8 +22,9 @@ TEST(FlightControllerConfig, SimByDefaultHwWithItsAddress) {
 }
 
 TEST(FlightControllerConfig, AnAddressThatIsNotHostColonPortIsNamed) {
-  for (const char* address : {"10.0.0.1", ":14550", "10.0.0.1:", "10.0.0.1:65536", "10.0.0.1:-1",
-                              "10.0.0.1:1e3", "host name:80", "10.0.0.1:80 ", "m100.local:47820", "10.0.0.1:0"}) {
+  for (const char* address :
+       {"10.0.0.1", ":14550", "10.0.0.1:", "10.0.0.1:65536", "10.0.0.1:-1", "10.0.0.1:1e3",
+        "host name:80", "10.0.0.1:80 ", "m100.local:47820", "10.0.0.1:0"}) {
     try {
       (void)parse("backend: hw\naddress: '" + std::string(address) + "'\n");
       ADD_FAILURE() << "accepted " << address;

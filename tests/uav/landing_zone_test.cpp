@@ -508,8 +508,8 @@ struct NoisyHover {
   std::vector<DepthImageMm> frames;
   std::vector<PosedDepthFrame> posed;
   NoisyHover(
-      double noise_m, std::uint64_t seed,
-      const HeightField& h = [](double, double) { return 0.0; }, int n = 8) {
+      double noise_m, std::uint64_t seed, const HeightField& h = [](double, double) { return 0.0; },
+      int n = 8) {
     for (std::uint64_t k = 0; k < static_cast<std::uint64_t>(n); ++k)
       frames.push_back(render(cam, X_WC, h, noise_m, seed + k));
     for (const auto& d : frames) posed.push_back({&d, X_WC});
@@ -580,7 +580,8 @@ TEST(LandingZone, AHoverThatFindsNothingLooksLongerAndFindsWhatTheNoiseHid) {
   // Flat ground 3 m below, 0.2 m of noise a pixel: in 8 frames fused the cells' noise
   // alone makes a step over the hover's 0.09 m everywhere; in 16 it is under it (the
   // step's noise falls as 1/sqrt(frames): 0.045, 0.035, 0.025 m at 0.1 m a pixel).
-  const NoisyHover h(0.2, 500, [](double, double) { return 0.0; }, 16);
+  const NoisyHover h(
+      0.2, 500, [](double, double) { return 0.0; }, 16);
   const LandingZoneDetector det = detector();
   int taken = 8;
   LandingResult r = det.detect({h.posed.begin(), h.posed.begin() + taken}, h.cam);

@@ -63,8 +63,7 @@ MarkerScene random_scene(Rng& rng, const MarkerDictionary& dictionary, const Ran
   s.id = static_cast<int>(rng.uniform_int(0, 49));
   const double d = rng.uniform(v.distance_m.first, v.distance_m.second);
   const double off_axis = rng.uniform(0.0, v.max_off_axis_deg) * kDeg;
-  s.X_CM = test::marker_ahead(d, (rng.bernoulli(0.5) ? 1 : -1) * off_axis,
-                              rng.uniform(-M_PI, M_PI),
+  s.X_CM = test::marker_ahead(d, (rng.bernoulli(0.5) ? 1 : -1) * off_axis, rng.uniform(-M_PI, M_PI),
                               {rng.uniform(-0.4, 0.4) * d, rng.uniform(-0.2, 0.2) * d});
   s.blur_sigma_px = rng.uniform(v.blur_px.first, v.blur_px.second);
   s.noise_sigma = rng.uniform(v.noise.first, v.noise.second);
@@ -287,8 +286,10 @@ TEST_P(BothDetectors, DetectsEveryMarkerOfAtLeast20PxAndAtMost60DegOffAxis) {
   o.quad_decimate = 1.0;
   const auto det = make_marker_detector(o);
   Rng rng(derive_seed(11, {static_cast<std::uint64_t>(GetParam().family)}));
-  const RandomViews views{.distance_m = {0.5, 6.0}, .blur_px = {0.0, 1.0},
-                          .noise = {0.0, 4.0}, .exposure_gain = {0.7, 1.2}};
+  const RandomViews views{.distance_m = {0.5, 6.0},
+                          .blur_px = {0.0, 1.0},
+                          .noise = {0.0, 4.0},
+                          .exposure_gain = {0.7, 1.2}};
   int tried = 0, found = 0;
   while (tried < 60) {
     const MarkerScene s = random_scene(rng, GetParam(), views);
@@ -343,8 +344,11 @@ TEST(MarkerDetector, ArucoFindsSmallMarkersUnderHeavyBlur) {
   const CameraModel camera = marker_camera();
   const auto det = detector(aruco4x4());
   Rng rng(7);
-  const RandomViews views{.distance_m = {6.0, 8.5}, .max_off_axis_deg = 40.0,
-                          .blur_px = {1.1, 1.5}, .noise = {1.0, 5.0}, .exposure_gain = {0.6, 1.4}};
+  const RandomViews views{.distance_m = {6.0, 8.5},
+                          .max_off_axis_deg = 40.0,
+                          .blur_px = {1.1, 1.5},
+                          .noise = {1.0, 5.0},
+                          .exposure_gain = {0.6, 1.4}};
   int tried = 0, found = 0;
   while (tried < 40) {
     const MarkerScene s = random_scene(rng, aruco4x4(), views);

@@ -77,7 +77,8 @@ TEST(RemoteWinch, TheClientRefusesBrokenReplies) {
   } replay;
   RemoteWinch remote(replay);
   for (const std::string& reply :
-       {std::string("oops"), std::string(R"({"released_m":1})"), std::string(R"({"ok":false,"error":"servo silent"})"),
+       {std::string("oops"), std::string(R"({"released_m":1})"),
+        std::string(R"({"ok":false,"error":"servo silent"})"),
         std::string(R"({"ok":true,"released_m":1,"speed_mps":0})"),
         std::string(R"({"ok":true,"released_m":-0.5,"speed_mps":0,"tension_n":1})"),
         std::string(R"({"ok":true,"released_m":1e999,"speed_mps":0,"tension_n":1})")}) {

@@ -55,11 +55,12 @@ TEST(UavMissionConfig, TheKeysTheFileSetsAreReadAndTheRestKeepTheirValues) {
   EXPECT_DOUBLE_EQ(o.flight_endurance_s, 900.0);
   EXPECT_EQ(o.search_area_m, Eigen::Vector4d(-7.0, -6.0, 7.0, 6.0));  // not given: the world's
   EXPECT_DOUBLE_EQ(o.search_speed_mps, UavMissionOptions{}.search_speed_mps);
-  EXPECT_EQ(given, (std::set<std::string>{"search_altitude_m", "passes", "release", "winch_controller",
-                                          "flight_endurance_s"}));
+  EXPECT_EQ(given, (std::set<std::string>{"search_altitude_m", "passes", "release",
+                                          "winch_controller", "flight_endurance_s"}));
   // No section, or an empty one: nothing changes.
   const UavMissionOptions before = o;
-  EXPECT_TRUE(read_uav_mission_options(uav_section("tether: {total_length_m: 15}\n"), "m.yaml", o).empty());
+  EXPECT_TRUE(
+      read_uav_mission_options(uav_section("tether: {total_length_m: 15}\n"), "m.yaml", o).empty());
   EXPECT_EQ(dump(o), dump(before));
 }
 
@@ -189,10 +190,12 @@ TEST(UavMissionConfig, TheMissionsMarkerIsReadAndTheWorldDoesNotReplaceIt) {
 TEST(UavMissionConfig, TheBackendsReaderTakesTheMissionKeysAndStillRefusesTypos) {
   // One section, two readers: each takes its own keys and the other's, and no other.
   const auto backends = robot_backends_from_yaml(
-      yaml::load_string("uav:\n  search_altitude_m: 5\n  winch: {backend: sim}\n", "m.yaml"), "m.yaml");
+      yaml::load_string("uav:\n  search_altitude_m: 5\n  winch: {backend: sim}\n", "m.yaml"),
+      "m.yaml");
   EXPECT_TRUE(backends.all_sim());
   try {
-    (void)robot_backends_from_yaml(yaml::load_string("uav:\n  winch_contoller: mpc\n", "m.yaml"), "m.yaml");
+    (void)robot_backends_from_yaml(yaml::load_string("uav:\n  winch_contoller: mpc\n", "m.yaml"),
+                                   "m.yaml");
     ADD_FAILURE() << "a typo in the uav section was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("uav.winch_contoller"), std::string::npos) << e.what();

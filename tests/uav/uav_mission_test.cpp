@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
-#include <string>
 
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
@@ -45,7 +45,8 @@ class FakeFlight final : public FlightController {
     if (landing_) sp_ = {s_.p_W.x(), s_.p_W.y(), 0.25};
     const Eigen::Vector3d d = sp_ - s_.p_W;
     const double step = std::min(d.norm(), std::max(speed_, 0.3) * dt);
-    s_.v_W = d.norm() > 1e-9 ? Eigen::Vector3d(d.normalized() * step / dt) : Eigen::Vector3d::Zero();
+    s_.v_W =
+        d.norm() > 1e-9 ? Eigen::Vector3d(d.normalized() * step / dt) : Eigen::Vector3d::Zero();
     if (d.norm() < 1e-3) s_.v_W.setZero();
     s_.p_W += s_.v_W * dt;
     s_.battery_fraction -= drain_per_s * dt;
@@ -68,7 +69,9 @@ class BlankCameras final : public UavCameras {
     if (dropped) return {GrayImage{}, Pose3::Identity()};
     return {GrayImage(m_.width_px, m_.height_px, 128), Pose3::Identity()};
   }
-  CameraShot<DepthImageMm> depth_frame() override { return {DepthImageMm(d_.width_px, d_.height_px, 0), Pose3::Identity()}; }
+  CameraShot<DepthImageMm> depth_frame() override {
+    return {DepthImageMm(d_.width_px, d_.height_px, 0), Pose3::Identity()};
+  }
   int frames = 0;
   bool dropped = false;  ///< every marker frame empty (none arrived)
 
@@ -111,7 +114,8 @@ struct Rig {
   std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&)> blocked;
 
   static CameraModel model(const char* name) {
-    const RobotDescription m100 = load_robot_description(data_path("models/m100.urdf"), MissionConfig{});
+    const RobotDescription m100 =
+        load_robot_description(data_path("models/m100.urdf"), MissionConfig{});
     return camera_model(*m100.find_camera(name), m100.source);
   }
   Rig() : marker(model("marker_camera")), depth(model("depth_camera")), cameras(marker, depth) {}
@@ -122,11 +126,12 @@ struct Rig {
       ++plans;
       calls.emplace_back(a, b);
       if (plans_fail) return std::nullopt;
-      if (blocked && blocked(a, b)) return std::vector<Eigen::Vector3d>{a, 0.5 * (a + b) + Eigen::Vector3d(0, 1, 0), b};
+      if (blocked && blocked(a, b))
+        return std::vector<Eigen::Vector3d>{a, 0.5 * (a + b) + Eigen::Vector3d(0, 1, 0), b};
       return std::vector<Eigen::Vector3d>{a, b};
     };
-    return std::make_unique<UavMission>(UavMission::Hardware{flight, cameras, winch, ugv}, clock, planner, marker,
-                                        depth, std::move(o), &log);
+    return std::make_unique<UavMission>(UavMission::Hardware{flight, cameras, winch, ugv}, clock,
+                                        planner, marker, depth, std::move(o), &log);
   }
   void run(UavMission& m, double limit_s) {
     m.start();
@@ -137,7 +142,8 @@ struct Rig {
     }
   }
   [[nodiscard]] bool went_to(const std::string& state) const {
-    return std::any_of(log.all().begin(), log.all().end(), [&](const Transition& t) { return t.to == state; });
+    return std::any_of(log.all().begin(), log.all().end(),
+                       [&](const Transition& t) { return t.to == state; });
   }
 };
 
@@ -259,7 +265,9 @@ TEST(UavMission, APathPlannedInFlightStartsWhereTheUavStops) {
       const FlightState before = rig.flight.state();
       const std::size_t n = rig.calls.size();
       if (!braking_line_clear && !rig.blocked)
-        rig.blocked = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (b - a).norm() < 3.0 && (b - a).norm() > 2.0; };
+        rig.blocked = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+          return (b - a).norm() < 3.0 && (b - a).norm() > 2.0;
+        };
       m->tick();
       if (!at_call && m->state() == UavMissionState::kReturnHome) {
         at_call = before;
@@ -280,7 +288,8 @@ TEST(UavMission, APathPlannedInFlightStartsWhereTheUavStops) {
     if (braking_line_clear)
       EXPECT_LT((start - stop).norm(), 1e-6);
     else
-      EXPECT_LT((start - corner).norm(), 1e-6) << start.transpose() << " vs corner " << corner.transpose();
+      EXPECT_LT((start - corner).norm(), 1e-6)
+          << start.transpose() << " vs corner " << corner.transpose();
     EXPECT_EQ(m->outcome(), UavMissionOutcome::kFlightBudget);
   }
 }

@@ -18,7 +18,7 @@ double metres(int ticks) { return ticks * 2.0 * kPi * 0.02 / 360.0; }
 
 TEST(UgvDiffDriveOdometry, StraightTurnStraightMatchesTheHandComputedPose) {
   DiffDriveOdometry odo(params(), {1.0, 2.0, 0.0});
-  odo.update(0, 0, 0);  // baseline
+  odo.update(0, 0, 0);           // baseline
   odo.update(1000, 1000, 2000);  // straight: 0.3491 m along x
   EXPECT_NEAR(odo.pose().x_m, 1.0 + metres(1000), 1e-12);
   EXPECT_NEAR(odo.pose().y_m, 2.0, 1e-12);

@@ -50,7 +50,8 @@ Search search(const std::string& planner, double budget_m, double time_s = 120.0
     const Pose2 pose = base.odometry();
     run.trajectory.push_back(pose);
     controller.observe_scan(base.ir_scan());
-    if (controller.frame_due(step)) (void)controller.observe_frame(base.camera_frame(step * controller.tick_s()));
+    if (controller.frame_due(step))
+      (void)controller.observe_frame(base.camera_frame(step * controller.tick_s()));
     const auto command = controller.decide(step, pose);
     if (command.explored) break;
     base.command_velocity(command.velocity.v_mps, command.velocity.w_radps);
@@ -95,12 +96,14 @@ struct PillarDrive {
 
 // Drives the controller's tether from the entry along `legs` in 5 cm steps, 0.1 s
 // apart, the real line alongside.
-PillarDrive drive_round_pillar(ExploreController& controller, const std::vector<Eigen::Vector2d>& legs) {
+PillarDrive drive_round_pillar(ExploreController& controller,
+                               const std::vector<Eigen::Vector2d>& legs) {
   std::vector<TetherCorner> pillar;
   const std::array<std::pair<Eigen::Vector2d, std::uint8_t>, 4> corners{
       {{{4.8, 4.8}, 1u << 0}, {{5.2, 4.8}, 1u << 1}, {{5.2, 5.2}, 1u << 2}, {{4.8, 5.2}, 1u << 3}}};
   for (const auto& [p, q] : corners) pillar.push_back({p, q});
-  PillarDrive d{TautTether(TetherCorners::from_list(pillar), kPillarEntry.position()), kPillarEntry.position()};
+  PillarDrive d{TautTether(TetherCorners::from_list(pillar), kPillarEntry.position()),
+                kPillarEntry.position()};
   for (const auto& to : legs)
     while ((to - d.p_W).norm() > 1e-9) {
       const Eigen::Vector2d step = to - d.p_W;
@@ -124,7 +127,8 @@ TEST(ExploreController, TheReachBoundCoversATetherRoundAnObstacleTheIrNeverSaw) 
   ASSERT_FALSE(d.truth.wrap_points().empty());
   // By hand: (2,5) -> (4.8,4.8) -> (5.2,4.8) -> (5.2,5.2) -> (5,6.5).
   EXPECT_NEAR(d.truth.length_m(), std::hypot(2.8, 0.2) + 0.8 + std::hypot(0.2, 1.3), 1e-9);
-  EXPECT_NEAR(controller.tether_length_m(), (d.p_W - kPillarEntry.position()).norm(), 1e-9);  // straight
+  EXPECT_NEAR(controller.tether_length_m(), (d.p_W - kPillarEntry.position()).norm(),
+              1e-9);  // straight
   EXPECT_GE(controller.reach_length_m(), d.truth.length_m());
 }
 
@@ -147,9 +151,10 @@ TEST(ExploreController, TheEstimateWrapsTheBodyBehindAFaceTheIrSaw) {
     for (double b = -0.14; b <= 0.14; b += 0.01) scan.beams.push_back({b, 1.3 / std::cos(b)});
     for (int k = 0; k < 5; ++k) controller.observe_scan(scan);
     // Below the pillar, up its right side, over it and down its left side.
-    const PillarDrive d =
-        drive_round_pillar(controller, {{5.0, 3.5}, {8.0, 5.0}, {5.0, 6.5}, {3.5, 5.0}, {4.0, 3.8}});
-    controller.follow_tether({d.p_W.x(), d.p_W.y(), 0.0}, d.t_s + 10.0);  // a replay over G as it is
+    const PillarDrive d = drive_round_pillar(
+        controller, {{5.0, 3.5}, {8.0, 5.0}, {5.0, 6.5}, {3.5, 5.0}, {4.0, 3.8}});
+    controller.follow_tether({d.p_W.x(), d.p_W.y(), 0.0},
+                             d.t_s + 10.0);  // a replay over G as it is
     return Lengths{controller.tether_length_m(), controller.reach_length_m(), d.truth.length_m()};
   };
   const Lengths face = drive_round(0.0), body = drive_round(0.2);
@@ -159,7 +164,8 @@ TEST(ExploreController, TheEstimateWrapsTheBodyBehindAFaceTheIrSaw) {
   EXPECT_EQ(face.truth_m, body.truth_m);
   EXPECT_LT(face.estimate_m, face.truth_m - 0.5);  // the shell: about twice 0.35 m short
   EXPECT_GT(body.estimate_m, face.estimate_m + 0.3);
-  EXPECT_LT(std::abs(body.estimate_m - body.truth_m), 0.5 * std::abs(face.estimate_m - face.truth_m));
+  EXPECT_LT(std::abs(body.estimate_m - body.truth_m),
+            0.5 * std::abs(face.estimate_m - face.truth_m));
   EXPECT_LE(body.estimate_m, body.bound_m + 1e-9);
   EXPECT_GE(body.bound_m, body.truth_m);
 }
@@ -183,14 +189,16 @@ class ReachFirstPolicy : public ExplorationPolicy {
       double far_m = -1.0;
       for (const std::size_t idx : s.tracker.frontier_cells()) {
         const Cell c = g.cell_of_index(idx);
-        if (s.tracker.blacklisted(c) || !s.paths.reachable(c) || s.paths.distance_m(c) <= far_m) continue;
+        if (s.tracker.blacklisted(c) || !s.paths.reachable(c) || s.paths.distance_m(c) <= far_m)
+          continue;
         far_m = s.paths.distance_m(c);
         far = c;
       }
       if (far && !s.within_reach(*far, s.paths.path_to(*far))) {
         ++reach_first_counts.refusals;
         const auto& global = s.frontier_sets().global;
-        if (std::find(global.begin(), global.end(), *far) != global.end()) ++reach_first_counts.refused_cell_in_sets;
+        if (std::find(global.begin(), global.end(), *far) != global.end())
+          ++reach_first_counts.refused_cell_in_sets;
       }
     }
     std::optional<ExplorationGoal> best;
@@ -207,8 +215,9 @@ class ReachFirstPolicy : public ExplorationPolicy {
 };
 
 TEST(ExploreController, APolicyAskingTheTetherFirstStillReadsTheCyclesFrontierSets) {
-  register_exploration_policy("reach-first-probe",
-                              [](const PolicyOptions&) { return std::make_unique<ReachFirstPolicy>(); });
+  register_exploration_policy("reach-first-probe", [](const PolicyOptions&) {
+    return std::make_unique<ReachFirstPolicy>();
+  });
   reach_first_counts = {};
   const Search run = search("grid", 2.0, 30.0, "reach-first-probe");
   EXPECT_GT(run.decisions, 0);

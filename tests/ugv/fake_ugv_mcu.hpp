@@ -145,7 +145,8 @@ class FakeUgvMcu {
     if (silent_) return;
     if (noise_ > 0) {
       std::vector<std::uint8_t> pre;
-      for (int i = 0; i < noise_; ++i) pre.push_back(static_cast<std::uint8_t>(rng_.uniform_int(0, 255)));
+      for (int i = 0; i < noise_; ++i)
+        pre.push_back(static_cast<std::uint8_t>(rng_.uniform_int(0, 255)));
       pre.push_back(mcu::kSync0);  // a false start of a frame
       bytes.insert(bytes.begin(), pre.begin(), pre.end());
     }
@@ -199,14 +200,15 @@ class FakeUgvMcu {
   void integrate(double dt_s) {
     std::lock_guard lock(mutex_);
     const auto now = std::chrono::steady_clock::now();
-    const bool fed = std::chrono::duration<double>(now - last_rx_).count() * 1000.0 <
-                     options_.watchdog_ms;
+    const bool fed =
+        std::chrono::duration<double>(now - last_rx_).count() * 1000.0 < options_.watchdog_ms;
     if (!fed && (drive_.left_mmps != 0 || drive_.right_mmps != 0)) {
       drive_ = {};  // the firmware's watchdog: the host went quiet, stop
       set_flag(mcu::flag::kWatchdogStop, true);
     }
     if (!options_.integrate_drive) return;
-    const double ticks_per_m = options_.ticks_per_rev / (2.0 * std::numbers::pi * options_.wheel_radius_m);
+    const double ticks_per_m =
+        options_.ticks_per_rev / (2.0 * std::numbers::pi * options_.wheel_radius_m);
     left_ticks_ += drive_.left_mmps / 1000.0 * dt_s * ticks_per_m;
     right_ticks_ += drive_.right_mmps / 1000.0 * dt_s * ticks_per_m;
   }

@@ -80,7 +80,8 @@ void wait_for_ticks(const HwUgvBase& base, std::int32_t left, std::int32_t right
   ASSERT_TRUE(wait_until([&] {
     const auto t = base.telemetry();
     return t.state && t.state->left_ticks == left && t.state->right_ticks == right;
-  })) << "the base never saw " << left << " / " << right;
+  })) << "the base never saw "
+      << left << " / " << right;
 }
 
 // ---------------------------------------------------------------- bring-up errors
@@ -185,13 +186,14 @@ TEST(HwUgvBase, CommandsReachTheMcuAsWheelSpeeds) {
   }));
   // Far beyond the limits: clipped to the URDF's speed, straight on.
   base.command_velocity(100.0, 0.0);
-  const double v_max = std::min(miniugv().limits.max_velocity_mps,
-                                miniugv().wheel_speed_limit_mps.value_or(1e9));
+  const double v_max =
+      std::min(miniugv().limits.max_velocity_mps, miniugv().wheel_speed_limit_mps.value_or(1e9));
   const auto expected = static_cast<std::int16_t>(std::lround(v_max * 1000));
   EXPECT_TRUE(wait_until([&] {
     const auto d = fake.last_drive();
     return d.left_mmps == expected && d.right_mmps == expected;
-  })) << "expected " << expected << " mm/s";
+  })) << "expected "
+      << expected << " mm/s";
   EXPECT_EQ(base.wheel_command(100.0, 0.0).left_mmps, expected);
 }
 
@@ -435,15 +437,17 @@ TEST(HwUgvBase, AnMcuRestartKeepsThePoseAndCountsOnFromZero) {
 
 /// A short MJPG video of the object at `view`, rendered with the project's object
 /// appearance by the simulator's camera.
-fs::path write_object_video(const test::ObjectScene& scene, const test::ObjectView& view, int frames) {
-  const fs::path path = fs::temp_directory_path() /
-                        ("ferret_hw_ugv_" + std::to_string(::getpid()) + "_object.avi");
+fs::path write_object_video(const test::ObjectScene& scene, const test::ObjectView& view,
+                            int frames) {
+  const fs::path path =
+      fs::temp_directory_path() / ("ferret_hw_ugv_" + std::to_string(::getpid()) + "_object.avi");
   const CameraModel& cam = scene.camera();
   cv::VideoWriter writer(path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 15.0,
                          cv::Size(cam.width_px, cam.height_px));
   if (!writer.isOpened()) return {};
   for (int k = 0; k < frames; ++k) {
-    const RgbImage rgb = scene.frame(view, CameraFrameOptions{}, 10 + static_cast<std::uint64_t>(k));
+    const RgbImage rgb =
+        scene.frame(view, CameraFrameOptions{}, 10 + static_cast<std::uint64_t>(k));
     cv::Mat bgr(rgb.height_px, rgb.width_px, CV_8UC3);
     for (int y = 0; y < rgb.height_px; ++y)
       for (int x = 0; x < rgb.width_px; ++x)
@@ -494,8 +498,8 @@ TEST(HwUgvBase, ACameraThatIsNotThereOrNotAVideoIsNamed) {
   EXPECT_EQ(missing.kind(), HwUgvError::Kind::kCameraMissing);
   EXPECT_THAT(missing.what(), HasSubstr("'/tmp/ferret-no-such.avi'"));
 
-  const fs::path junk = fs::temp_directory_path() /
-                        ("ferret_hw_ugv_" + std::to_string(::getpid()) + "_junk.avi");
+  const fs::path junk =
+      fs::temp_directory_path() / ("ferret_hw_ugv_" + std::to_string(::getpid()) + "_junk.avi");
   std::ofstream(junk) << "this is not a video\n";
   const HwUgvError not_video = bring_up_error(config_for(fake.port(), junk.string()));
   EXPECT_TRUE(not_video.kind() == HwUgvError::Kind::kCameraMissing ||

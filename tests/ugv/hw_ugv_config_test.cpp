@@ -70,7 +70,8 @@ TEST(HwUgvConfig, ACameraIsAnIndexAPathAFileOrNone) {
 }
 
 TEST(HwUgvConfig, AnUnknownKeyIsNamedWithItsPath) {
-  const auto [field, what] = refusal("serial: {port: /dev/ttyAMA0, baudrate: 9600}\ncamera: {device: 0}\n");
+  const auto [field, what] =
+      refusal("serial: {port: /dev/ttyAMA0, baudrate: 9600}\ncamera: {device: 0}\n");
   EXPECT_EQ(field, "ugv.base.serial.baudrate");
   EXPECT_THAT(what, HasSubstr("one of: port, baud"));
   EXPECT_EQ(refusal(std::string(kMinimal) + "wheels: {}\n").first, "ugv.base.wheels");
@@ -99,8 +100,10 @@ TEST(HwUgvConfig, BadNumbersAreNamedWithWhatWasExpected) {
             "ugv.base.odometry.ticks_per_rev");
   EXPECT_EQ(refusal(head + "link: {telemetry_timeout_s: 0}\n").first,
             "ugv.base.link.telemetry_timeout_s");
-  EXPECT_EQ(refusal(head + "link: {command_rate_hz: inf}\n").first, "ugv.base.link.command_rate_hz");
-  EXPECT_EQ(refusal(head + "link: {command_timeout_s:}\n").first, "ugv.base.link.command_timeout_s");
+  EXPECT_EQ(refusal(head + "link: {command_rate_hz: inf}\n").first,
+            "ugv.base.link.command_rate_hz");
+  EXPECT_EQ(refusal(head + "link: {command_timeout_s:}\n").first,
+            "ugv.base.link.command_timeout_s");
   EXPECT_EQ(refusal("serial: {port: /dev/ttyAMA0, baud: 12}\ncamera: {device: 0}\n").first,
             "ugv.base.serial.baud");
   EXPECT_EQ(refusal("serial: {port: /dev/ttyAMA0, baud: fast}\ncamera: {device: 0}\n").first,

@@ -12,9 +12,9 @@
 #include "ferret/core/clock.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
-#include "ferret/sim/sim_ugv_base.hpp"
 #include "ferret/mission/mission_assembly.hpp"
 #include "ferret/mission/ugv_mission_run.hpp"
+#include "ferret/sim/sim_ugv_base.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/line_catch.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
@@ -164,8 +164,7 @@ TEST(UgvMission, AReturnThatStallsAtAWallPlansAgainAndGetsHome) {
   // Found by scripts/ugv-mission-campaign: the search of the empty dense space ends
   // against the bottom wall, and the first way home starts inside the wall's clearance
   // band; without re-planning the return timed out (return_failed).
-  const auto map =
-      load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/dense.yaml");
+  const auto map = load_map_server(std::string(FERRET_SOURCE_DIR) + "/examples/maps/dense.yaml");
   const Pose2 entry{1.0, 4.0, 0.0};
   auto s = settings();
   s.ugv.explore_timeout_s = 600.0;

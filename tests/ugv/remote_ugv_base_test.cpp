@@ -72,7 +72,8 @@ class Replay final : public link::RpcChannel {
  public:
   std::string reply;
   StreamMessage call(const std::string& request) override {
-    if (json::parse(request)["op"] == "hello") return {R"({"ok":true,"protocol":1,"server":"replay"})", {}};
+    if (json::parse(request)["op"] == "hello")
+      return {R"({"ok":true,"protocol":1,"server":"replay"})", {}};
     return {reply, {}};
   }
 };
@@ -116,7 +117,8 @@ TEST(RemoteUgvBase, TheServiceRefusesBadRequestsWithoutActingOnThem) {
   const auto refused = [&](const std::string& request, const std::string& error_part) {
     const json r = json::parse(service.handle({request, {}}).header);
     EXPECT_FALSE(r.at("ok").get<bool>()) << request;
-    EXPECT_NE(r.value("error", "").find(error_part), std::string::npos) << request << ": " << r.dump();
+    EXPECT_NE(r.value("error", "").find(error_part), std::string::npos)
+        << request << ": " << r.dump();
   };
   refused("not json", "not a JSON object");
   refused("[1, 2]", "not a JSON object");
@@ -153,8 +155,9 @@ TEST(RemoteUgvBase, TheClientRefusesBrokenReplies) {
          [&] { (void)remote.status(); });
   broken(R"({"ok":true,"battery_fraction":1,"epm_on":false,"contact":false,"faults":4294967296})",
          [&] { (void)remote.status(); });
-  broken(R"({"ok":true,"frame":{"time_s":0,"view":{"X_WS":[0,0,0],"max_range_m":1,"beams":[]},"detections":[[0,0,1]]}})",
-         [&] { (void)remote.camera_frame(0); });
+  broken(
+      R"({"ok":true,"frame":{"time_s":0,"view":{"X_WS":[0,0,0],"max_range_m":1,"beams":[]},"detections":[[0,0,1]]}})",
+      [&] { (void)remote.camera_frame(0); });
   // Too many beams for one scan: broken, not a long allocation.
   std::string many = R"({"ok":true,"scan":{"X_WS":[0,0,0],"max_range_m":1,"beams":[)";
   for (std::size_t k = 0; k <= kMaxRemoteBeams; ++k) many += (k ? ",0,1" : "0,1");
@@ -187,7 +190,8 @@ TEST(RemoteUgvBase, AMissionOverTheProtocolIsTheMissionInProcess) {
     world.step(r.fields.at("dt_s").get<double>());
     return {};
   });
-  link::MessageListener listener(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true), "test", "listen");
+  link::MessageListener listener(link::parse_ipv4_address("127.0.0.1:0", "test", "listen", true),
+                                 "test", "listen");
   std::atomic<bool> stop{false};
   std::thread server([&] {
     std::optional<link::MessageStream> stream;
@@ -201,7 +205,8 @@ TEST(RemoteUgvBase, AMissionOverTheProtocolIsTheMissionInProcess) {
     }
   });
   {
-    link::StreamRpcChannel channel(link::MessageStream::connect({{127, 0, 0, 1}, listener.port()}, 5.0), 10'000);
+    link::StreamRpcChannel channel(
+        link::MessageStream::connect({{127, 0, 0, 1}, listener.port()}, 5.0), 10'000);
     RemoteUgvBase base(channel, "sim");
     SimClock clock;
     TransitionLog log;
@@ -211,7 +216,8 @@ TEST(RemoteUgvBase, AMissionOverTheProtocolIsTheMissionInProcess) {
     const double dt = world.tick_s();
     std::optional<double> retract_at_s;
     mission.start();
-    for (long step = 0; step < static_cast<long>(settings.time_limit_s / dt) && !mission.done(); ++step) {
+    for (long step = 0; step < static_cast<long>(settings.time_limit_s / dt) && !mission.done();
+         ++step) {
       clock.set(static_cast<double>(step) * dt);
       if (mission.wants_retraction()) {
         if (!retract_at_s) retract_at_s = clock.now_s() + settings.retract_time_s;

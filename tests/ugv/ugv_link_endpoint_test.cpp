@@ -34,8 +34,8 @@ struct Linked {
   SimClock clock;
   TransitionLog log;
   OccupancyMap2D map = test::small_hidden_space();
-  UgvMissionSim sim{map, kEntry, Eigen::Vector2d(3.2, 0.8), settings(), 5,
-                    MissionAssembly::ugv_controllers(settings(), clock, &log)};
+  UgvMissionSim sim{map,        kEntry, Eigen::Vector2d(3.2, 0.8),
+                    settings(), 5,      MissionAssembly::ugv_controllers(settings(), clock, &log)};
   int searches_asked = 0;
   UgvLinkEndpoint ugv{clock, [this](const link::UavRequest& r) {
                         ++searches_asked;

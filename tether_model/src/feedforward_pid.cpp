@@ -7,9 +7,7 @@
 namespace ferret::tether {
 
 FeedForwardPid::FeedForwardPid(Options options, std::shared_ptr<const RequiredLengthModel> model)
-    : options_(options),
-      model_(std::move(model)),
-      estimator_(options.control) {
+    : options_(options), model_(std::move(model)), estimator_(options.control) {
   if (!model_) throw std::invalid_argument("FeedForwardPid: no required-length model");
   if (!(options_.control.control_period_s > 0.0))
     throw std::invalid_argument("FeedForwardPid: control period must be > 0");
@@ -37,7 +35,8 @@ double FeedForwardPid::step(const TetherObservation& obs) {
   }
   const double required = model_->required_length_m(now.p_WG);
   const double feedforward = options_.feedforward_gain * required_length_rate_mps(*model_, now);
-  const double slack = estimator_.slack_observer.estimate_m(obs.released_m, required, obs.winch_tension_n);
+  const double slack =
+      estimator_.slack_observer.estimate_m(obs.released_m, required, obs.winch_tension_n);
   const double error = c.slack_reference_m + c.margin_m(obs) - slack;  // > 0: too taut, pay out
   const double derivative = has_last_ ? (error - last_error_m_) / dt : 0.0;
   last_error_m_ = error;
@@ -55,8 +54,9 @@ double FeedForwardPid::step(const TetherObservation& obs) {
   lo = std::max(lo, last_command_mps_ - amax * dt);
   if (lo > hi)
     lo = hi = std::clamp(0.0, last_command_mps_ - amax * dt, last_command_mps_ + amax * dt);
-  const double command = c.reel_in_guard.limit(std::clamp(unsaturated, lo, hi), slack - c.margin_m(obs),
-                                               required_length_rate_mps(*model_, now), c.limits, lo, hi);
+  const double command =
+      c.reel_in_guard.limit(std::clamp(unsaturated, lo, hi), slack - c.margin_m(obs),
+                            required_length_rate_mps(*model_, now), c.limits, lo, hi);
   // Conditional integration: stop integrating while the error pushes further into saturation.
   const bool saturated_up = unsaturated > hi && error > 0.0;
   const bool saturated_down = unsaturated < lo && error < 0.0;

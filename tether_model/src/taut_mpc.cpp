@@ -165,8 +165,9 @@ double TautTetherMpc::step(const TetherObservation& obs) {
     }
   }
   const UgvMotion now = !response.empty() ? response[0]
-                        : preview         ? planned(obs.ugv_age_s)
-                                  : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
+                        : preview
+                            ? planned(obs.ugv_age_s)
+                            : at_message.extrapolated(obs.ugv_age_s, ctl.ugv_max_speed_mps, ta);
   const double required_now = model_->required_length_m(now.p_WG);
   // The observer's correction of the geometric slack (the pose error the tension
   // reveals, or a snag's measured stretch) shifts every prediction: the tether
@@ -185,11 +186,10 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // does not pull: the prediction knows it will shrink.
   const auto& observer = estimator_.slack_observer;
   for (int k = 0; k < N; ++k) {
-    const UgvMotion future =
-        !response.empty() ? response[k + 1]
-        : preview         ? planned(obs.ugv_age_s + (k + 1) * dt)
-                  : now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps,
-                                     std::max(0.0, ta - obs.ugv_age_s));
+    const UgvMotion future = !response.empty() ? response[k + 1]
+                             : preview         ? planned(obs.ugv_age_s + (k + 1) * dt)
+                                       : now.extrapolated((k + 1) * dt, ctl.ugv_max_speed_mps,
+                                                          std::max(0.0, ta - obs.ugv_age_s));
     const double ahead_s = (k + 1) * dt;
     required_[k] = model_->required_length_m(future.p_WG) + bias -
                    (observer.model_offset_m() - observer.model_offset_after_m(ahead_s));
@@ -232,19 +232,22 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   // as far as the robot is believed to follow its model (its velocity-error weight), and
   // not while the line pulls or a model offset is held (the required length is then
   // known to be wrong: undamped, it reeled in against a pin, 10.4 N, in a random snag).
-  if (options_.rate_penalty_about_tracking_command && preview && !pulling && observer.model_offset_m() <= 0.0) {
+  if (options_.rate_penalty_about_tracking_command && preview && !pulling &&
+      observer.model_offset_m() <= 0.0) {
     // The required length's rate over each step (f), led by the servo's lag: the
     // tracking command u* = f + tau f', scaled by how far the robot follows its model.
     const double tau = ctl.limits.velocity_time_constant_s;
     const double r_now = required_now + bias;
     const double trust = 1.0 - estimator_.pose_filter.velocity_error_weight();
-    tracking_rate_[0] = required_length_rate_mps(*model_, now) + observer.model_offset_rate_mps(0.0);
+    tracking_rate_[0] =
+        required_length_rate_mps(*model_, now) + observer.model_offset_rate_mps(0.0);
     for (int k = 0; k < N; ++k)
       tracking_rate_[k + 1] = (required_[k] - (k == 0 ? r_now : required_[k - 1])) / dt;
     for (int k = 0; k <= N; ++k) {
       const int a = std::max(0, k - 1), b = std::min(N, k + 1);
       tracking_command_[k] =
-          trust * (tracking_rate_[k] + tau * (tracking_rate_[b] - tracking_rate_[a]) / ((b - a) * dt));
+          trust *
+          (tracking_rate_[k] + tau * (tracking_rate_[b] - tracking_rate_[a]) / ((b - a) * dt));
     }
     for (int k = 0; k < N; ++k) {
       const double d = tracking_command_[k + 1] - tracking_command_[k];
@@ -291,10 +294,12 @@ double TautTetherMpc::step(const TetherObservation& obs) {
   }
   if (ctl.reel_in_guard.on()) {
     const double step = amax * ctl.control_period_s;
-    const double hi = std::min({vmax, last_command_mps_ + step,
-                                std::sqrt(2.0 * amax * std::max(0.0, ctl.limits.total_length_m - l0))});
-    command = ctl.reel_in_guard.limit(command, slack - margin, required_length_rate_mps(*model_, now), ctl.limits,
-                                      last_command_mps_ - step, hi);
+    const double hi =
+        std::min({vmax, last_command_mps_ + step,
+                  std::sqrt(2.0 * amax * std::max(0.0, ctl.limits.total_length_m - l0))});
+    command =
+        ctl.reel_in_guard.limit(command, slack - margin, required_length_rate_mps(*model_, now),
+                                ctl.limits, last_command_mps_ - step, hi);
   }
   last_command_mps_ = command;
   return command;

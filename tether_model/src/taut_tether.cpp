@@ -13,7 +13,9 @@ namespace {
 const std::array<Eigen::Vector2d, 4> kQuadrantDiagonal{
     Eigen::Vector2d{1, 1}, Eigen::Vector2d{-1, 1}, Eigen::Vector2d{-1, -1}, Eigen::Vector2d{1, -1}};
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // Whether an obstacle at the corner lies on the `side` of the line from the anchor
 // through the corner (direction v): only then can a sweep turning that way hit it.
@@ -35,13 +37,16 @@ TetherCorners::TetherCorners(std::vector<TetherCorner> corners) : corners_(std::
   }
   // About a few corners a bucket: side length from the extent and the count.
   const Eigen::Vector2d ext = (hi - lo_).cwiseMax(1e-3);
-  bucket_m_ = std::max(std::sqrt(ext.x() * ext.y() * 4.0 / static_cast<double>(corners_.size())), 0.05);
+  bucket_m_ =
+      std::max(std::sqrt(ext.x() * ext.y() * 4.0 / static_cast<double>(corners_.size())), 0.05);
   nx_ = static_cast<int>(ext.x() / bucket_m_) + 1;
   ny_ = static_cast<int>(ext.y() / bucket_m_) + 1;
   buckets_.assign(static_cast<std::size_t>(nx_) * ny_, {});
   for (std::uint32_t k = 0; k < corners_.size(); ++k) {
-    const int i = std::clamp(static_cast<int>((corners_[k].p_W.x() - lo_.x()) / bucket_m_), 0, nx_ - 1);
-    const int j = std::clamp(static_cast<int>((corners_[k].p_W.y() - lo_.y()) / bucket_m_), 0, ny_ - 1);
+    const int i =
+        std::clamp(static_cast<int>((corners_[k].p_W.x() - lo_.x()) / bucket_m_), 0, nx_ - 1);
+    const int j =
+        std::clamp(static_cast<int>((corners_[k].p_W.y() - lo_.y()) / bucket_m_), 0, ny_ - 1);
     buckets_[static_cast<std::size_t>(j) * nx_ + i].push_back(k);
   }
 }
@@ -50,8 +55,8 @@ std::shared_ptr<const TetherCorners> TetherCorners::from_list(std::vector<Tether
   return std::shared_ptr<const TetherCorners>(new TetherCorners(std::move(corners)));
 }
 
-std::shared_ptr<const TetherCorners> TetherCorners::from_grid(const GridGeometry& g,
-                                                              const std::function<bool(Cell)>& blocked) {
+std::shared_ptr<const TetherCorners> TetherCorners::from_grid(
+    const GridGeometry& g, const std::function<bool(Cell)>& blocked) {
   std::vector<char> occ(g.size());
   for (std::size_t k = 0; k < g.size(); ++k) occ[k] = blocked(g.cell_of_index(k)) ? 1 : 0;
   auto at = [&](int i, int j) { return g.contains({i, j}) && occ[g.index({i, j})]; };
@@ -60,18 +65,20 @@ std::shared_ptr<const TetherCorners> TetherCorners::from_grid(const GridGeometry
   // kQuadrantDiagonal order, are the cells (i, j), (i-1, j), (i-1, j-1), (i, j-1).
   for (int j = 0; j <= g.height; ++j) {
     for (int i = 0; i <= g.width; ++i) {
-      const std::uint8_t q = static_cast<std::uint8_t>(at(i, j) | at(i - 1, j) << 1 | at(i - 1, j - 1) << 2 |
-                                                       at(i, j - 1) << 3);
+      const std::uint8_t q = static_cast<std::uint8_t>(at(i, j) | at(i - 1, j) << 1 |
+                                                       at(i - 1, j - 1) << 2 | at(i, j - 1) << 3);
       // Convex for the free space's point of view: one occupied quadrant, or two
       // opposite ones (a pinch, convex on both sides).
       if (q == 1 || q == 2 || q == 4 || q == 8 || q == 5 || q == 10)
-        corners.push_back({{g.origin_x_m + i * g.resolution_m, g.origin_y_m + j * g.resolution_m}, q});
+        corners.push_back(
+            {{g.origin_x_m + i * g.resolution_m, g.origin_y_m + j * g.resolution_m}, q});
     }
   }
   return from_list(std::move(corners));
 }
 
-std::shared_ptr<const TetherCorners> TetherCorners::from_map(const OccupancyMap2D& map, bool unknown_blocks) {
+std::shared_ptr<const TetherCorners> TetherCorners::from_map(const OccupancyMap2D& map,
+                                                             bool unknown_blocks) {
   return from_grid(map.geometry, [&](Cell c) {
     const CellState s = map.at(c);
     return s == CellState::kOccupied || (unknown_blocks && s == CellState::kUnknown);
@@ -87,7 +94,8 @@ void TetherCorners::for_each_in_box(const Eigen::Vector2d& lo, const Eigen::Vect
   const int j1 = std::min(static_cast<int>(std::floor((hi.y() - lo_.y()) / bucket_m_)), ny_ - 1);
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i)
-      for (const std::uint32_t k : buckets_[static_cast<std::size_t>(j) * nx_ + i]) visit(corners_[k]);
+      for (const std::uint32_t k : buckets_[static_cast<std::size_t>(j) * nx_ + i])
+        visit(corners_[k]);
 }
 
 TautTether::TautTether(std::shared_ptr<const TetherCorners> corners, const Eigen::Vector2d& p_WE,
@@ -150,7 +158,8 @@ void TautTether::move_to(const Eigen::Vector2d& p_target) {
     const double turn = cross(p - a, d);
     if (std::abs(turn) > kEps * kEps) {
       const int side = turn > 0 ? 1 : -1;
-      const Eigen::Vector2d lo = a.cwiseMin(p).cwiseMin(p_target), hi = a.cwiseMax(p).cwiseMax(p_target);
+      const Eigen::Vector2d lo = a.cwiseMin(p).cwiseMin(p_target),
+                            hi = a.cwiseMax(p).cwiseMax(p_target);
       double best_dist = std::numeric_limits<double>::infinity();
       corners_->for_each_in_box(lo.array() - kEps, hi.array() + kEps, [&](const TetherCorner& c) {
         const Eigen::Vector2d v = c.p_W - a;
@@ -183,11 +192,12 @@ void TautTether::move_to(const Eigen::Vector2d& p_target) {
 
 std::vector<Eigen::Vector2d> way_back_along_tether(const TautTether& tether, double offset_m) {
   constexpr double kStraightBend = 0.1;  // |in - out| = 2 sin(bend / 2): bends under ~6 degrees
-  const auto line = tether.polyline();  // entry, wraps, robot: line[k] is wraps[k - 1]
+  const auto line = tether.polyline();   // entry, wraps, robot: line[k] is wraps[k - 1]
   const auto& wraps = tether.wrap_points();
   std::vector<Eigen::Vector2d> out;
   for (std::size_t k = line.size() - 2; k >= 1; --k) {
-    const Eigen::Vector2d in = (line[k] - line[k + 1]).normalized(), out_dir = (line[k - 1] - line[k]).normalized();
+    const Eigen::Vector2d in = (line[k] - line[k + 1]).normalized(),
+                          out_dir = (line[k - 1] - line[k]).normalized();
     Eigen::Vector2d away = in - out_dir;  // from the corner to the outside of the bend
     // A nearly straight bend (the staircase corners of a slanted edge lie in a line, and
     // the tether touches several): the bisector's direction is rounding noise and may

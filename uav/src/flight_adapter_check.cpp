@@ -60,10 +60,12 @@ std::vector<AdapterCheck> check_flight_adapter(link::RpcChannel& channel) {
   run("state", [&] {
     before = flight->state();
     if (!(before.battery_fraction >= 0.0 && before.battery_fraction <= 1.0))
-      throw std::runtime_error(fmt::format("'battery' {} is not in [0, 1]", before.battery_fraction));
-    return fmt::format("p_W ({:.2f}, {:.2f}, {:.2f}), yaw {:.3f} rad, {}, battery {:.2f}{}", before.p_W.x(),
-                       before.p_W.y(), before.p_W.z(), before.yaw_rad, before.on_ground ? "on the ground" : "flying",
-                       before.battery_fraction, before.rc_override ? ", RC override" : "");
+      throw std::runtime_error(
+          fmt::format("'battery' {} is not in [0, 1]", before.battery_fraction));
+    return fmt::format("p_W ({:.2f}, {:.2f}, {:.2f}), yaw {:.3f} rad, {}, battery {:.2f}{}",
+                       before.p_W.x(), before.p_W.y(), before.p_W.z(), before.yaw_rad,
+                       before.on_ground ? "on the ground" : "flying", before.battery_fraction,
+                       before.rc_override ? ", RC override" : "");
   });
   const auto frame_check = [&](const auto& shot, const char* what) {
     const Eigen::Matrix4d& m = shot.X_WC.matrix();
@@ -71,8 +73,8 @@ std::vector<AdapterCheck> check_flight_adapter(link::RpcChannel& channel) {
     if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-6 ||
         std::abs(R.determinant() - 1.0) > 1e-6 || m.row(3) != Eigen::RowVector4d(0, 0, 0, 1))
       throw std::runtime_error(std::string("'X_WC' of the ") + what + " is not a rigid transform");
-    return fmt::format("{} x {} px, camera at ({:.2f}, {:.2f}, {:.2f})", shot.image.width_px, shot.image.height_px,
-                       m(0, 3), m(1, 3), m(2, 3));
+    return fmt::format("{} x {} px, camera at ({:.2f}, {:.2f}, {:.2f})", shot.image.width_px,
+                       shot.image.height_px, m(0, 3), m(1, 3), m(2, 3));
   };
   run("marker_frame", [&] { return frame_check(flight->marker_frame(), "marker frame"); });
   run("depth_frame", [&] { return frame_check(flight->depth_frame(), "depth frame"); });

@@ -117,7 +117,8 @@ StreamMessage FlightAdapterService::handle(const StreamMessage& request) {
   return dispatcher_->handle(request);
 }
 
-void FlightAdapterService::serve(link::MessageStream& stream, const std::function<bool()>& keep_going) {
+void FlightAdapterService::serve(link::MessageStream& stream,
+                                 const std::function<bool()>& keep_going) {
   dispatcher_->serve(stream, keep_going);
 }
 

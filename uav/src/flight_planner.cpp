@@ -1,5 +1,7 @@
 #include "ferret/uav/flight_planner.hpp"
 
+#include <ompl/base/SpaceInformation.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,8 +9,6 @@
 #include "ferret/planning/ompl_setup.hpp"
 #include "ferret/planning/uav_planner.hpp"
 #include "ferret/uav/opening_locator.hpp"
-
-#include <ompl/base/SpaceInformation.h>
 
 namespace ferret {
 namespace {
@@ -23,21 +23,23 @@ struct PlannerState {
 }  // namespace
 
 FlightPlanner make_flight_planner(const PlanningWorld& world, const RobotDescription& uav_robot,
-                                  const MissionConfig& mission, double max_velocity_mps, std::uint64_t seed,
-                                  std::shared_ptr<const CollisionMap> map) {
+                                  const MissionConfig& mission, double max_velocity_mps,
+                                  std::uint64_t seed, std::shared_ptr<const CollisionMap> map) {
   auto st = std::make_shared<PlannerState>();
   st->fence = default_uav_bounds(world);
   st->map = map ? std::move(map)
-                : CollisionMap::build(*world.tree, uav_map_options(world.spec, UnknownPolicy::kFree, st->fence));
+                : CollisionMap::build(*world.tree,
+                                      uav_map_options(world.spec, UnknownPolicy::kFree, st->fence));
   UavPlannerOptions po;
   po.geofence = st->fence;
   po.seed = seed;
   po.max_velocity_mps = max_velocity_mps;
   seed_ompl_once(seed);
-  const LoadedPlanRobot alone =
-      load_plan_robot(PlanRobot::kUav, PlanRobotModel{uav_robot.source, false}, mission, 0.0, "UAV");
-  const LoadedPlanRobot loaded = load_plan_robot(PlanRobot::kUavWithUgv, PlanRobotModel{uav_robot.source, false},
-                                                 mission, 0.3, "UAV with miniUGV");
+  const LoadedPlanRobot alone = load_plan_robot(
+      PlanRobot::kUav, PlanRobotModel{uav_robot.source, false}, mission, 0.0, "UAV");
+  const LoadedPlanRobot loaded =
+      load_plan_robot(PlanRobot::kUavWithUgv, PlanRobotModel{uav_robot.source, false}, mission, 0.3,
+                      "UAV with miniUGV");
   st->alone = std::make_unique<UavPlanner>(st->map, alone.shape, po);
   st->loaded = std::make_unique<UavPlanner>(st->map, loaded.shape, po);
   st->si_alone = st->alone->space_information();
@@ -68,7 +70,8 @@ FlightPlanner make_flight_planner(const PlanningWorld& world, const RobotDescrip
   };
 }
 
-void fill_uav_mission_from_world(UavMissionOptions& uo, const WorldSpec& spec, const MissionConfig& mission) {
+void fill_uav_mission_from_world(UavMissionOptions& uo, const WorldSpec& spec,
+                                 const MissionConfig& mission) {
   if (uo.openings.empty())
     for (const HiddenSpace& h : spec.hidden_spaces) uo.openings.push_back(opening_in_marker(h));
   if (!uo.marker_from_mission && !spec.hidden_spaces.empty())

@@ -26,9 +26,15 @@ void LinkedUgv::deploy(const Eigen::Vector3d& p_WE, double entry_yaw_rad) {
 }
 
 void LinkedUgv::retracted() { (void)send(link::UavRequest::Kind::kRetracted, "lifted out"); }
-void LinkedUgv::release_object() { (void)send(link::UavRequest::Kind::kReleaseObject, "over the drop zone"); }
-void LinkedUgv::abort(const std::string& reason) { (void)send(link::UavRequest::Kind::kAbort, reason); }
-void LinkedUgv::recall(const std::string& reason) { (void)send(link::UavRequest::Kind::kRecall, reason); }
+void LinkedUgv::release_object() {
+  (void)send(link::UavRequest::Kind::kReleaseObject, "over the drop zone");
+}
+void LinkedUgv::abort(const std::string& reason) {
+  (void)send(link::UavRequest::Kind::kAbort, reason);
+}
+void LinkedUgv::recall(const std::string& reason) {
+  (void)send(link::UavRequest::Kind::kRecall, reason);
+}
 
 UgvReport LinkedUgv::report() const {
   UgvReport r;

@@ -17,9 +17,12 @@ using link::dump_json;
 json parse_reply(const StreamMessage& m, const std::string& op) {
   json j = json::parse(m.header, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("ok") || !j["ok"].is_boolean())
-    throw WinchProtocolError("winch: the reply to '" + op + "' is not a JSON object with a boolean 'ok'");
+    throw WinchProtocolError("winch: the reply to '" + op +
+                             "' is not a JSON object with a boolean 'ok'");
   if (!j["ok"].get<bool>()) {
-    const std::string why = j.contains("error") && j["error"].is_string() ? j["error"].get<std::string>() : "no reason given";
+    const std::string why = j.contains("error") && j["error"].is_string()
+                                ? j["error"].get<std::string>()
+                                : "no reason given";
     throw WinchProtocolError("winch: '" + op + "' refused: " + printable(why));
   }
   return j;
@@ -29,7 +32,8 @@ double finite(const json& j, const char* key, const std::string& op) {
   if (!j.contains(key) || !j[key].is_number())
     throw WinchProtocolError("winch: the reply to '" + op + "' has no number '" + key + "'");
   const double v = j[key].get<double>();
-  if (!std::isfinite(v)) throw WinchProtocolError("winch: '" + std::string(key) + "' is not finite");
+  if (!std::isfinite(v))
+    throw WinchProtocolError("winch: '" + std::string(key) + "' is not finite");
   return v;
 }
 

@@ -9,51 +9,78 @@ namespace ferret {
 
 std::string_view to_string(UavMissionState state) {
   switch (state) {
-    case UavMissionState::kIdle: return "idle";
-    case UavMissionState::kTakeoff: return "takeoff";
-    case UavMissionState::kSearch: return "search";
-    case UavMissionState::kApproach: return "approach";
-    case UavMissionState::kSurvey: return "survey";
-    case UavMissionState::kLand: return "land";
-    case UavMissionState::kLower: return "lower";
-    case UavMissionState::kUgvOps: return "ugv_ops";
-    case UavMissionState::kRetract: return "retract";
-    case UavMissionState::kLiftoff: return "liftoff";
-    case UavMissionState::kDeliver: return "deliver";
-    case UavMissionState::kDrop: return "drop";
-    case UavMissionState::kReturnHome: return "return_home";
-    case UavMissionState::kLandHome: return "land_home";
-    case UavMissionState::kDone: return "done";
+    case UavMissionState::kIdle:
+      return "idle";
+    case UavMissionState::kTakeoff:
+      return "takeoff";
+    case UavMissionState::kSearch:
+      return "search";
+    case UavMissionState::kApproach:
+      return "approach";
+    case UavMissionState::kSurvey:
+      return "survey";
+    case UavMissionState::kLand:
+      return "land";
+    case UavMissionState::kLower:
+      return "lower";
+    case UavMissionState::kUgvOps:
+      return "ugv_ops";
+    case UavMissionState::kRetract:
+      return "retract";
+    case UavMissionState::kLiftoff:
+      return "liftoff";
+    case UavMissionState::kDeliver:
+      return "deliver";
+    case UavMissionState::kDrop:
+      return "drop";
+    case UavMissionState::kReturnHome:
+      return "return_home";
+    case UavMissionState::kLandHome:
+      return "land_home";
+    case UavMissionState::kDone:
+      return "done";
   }
   return "?";
 }
 
 std::string_view to_string(UavMissionOutcome outcome) {
   switch (outcome) {
-    case UavMissionOutcome::kNone: return "none";
-    case UavMissionOutcome::kSearchComplete: return "search_complete";
-    case UavMissionOutcome::kFlightBudget: return "flight_budget";
-    case UavMissionOutcome::kTakeoffFailed: return "takeoff_failed";
-    case UavMissionOutcome::kRetractFailed: return "retract_failed";
-    case UavMissionOutcome::kDeliveryFailed: return "delivery_failed";
-    case UavMissionOutcome::kAborted: return "aborted";
+    case UavMissionOutcome::kNone:
+      return "none";
+    case UavMissionOutcome::kSearchComplete:
+      return "search_complete";
+    case UavMissionOutcome::kFlightBudget:
+      return "flight_budget";
+    case UavMissionOutcome::kTakeoffFailed:
+      return "takeoff_failed";
+    case UavMissionOutcome::kRetractFailed:
+      return "retract_failed";
+    case UavMissionOutcome::kDeliveryFailed:
+      return "delivery_failed";
+    case UavMissionOutcome::kAborted:
+      return "aborted";
   }
   return "?";
 }
 
 std::string_view to_string(ReleaseMode release) {
   switch (release) {
-    case ReleaseMode::kLand: return "land";
-    case ReleaseMode::kHover: return "hover";
+    case ReleaseMode::kLand:
+      return "land";
+    case ReleaseMode::kHover:
+      return "hover";
   }
   return "?";
 }
 
 std::string_view to_string(VisitState state) {
   switch (state) {
-    case VisitState::kDetected: return "detected";
-    case VisitState::kSkipped: return "skipped";
-    case VisitState::kServiced: return "serviced";
+    case VisitState::kDetected:
+      return "detected";
+    case VisitState::kSkipped:
+      return "skipped";
+    case VisitState::kServiced:
+      return "serviced";
   }
   return "?";
 }
@@ -62,28 +89,36 @@ void UavMissionOptions::validate(const std::string& source) const {
   const auto positive = [&](double v, const char* field, std::string_view unit, double hi = 1e6) {
     check_number(v, NumberRange::positive(hi, unit), source, field);
   };
-  for (int i = 0; i < 4; ++i) check_number(search_area_m[i], NumberRange::closed(-1e5, 1e5, "m"), source, "uav.search_area_m");
+  for (int i = 0; i < 4; ++i)
+    check_number(search_area_m[i], NumberRange::closed(-1e5, 1e5, "m"), source,
+                 "uav.search_area_m");
   if (!(search_area_m[2] > search_area_m[0] && search_area_m[3] > search_area_m[1]))
     throw InputError(source, "uav.search_area_m", "[x0, y0, x1, y1] with x1 > x0 and y1 > y0");
   positive(search_altitude_m, "uav.search_altitude_m", "m", 500.0);
   positive(search_speed_mps, "uav.search_speed_mps", "m/s", 50.0);
   positive(cruise_speed_mps, "uav.cruise_speed_mps", "m/s", 50.0);
   check_number(leg_spacing_m, NumberRange::non_negative(1e4, "m"), source, "uav.leg_spacing_m");
-  if (passes < 1 || passes > 2) throw InputError(source, "uav.passes", "1 or 2", std::to_string(passes));
+  if (passes < 1 || passes > 2)
+    throw InputError(source, "uav.passes", "1 or 2", std::to_string(passes));
   positive(frame_period_s, "uav.frame_period_s", "s", 60.0);
   positive(waypoint_tolerance_m, "uav.waypoint_tolerance_m", "m", 10.0);
   positive(braking_accel_mps2, "uav.braking_accel_mps2", "m/s^2", 50.0);
   if (confirm_detections < 1 || confirm_detections > 100)
-    throw InputError(source, "uav.confirm_detections", "an integer in [1, 100]", std::to_string(confirm_detections));
+    throw InputError(source, "uav.confirm_detections", "an integer in [1, 100]",
+                     std::to_string(confirm_detections));
   positive(survey_height_m, "uav.survey_height_m", "m", 10.0);
-  check_number(survey_standoff_m, NumberRange::non_negative(10.0, "m"), source, "uav.survey_standoff_m");
+  check_number(survey_standoff_m, NumberRange::non_negative(10.0, "m"), source,
+               "uav.survey_standoff_m");
   if (survey_views < 1 || survey_views > 8)
-    throw InputError(source, "uav.survey_views", "an integer in [1, 8]", std::to_string(survey_views));
+    throw InputError(source, "uav.survey_views", "an integer in [1, 8]",
+                     std::to_string(survey_views));
   if (survey_frames < 1 || survey_frames > kMaxHoverFrames)
-    throw InputError(source, "uav.survey_frames", "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
+    throw InputError(source, "uav.survey_frames",
+                     "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
                      std::to_string(survey_frames));
   if (survey_frames_max < 1 || survey_frames_max > kMaxHoverFrames)
-    throw InputError(source, "uav.survey_frames_max", "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
+    throw InputError(source, "uav.survey_frames_max",
+                     "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
                      std::to_string(survey_frames_max));
   if (no_landing_zone != "hover" && no_landing_zone != "skip")
     throw InputError(source, "uav.no_landing_zone", "hover or skip", no_landing_zone);
@@ -103,11 +138,13 @@ void UavMissionOptions::validate(const std::string& source) const {
   }
   positive(retract_speed_mps, "uav.retract_speed_mps", "m/s", 10.0);
   positive(ugv_return_speed_mps, "uav.ugv_return_speed_mps", "m/s", 10.0);
-  for (int i = 0; i < 2; ++i) check_number(drop_zone_W[i], NumberRange::closed(-1e5, 1e5, "m"), source, "uav.drop_zone_m");
+  for (int i = 0; i < 2; ++i)
+    check_number(drop_zone_W[i], NumberRange::closed(-1e5, 1e5, "m"), source, "uav.drop_zone_m");
   positive(drop_altitude_m, "uav.drop_altitude_m", "m", 500.0);
   check_number(drop_time_s, NumberRange::non_negative(600.0, "s"), source, "uav.drop_time_s");
   positive(flight_endurance_s, "uav.flight_endurance_s", "s", 1e5);
-  check_number(battery_reserve_fraction, NumberRange::closed(0.0, 0.9), source, "uav.battery_reserve_fraction");
+  check_number(battery_reserve_fraction, NumberRange::closed(0.0, 0.9), source,
+               "uav.battery_reserve_fraction");
   for (const auto& [v, field] : {std::pair{takeoff_timeout_s, "uav.takeoff_timeout_s"},
                                  {approach_timeout_s, "uav.approach_timeout_s"},
                                  {survey_timeout_s, "uav.survey_timeout_s"},
@@ -130,9 +167,11 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
       marker_camera_(std::move(marker_camera)),
       depth_camera_(std::move(depth_camera)),
       options_(std::move(options)),
-      path_(hw_.flight, std::move(planner), {options_.braking_accel_mps2, options_.waypoint_tolerance_m}),
-      budget_({options_.cruise_speed_mps, options_.flight_endurance_s, options_.battery_reserve_fraction,
-               options_.retract_speed_mps, options_.ugv_return_speed_mps}),
+      path_(hw_.flight, std::move(planner),
+            {options_.braking_accel_mps2, options_.waypoint_tolerance_m}),
+      budget_({options_.cruise_speed_mps, options_.flight_endurance_s,
+               options_.battery_reserve_fraction, options_.retract_speed_mps,
+               options_.ugv_return_speed_mps}),
       log_(log),
       landing_(options_.landing),
       modes_(tether::TetherModeSwitcher::Options::from_mission(options_.tether,
@@ -141,22 +180,23 @@ UavMission::UavMission(Hardware hardware, const Clock& clock, FlightPlanner plan
   options_.validate("uav mission options");
   detector_ = make_marker_detector(options_.marker);
   options_.winch_control.limits.total_length_m = options_.tether.total_length_m;
-  winch_.emplace(hw_.winch, WinchSupervision::Options{options_.tether.entry_offset_m, options_.touchdown,
-                                                     options_.winch_controller, options_.winch_control,
-                                                     options_.winch_controllers,
-                                                     options_.retract_speed_mps});
+  winch_.emplace(hw_.winch,
+                 WinchSupervision::Options{options_.tether.entry_offset_m, options_.touchdown,
+                                           options_.winch_controller, options_.winch_control,
+                                           options_.winch_controllers, options_.retract_speed_mps});
 
   pattern_ = CoveragePattern(options_.search_area_m, options_.search_altitude_m, options_.passes,
-                             options_.leg_spacing_m <= 0.0
-                                 ? CoveragePattern::camera_leg_spacing_m(options_.marker, marker_camera_)
-                                 : options_.leg_spacing_m);
+                             options_.leg_spacing_m <= 0.0 ? CoveragePattern::camera_leg_spacing_m(
+                                                                 options_.marker, marker_camera_)
+                                                           : options_.leg_spacing_m);
 }
 
 UavMission::~UavMission() = default;
 
 void UavMission::enter(UavMissionState next, const std::string& reason) {
   if (log_)
-    log_->add({clock_.now_s(), "uav", std::string(to_string(state_)), std::string(to_string(next)), reason});
+    log_->add({clock_.now_s(), "uav", std::string(to_string(state_)), std::string(to_string(next)),
+               reason});
   state_ = next;
   state_since_s_ = clock_.now_s();
   settled_since_s_ = -1.0;
@@ -210,19 +250,32 @@ void UavMission::tick() {
   const Tick t{now, now - state_since_s_, hw_.flight.state(), hw_.winch.read_state()};
   modes_.update(now, t.winch.released_m);
   switch (state_) {
-    case UavMissionState::kTakeoff: return on_takeoff(t);
-    case UavMissionState::kSearch: return on_search(t);
-    case UavMissionState::kApproach: return on_approach(t);
-    case UavMissionState::kSurvey: return on_survey(t);
-    case UavMissionState::kLand: return on_land(t);
-    case UavMissionState::kLower: return on_lower(t);
-    case UavMissionState::kUgvOps: return on_ugv_ops(t);
-    case UavMissionState::kRetract: return on_retract(t);
-    case UavMissionState::kLiftoff: return on_liftoff(t);
-    case UavMissionState::kDeliver: return on_deliver(t);
-    case UavMissionState::kDrop: return on_drop(t);
-    case UavMissionState::kReturnHome: return on_return_home(t);
-    case UavMissionState::kLandHome: return on_land_home(t);
+    case UavMissionState::kTakeoff:
+      return on_takeoff(t);
+    case UavMissionState::kSearch:
+      return on_search(t);
+    case UavMissionState::kApproach:
+      return on_approach(t);
+    case UavMissionState::kSurvey:
+      return on_survey(t);
+    case UavMissionState::kLand:
+      return on_land(t);
+    case UavMissionState::kLower:
+      return on_lower(t);
+    case UavMissionState::kUgvOps:
+      return on_ugv_ops(t);
+    case UavMissionState::kRetract:
+      return on_retract(t);
+    case UavMissionState::kLiftoff:
+      return on_liftoff(t);
+    case UavMissionState::kDeliver:
+      return on_deliver(t);
+    case UavMissionState::kDrop:
+      return on_drop(t);
+    case UavMissionState::kReturnHome:
+      return on_return_home(t);
+    case UavMissionState::kLandHome:
+      return on_land_home(t);
     case UavMissionState::kIdle:
     case UavMissionState::kDone:
       return;

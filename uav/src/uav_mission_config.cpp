@@ -150,7 +150,8 @@ std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std
   return given;
 }
 
-std::set<std::string> load_uav_mission_options(const std::filesystem::path& path, UavMissionOptions& o) {
+std::set<std::string> load_uav_mission_options(const std::filesystem::path& path,
+                                               UavMissionOptions& o) {
   const YAML::Node root = yaml::load_file(path);
   // The document's shape is mission_config_from_yaml's to check; a section is a mapping.
   if (!root.IsMap()) return {};
@@ -159,8 +160,9 @@ std::set<std::string> load_uav_mission_options(const std::filesystem::path& path
 
 void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& o, bool with_search_area) {
   if (with_search_area)
-    internal::emit_key_numbers(e, kSearchArea.data(),
-                               std::array{o.search_area_m[0], o.search_area_m[1], o.search_area_m[2], o.search_area_m[3]});
+    internal::emit_key_numbers(
+        e, kSearchArea.data(),
+        std::array{o.search_area_m[0], o.search_area_m[1], o.search_area_m[2], o.search_area_m[3]});
   if (o.marker_from_mission) {
     e << YAML::Key << kMarker.data() << YAML::Value << YAML::Flow << YAML::BeginMap;
     e << YAML::Key << "family" << YAML::Value << to_string(o.marker.dictionary.family);
@@ -169,9 +171,11 @@ void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& o, bool
     e << YAML::EndMap;
   }
   for (const auto& [key, member] : kNumbers) internal::emit_key_number(e, key.data(), o.*member);
-  for (const auto& [key, member] : kIntegers) e << YAML::Key << key.data() << YAML::Value << o.*member;
+  for (const auto& [key, member] : kIntegers)
+    e << YAML::Key << key.data() << YAML::Value << o.*member;
   e << YAML::Key << kRelease.data() << YAML::Value << std::string(to_string(o.release));
-  for (const auto& [key, member] : kChoices) e << YAML::Key << key.data() << YAML::Value << o.*member;
+  for (const auto& [key, member] : kChoices)
+    e << YAML::Key << key.data() << YAML::Value << o.*member;
   e << YAML::Key << kWinchControl.data() << YAML::Value;
   tether::emit_winch_controller_options(e, o.winch_controllers);
 }

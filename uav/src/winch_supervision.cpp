@@ -31,8 +31,8 @@ WinchSupervision::WinchSupervision(tether::Winch& winch, Options options)
     : winch_(winch), options_(std::move(options)) {
   required_ = std::make_shared<ReportedTetherLength>(options_.entry_offset_m);
   controller_ = tether::tether_controllers().make(
-      options_.controller, {options_.control, options_.controllers, required_}, "uav mission options",
-      "uav.winch_controller");
+      options_.controller, {options_.control, options_.controllers, required_},
+      "uav mission options", "uav.winch_controller");
 }
 
 WinchSupervision::~WinchSupervision() = default;

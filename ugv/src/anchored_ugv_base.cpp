@@ -6,7 +6,8 @@ namespace ferret::ugv {
 
 Pose2 inverse(const Pose2& X_AB) {
   const double c = std::cos(X_AB.yaw_rad), s = std::sin(X_AB.yaw_rad);
-  return {-(c * X_AB.x_m + s * X_AB.y_m), s * X_AB.x_m - c * X_AB.y_m, wrap_angle_rad(-X_AB.yaw_rad)};
+  return {-(c * X_AB.x_m + s * X_AB.y_m), s * X_AB.x_m - c * X_AB.y_m,
+          wrap_angle_rad(-X_AB.yaw_rad)};
 }
 
 void AnchoredUgvBase::anchor(const Pose2& X_WG) { X_WO_ = X_WG * inverse(base_.odometry()); }

@@ -59,15 +59,14 @@ ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& 
   dt_s_ = 1.0 / s.ir_rate_hz;
   camera_every_ = std::max(1, static_cast<int>(std::lround(s.ir_rate_hz / s.camera_rate_hz)));
   decide_every_ = std::max(1, static_cast<int>(std::lround(options_.decision_period_s / dt_s_)));
-  escape_m_ = std::max(options_.robot.escape_radius_m,
-                       options_.robot.clearance_m + 2 * geo_.resolution_m);
+  escape_m_ =
+      std::max(options_.robot.escape_radius_m, options_.robot.clearance_m + 2 * geo_.resolution_m);
   progress_pose_ = start;
   entry_W_ = start.position();
   driven_W_.push_back(entry_W_);
   swept_.assign(static_cast<std::size_t>(geo_.width) * geo_.height, 0);
   mark_swept(entry_W_);
-  if (options_.tether_budget_m)
-  {
+  if (options_.tether_budget_m) {
     tether_ = std::make_unique<TautTether>(TetherCorners::from_list({}), entry_W_);
     reach_tether_ = std::make_unique<TautTether>(*tether_);
   }
@@ -138,7 +137,8 @@ void ExploreController::follow_tether(const Pose2& pose, double t_s) {
     std::vector<std::uint8_t> seen(swept_.size());
     for (std::size_t i = 0; i < seen.size(); ++i) seen[i] = occupied(i);
     const std::vector<std::uint8_t> body =
-        grow_within(seen, hidden, geo_.width, geo_.height, options_.tether_obstacle_depth_m / geo_.resolution_m);
+        grow_within(seen, hidden, geo_.width, geo_.height,
+                    options_.tether_obstacle_depth_m / geo_.resolution_m);
     tether_ = replay(TetherCorners::from_grid(geo_, [&](Cell c) {
       const std::size_t i = geo_.index(c);
       return seen[i] != 0 || body[i] != 0;
@@ -161,14 +161,16 @@ std::vector<std::uint8_t> ExploreController::unknown_that_can_hide_obstacles() c
   std::vector<std::uint8_t> unknown(swept_.size());
   for (std::size_t i = 0; i < unknown.size(); ++i)
     unknown[i] = grid_->label_at(i) == GridLabel::kUnknown && !swept_[i];
-  const int r = std::max(1, static_cast<int>(std::lround(0.5 * kHiddenObstacleWidth_m / geo_.resolution_m)));
+  const int r =
+      std::max(1, static_cast<int>(std::lround(0.5 * kHiddenObstacleWidth_m / geo_.resolution_m)));
   return open_square(unknown, geo_.width, geo_.height, r);
 }
 
 void ExploreController::mark_swept(const Eigen::Vector2d& p_W) {
   // The driven points lie kDrivenStep_m apart: a disc of that radius covers the path.
   const double r = std::max(kDrivenStep_m, 1.5 * geo_.resolution_m);
-  const Cell lo = geo_.cell_at(p_W.x() - r, p_W.y() - r), hi = geo_.cell_at(p_W.x() + r, p_W.y() + r);
+  const Cell lo = geo_.cell_at(p_W.x() - r, p_W.y() - r),
+             hi = geo_.cell_at(p_W.x() + r, p_W.y() + r);
   for (int j = std::max(0, lo.j); j <= std::min(geo_.height - 1, hi.j); ++j)
     for (int i = std::max(0, lo.i); i <= std::min(geo_.width - 1, hi.i); ++i)
       if ((geo_.center({i, j}) - p_W).norm() <= r) swept_[geo_.index({i, j})] = 1;
@@ -292,13 +294,16 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
       // chooses among the rest.
       // `first` (when set) fills `sets` on demand; after a refusal the sets are taken
       // again, with the refused goal blacklisted.
-      const auto choose = [&](const std::function<void()>& first) -> std::optional<ExplorationGoal> {
+      const auto choose =
+          [&](const std::function<void()>& first) -> std::optional<ExplorationGoal> {
         FrontierSets current;
-        if (!first) current = tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m);
+        if (!first)
+          current = tracker_->extract(planner_->distances_m(), X_WS, s.ir_fov_rad, s.ir_range_m);
         for (int k = 0; k < kMaxReachRejections; ++k) {
-          ExplorationState state{*grid_,    *objects_, *tracker_,    k == 0 && first ? sets : current,
-                                 *planner_, pose,      v_W,          s.ir_fov_rad,
-                                 s.ir_range_m, oracle};
+          ExplorationState state{
+              *grid_,       *objects_, *tracker_, k == 0 && first ? sets : current,
+              *planner_,    pose,      v_W,       s.ir_fov_rad,
+              s.ir_range_m, oracle};
           if (tether_) state.within_reach = reach;
           if (k == 0) state.fill_frontiers = first;
           state.at_entry = !left_entry_;
@@ -326,8 +331,12 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
         // retrace the driven path (which unwinds it), then search on.
         auto path = retrace_path(0.5 * *options_.tether_budget_m);
         if (path.size() > 1) {
-          goal = ExplorationGoal{geo_.cell_at(path.back().x(), path.back().y()), path.back(),
-                                 std::nullopt, std::move(path), 0.0, GoalRule::kUnwind};
+          goal = ExplorationGoal{geo_.cell_at(path.back().x(), path.back().y()),
+                                 path.back(),
+                                 std::nullopt,
+                                 std::move(path),
+                                 0.0,
+                                 GoalRule::kUnwind};
           goal_is_revisit_ = true;  // follow it to the end, no re-decision on the way
           unwinding_ = true;
         }
@@ -338,8 +347,8 @@ ExploreController::Command ExploreController::decide(long tick, const Pose2& pos
         if (!evidence.empty() && revisits_ < options_.max_revisits) {
           goal = viewing_goal(*grid_, *tracker_, *planner_, strongest_evidence(evidence).p_W,
                               view_distance_m_);
-          if (goal && !within_reach(goal->path_W.empty() ? planner_->path_to(goal->cell)
-                                                         : goal->path_W)) {
+          if (goal &&
+              !within_reach(goal->path_W.empty() ? planner_->path_to(goal->cell) : goal->path_W)) {
             ++reach_rejections_;
             goal.reset();
           }

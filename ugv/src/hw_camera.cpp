@@ -5,8 +5,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <condition_variable>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <opencv2/imgproc.hpp>
@@ -72,9 +72,10 @@ struct HwCamera::Impl {
       const double aspect_frame = static_cast<double>(rgb.cols) / rgb.rows;
       const double aspect_model = static_cast<double>(width_px) / height_px;
       if (std::abs(aspect_frame / aspect_model - 1.0) > 0.01) {
-        why = fmt::format("frames of {} x {} px; the URDF's object camera is {} x {} px (another "
-                          "aspect ratio: set the camera's mode or the URDF)",
-                          rgb.cols, rgb.rows, width_px, height_px);
+        why = fmt::format(
+            "frames of {} x {} px; the URDF's object camera is {} x {} px (another "
+            "aspect ratio: set the camera's mode or the URDF)",
+            rgb.cols, rgb.rows, width_px, height_px);
         return std::nullopt;
       }
       cv::Mat scaled;
@@ -148,9 +149,8 @@ HwCamera::HwCamera(const std::string& device, int width_px, int height_px,
 
   // The first valid frame, within the timeout: a device that opens but gives no colour
   // frames (a V4L2 metadata node, a wrong index) is the wrong device.
-  const auto deadline =
-      Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                         std::chrono::duration<double>(first_frame_timeout_s));
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(first_frame_timeout_s));
   std::string why = "no frame";
   if (m.live) {
     std::unique_lock lock(m.mutex);
@@ -166,11 +166,11 @@ HwCamera::HwCamera(const std::string& device, int width_px, int height_px,
     if (!ok) {
       m.stop = true;
       m.grabber.join();
-      throw HwUgvError(Kind::kCameraNoFrames,
-                       fmt::format("{}: opened, but {} within {} s (the capture node? "
-                                   "v4l2-ctl --list-devices shows each camera's nodes)",
-                                   name, why == "no frame" ? "no frame" : why,
-                                   first_frame_timeout_s));
+      throw HwUgvError(
+          Kind::kCameraNoFrames,
+          fmt::format("{}: opened, but {} within {} s (the capture node? "
+                      "v4l2-ctl --list-devices shows each camera's nodes)",
+                      name, why == "no frame" ? "no frame" : why, first_frame_timeout_s));
     }
   } else {
     cv::Mat frame;

@@ -40,8 +40,8 @@ double yaw_of(const Pose3& X) {
 
 /// One beam of an IR sensor in the base frame B.
 struct Beam {
-  Eigen::Vector2d p_BO;  ///< where it starts
-  Eigen::Vector2d dir_B; ///< unit direction
+  Eigen::Vector2d p_BO;   ///< where it starts
+  Eigen::Vector2d dir_B;  ///< unit direction
 };
 
 /// An `ir` sensor: its beams, in the URDF's order, and its range limits.
@@ -62,7 +62,8 @@ std::vector<IrSensor> ir_sensors_of(const RobotDescription& robot) {
       // Flattened to B's xy plane, as RobotDescription::ir_array does.
       const double a = r->beam_angle_rad(i);
       const Eigen::Vector3d d = r->X_BS.linear() * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
-      s.beams.push_back({r->X_BS.translation().head<2>(), Eigen::Vector2d(d.x(), d.y()).normalized()});
+      s.beams.push_back(
+          {r->X_BS.translation().head<2>(), Eigen::Vector2d(d.x(), d.y()).normalized()});
     }
     out.push_back(std::move(s));
   }
@@ -176,8 +177,8 @@ struct HwUgvBase::Impl {
       serial = link::open_serial_port(port, config.serial.baud);
     } catch (const link::SerialError& e) {
       throw HwUgvError(Kind::kSerialMissing,
-                       fmt::format("miniUGV MCU serial port '{}': cannot open at {} baud: {}",
-                                   port, config.serial.baud, e.what()));
+                       fmt::format("miniUGV MCU serial port '{}': cannot open at {} baud: {}", port,
+                                   config.serial.baud, e.what()));
     }
   }
 
@@ -421,15 +422,16 @@ struct HwUgvBase::Impl {
 
 HwUgvBase::HwUgvBase(const HwUgvConfig& config, const RobotDescription& robot,
                      const ObjectSearchParams& search, const Pose2& X_WG_start)
-    : HwUgvBase(config, robot,
-                [&]() -> std::unique_ptr<ObjectDetector> {
-                  ColourObjectDetector::Options o;
-                  o.search = search;
-                  if (const CameraSensor* cam = robot.find_object_camera())
-                    o.max_distance_m = cam->range_max_m;  // D_cam
-                  return std::make_unique<ColourObjectDetector>(o);
-                }(),
-                X_WG_start) {}
+    : HwUgvBase(
+          config, robot,
+          [&]() -> std::unique_ptr<ObjectDetector> {
+            ColourObjectDetector::Options o;
+            o.search = search;
+            if (const CameraSensor* cam = robot.find_object_camera())
+              o.max_distance_m = cam->range_max_m;  // D_cam
+            return std::make_unique<ColourObjectDetector>(o);
+          }(),
+          X_WG_start) {}
 
 HwUgvBase::HwUgvBase(const HwUgvConfig& config, const RobotDescription& robot,
                      std::unique_ptr<ObjectDetector> detector, const Pose2& X_WG_start)
@@ -523,7 +525,8 @@ mcu::DriveCommand HwUgvBase::wheel_command(double v_mps, double w_radps) const {
   const Impl& m = *impl_;
   // A base clips, it does not refuse; NaN (a controller's bug) stops the robot.
   const double v = std::isfinite(v_mps) ? std::clamp(v_mps, -m.max_v_mps, m.max_v_mps) : 0.0;
-  const double w = std::isfinite(w_radps) ? std::clamp(w_radps, -m.max_w_radps, m.max_w_radps) : 0.0;
+  const double w =
+      std::isfinite(w_radps) ? std::clamp(w_radps, -m.max_w_radps, m.max_w_radps) : 0.0;
   const double half_track = 0.5 * m.config.odometry.track_width_m;
   double left = v - w * half_track, right = v + w * half_track;
   // A wheel beyond its limit slows both together: the curvature stays the controller's.

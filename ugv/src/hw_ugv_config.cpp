@@ -32,8 +32,8 @@ const char* to_string(HwUgvConfig::Epm::Via via) {
 
 void HwUgvConfig::check() const {
   if (serial.port.empty())
-    throw InputError(source, field("serial", "port"),
-                     "the MCU's serial device (e.g. /dev/ttyAMA0)", "nothing");
+    throw InputError(source, field("serial", "port"), "the MCU's serial device (e.g. /dev/ttyAMA0)",
+                     "nothing");
   if (serial.baud < 1200 || serial.baud > 4000000)
     throw InputError(source, field("serial", "baud"), "an integer in [1200, 4000000] baud",
                      std::to_string(serial.baud));
@@ -68,8 +68,8 @@ void HwUgvConfig::check() const {
               field("odometry", "track_width_m"));
   check_range(odometry.speed_window_s, NumberRange::positive(10.0, "s"), source,
               field("odometry", "speed_window_s"));
-  check_range(odometry.max_plausible_wheel_speed_mps, NumberRange::positive(1000.0, "m/s"),
-              source, field("odometry", "max_plausible_wheel_speed_mps"));
+  check_range(odometry.max_plausible_wheel_speed_mps, NumberRange::positive(1000.0, "m/s"), source,
+              field("odometry", "max_plausible_wheel_speed_mps"));
 }
 
 HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& source,
@@ -85,7 +85,8 @@ HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& s
   const yaml::MapReader serial = root.child("serial");
   serial.allow_only({"port", "baud"});
   c.serial.port = serial.get<std::string>("port");
-  if (c.serial.port.empty()) serial.fail("port", "the MCU's serial device (e.g. /dev/ttyAMA0)", "''");
+  if (c.serial.port.empty())
+    serial.fail("port", "the MCU's serial device (e.g. /dev/ttyAMA0)", "''");
   c.serial.baud = serial.get_or<int>("baud", c.serial.baud);
   if (c.serial.baud < 1200 || c.serial.baud > 4000000)
     serial.fail("baud", "an integer in [1200, 4000000] baud", std::to_string(c.serial.baud));
@@ -94,7 +95,8 @@ HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& s
     link->allow_only({"connect_timeout_s", "telemetry_timeout_s", "command_rate_hz",
                       "command_timeout_s", "epm_retry_s"});
     auto& l = c.link;
-    l.connect_timeout_s = link->get_in_range_or("connect_timeout_s", 1e-3, 600.0, l.connect_timeout_s);
+    l.connect_timeout_s =
+        link->get_in_range_or("connect_timeout_s", 1e-3, 600.0, l.connect_timeout_s);
     l.telemetry_timeout_s =
         link->get_in_range_or("telemetry_timeout_s", 1e-3, 60.0, l.telemetry_timeout_s);
     l.command_rate_hz = link->get_in_range_or("command_rate_hz", 1.0, 1000.0, l.command_rate_hz);
@@ -145,8 +147,8 @@ HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& s
     o.ticks_per_rev = ticks;
     o.track_width_m = odo->get_in_range_or("track_width_m", 1e-3, 10.0, o.track_width_m);
     o.speed_window_s = odo->get_in_range_or("speed_window_s", 1e-3, 10.0, o.speed_window_s);
-    o.max_plausible_wheel_speed_mps = odo->get_in_range_or(
-        "max_plausible_wheel_speed_mps", 1e-3, 1000.0, o.max_plausible_wheel_speed_mps);
+    o.max_plausible_wheel_speed_mps = odo->get_in_range_or("max_plausible_wheel_speed_mps", 1e-3,
+                                                           1000.0, o.max_plausible_wheel_speed_mps);
   }
   c.check();
   return c;
@@ -177,12 +179,13 @@ void emit_hw_ugv_config(YAML::Emitter& e, const HwUgvConfig& c) {
   }
   e << YAML::EndMap;
   const DiffDriveParams& o = c.odometry;
-  internal::emit_key_number_map(e, "odometry",
-                                {{"wheel_radius_m", o.wheel_radius_m},
-                                 {"ticks_per_rev", o.ticks_per_rev},
-                                 {"track_width_m", o.track_width_m},
-                                 {"speed_window_s", o.speed_window_s},
-                                 {"max_plausible_wheel_speed_mps", o.max_plausible_wheel_speed_mps}});
+  internal::emit_key_number_map(
+      e, "odometry",
+      {{"wheel_radius_m", o.wheel_radius_m},
+       {"ticks_per_rev", o.ticks_per_rev},
+       {"track_width_m", o.track_width_m},
+       {"speed_window_s", o.speed_window_s},
+       {"max_plausible_wheel_speed_mps", o.max_plausible_wheel_speed_mps}});
 }
 
 }  // namespace ferret::ugv

@@ -24,31 +24,50 @@ constexpr double kWayHomeSnap_m = 0.3;         ///< how far from a wrap point a 
 
 std::string_view to_string(UgvMissionState state) {
   switch (state) {
-    case UgvMissionState::kIdle: return "idle";
-    case UgvMissionState::kExplore: return "explore";
-    case UgvMissionState::kTrack: return "track";
-    case UgvMissionState::kTurn: return "turn";
-    case UgvMissionState::kGrasp: return "grasp";
-    case UgvMissionState::kReturn: return "return";
-    case UgvMissionState::kAwaitRetract: return "await_retract";
-    case UgvMissionState::kDone: return "done";
+    case UgvMissionState::kIdle:
+      return "idle";
+    case UgvMissionState::kExplore:
+      return "explore";
+    case UgvMissionState::kTrack:
+      return "track";
+    case UgvMissionState::kTurn:
+      return "turn";
+    case UgvMissionState::kGrasp:
+      return "grasp";
+    case UgvMissionState::kReturn:
+      return "return";
+    case UgvMissionState::kAwaitRetract:
+      return "await_retract";
+    case UgvMissionState::kDone:
+      return "done";
   }
   return "?";
 }
 
 std::string_view to_string(UgvMissionOutcome outcome) {
   switch (outcome) {
-    case UgvMissionOutcome::kNone: return "none";
-    case UgvMissionOutcome::kObjectRetrieved: return "object_retrieved";
-    case UgvMissionOutcome::kNoObject: return "no_object";
-    case UgvMissionOutcome::kGraspFailed: return "grasp_failed";
-    case UgvMissionOutcome::kTrackLost: return "track_lost";
-    case UgvMissionOutcome::kBatteryLow: return "battery_low";
-    case UgvMissionOutcome::kSearchTimeout: return "search_timeout";
-    case UgvMissionOutcome::kReturnFailed: return "return_failed";
-    case UgvMissionOutcome::kRetractTimeout: return "retract_timeout";
-    case UgvMissionOutcome::kAborted: return "aborted";
-    case UgvMissionOutcome::kRecalled: return "recalled";
+    case UgvMissionOutcome::kNone:
+      return "none";
+    case UgvMissionOutcome::kObjectRetrieved:
+      return "object_retrieved";
+    case UgvMissionOutcome::kNoObject:
+      return "no_object";
+    case UgvMissionOutcome::kGraspFailed:
+      return "grasp_failed";
+    case UgvMissionOutcome::kTrackLost:
+      return "track_lost";
+    case UgvMissionOutcome::kBatteryLow:
+      return "battery_low";
+    case UgvMissionOutcome::kSearchTimeout:
+      return "search_timeout";
+    case UgvMissionOutcome::kReturnFailed:
+      return "return_failed";
+    case UgvMissionOutcome::kRetractTimeout:
+      return "retract_timeout";
+    case UgvMissionOutcome::kAborted:
+      return "aborted";
+    case UgvMissionOutcome::kRecalled:
+      return "recalled";
   }
   return "?";
 }
@@ -77,8 +96,7 @@ void UgvMissionOptions::validate(const std::string& source) const {
   positive(return_timeout_min_s, "ugv.return_timeout_min_s", "s");
   positive(retract_timeout_s, "ugv.retract_timeout_s", "s");
   positive(battery_endurance_s, "ugv.battery_endurance_s", "s");
-  check_number(bump_time_s, NumberRange::closed(0.05, 10.0, "s"), source,
-               "ugv.base.stall_time_s");
+  check_number(bump_time_s, NumberRange::closed(0.05, 10.0, "s"), source, "ugv.base.stall_time_s");
   check_number(battery_reserve_fraction, NumberRange::closed(0.0, 0.9), source,
                "ugv.battery_reserve_fraction");
   check_number(line_catch.pull_budget_n, NumberRange::non_negative(1e4, "N"), source,
@@ -194,7 +212,8 @@ std::vector<Eigen::Vector2d> MiniUgvMission::path_home(const Pose2& pose, int wi
     const bool last = k + 1 == nodes.size();
     // Wrap points of a slanted wall lie a cell apart: one node in a stretch will do.
     if (!last && (nodes[k] - path.back()).norm() < kWayHomeNodeSpacing_m) continue;
-    home_planner_->compute(explore_->grid(), from, GridPathPlanner::Traversal::kKnownFree, escape_m);
+    home_planner_->compute(explore_->grid(), from, GridPathPlanner::Traversal::kKnownFree,
+                           escape_m);
     // The node itself, or the nearest cell G can reach near it: a wrap point's offset
     // may lie in a wall's clearance band, and the entry's own cell may never have been
     // seen by the IR (the robot starts on it); within entry_tolerance_m is home.
@@ -280,10 +299,10 @@ void MiniUgvMission::begin_return(UgvMissionOutcome outcome, const std::string& 
   }
   // Four times the drive at full speed, and a half turn on the spot at every corner
   // (a way home along the tether turns at each wrap point).
-  state_timeout_s_ = std::max(options_.return_timeout_min_s,
-                              4.0 * drive_home_s(length_m) +
-                                  static_cast<double>(corners) * std::numbers::pi /
-                                      options_.explore.robot.max_yaw_rate_radps);
+  state_timeout_s_ =
+      std::max(options_.return_timeout_min_s,
+               4.0 * drive_home_s(length_m) + static_cast<double>(corners) * std::numbers::pi /
+                                                  options_.explore.robot.max_yaw_rate_radps);
   next_replan_s_ = clock_.now_s() + kReplanPeriod_s;
 }
 
@@ -321,7 +340,8 @@ VelocityCommand MiniUgvMission::servo(const Pose2& pose, const CameraFrame* fram
     for (const auto& d : frame->detections) {
       if (!(d.distance_m > 0) || !std::isfinite(d.bearing_rad)) continue;
       const double a = pose.yaw_rad + d.bearing_rad;
-      const Eigen::Vector2d p = pose.position() + d.distance_m * Eigen::Vector2d(std::cos(a), std::sin(a));
+      const Eigen::Vector2d p =
+          pose.position() + d.distance_m * Eigen::Vector2d(std::cos(a), std::sin(a));
       const double err = (p - target_W_).norm();
       if (err < best_err) {
         best_err = err;
@@ -330,8 +350,7 @@ VelocityCommand MiniUgvMission::servo(const Pose2& pose, const CameraFrame* fram
     }
     if (best) {
       const double a = pose.yaw_rad + best->bearing_rad;
-      target_W_ = pose.position() +
-                  best->distance_m * Eigen::Vector2d(std::cos(a), std::sin(a));
+      target_W_ = pose.position() + best->distance_m * Eigen::Vector2d(std::cos(a), std::sin(a));
       last_detection_s_ = now;
     }
   }
@@ -343,8 +362,8 @@ VelocityCommand MiniUgvMission::servo(const Pose2& pose, const CameraFrame* fram
   c.w_radps = std::clamp(options_.servo_yaw_gain_per_s * bearing, -r.max_yaw_rate_radps,
                          r.max_yaw_rate_radps);
   if (std::abs(bearing) < 0.3)
-    c.v_mps = std::clamp(options_.servo_gain_per_s * (distance - options_.standoff_m), -0.5 * options_.servo_max_speed_mps,
-                         options_.servo_max_speed_mps);
+    c.v_mps = std::clamp(options_.servo_gain_per_s * (distance - options_.standoff_m),
+                         -0.5 * options_.servo_max_speed_mps, options_.servo_max_speed_mps);
   return guarded(pose, c);
 }
 
@@ -377,9 +396,10 @@ void MiniUgvMission::tick() {
   const double line_m =
       options_.explore.mission.tether.entry_offset_m + explore_->tether_length_m();
   const double doubt_m = explore_->reach_length_m() - explore_->tether_length_m();
-  line_speed_mps_ = options_.explore.tether_budget_m && doubt_m > options_.line_catch.stretch_m(line_m)
-                       ? options_.line_catch.speed_mps(line_m)
-                       : std::numeric_limits<double>::infinity();
+  line_speed_mps_ =
+      options_.explore.tether_budget_m && doubt_m > options_.line_catch.stretch_m(line_m)
+          ? options_.line_catch.speed_mps(line_m)
+          : std::numeric_limits<double>::infinity();
   explore_->set_speed_limit_mps(line_speed_mps_);
   follower_.set_speed_limit_mps(line_speed_mps_);
   std::optional<CameraFrame> frame;
@@ -456,8 +476,8 @@ void MiniUgvMission::tick() {
         base_.set_epm(true);
         grasp_from_W_ = pose.position();
         ++grasp_attempt_;
-        enter(UgvMissionState::kGrasp, "EPM on, backing onto the object (attempt " +
-                                           std::to_string(grasp_attempt_) + ")");
+        enter(UgvMissionState::kGrasp,
+              "EPM on, backing onto the object (attempt " + std::to_string(grasp_attempt_) + ")");
         state_timeout_s_ = options_.grasp_timeout_s;
         break;
       }
@@ -472,8 +492,8 @@ void MiniUgvMission::tick() {
         break;
       }
       const double backed_m = (pose.position() - grasp_from_W_).norm();
-      const double gap_m = options_.standoff_m - options_.rear_offset_m -
-                           options_.explore.sensors.object_radius_m;
+      const double gap_m =
+          options_.standoff_m - options_.rear_offset_m - options_.explore.sensors.object_radius_m;
       if (backed_m >= gap_m + options_.grasp_overshoot_m || timed_out) {
         base_.set_epm(false);
         if (grasp_attempt_ >= options_.grasp_attempts) {

@@ -48,7 +48,9 @@ json parse_reply(const StreamMessage& m, const std::string& op) {
   if (j.is_discarded() || !j.is_object()) broken(op, "is not a JSON object");
   if (!j.contains("ok") || !j["ok"].is_boolean()) broken(op, "has no boolean 'ok'");
   if (!j["ok"].get<bool>()) {
-    const std::string why = j.contains("error") && j["error"].is_string() ? j["error"].get<std::string>() : "no reason given";
+    const std::string why = j.contains("error") && j["error"].is_string()
+                                ? j["error"].get<std::string>()
+                                : "no reason given";
     throw UgvBaseProtocolError("miniUGV base: '" + op + "' refused: " + printable(why));
   }
   return j;
@@ -67,12 +69,14 @@ double field(const json& j, const char* key, const std::string& op) {
 }
 
 bool flag(const json& j, const char* key, const std::string& op) {
-  if (!j.contains(key) || !j[key].is_boolean()) broken(op, std::string("has no boolean '") + key + "'");
+  if (!j.contains(key) || !j[key].is_boolean())
+    broken(op, std::string("has no boolean '") + key + "'");
   return j[key].get<bool>();
 }
 
 const json& array(const json& j, const char* key, const std::string& op) {
-  if (!j.is_object() || !j.contains(key) || !j[key].is_array()) broken(op, std::string("has no array '") + key + "'");
+  if (!j.is_object() || !j.contains(key) || !j[key].is_array())
+    broken(op, std::string("has no array '") + key + "'");
   return j[key];
 }
 
@@ -89,12 +93,14 @@ RangeScan scan_of(const json& j, const std::string& op) {
   if (!(s.max_range_m > 0.0)) broken(op, "has 'max_range_m' not > 0");
   const json& beams = array(j, "beams", op);
   if (beams.size() % 2 != 0 || beams.size() / 2 > kMaxRemoteBeams)
-    broken(op, "has 'beams' not pairs of (bearing, range), at most " + std::to_string(kMaxRemoteBeams));
+    broken(op,
+           "has 'beams' not pairs of (bearing, range), at most " + std::to_string(kMaxRemoteBeams));
   s.beams.reserve(beams.size() / 2);
   for (std::size_t k = 0; k < beams.size(); k += 2) {
     RangeBeam b;
     b.bearing_rad = finite(beams[k], op, "beams");
-    b.range_m = beams[k + 1].is_null() ? std::numeric_limits<double>::infinity() : finite(beams[k + 1], op, "beams");
+    b.range_m = beams[k + 1].is_null() ? std::numeric_limits<double>::infinity()
+                                       : finite(beams[k + 1], op, "beams");
     if (b.range_m < 0.0) broken(op, "has a negative range");
     s.beams.push_back(b);
   }
@@ -167,12 +173,15 @@ RemoteUgvBase::RemoteUgvBase(link::RpcChannel& channel, std::string backend)
       channel_.call(dump_json({{"op", "hello"}, {"protocol", kUgvBaseProtocol}})), "hello");
   if (!j.contains("protocol") || !j["protocol"].is_number_integer() ||
       j["protocol"].get<long long>() != kUgvBaseProtocol)
-    throw UgvBaseProtocolError("miniUGV base: the server does not speak protocol " + std::to_string(kUgvBaseProtocol));
-  if (j.contains("server") && j["server"].is_string()) server_ = printable(j["server"].get<std::string>());
+    throw UgvBaseProtocolError("miniUGV base: the server does not speak protocol " +
+                               std::to_string(kUgvBaseProtocol));
+  if (j.contains("server") && j["server"].is_string())
+    server_ = printable(j["server"].get<std::string>());
 }
 
 Pose2 RemoteUgvBase::odometry() const {
-  return pose_of(parse_reply(channel_.call(R"({"op":"odometry"})"), "odometry"), "pose", "odometry");
+  return pose_of(parse_reply(channel_.call(R"({"op":"odometry"})"), "odometry"), "pose",
+                 "odometry");
 }
 
 double RemoteUgvBase::speed_mps() const {
@@ -198,8 +207,10 @@ CameraFrame RemoteUgvBase::camera_frame(double time_s) {
   if (detections.size() > kMaxRemoteDetections)
     broken(op, "has more than " + std::to_string(kMaxRemoteDetections) + " detections");
   for (const json& d : detections) {
-    if (!d.is_array() || d.size() != 3) broken(op, "has a detection not [bearing, distance, confidence]");
-    ObjectDetection o{finite(d[0], op, "detections"), finite(d[1], op, "detections"), finite(d[2], op, "detections")};
+    if (!d.is_array() || d.size() != 3)
+      broken(op, "has a detection not [bearing, distance, confidence]");
+    ObjectDetection o{finite(d[0], op, "detections"), finite(d[1], op, "detections"),
+                      finite(d[2], op, "detections")};
     if (!(o.distance_m > 0.0)) broken(op, "has a detection whose distance is not > 0");
     frame.detections.push_back(o);
   }

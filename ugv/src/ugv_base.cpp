@@ -28,7 +28,8 @@ std::string describe_faults(std::uint32_t faults) {
                                       UgvFault::kCamera,   UgvFault::kEpm};
   std::string out;
   for (const UgvFault f : kAll)
-    if (faults & static_cast<std::uint32_t>(f)) out += (out.empty() ? "" : ", ") + std::string(to_string(f));
+    if (faults & static_cast<std::uint32_t>(f))
+      out += (out.empty() ? "" : ", ") + std::string(to_string(f));
   return out.empty() ? "none" : out;
 }
 

@@ -13,10 +13,13 @@ namespace {
 
 // The link mirrors the mission's enums value for value (link/messages.hpp).
 static_assert(static_cast<int>(UgvMissionState::kDone) == static_cast<int>(link::UgvMode::kDone));
-static_assert(static_cast<int>(UgvMissionOutcome::kRecalled) == static_cast<int>(link::UgvOutcome::kRecalled));
+static_assert(static_cast<int>(UgvMissionOutcome::kRecalled) ==
+              static_cast<int>(link::UgvOutcome::kRecalled));
 
 link::UgvMode mode_of(UgvMissionState s) { return static_cast<link::UgvMode>(static_cast<int>(s)); }
-link::UgvOutcome outcome_of(UgvMissionOutcome o) { return static_cast<link::UgvOutcome>(static_cast<int>(o)); }
+link::UgvOutcome outcome_of(UgvMissionOutcome o) {
+  return static_cast<link::UgvOutcome>(static_cast<int>(o));
+}
 
 // The wire's ranges (docs/link.md): a value past them is the sender's bug, so it is
 // held inside them here rather than thrown at the robot's control loop.
@@ -24,8 +27,12 @@ float clamped(double v, double limit) { return static_cast<float>(std::clamp(v, 
 
 }  // namespace
 
-UgvLinkEndpoint::UgvLinkEndpoint(const Clock& clock, StartSearch start_search, UgvLinkEndpointOptions options)
-    : clock_(clock), start_search_(std::move(start_search)), options_(options), session_(clock, options.link) {
+UgvLinkEndpoint::UgvLinkEndpoint(const Clock& clock, StartSearch start_search,
+                                 UgvLinkEndpointOptions options)
+    : clock_(clock),
+      start_search_(std::move(start_search)),
+      options_(options),
+      session_(clock, options.link) {
   if (!(std::isfinite(options_.telemetry_period_s) && options_.telemetry_period_s > 0.0))
     throw std::invalid_argument("UgvLinkEndpoint: telemetry_period_s must be > 0");
   if (!start_search_) throw std::invalid_argument("UgvLinkEndpoint: no start_search");
@@ -39,9 +46,12 @@ void UgvLinkEndpoint::set_attitude(double roll_rad, double pitch_rad) {
 void UgvLinkEndpoint::act_on(const link::UavRequest& r) {
   using Kind = link::UavRequest::Kind;
   last_request_id_ = r.request_id;
-  if (r.kind == Kind::kReleaseObject) {  // under the UAV: the magnet is the robot's, not the mission's
-    if (base_) base_->set_epm(false);
-    else ++without_mission_;
+  if (r.kind ==
+      Kind::kReleaseObject) {  // under the UAV: the magnet is the robot's, not the mission's
+    if (base_)
+      base_->set_epm(false);
+    else
+      ++without_mission_;
     return;
   }
   if (r.kind == Kind::kStartSearch) {
@@ -81,7 +91,8 @@ void UgvLinkEndpoint::act_on(const link::UavRequest& r) {
 
 bool UgvLinkEndpoint::handle_requests() {
   while (const auto request = session_.next_request()) act_on(*request);
-  const bool under_way = mission_ && !mission_->done() && mission_->state() != UgvMissionState::kIdle;
+  const bool under_way =
+      mission_ && !mission_->done() && mission_->state() != UgvMissionState::kIdle;
   const bool hold = under_way && session_.peer_silent();
   if (hold && !holding_) ++holds_;
   holding_ = hold;
@@ -128,7 +139,8 @@ link::UgvTelemetry UgvLinkEndpoint::telemetry() const {
     t.tether_anchor_y_m = std::clamp(a->first.y(), -1e5, 1e5);
     t.tether_to_anchor_m = std::clamp(a->second, 0.0, 1e4);
     t.tether_uncertainty_m = static_cast<float>(std::clamp(
-        m.explore_controller().reach_length_m() - m.explore_controller().tether_length_m(), 0.0, 1e4));
+        m.explore_controller().reach_length_m() - m.explore_controller().tether_length_m(), 0.0,
+        1e4));
   } else {
     t.tether_anchor_x_m = m.entry_W().x();
     t.tether_anchor_y_m = m.entry_W().y();

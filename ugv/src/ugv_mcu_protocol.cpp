@@ -92,7 +92,7 @@ std::string type_name(std::uint8_t message_type) {
 
 std::string describe_faults(std::uint16_t faults) {
   static constexpr std::array<const char*, 9> kNames = {
-      "motor_left", "motor_right", "encoder",          "imu",     "ir",
+      "motor_left", "motor_right",      "encoder",  "imu",     "ir",
       "epm",        "battery_critical", "brownout", "host_crc"};
   if (faults == 0) return "none";
   std::string out;
@@ -114,8 +114,8 @@ std::vector<std::uint8_t> encode_frame(const Frame& frame) {
   const std::size_t length = std::min<std::size_t>(frame.payload.size(), 255);
   std::vector<std::uint8_t> out;
   out.reserve(kHeaderSize + length + kCrcSize);
-  for (const std::uint8_t b : {kSync0, kSync1, frame.version, frame.type, frame.seq,
-                               static_cast<std::uint8_t>(length)})
+  for (const std::uint8_t b :
+       {kSync0, kSync1, frame.version, frame.type, frame.seq, static_cast<std::uint8_t>(length)})
     out.push_back(b);
   for (std::size_t i = 0; i < length; ++i) out.push_back(frame.payload[i]);
   put_u16(out, crc16_ccitt(std::span(out).subspan(2)));

@@ -1,7 +1,5 @@
 #include "checked_number.hpp"
 
-#include "ferret/core/number.hpp"
-
 #include <fmt/format.h>
 
 #include <charconv>
@@ -9,6 +7,7 @@
 #include <string_view>
 
 #include "ferret/core/error.hpp"
+#include "ferret/core/number.hpp"
 #include "xml_check.hpp"
 
 namespace ferret::internal {

@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
     const auto back = ferret::load_map_server(argv[1]);
     int occupied = 0;
     for (auto c : back.cells) occupied += c == ferret::CellState::kOccupied;
-    std::printf("consumer ok: %dx%d cells, %d occupied\n", back.geometry.width, back.geometry.height, occupied);
+    std::printf("consumer ok: %dx%d cells, %d occupied\n", back.geometry.width,
+                back.geometry.height, occupied);
   } catch (const ferret::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;

@@ -34,8 +34,8 @@ class FoxgloveLog {
   void transform(double t_s, const std::string& parent, const std::string& child,
                  const Pose3& X_PC);
   /// A planar pose at height z.
-  void transform(double t_s, const std::string& parent, const std::string& child,
-                 const Pose2& X_PC, double z_m = 0.0);
+  void transform(double t_s, const std::string& parent, const std::string& child, const Pose2& X_PC,
+                 double z_m = 0.0);
   /// A 2D grid of one uint8 field `field` (row-major from the origin corner, x fastest)
   /// in `frame`, its corner at (origin_x, origin_y).
   void grid(double t_s, const std::string& topic, const std::string& frame, double origin_x_m,
@@ -46,9 +46,9 @@ class FoxgloveLog {
             const std::vector<Eigen::Vector3d>& points, const RgbaColor& color,
             double thickness_m = 0.03);
   /// A sphere with a text label above it.
-  void marker(double t_s, const std::string& topic, const std::string& frame,
-              const std::string& id, const Eigen::Vector3d& p, double diameter_m,
-              const RgbaColor& color, const std::string& label);
+  void marker(double t_s, const std::string& topic, const std::string& frame, const std::string& id,
+              const Eigen::Vector3d& p, double diameter_m, const RgbaColor& color,
+              const std::string& label);
   /// One log line (topic /log): level 1 debug, 2 info, 3 warning, 4 error.
   void log(double t_s, const std::string& name, const std::string& text, int level = 2);
 

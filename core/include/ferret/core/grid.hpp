@@ -25,8 +25,12 @@ struct GridGeometry {
   int height = 0;  ///< cells along y
 
   [[nodiscard]] std::size_t size() const { return static_cast<std::size_t>(width) * height; }
-  [[nodiscard]] bool contains(Cell c) const { return c.i >= 0 && c.j >= 0 && c.i < width && c.j < height; }
-  [[nodiscard]] std::size_t index(Cell c) const { return static_cast<std::size_t>(c.j) * width + c.i; }
+  [[nodiscard]] bool contains(Cell c) const {
+    return c.i >= 0 && c.j >= 0 && c.i < width && c.j < height;
+  }
+  [[nodiscard]] std::size_t index(Cell c) const {
+    return static_cast<std::size_t>(c.j) * width + c.i;
+  }
   [[nodiscard]] Cell cell_of_index(std::size_t idx) const {
     return {static_cast<int>(idx % width), static_cast<int>(idx / width)};
   }
@@ -50,8 +54,10 @@ struct GridGeometry {
     g.resolution_m = resolution_m;
     g.width = std::max(1, static_cast<int>(std::ceil(size_x_m / resolution_m)));
     g.height = std::max(1, static_cast<int>(std::ceil(size_y_m / resolution_m)));
-    g.origin_x_m = std::floor((center_W.x() - 0.5 * g.width * resolution_m) / resolution_m) * resolution_m;
-    g.origin_y_m = std::floor((center_W.y() - 0.5 * g.height * resolution_m) / resolution_m) * resolution_m;
+    g.origin_x_m =
+        std::floor((center_W.x() - 0.5 * g.width * resolution_m) / resolution_m) * resolution_m;
+    g.origin_y_m =
+        std::floor((center_W.y() - 0.5 * g.height * resolution_m) / resolution_m) * resolution_m;
     return g;
   }
 };

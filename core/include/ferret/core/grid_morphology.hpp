@@ -11,8 +11,8 @@ namespace ferret {
 /// square vanish. Cells outside the grid count as set during the erosion (a region at
 /// the border is not shaved off by the border). The result is a subset of `mask`.
 /// @pre mask.size() == width * height, r >= 0
-[[nodiscard]] std::vector<std::uint8_t> open_square(const std::vector<std::uint8_t>& mask, int width,
-                                                    int height, int r);
+[[nodiscard]] std::vector<std::uint8_t> open_square(const std::vector<std::uint8_t>& mask,
+                                                    int width, int height, int r);
 
 /// The cells of `room` within `radius_cells` (Euclidean, centre to centre) of a cell of
 /// `seeds`, reached from that seed through cells of `room` (8-connected): how far a
@@ -22,7 +22,7 @@ namespace ferret {
 /// take; never one farther than the radius.
 /// @pre seeds.size() == room.size() == width * height, radius_cells >= 0
 [[nodiscard]] std::vector<std::uint8_t> grow_within(const std::vector<std::uint8_t>& seeds,
-                                                    const std::vector<std::uint8_t>& room, int width,
-                                                    int height, double radius_cells);
+                                                    const std::vector<std::uint8_t>& room,
+                                                    int width, int height, double radius_cells);
 
 }  // namespace ferret

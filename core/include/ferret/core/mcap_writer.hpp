@@ -47,7 +47,7 @@ class McapWriter {
   };
   void close_chunk();
 
-  std::string out_;  ///< the file so far (magic, header, data section)
+  std::string out_;                 ///< the file so far (magic, header, data section)
   std::string schemas_, channels_;  ///< their records, again for the summary
   std::uint16_t next_schema_ = 1, next_channel_ = 1;
   std::size_t chunk_bytes_;

@@ -39,7 +39,8 @@ struct NumberRange {
     return {0.0, hi, false, false, unit};
   }
   /// [lo, hi].
-  [[nodiscard]] static constexpr NumberRange closed(double lo, double hi, std::string_view unit = {}) {
+  [[nodiscard]] static constexpr NumberRange closed(double lo, double hi,
+                                                    std::string_view unit = {}) {
     return {lo, hi, false, false, unit};
   }
 };

@@ -12,7 +12,8 @@ namespace ferret {
 
 /// Mixes a seed with further integers (map id, zone, object index, ...) into a new
 /// seed, so that runs can be addressed independently and still be reproducible.
-[[nodiscard]] std::uint64_t derive_seed(std::uint64_t seed, std::initializer_list<std::uint64_t> parts);
+[[nodiscard]] std::uint64_t derive_seed(std::uint64_t seed,
+                                        std::initializer_list<std::uint64_t> parts);
 
 /// Stable 64-bit hash of a string (FNV-1a), for deriving seeds from names.
 [[nodiscard]] std::uint64_t stable_hash(const char* text);

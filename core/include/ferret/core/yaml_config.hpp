@@ -29,11 +29,16 @@ namespace ferret::yaml {
 namespace internal {
 template <class T>
 constexpr const char* type_description() {
-  if constexpr (std::is_same_v<T, bool>) return "true or false";
-  else if constexpr (std::is_integral_v<T>) return "an integer";
-  else if constexpr (std::is_floating_point_v<T>) return "a number";
-  else if constexpr (std::is_same_v<T, std::string>) return "a string";
-  else return "a value of the right type";
+  if constexpr (std::is_same_v<T, bool>)
+    return "true or false";
+  else if constexpr (std::is_integral_v<T>)
+    return "an integer";
+  else if constexpr (std::is_floating_point_v<T>)
+    return "a number";
+  else if constexpr (std::is_same_v<T, std::string>)
+    return "a string";
+  else
+    return "a value of the right type";
 }
 std::string describe(const YAML::Node& node);
 }  // namespace internal
@@ -52,13 +57,15 @@ class MapReader {
   /// Required scalar field.
   template <class T>
   [[nodiscard]] T get(std::string_view key) const {
-    if (!has(key)) fail(key, std::string(internal::type_description<T>()) + " (required field missing)");
+    if (!has(key))
+      fail(key, std::string(internal::type_description<T>()) + " (required field missing)");
     return convert<T>(node_[std::string(key)], field_path(key));
   }
   /// Optional scalar field with a default.
   template <class T>
   [[nodiscard]] T get_or(std::string_view key, T fallback) const {
-    if (given_empty(key)) fail(key, std::string(internal::type_description<T>()), "a key without a value");
+    if (given_empty(key))
+      fail(key, std::string(internal::type_description<T>()), "a key without a value");
     return has(key) ? convert<T>(node_[std::string(key)], field_path(key)) : fallback;
   }
   /// True when `key` is written with no value (`key:` or `key: null`): for a scalar
@@ -67,7 +74,8 @@ class MapReader {
   /// Required number in [lo, hi].
   [[nodiscard]] double get_in_range(std::string_view key, double lo, double hi) const;
   /// Optional number in [lo, hi] with a default.
-  [[nodiscard]] double get_in_range_or(std::string_view key, double lo, double hi, double fallback) const;
+  [[nodiscard]] double get_in_range_or(std::string_view key, double lo, double hi,
+                                       double fallback) const;
   /// Required sequence of scalars; `size` > 0 demands exactly that many entries.
   template <class T>
   [[nodiscard]] std::vector<T> get_list(std::string_view key, std::size_t size = 0) const {
@@ -75,7 +83,8 @@ class MapReader {
     const YAML::Node list = node_[std::string(key)];
     const std::string path = field_path(key);
     if (!list.IsSequence() || (size > 0 && list.size() != size)) {
-      const std::string what = size > 0 ? "a list of " + std::to_string(size) + " values" : "a list";
+      const std::string what =
+          size > 0 ? "a list of " + std::to_string(size) + " values" : "a list";
       throw InputError(source_, path, what, internal::describe(list));
     }
     std::vector<T> out;
@@ -105,15 +114,16 @@ class MapReader {
   template <class T>
   [[nodiscard]] T convert(const YAML::Node& value, const std::string& path) const {
     if constexpr (!std::is_same_v<T, std::string>) {
-      if (!value.IsScalar()) throw InputError(source_, path, internal::type_description<T>(), internal::describe(value));
+      if (!value.IsScalar())
+        throw InputError(source_, path, internal::type_description<T>(), internal::describe(value));
     }
     // Numbers through ferret's one number parser: finite, whole text, no wrapping.
     if constexpr (std::is_floating_point_v<T>) {
       return static_cast<T>(parse_number(value.Scalar(), NumberRange::finite(), source_, path));
     } else if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
       if constexpr (std::is_unsigned_v<T>)
-        return static_cast<T>(parse_unsigned(value.Scalar(), source_, path,
-                                             std::numeric_limits<T>::max()));
+        return static_cast<T>(
+            parse_unsigned(value.Scalar(), source_, path, std::numeric_limits<T>::max()));
       else
         return static_cast<T>(parse_integer(value.Scalar(), std::numeric_limits<T>::min(),
                                             std::numeric_limits<T>::max(), source_, path));

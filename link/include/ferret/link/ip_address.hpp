@@ -18,10 +18,11 @@ struct Ipv4Address {
 };
 
 /// Parses "a.b.c.d:port" (dotted decimal) or "localhost:port". A port of 0 (any free
-/// port) is allowed only where `allow_any_port` says so (binding or listening, not sending or connecting).
+/// port) is allowed only where `allow_any_port` says so (binding or listening, not sending or
+/// connecting).
 /// @throws InputError(source, field, "an IPv4 address:port ...", text)
 [[nodiscard]] Ipv4Address parse_ipv4_address(std::string_view text, const std::string& source,
-                                           const std::string& field = {},
-                                           bool allow_any_port = false);
+                                             const std::string& field = {},
+                                             bool allow_any_port = false);
 
 }  // namespace ferret::link

@@ -1,8 +1,8 @@
 #pragma once
 // Request/response messages over TCP between a robot process and what serves its
-// hardware: an onboard flight adapter (docs/flight_adapter.md) or a simulated one. A message is a JSON header and an optional
-// binary blob (a camera frame): on the wire, two little-endian uint32 lengths (header,
-// blob), then the header's UTF-8 bytes, then the blob.
+// hardware: an onboard flight adapter (docs/flight_adapter.md) or a simulated one. A message is a
+// JSON header and an optional binary blob (a camera frame): on the wire, two little-endian uint32
+// lengths (header, blob), then the header's UTF-8 bytes, then the blob.
 
 #include <cstdint>
 #include <memory>
@@ -101,10 +101,11 @@ class StreamRpcChannel final : public RpcChannel {
 /// The robot link's datagrams carried in a stream message's blob (the simulated world
 /// relays them between the robot processes through its simulated network): each as a
 /// little-endian uint32 length, then its bytes.
-[[nodiscard]] std::vector<std::uint8_t> pack_datagrams(const std::vector<std::vector<std::uint8_t>>& datagrams);
+[[nodiscard]] std::vector<std::uint8_t> pack_datagrams(
+    const std::vector<std::vector<std::uint8_t>>& datagrams);
 /// The datagrams of a blob; StreamError for a length past the blob's end, or a datagram
 /// longer than `max_datagram_bytes` (the robot link's are a few hundred bytes).
-[[nodiscard]] std::vector<std::vector<std::uint8_t>> unpack_datagrams(const std::vector<std::uint8_t>& blob,
-                                                                      std::size_t max_datagram_bytes = 65536);
+[[nodiscard]] std::vector<std::vector<std::uint8_t>> unpack_datagrams(
+    const std::vector<std::uint8_t>& blob, std::size_t max_datagram_bytes = 65536);
 
 }  // namespace ferret::link

@@ -78,9 +78,9 @@ struct MapServerMeta {
 /// alpha ignored), or v / 255 when `negate`; occupancy > occupied_thresh is
 /// occupied, < free_thresh free, anything between unknown. The top image row is
 /// the map's top (largest y). A `search` mapping (ferret's object-search start and
-/// zones, read by `ferret experiment`) is allowed beside map_server's keys. Throws InputError naming the file and field for
-/// anything malformed (missing keys, bad thresholds, truncated PGM, a non-zero
-/// origin yaw, which map_server also does not honour, a mode other than trinary).
+/// zones, read by `ferret experiment`) is allowed beside map_server's keys. Throws InputError
+/// naming the file and field for anything malformed (missing keys, bad thresholds, truncated PGM, a
+/// non-zero origin yaw, which map_server also does not honour, a mode other than trinary).
 [[nodiscard]] OccupancyMap2D load_map_server(const std::filesystem::path& yaml_path);
 
 /// Writes `<stem>.yaml` and `<stem>.pgm` (trinary: 0 occupied, 254 free, 205

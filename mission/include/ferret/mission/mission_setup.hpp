@@ -37,7 +37,8 @@ struct MissionSetup {
 
 /// InputError (naming the world file and the hidden space) unless every opening admits
 /// the miniUGV: its collision box's width and height at most the opening's.
-void check_openings_admit(const WorldSpec& world, const std::string& source, const RobotDescription& ugv);
+void check_openings_admit(const WorldSpec& world, const std::string& source,
+                          const RobotDescription& ugv);
 
 /// Loads and checks everything; InputError naming the option or the file and field.
 [[nodiscard]] MissionSetup load_mission_setup(const MissionSetupOptions& o);

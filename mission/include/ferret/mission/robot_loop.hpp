@@ -23,6 +23,7 @@ struct PeriodicLoopResult {
 /// Runs `step` every period_s (> 0) until it returns false, a signal, or duration_s (0:
 /// none) has passed. SIGINT and SIGTERM are caught only while it runs (their previous
 /// handlers are restored): a robot ends its loop and stops its actuators itself.
-PeriodicLoopResult run_periodic(double period_s, double duration_s, const std::function<bool()>& step);
+PeriodicLoopResult run_periodic(double period_s, double duration_s,
+                                const std::function<bool()>& step);
 
 }  // namespace ferret

@@ -23,5 +23,4 @@ namespace ferret {
                                                   const UgvMissionRunSettings& settings,
                                                   std::uint64_t seed, TransitionLog* log = nullptr);
 
-
 }  // namespace ferret

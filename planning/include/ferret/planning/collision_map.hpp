@@ -29,7 +29,8 @@ namespace ferret {
 enum class UnknownPolicy { kFree, kOccupied };
 [[nodiscard]] const char* to_string(UnknownPolicy policy);
 /// "free" or "occupied"; throws InputError naming `source` otherwise.
-[[nodiscard]] UnknownPolicy parse_unknown_policy(const std::string& text, const std::string& source);
+[[nodiscard]] UnknownPolicy parse_unknown_policy(const std::string& text,
+                                                 const std::string& source);
 
 struct Aabb3 {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero();
@@ -86,8 +87,8 @@ class CollisionMap {
   /// so FCL can never miss a leaf edited with lazy evaluation.
   /// Throws InputError (source "map") for kOccupied without bounds or bounds outside
   /// OctoMap's key range.
-  [[nodiscard]] static std::shared_ptr<const CollisionMap> build(const octomap::OcTree& source,
-                                                                 const CollisionMapOptions& options = {});
+  [[nodiscard]] static std::shared_ptr<const CollisionMap> build(
+      const octomap::OcTree& source, const CollisionMapOptions& options = {});
 
   ~CollisionMap();
   CollisionMap(const CollisionMap&) = delete;
@@ -122,7 +123,8 @@ class CollisionMap {
 /// Hands out the current snapshot to planner threads and swaps in new ones.
 class MapSnapshots {
  public:
-  explicit MapSnapshots(std::shared_ptr<const CollisionMap> initial) : current_(std::move(initial)) {}
+  explicit MapSnapshots(std::shared_ptr<const CollisionMap> initial)
+      : current_(std::move(initial)) {}
   [[nodiscard]] std::shared_ptr<const CollisionMap> current() const {
     std::lock_guard lock(mutex_);
     return current_;

@@ -59,7 +59,8 @@ enum class GoalRule {
 /// was found (PRM: "+ompl"; the grid path where PRM found none: "+grid").
 struct GoalReason {
   GoalReason() = default;
-  GoalReason(GoalRule r, std::optional<FrontierPlanner> by = std::nullopt)  // NOLINT: a rule is a reason
+  GoalReason(GoalRule r,
+             std::optional<FrontierPlanner> by = std::nullopt)  // NOLINT: a rule is a reason
       : rule(r), path_by(by) {}
   GoalRule rule = GoalRule::kNone;
   std::optional<FrontierPlanner> path_by;

@@ -32,7 +32,7 @@ namespace ferret {
 struct FrontierCandidates {
   GridGeometry geometry;
   std::vector<Cell> cells;
-  std::vector<double> weights;  ///< > 0, same length as cells
+  std::vector<double> weights;     ///< > 0, same length as cells
   std::vector<double> cumulative;  ///< prefix sums of weights (for drawing)
   /// Candidate indices, heaviest first (ties in the cells' order); the constructors
   /// below put the grid policy's choice first.
@@ -53,25 +53,30 @@ struct FrontierCandidates {
 };
 
 /// CDOS weights: curiosity loss over F_v (F_g with `global`), sharpened so the largest
-/// loss dominates, the cdos policy's goal first in `order`; the rapid weights where the losses are all zero or there is
-/// no candidate (with F_v empty: the nearest F_g cell first, Algorithm 1).
-[[nodiscard]] FrontierCandidates cdos_candidates(const ExplorationState& state, const CuriosityOptions& options,
-                                                 double max_velocity_mps = 2.0, bool global = false);
+/// loss dominates, the cdos policy's goal first in `order`; the rapid weights where the losses are
+/// all zero or there is no candidate (with F_v empty: the nearest F_g cell first, Algorithm 1).
+[[nodiscard]] FrontierCandidates cdos_candidates(const ExplorationState& state,
+                                                 const CuriosityOptions& options,
+                                                 double max_velocity_mps = 2.0,
+                                                 bool global = false);
 /// Rapid weights: exp(-|v_max u(g) - v| / (0.25 v_max)) over F_v, the rapid policy's
 /// goal first in `order`; where F_v is empty, exp(-path distance / 1 m) over F_g
 /// (nearest first).
-[[nodiscard]] FrontierCandidates rapid_candidates(const ExplorationState& state, double max_velocity_mps);
+[[nodiscard]] FrontierCandidates rapid_candidates(const ExplorationState& state,
+                                                  double max_velocity_mps);
 
 class FrontierValidStateSampler : public ompl::base::ValidStateSampler {
  public:
   FrontierValidStateSampler(const ompl::base::SpaceInformation* si,
-                            std::shared_ptr<const FrontierCandidates> candidates, std::uint64_t seed,
+                            std::shared_ptr<const FrontierCandidates> candidates,
+                            std::uint64_t seed,
                             std::shared_ptr<std::atomic<std::size_t>> counter = nullptr);
   /// A valid state at a frontier cell drawn by weight (uniform inside the cell, any
   /// heading); false after `attempts_` invalid draws.
   bool sample(ompl::base::State* state) override;
   /// A valid frontier state within `distance` of `near`, by weight among those cells.
-  bool sampleNear(ompl::base::State* state, const ompl::base::State* near, double distance) override;
+  bool sampleNear(ompl::base::State* state, const ompl::base::State* near,
+                  double distance) override;
 
  private:
   bool fill(ompl::base::State* state, std::size_t k);
@@ -94,8 +99,8 @@ class FrontierValidStateSampler : public ompl::base::ValidStateSampler {
 class FrontierGoal : public ompl::base::GoalSampleableRegion {
  public:
   using Reach = std::function<bool(Cell, const std::vector<Eigen::Vector2d>&)>;
-  FrontierGoal(const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const FrontierCandidates> candidates,
-               Reach within_reach = {});
+  FrontierGoal(const ompl::base::SpaceInformationPtr& si,
+               std::shared_ptr<const FrontierCandidates> candidates, Reach within_reach = {});
   double distanceGoal(const ompl::base::State* state) const override;
   void sampleGoal(ompl::base::State* state) const override;
   unsigned int maxSampleCount() const override;
@@ -114,8 +119,8 @@ struct FrontierPlan {
   std::vector<Eigen::Vector2d> path_W;  ///< from the robot to the frontier
   Cell goal;
   double planning_time_s = 0.0;
-  std::size_t samples_drawn = 0;  ///< by the frontier sampler
-  std::size_t out_of_reach = 0;   ///< connected goals refused for the tether's reach
+  std::size_t samples_drawn = 0;           ///< by the frontier sampler
+  std::size_t out_of_reach = 0;            ///< connected goals refused for the tether's reach
   std::vector<Eigen::Vector2d> roadmap_W;  ///< every roadmap state (figures, tests)
 };
 

@@ -95,8 +95,10 @@ class GridPathPlanner {
   /// within the body's reach, kNoneNear if there is none.
   static constexpr int kNoneNear = 1 << 30;
   [[nodiscard]] int nearest_occupied2(const IrGrid& grid, Cell c) const;
-  void refresh_crossable(const IrGrid& grid, Traversal traversal, std::span<const std::uint8_t> blocked);
-  void set_crossable(const IrGrid& grid, Traversal traversal, std::span<const std::uint8_t> blocked, Cell c);
+  void refresh_crossable(const IrGrid& grid, Traversal traversal,
+                         std::span<const std::uint8_t> blocked);
+  void set_crossable(const IrGrid& grid, Traversal traversal, std::span<const std::uint8_t> blocked,
+                     Cell c);
 
   GridGeometry geometry_;
   double body_radius_m_;

@@ -4,8 +4,8 @@
 // checked at exactly the poses validation checks (no returned path can fail it).
 
 #include <cmath>
-#include <limits>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <vector>
 

@@ -18,15 +18,24 @@ enum class PlanFailure {
 
 [[nodiscard]] inline const char* to_string(PlanFailure f) {
   switch (f) {
-    case PlanFailure::kNone: return "none";
-    case PlanFailure::kStartInvalid: return "start_occupied";
-    case PlanFailure::kGoalInvalid: return "goal_occupied";
-    case PlanFailure::kStartOutside: return "start_outside_bounds";
-    case PlanFailure::kGoalOutside: return "goal_outside_bounds";
-    case PlanFailure::kTetherTooShort: return "tether_too_short";
-    case PlanFailure::kTimeout: return "timeout";
-    case PlanFailure::kCancelled: return "cancelled";
-    case PlanFailure::kNoPath: return "no_valid_path";
+    case PlanFailure::kNone:
+      return "none";
+    case PlanFailure::kStartInvalid:
+      return "start_occupied";
+    case PlanFailure::kGoalInvalid:
+      return "goal_occupied";
+    case PlanFailure::kStartOutside:
+      return "start_outside_bounds";
+    case PlanFailure::kGoalOutside:
+      return "goal_outside_bounds";
+    case PlanFailure::kTetherTooShort:
+      return "tether_too_short";
+    case PlanFailure::kTimeout:
+      return "timeout";
+    case PlanFailure::kCancelled:
+      return "cancelled";
+    case PlanFailure::kNoPath:
+      return "no_valid_path";
   }
   return "none";
 }

@@ -186,7 +186,8 @@ struct ValidateRequest {
   /// Where the collision map comes from (default: built for this request). A program
   /// that validates many plans against one world (the planner service) keeps the maps
   /// it built, by collision_map_options_key(); building one is most of a validation.
-  std::function<std::shared_ptr<const CollisionMap>(const octomap::OcTree&, const CollisionMapOptions&)>
+  std::function<std::shared_ptr<const CollisionMap>(const octomap::OcTree&,
+                                                    const CollisionMapOptions&)>
       collision_map;
 };
 

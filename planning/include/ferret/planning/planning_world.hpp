@@ -123,7 +123,7 @@ struct LoadedPlanRobot {
 /// (its states empty when no path was found), and how the search went.
 struct PlanResult {
   bool solved = false;
-  std::string status;  ///< "solved", or why not
+  std::string status;                        ///< "solved", or why not
   PlanFailure failure = PlanFailure::kNone;  ///< why not, as a value
   PlanFile plan;
   double planning_time_s = 0.0;  ///< wall time (not in the plan file: runs would differ)

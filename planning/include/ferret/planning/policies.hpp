@@ -17,7 +17,8 @@ namespace ferret {
 /// The cdos goal among scored candidates (@pre non-empty): the largest loss L(C);
 /// losses within 1e-12 are equal and the one nearest `tie_anchor` wins (the
 /// confidence floor makes the loss flat far from the evidence).
-[[nodiscard]] std::size_t cdos_argmax(std::span<const ScoredFrontier> scored, const Eigen::Vector2d& tie_anchor);
+[[nodiscard]] std::size_t cdos_argmax(std::span<const ScoredFrontier> scored,
+                                      const Eigen::Vector2d& tie_anchor);
 
 /// Classic frontier: the reachable F_g cell of least path distance, facing the
 /// unknown. Commits to its goal while it stays a reachable, non-blacklisted frontier.

@@ -26,17 +26,17 @@ namespace ferret {
 
 struct UavPlannerOptions {
   Aabb3 geofence{{-30.0, -30.0, 0.5}, {30.0, 30.0, 8.0}};  ///< x, y fence; z is the altitude band
-  std::string planner = "rrtconnect";  ///< see ompl_planner_names()
+  std::string planner = "rrtconnect";                      ///< see ompl_planner_names()
   double time_limit_s = 1.0;
   int simplify_rounds =
       5;  ///< rounds of OMPL shortcut/reduce/collapse (stops early when none helps)
   CheckResolution resolution{0.05, 0.1};
-  double range_m = 0.0;                ///< planner range; 0 = the planner's default
+  double range_m = 0.0;  ///< planner range; 0 = the planner's default
   /// Re-check the final path with FCL alone instead of the checker (whose answers
   /// equal FCL's, 10-25x faster); `ferret validate` always uses FCL alone.
   bool final_check_fcl_only = false;
-  std::uint64_t seed = 1;              ///< seeds OMPL once per process (seed_ompl_once)
-  double max_velocity_mps = 5.0;       ///< for time stamps (MissionConfig::uav_limits)
+  std::uint64_t seed = 1;         ///< seeds OMPL once per process (seed_ompl_once)
+  double max_velocity_mps = 5.0;  ///< for time stamps (MissionConfig::uav_limits)
   double max_yaw_rate_radps = 1.0;
   double max_acceleration_mps2 = 2.0;  ///< for time stamps: every segment rest to rest
   /// Polled during the search: true stops it (a service's client went away, a drain).
@@ -53,7 +53,8 @@ struct UavPlan {
 
 class UavPlanner {
  public:
-  UavPlanner(std::shared_ptr<const CollisionMap> map, RobotShape shape, const UavPlannerOptions& options = {});
+  UavPlanner(std::shared_ptr<const CollisionMap> map, RobotShape shape,
+             const UavPlannerOptions& options = {});
   ~UavPlanner();
   [[nodiscard]] UavPlan plan(const Waypoint& start, const Waypoint& goal);
   [[nodiscard]] CollisionChecker& checker() { return *checker_; }

@@ -83,8 +83,7 @@ struct UgvPathSetup {
                                             const HiddenSpaceFrame& space);
 /// plan_ugv_path() with a setup prepare_ugv_path() made in this world for the request's
 /// space, robot and mission.
-[[nodiscard]] UgvPathResult plan_ugv_path(const PlanningWorld& world,
-                                          const UgvPathRequest& request,
+[[nodiscard]] UgvPathResult plan_ugv_path(const PlanningWorld& world, const UgvPathRequest& request,
                                           const UgvPathSetup& setup);
 
 }  // namespace ferret

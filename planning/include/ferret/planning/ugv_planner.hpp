@@ -27,23 +27,23 @@ namespace ferret {
 
 /// The hidden space the miniUGV plans in.
 struct HiddenSpaceFrame {
-  Eigen::Vector2d lo_m{0.0, 0.0};   ///< plan bounds (x, y)
+  Eigen::Vector2d lo_m{0.0, 0.0};  ///< plan bounds (x, y)
   Eigen::Vector2d hi_m{12.0, 8.0};
-  double floor_z_m = 0.0;           ///< the miniUGV's base frame G sits at this height
-  Eigen::Vector2d p_WE{0.0, 4.0};   ///< tether entry point
+  double floor_z_m = 0.0;          ///< the miniUGV's base frame G sits at this height
+  Eigen::Vector2d p_WE{0.0, 4.0};  ///< tether entry point
 };
 
 struct UgvPlannerOptions {
-  double range_m = 1.5;          ///< longest tree edge
-  double goal_bias = 0.15;       ///< probability of sampling the goal
+  double range_m = 1.5;     ///< longest tree edge
+  double goal_bias = 0.15;  ///< probability of sampling the goal
   double time_limit_s = 1.0;
-  CheckResolution resolution;    ///< motion checks (same as `ferret validate`)
-  int shortcut_rounds = 2;       ///< tether-aware shortcutting passes
+  CheckResolution resolution;  ///< motion checks (same as `ferret validate`)
+  int shortcut_rounds = 2;     ///< tether-aware shortcutting passes
   /// Re-check the final path with FCL alone instead of the checker (whose answers
   /// equal FCL's, 10-25x faster); `ferret validate` always uses FCL alone.
   bool final_check_fcl_only = false;
   std::uint64_t seed = 1;
-  double max_velocity_mps = 2.0;     ///< for time stamps (MissionConfig::ugv_limits)
+  double max_velocity_mps = 2.0;  ///< for time stamps (MissionConfig::ugv_limits)
   double max_yaw_rate_radps = 2.0;
   double max_acceleration_mps2 = 2.0;  ///< for time stamps: every segment rest to rest
   /// The collision shape (e.g. from the URDF, planning_world.hpp's plan_robot_shape);
@@ -65,9 +65,9 @@ struct UgvPlanRequest {
 
 struct UgvPlan {
   bool solved = false;
-  std::string status;              ///< "solved", or why not
+  std::string status;  ///< "solved", or why not
   PlanFailure failure = PlanFailure::kNone;
-  std::vector<Waypoint> states;    ///< turn-drive-turn poses with times and tether lengths
+  std::vector<Waypoint> states;          ///< turn-drive-turn poses with times and tether lengths
   std::vector<WrapPoint> initial_wraps;  ///< the tether at the start
   std::vector<WrapPoint> final_wraps;    ///< the tether at the goal
   double planning_time_s = 0.0;
@@ -76,12 +76,13 @@ struct UgvPlan {
 
 class UgvPlanner {
  public:
-  UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space, const UgvGeometry& ugv = {},
-             const UgvPlannerOptions& options = {});
+  UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space,
+             const UgvGeometry& ugv = {}, const UgvPlannerOptions& options = {});
   /// The same with the tether's corners already found in this map and space (they cost
   /// more than a short plan: a service computes them once per map).
-  UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space, const UgvGeometry& ugv,
-             const UgvPlannerOptions& options, std::shared_ptr<const TetherCorners> corners);
+  UgvPlanner(std::shared_ptr<const CollisionMap> map, const HiddenSpaceFrame& space,
+             const UgvGeometry& ugv, const UgvPlannerOptions& options,
+             std::shared_ptr<const TetherCorners> corners);
   ~UgvPlanner();
 
   [[nodiscard]] UgvPlan plan(const UgvPlanRequest& request);
@@ -105,7 +106,8 @@ class UgvPlanner {
   [[nodiscard]] TautTether tether_at_start(const UgvPlanRequest& request) const;
 
  private:
-  UgvPlan finish(std::vector<Waypoint> nodes, const TautTether& tether0, double max_taut_m, double t0_s);
+  UgvPlan finish(std::vector<Waypoint> nodes, const TautTether& tether0, double max_taut_m,
+                 double t0_s);
   std::shared_ptr<const CollisionMap> map_;
   HiddenSpaceFrame space_;
   UgvGeometry ugv_;
@@ -116,12 +118,12 @@ class UgvPlanner {
 
 /// The floor band of a map as a tether obstacle grid: a cell blocks when any voxel
 /// between the floor and the top of the miniUGV's body is occupied.
-[[nodiscard]] std::shared_ptr<const TetherCorners> tether_corners_from_map(const CollisionMap& map,
-                                                                           const HiddenSpaceFrame& space,
-                                                                           const UgvGeometry& ugv);
+[[nodiscard]] std::shared_ptr<const TetherCorners> tether_corners_from_map(
+    const CollisionMap& map, const HiddenSpaceFrame& space, const UgvGeometry& ugv);
 
 /// Replays a path on a tether (positions only) and reports the first state whose
 /// l_0 + taut length exceeds L, or -1. Fills each state's tether_length_m.
-[[nodiscard]] int replay_tether(TautTether& tether, std::vector<Waypoint>& states, double max_taut_m);
+[[nodiscard]] int replay_tether(TautTether& tether, std::vector<Waypoint>& states,
+                                double max_taut_m);
 
 }  // namespace ferret

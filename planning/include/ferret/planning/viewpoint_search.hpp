@@ -57,17 +57,17 @@ struct ViewpointSearchOptions {
   /// counts whole wherever in D_cam it was; further looks are counted by the object
   /// map's odds (unsearched_mass).
   double searched_weight = 0.1;
-  int rays = 72;                 ///< rays of a viewpoint's 360-degree profile
+  int rays = 72;  ///< rays of a viewpoint's 360-degree profile
   /// The chance that an unknown cell of G ends the camera's view (each cell's share of
   /// the clutter the IR has not seen yet): the view through n unknown cells is worth
   /// (1 - this)^n.
   double unknown_block_probability = 0.02;
-  double lattice_m = 0.5;        ///< spacing of the candidate viewpoints on known free ground
+  double lattice_m = 0.5;            ///< spacing of the candidate viewpoints on known free ground
   int max_frontier_candidates = 64;  ///< frontier cells also tried (evenly subsampled)
   double max_velocity_mps = 2.0;
   double max_yaw_rate_radps = 2.0;
-  double overhead_s = 1.0;      ///< added to every travel time (starting, stopping, settling)
-  double keep_fraction = 0.9;   ///< keep the goal while it holds this much of its chosen mass
+  double overhead_s = 1.0;     ///< added to every travel time (starting, stopping, settling)
+  double keep_fraction = 0.9;  ///< keep the goal while it holds this much of its chosen mass
   /// A new choice waits while this much of what the camera faces now is unsearched
   /// (its next frames search it on the way; CDOS's rule drives meanwhile).
   double fresh_view_fraction = 0.5;
@@ -92,7 +92,8 @@ struct ViewpointSearchOptions {
                                                const std::vector<std::uint8_t>& unseeable = {});
 /// Calls visit(idx) for every cell the camera would see from `X_WC` (its field of view,
 /// D_cam, lines of sight that G's occupied cells end).
-void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC, const ViewpointSearchOptions& options,
+void for_each_cell_in_view(const IrGrid& grid, const Pose2& X_WC,
+                           const ViewpointSearchOptions& options,
                            const std::function<void(std::size_t)>& visit);
 
 struct HeadingValue {
@@ -103,7 +104,8 @@ struct HeadingValue {
 /// lowest ray index), and that mass.
 [[nodiscard]] HeadingValue best_heading(const std::vector<double>& profile, double fov_rad);
 /// V(x, heading): the mass of the rays inside the field of view centred on heading_rad.
-[[nodiscard]] double mass_in_view(const std::vector<double>& profile, double heading_rad, double fov_rad);
+[[nodiscard]] double mass_in_view(const std::vector<double>& profile, double heading_rad,
+                                  double fov_rad);
 
 class ViewpointSearchPolicy final : public ExplorationPolicy {
  public:
@@ -114,7 +116,8 @@ class ViewpointSearchPolicy final : public ExplorationPolicy {
   [[nodiscard]] std::optional<ExplorationGoal> choose(const ExplorationState& state) override;
   /// The viewpoint was reached (or given up): it is not chosen again (see visited_).
   void goal_done() override;
-  [[nodiscard]] bool keeps_goal(const ObjectMap& objects, const FrontierTracker& tracker) const override;
+  [[nodiscard]] bool keeps_goal(const ObjectMap& objects,
+                                const FrontierTracker& tracker) const override;
   [[nodiscard]] const ViewpointSearchOptions& options() const { return options_; }
   /// The best view from cell c's centre (best_heading of its view_profile, what the
   /// robot's reached views could not show left out), kept or computed, on the maps of
@@ -139,10 +142,11 @@ class ViewpointSearchPolicy final : public ExplorationPolicy {
   std::optional<ExplorationGoal> committed_;
   double committed_mass_ = 0.0;
   double view_distance_m_ = 0.95;
-  std::optional<Eigen::Vector2d> last_evidence_W_;  ///< the strongest evidence of the last choice that had some
-  std::optional<ExplorationGoal> recheck_;          ///< a view of dismissed evidence, kept until reached
-  std::vector<Eigen::Vector2d> rechecked_W_;        ///< evidence looked at once more: not again
-  std::vector<Eigen::Vector2d> directions_;  ///< the rays' unit directions (ray_directions)
+  std::optional<Eigen::Vector2d>
+      last_evidence_W_;  ///< the strongest evidence of the last choice that had some
+  std::optional<ExplorationGoal> recheck_;    ///< a view of dismissed evidence, kept until reached
+  std::vector<Eigen::Vector2d> rechecked_W_;  ///< evidence looked at once more: not again
+  std::vector<Eigen::Vector2d> directions_;   ///< the rays' unit directions (ray_directions)
   /// Viewpoints reached or given up. What a view still holds there is mass the camera
   /// cannot reach from it (behind a wall G has not seen, which the view's unknown
   /// cells let through): chosen again, the robot would shuttle between such views.

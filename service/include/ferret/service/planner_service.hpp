@@ -17,18 +17,18 @@
 namespace ferret {
 
 struct PlannerServiceOptions {
-  std::string host = "127.0.0.1";  ///< loopback unless asked ("0.0.0.0": every interface)
-  int port = 8642;                 ///< 0: any free port (start() returns it)
-  int workers = 2;                 ///< requests planning (or loading a map) at once
-  int queue = 32;                  ///< requests waiting for a worker; past it: 503
+  std::string host = "127.0.0.1";          ///< loopback unless asked ("0.0.0.0": every interface)
+  int port = 8642;                         ///< 0: any free port (start() returns it)
+  int workers = 2;                         ///< requests planning (or loading a map) at once
+  int queue = 32;                          ///< requests waiting for a worker; past it: 503
   std::size_t max_body_bytes = 64u << 20;  ///< larger bodies: 413
-  double default_deadline_s = 1.0;  ///< a request's deadline when it names none
-  double max_deadline_s = 30.0;     ///< the longest deadline a request may ask for
-  std::size_t max_maps = 32;        ///< maps held at once; a PUT past it: 507
+  double default_deadline_s = 1.0;         ///< a request's deadline when it names none
+  double max_deadline_s = 30.0;            ///< the longest deadline a request may ask for
+  std::size_t max_maps = 32;               ///< maps held at once; a PUT past it: 507
   /// A map built from a world YAML may have at most this many OctoMap nodes.
   std::size_t max_map_nodes = 8'000'000;
-  std::string token;      ///< bearer token for every route but /healthz; empty: none
-  bool json_log = false;  ///< one JSON line a request on stderr
+  std::string token;                ///< bearer token for every route but /healthz; empty: none
+  bool json_log = false;            ///< one JSON line a request on stderr
   std::filesystem::path robot_uav;  ///< URDF of the UAV; empty: the shipped m100.urdf
   std::filesystem::path robot_ugv;  ///< URDF of the miniUGV; empty: the shipped miniugv.urdf
   MissionConfig mission;            ///< limits, tether L and l_0
@@ -64,8 +64,9 @@ class PlannerService {
   /// Loads a map_server map as a multipart PUT would: its YAML's text and its image's
   /// bytes (the YAML's `image` key is not opened). InputError naming `yaml_source` or
   /// `image_source`.
-  void put_map_2d(const std::string& name, const std::string& yaml_text, const std::string& image_bytes,
-                  const std::string& yaml_source, const std::string& image_source);
+  void put_map_2d(const std::string& name, const std::string& yaml_text,
+                  const std::string& image_bytes, const std::string& yaml_source,
+                  const std::string& image_source);
 
  private:
   struct Impl;

@@ -33,8 +33,8 @@ enum class HiddenSpaceClutter { kSparse, kDense };
 
 struct HiddenSpaceGeneratorOptions {
   std::uint64_t seed = 1;
-  double width_m = 12.0;   ///< along the start's heading, [8, 64]
-  double height_m = 8.0;   ///< across it, [5, 64]
+  double width_m = 12.0;       ///< along the start's heading, [8, 64]
+  double height_m = 8.0;       ///< across it, [5, 64]
   double resolution_m = 0.05;  ///< [0.02, 0.2]
   HiddenSpaceClutter clutter = HiddenSpaceClutter::kSparse;
   /// Every place a robot of this radius can stand on stays reachable from the start, so
@@ -56,6 +56,7 @@ struct GeneratedHiddenSpace {
 
 /// Throws InputError (source "generate-hidden", the option as field) for sizes or a
 /// resolution outside the ranges above or not finite.
-[[nodiscard]] GeneratedHiddenSpace generate_hidden_space(const HiddenSpaceGeneratorOptions& options);
+[[nodiscard]] GeneratedHiddenSpace generate_hidden_space(
+    const HiddenSpaceGeneratorOptions& options);
 
 }  // namespace ferret

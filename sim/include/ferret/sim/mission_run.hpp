@@ -28,11 +28,11 @@ struct MissionRunSettings {
   UavMissionOptions uav;
   /// The miniUGV's mission, search and simulated base (as `ferret explore --retrieve`).
   UgvMissionRunSettings ugv;
-  double uav_max_speed_mps = 5.0;      ///< the M100's limits (the UAV URDF's)
+  double uav_max_speed_mps = 5.0;  ///< the M100's limits (the UAV URDF's)
   double uav_max_accel_mps2 = 2.0;
   double uav_max_yaw_rate_radps = 1.0;
-  double landed_height_m = 0.25;       ///< base_link above the ground when landed
-  double time_limit_s = 4 * 3600.0;    ///< the simulation's own bound
+  double landed_height_m = 0.25;     ///< base_link above the ground when landed
+  double time_limit_s = 4 * 3600.0;  ///< the simulation's own bound
   /// Render the marker camera's frames also when no marker's quad lies in the image.
   /// Off: such a frame reaches the mission empty, as a dropped frame, and the detector
   /// does not run on it. The rendered frame would hold only the scene without markers;
@@ -52,7 +52,7 @@ struct MissionRunSettings {
 struct UgvDeployment {
   std::string hidden_space;  ///< the world's name for it ("" when the UAV's estimate hit none)
   UgvMissionRunResult result;
-  OccupancyMap2D truth;      ///< the slice it searched (for the figures)
+  OccupancyMap2D truth;  ///< the slice it searched (for the figures)
   std::optional<Eigen::Vector2d> object_W;
   double max_true_tether_m = 0.0;  ///< l_0 + the true taut tether, longest
   double deployed_s = 0.0;
@@ -64,8 +64,8 @@ struct MissionSample {
   double yaw_rad = 0.0;
   std::string state;
   double battery = 1.0;
-  double released_m = 0.0;   ///< l_t
-  double required_m = 0.0;   ///< l_0 + true taut tether while the miniUGV works, else 0
+  double released_m = 0.0;  ///< l_t
+  double required_m = 0.0;  ///< l_0 + true taut tether while the miniUGV works, else 0
   double tension_n = 0.0;
   double ugv_battery = 1.0;
 };
@@ -85,20 +85,20 @@ struct MissionRunResult {
   std::map<std::string, double> time_in_state;
   double flown_m = 0.0;
   double battery_left = 1.0;
-  int objects_in_world = 0;        ///< objects inside hidden spaces
-  int objects_dropped = 0;         ///< released inside the drop zone (truth)
+  int objects_in_world = 0;  ///< objects inside hidden spaces
+  int objects_dropped = 0;   ///< released inside the drop zone (truth)
   int hidden_spaces_in_world = 0;
-  int uav_collisions = 0;          ///< checks (every 0.1 s) with the UAV's shape in an occupied voxel
-  std::map<std::string, int> collisions_in;  ///< the same by the UAV's state
+  int uav_collisions = 0;  ///< checks (every 0.1 s) with the UAV's shape in an occupied voxel
+  std::map<std::string, int> collisions_in;                     ///< the same by the UAV's state
   Eigen::Vector3d first_collision_W = Eigen::Vector3d::Zero();  ///< where the first was
-  double max_released_m = 0.0;     ///< l_t, longest
-  int required_over_length = 0;    ///< steps where the true taut tether needed more than L
-  int over_tension_events = 0;     ///< rising edges of tension above the limit
+  double max_released_m = 0.0;                                  ///< l_t, longest
+  int required_over_length = 0;  ///< steps where the true taut tether needed more than L
+  int over_tension_events = 0;   ///< rising edges of tension above the limit
   double max_tension_n = 0.0;
   double leg_spacing_m = 0.0;
   std::size_t pattern_waypoints = 0, pattern_done = 0, first_pass_waypoints = 0;
-  int frames = 0;                  ///< marker frames the mission asked for
-  int marker_frames_rendered = 0;  ///< of which rendered (render_markerless_frames)
+  int frames = 0;                      ///< marker frames the mission asked for
+  int marker_frames_rendered = 0;      ///< of which rendered (render_markerless_frames)
   std::vector<MissionSample> samples;  ///< every 0.5 s
   std::vector<Transition> transitions;
 };
@@ -110,8 +110,10 @@ struct MissionRunResult {
 /// mission (method cdos, trajectories recorded), the UAV's limits and landing-zone
 /// footprint from its robot, the search area the world's bounds less 1 m (the legs
 /// start at the edge so that the forward camera sees markers near it).
-[[nodiscard]] MissionRunSettings mission_settings_for(const RobotDescription& uav, const RobotDescription& ugv,
-                                                      const MissionConfig& mission, const WorldSpec& world);
+[[nodiscard]] MissionRunSettings mission_settings_for(const RobotDescription& uav,
+                                                      const RobotDescription& ugv,
+                                                      const MissionConfig& mission,
+                                                      const WorldSpec& world);
 
 /// What run_mission drives each interface with, before it runs (a log's first line):
 /// every interface simulated, the miniUGV's link inside the process. The result's

@@ -12,8 +12,8 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,18 +34,21 @@
 
 namespace ferret::internal {
 
-constexpr double kDt = 0.01;          // the simulation's step
-constexpr int kUavEvery = 2;          // UAV control (and winch control) at 50 Hz
-constexpr double kWinchDt = 0.001;    // spool physics: the tether is stiff
+constexpr double kDt = 0.01;        // the simulation's step
+constexpr int kUavEvery = 2;        // UAV control (and winch control) at 50 Hz
+constexpr double kWinchDt = 0.001;  // spool physics: the tether is stiff
 
-inline Pose3 body_pose(const FlightState& s) { return pose_from_xyz_rpy(s.p_W, 0.0, 0.0, s.yaw_rad); }
+inline Pose3 body_pose(const FlightState& s) {
+  return pose_from_xyz_rpy(s.p_W, 0.0, 0.0, s.yaw_rad);
+}
 
 // The M100 as its flight controller's position loop flies it: a point mass whose
 // velocity follows a proportional command within speed and acceleration limits, the
 // heading within the yaw-rate limit; landing descends until it rests on what is under it.
 class SimFlightController final : public FlightController {
  public:
-  SimFlightController(const SensorSimulator& world, const Eigen::Vector3d& start, const MissionRunSettings& s)
+  SimFlightController(const SensorSimulator& world, const Eigen::Vector3d& start,
+                      const MissionRunSettings& s)
       : world_(world), settings_(s) {
     state_.p_W = start;
     state_.on_ground = true;
@@ -87,13 +90,16 @@ class SimFlightController final : public FlightController {
       // Towards the setpoint, braking in time to stop on it (no overshoot past a corner).
       const Eigen::Vector3d d = setpoint_ - state_.p_W;
       const double brake = std::sqrt(2.0 * 0.8 * settings_.uav_max_accel_mps2 * d.norm());
-      const double cap = std::min({speed_ > 0 ? speed_ : 0.5, settings_.uav_max_speed_mps, brake, 1.2 * d.norm()});
+      const double cap =
+          std::min({speed_ > 0 ? speed_ : 0.5, settings_.uav_max_speed_mps, brake, 1.2 * d.norm()});
       v_cmd = d.norm() > 1e-9 ? Eigen::Vector3d(d.normalized() * cap) : Eigen::Vector3d::Zero();
     } else if (mode_ == Mode::kVelocity) {
       v_cmd = velocity_sp_;
-      if (v_cmd.norm() > settings_.uav_max_speed_mps) v_cmd *= settings_.uav_max_speed_mps / v_cmd.norm();
+      if (v_cmd.norm() > settings_.uav_max_speed_mps)
+        v_cmd *= settings_.uav_max_speed_mps / v_cmd.norm();
       yaw_sp_ = state_.yaw_rad + std::clamp(yaw_rate_sp_, -settings_.uav_max_yaw_rate_radps,
-                                            settings_.uav_max_yaw_rate_radps) * dt;
+                                            settings_.uav_max_yaw_rate_radps) *
+                                     dt;
     } else {
       v_cmd = {0.0, 0.0, -0.6};
     }
@@ -105,11 +111,13 @@ class SimFlightController final : public FlightController {
     flown_m_ += state_.v_W.norm() * dt;
     double dyaw = std::remainder(yaw_sp_ - state_.yaw_rad, 2 * std::numbers::pi);
     const double max_dyaw = settings_.uav_max_yaw_rate_radps * dt;
-    state_.yaw_rad = std::remainder(state_.yaw_rad + std::clamp(dyaw, -max_dyaw, max_dyaw), 2 * std::numbers::pi);
+    state_.yaw_rad = std::remainder(state_.yaw_rad + std::clamp(dyaw, -max_dyaw, max_dyaw),
+                                    2 * std::numbers::pi);
     // Battery: hover power plus a share growing with speed (the M100 with its payload).
-    state_.battery_fraction = std::max(
-        0.0, state_.battery_fraction - dt * (1.0 + 0.15 * state_.v_W.norm() / settings_.uav_max_speed_mps) /
-                                          settings_.uav.flight_endurance_s);
+    state_.battery_fraction =
+        std::max(0.0, state_.battery_fraction -
+                          dt * (1.0 + 0.15 * state_.v_W.norm() / settings_.uav_max_speed_mps) /
+                              settings_.uav.flight_endurance_s);
     if (mode_ == Mode::kLand) {
       const double ground = ground_below();
       if (state_.p_W.z() <= ground + settings_.landed_height_m) {
@@ -143,25 +151,33 @@ class SimFlightController final : public FlightController {
 
 class SimUavCameras final : public UavCameras {
  public:
-  SimUavCameras(const SensorSimulator& world, const SimFlightController& flight, const CameraSensor& marker,
-                CameraModel marker_model, const CameraSensor& depth, CameraModel depth_model, std::uint64_t seed,
-                bool render_markerless_frames)
-      : world_(world), flight_(flight), marker_(marker), depth_(depth),
-        marker_model_(std::move(marker_model)), depth_model_(std::move(depth_model)), seed_(seed),
+  SimUavCameras(const SensorSimulator& world, const SimFlightController& flight,
+                const CameraSensor& marker, CameraModel marker_model, const CameraSensor& depth,
+                CameraModel depth_model, std::uint64_t seed, bool render_markerless_frames)
+      : world_(world),
+        flight_(flight),
+        marker_(marker),
+        depth_(depth),
+        marker_model_(std::move(marker_model)),
+        depth_model_(std::move(depth_model)),
+        seed_(seed),
         render_markerless_(render_markerless_frames) {}
   CameraShot<GrayImage> marker_frame() override {
     const Pose3 X_WC = optical_pose(body_pose(flight_.state()), marker_);
-    const std::uint64_t frame_seed = seed_ + 2 * frame_++;  // drawn either way: later frames keep their noise
+    const std::uint64_t frame_seed =
+        seed_ + 2 * frame_++;  // drawn either way: later frames keep their noise
     // No marker's quad in the image: a detector has nothing to find, so the frame is not
     // rendered (MissionRunSettings::render_markerless_frames).
-    if (!render_markerless_ && !world_.markers_in_frame(marker_model_, X_WC)) return {GrayImage{}, X_WC};
+    if (!render_markerless_ && !world_.markers_in_frame(marker_model_, X_WC))
+      return {GrayImage{}, X_WC};
     ++marker_frames_rendered_;
     return {world_.render_gray(marker_model_, X_WC, CameraFrameOptions{}, frame_seed), X_WC};
   }
   [[nodiscard]] std::uint64_t marker_frames_rendered() const { return marker_frames_rendered_; }
   CameraShot<DepthImageMm> depth_frame() override {
     const Pose3 X_WC = optical_pose(body_pose(flight_.state()), depth_);
-    return {world_.render_depth(depth_model_, X_WC, DepthFrameOptions{}, seed_ + 2 * frame_++ + 1), X_WC};
+    return {world_.render_depth(depth_model_, X_WC, DepthFrameOptions{}, seed_ + 2 * frame_++ + 1),
+            X_WC};
   }
 
  private:
@@ -176,18 +192,25 @@ class SimUavCameras final : public UavCameras {
   std::uint64_t marker_frames_rendered_ = 0;
 };
 
-
 // The hidden spaces as the miniUGV meets them: where it is set down, the truth there
 // (the slice of the world, the object), its simulated base, the true taut tether.
 class SimHiddenSpaces {
  public:
-  SimHiddenSpaces(const PlanningWorld& world, const SensorSimulator& sensors, const MissionRunSettings& settings,
-                  const SimClock& clock, TransitionLog& log, std::uint64_t seed)
-      : world_(world), spec_(*world.spec), sensors_(sensors), settings_(settings), clock_(clock), log_(log),
+  SimHiddenSpaces(const PlanningWorld& world, const SensorSimulator& sensors,
+                  const MissionRunSettings& settings, const SimClock& clock, TransitionLog& log,
+                  std::uint64_t seed)
+      : world_(world),
+        spec_(*world.spec),
+        sensors_(sensors),
+        settings_(settings),
+        clock_(clock),
+        log_(log),
         seed_(seed) {}
 
   /// Where an in-process deployment's controller comes from (MissionAssembly's).
-  void set_ugv_controllers(UgvControllerFactory make_controller) { ugv_controllers_ = std::move(make_controller); }
+  void set_ugv_controllers(UgvControllerFactory make_controller) {
+    ugv_controllers_ = std::move(make_controller);
+  }
   /// The miniUGV set down at the entry of the hidden space nearest p_WE (within 3 m):
   /// its simulated base there and, in-process, its controller too (not started; from
   /// set_ugv_controllers()). Set down where no hidden space is, it searches nothing
@@ -216,7 +239,8 @@ class SimHiddenSpaces {
       for (int j = 0; j < g.height; ++j)
         for (int i = 0; i < g.width; ++i) {
           const Eigen::Vector2d c = g.center({i, j});
-          if (!h.interior_contains({c.x(), c.y(), h.floor_z_m + 0.03})) dep.truth.at({i, j}) = CellState::kOccupied;
+          if (!h.interior_contains({c.x(), c.y(), h.floor_z_m + 0.03}))
+            dep.truth.at({i, j}) = CellState::kOccupied;
         }
     }
     for (const WorldObject& o : spec_.objects) {
@@ -229,7 +253,8 @@ class SimHiddenSpaces {
       for (double y = -r; y <= r; y += g.resolution_m)
         for (double x = -r; x <= r; x += g.resolution_m) {
           const Cell c = g.cell_at(dep.object_W->x() + x, dep.object_W->y() + y);
-          if (g.contains(c) && dep.truth.at(c) == CellState::kOccupied) dep.truth.at(c) = CellState::kFree;
+          if (g.contains(c) && dep.truth.at(c) == CellState::kOccupied)
+            dep.truth.at(c) = CellState::kFree;
         }
       break;
     }
@@ -244,9 +269,10 @@ class SimHiddenSpaces {
     const std::uint64_t seed = seed_ + 7919 * deployments_.size();
     start_pose_ = start_pose;
     deployment_seed_ = seed;
-    sim_ = with_controller
-               ? std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed, ugv_controllers_)
-               : std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W, settings_.ugv, seed);
+    sim_ = with_controller ? std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W,
+                                                             settings_.ugv, seed, ugv_controllers_)
+                           : std::make_unique<UgvMissionSim>(dep.truth, start_pose, dep.object_W,
+                                                             settings_.ugv, seed);
   }
   /// Aboard again (the winch reeled it in): the deployment's result is kept, and what
   /// the magnet holds comes along.
@@ -284,12 +310,14 @@ class SimHiddenSpaces {
   // `hold`: the controller holds (its link silent): the base stands, nothing ticks.
   void step(double dt, bool hold = false) {
     if (!sim_) return;
-    if (sim_->has_controller() && (sim_->mission().done() || sim_->mission().wants_retraction())) return;
+    if (sim_->has_controller() && (sim_->mission().done() || sim_->mission().wants_retraction()))
+      return;
     sim_->step(dt, hold);
     const Pose2& p = sim_->base().true_pose();
     tether_->move_to({p.x_m, p.y_m});
     deployments_.back().max_true_tether_m =
-        std::max(deployments_.back().max_true_tether_m, settings_.uav.tether.entry_offset_m + tether_->length_m());
+        std::max(deployments_.back().max_true_tether_m,
+                 settings_.uav.tether.entry_offset_m + tether_->length_m());
   }
   // Where the miniUGV will touch down if lowered from the UAV at p_W: the entry of the
   // nearest hidden space, its resting attitude there as its IMU reads it.
@@ -300,7 +328,8 @@ class SimHiddenSpaces {
     if (k < 0 || k == touchdown_space_) return;  // called every UAV tick: once a space
     touchdown_space_ = k;
     const HiddenSpace& h = spec_.hidden_spaces[static_cast<std::size_t>(k)];
-    const Eigen::Vector2d e = h.p_WE.head<2>() + 0.1 * Eigen::Vector2d(std::cos(h.entry_yaw_rad), std::sin(h.entry_yaw_rad));
+    const Eigen::Vector2d e = h.p_WE.head<2>() + 0.1 * Eigen::Vector2d(std::cos(h.entry_yaw_rad),
+                                                                       std::sin(h.entry_yaw_rad));
     if (const auto rest = sensors_.resting_pose(e, h.entry_yaw_rad, h.floor_z_m + 0.3))
       touchdown_ = sensors_.imu(*rest, ImuOptions{}, seed_ + 17);
   }
@@ -310,7 +339,8 @@ class SimHiddenSpaces {
   // Closes the deployment still running when the simulation ends.
   void close() {
     if (!sim_) return;
-    if (sim_->has_controller() && !sim_->mission().done()) sim_->mission().stop("the mission ended");
+    if (sim_->has_controller() && !sim_->mission().done())
+      sim_->mission().stop("the mission ended");
     deployments_.back().result = sim_->result(log_);
     deployments_.back().result.time_s = clock_.now_s() - deployments_.back().deployed_s;
     finished_.push_back(std::move(sim_));
@@ -333,7 +363,9 @@ class SimHiddenSpaces {
   /// extent of the world's slice (a robot process builds its controller from these).
   [[nodiscard]] const Pose2& start_pose() const { return start_pose_; }
   [[nodiscard]] std::uint64_t deployment_seed() const { return deployment_seed_; }
-  [[nodiscard]] const GridGeometry& truth_geometry() const { return deployments_.back().truth.geometry; }
+  [[nodiscard]] const GridGeometry& truth_geometry() const {
+    return deployments_.back().truth.geometry;
+  }
   [[nodiscard]] bool holding() const { return holding_; }
   [[nodiscard]] const ImuReading& touchdown() const { return touchdown_; }
   [[nodiscard]] const Eigen::Vector2d& entry_W() const { return entry_W_; }
@@ -373,20 +405,19 @@ class SimHiddenSpaces {
   bool holding_ = false;
   bool reeling_in_ = false;
   ImuReading touchdown_;
-  int touchdown_space_ = -1;  ///< the hidden space touchdown_ was read for
+  int touchdown_space_ = -1;                        ///< the hidden space touchdown_ was read for
   std::map<std::size_t, UgvMissionSim*> searched_;  ///< lifted deployments' controllers, by index
   Eigen::Vector3d last_uav_W_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> released_at_;
 };
 
-
 /// The world and its loop. The controllers plug in through MissionControllers (today
 /// in this process, `ferret mission`), so the loop does not know where they run.
 struct MissionControllers {
-  std::function<void()> uav_tick;           ///< the UAV controller's tick at the clock's time
+  std::function<void()> uav_tick;  ///< the UAV controller's tick at the clock's time
   std::function<bool()> uav_done;
-  std::function<std::string()> uav_state;   ///< its state's name (samples, collisions)
-  std::function<void()> ugv_tick;           ///< the miniUGV controller's tick, while it is set down
+  std::function<std::string()> uav_state;  ///< its state's name (samples, collisions)
+  std::function<void()> ugv_tick;          ///< the miniUGV controller's tick, while it is set down
   /// True when a controller elsewhere (a robot process) is done or waits to be lifted
   /// out: the world does not step its base (as it does not for one in this process).
   std::function<bool()> ugv_stopped;
@@ -402,8 +433,8 @@ class MissionWorld {
   /// Fills the UAV's options from the world (openings, marker, drop zone, tether) and
   /// validates them; throws InputError for a world without a world YAML's hidden spaces,
   /// a robot without its cameras, or bad options.
-  MissionWorld(const PlanningWorld& world, const RobotDescription& uav_robot, const MissionRunSettings& settings,
-               std::uint64_t seed, TransitionLog& log);
+  MissionWorld(const PlanningWorld& world, const RobotDescription& uav_robot,
+               const MissionRunSettings& settings, std::uint64_t seed, TransitionLog& log);
   MissionWorld(const MissionWorld&) = delete;
   MissionWorld& operator=(const MissionWorld&) = delete;
 

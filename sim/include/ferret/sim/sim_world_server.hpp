@@ -45,7 +45,8 @@ struct SimWorldReport {
 /// faults come from settings.link_channel (none: a perfect network). Throws
 /// link::StreamError when a robot process goes away or stops answering for
 /// `reply_timeout_ms`.
-[[nodiscard]] SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription& uav_robot,
+[[nodiscard]] SimWorldReport run_sim_world(const PlanningWorld& world,
+                                           const RobotDescription& uav_robot,
                                            const MissionRunSettings& settings, std::uint64_t seed,
                                            link::MessageStream& uav, link::MessageStream& ugv,
                                            TransitionLog& log, int reply_timeout_ms = 60'000);

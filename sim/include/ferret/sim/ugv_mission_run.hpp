@@ -64,7 +64,8 @@ struct UgvMissionRunResult {
 /// mission/): on `base`, its maps over `map`, its search seeded from `seed`; `object_W`
 /// the oracle's object (none: an empty space).
 using UgvControllerFactory = std::function<std::unique_ptr<MiniUgvMission>(
-    SimUgvBase& base, const GridGeometry& map, std::uint64_t seed, const std::optional<Eigen::Vector2d>& object_W)>;
+    SimUgvBase& base, const GridGeometry& map, std::uint64_t seed,
+    const std::optional<Eigen::Vector2d>& object_W)>;
 
 /// One miniUGV mission in a simulated hidden space, stepped by its owner: the
 /// harness run_ugv_mission (mission/ugv_mission_run.hpp) uses, and the whole mission's
@@ -77,13 +78,14 @@ class UgvMissionSim {
   /// controller comes from `make_controller`. Throws std::invalid_argument as
   /// run_exploration for a bad start or method.
   UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
-                const std::optional<Eigen::Vector2d>& object_W, const UgvMissionRunSettings& settings,
-                std::uint64_t seed, const UgvControllerFactory& make_controller);
+                const std::optional<Eigen::Vector2d>& object_W,
+                const UgvMissionRunSettings& settings, std::uint64_t seed,
+                const UgvControllerFactory& make_controller);
   /// The simulated base alone: its controller runs elsewhere (a robot process) and
   /// drives it through its UgvBase.
   UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
-                const std::optional<Eigen::Vector2d>& object_W, const UgvMissionRunSettings& settings,
-                std::uint64_t seed);
+                const std::optional<Eigen::Vector2d>& object_W,
+                const UgvMissionRunSettings& settings, std::uint64_t seed);
   ~UgvMissionSim();
   UgvMissionSim(const UgvMissionSim&) = delete;
   UgvMissionSim& operator=(const UgvMissionSim&) = delete;
@@ -121,7 +123,8 @@ class UgvMissionSim {
                                            const UgvMissionRunSettings& settings);
 /// The controller's options for a deployment with `seed` (the search's own, derived
 /// from it); `truth` only places the oracle's object of an empty space out of reach.
-[[nodiscard]] UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std::uint64_t seed,
+[[nodiscard]] UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings,
+                                                    std::uint64_t seed,
                                                     const std::optional<Eigen::Vector2d>& object_W,
                                                     const GridGeometry& truth);
 

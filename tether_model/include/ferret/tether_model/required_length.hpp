@@ -91,8 +91,8 @@ struct UgvMotionPreview {
 
 /// The miniUGV's motion `dt_s` after a message, from its (filtered) position at the
 /// message and its preview: position p + displacement, velocity the preview's.
-[[nodiscard]] UgvMotion planned_motion(const UgvMotion& at_message,
-                                       const UgvMotionPreview& preview, double dt_s);
+[[nodiscard]] UgvMotion planned_motion(const UgvMotion& at_message, const UgvMotionPreview& preview,
+                                       double dt_s);
 
 /// Rate of change of the required length when the miniUGV moves with v_WG (central
 /// difference of the model along the velocity).

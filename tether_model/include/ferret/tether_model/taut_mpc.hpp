@@ -47,8 +47,8 @@ class TautTetherMpc final : public TetherController {
     /// model lacks. Otherwise, and with false, at the observer's own rate.
     bool give_back_at_stopping_speed = true;
     double give_back_stiffness_factor = 2.0;
-    double weight_slack = 100.0;         ///< on (slack - reference)^2 per step, 1/m^2
-    double weight_command_rate = 2.0;    ///< on (delta command)^2, (s/m)^2
+    double weight_slack = 100.0;       ///< on (slack - reference)^2 per step, 1/m^2
+    double weight_command_rate = 2.0;  ///< on (delta command)^2, (s/m)^2
     /// Along the miniUGV's plan (a preview), the command-rate penalty is on the
     /// command's change less that of the command tracking the prediction exactly:
     /// corrections are damped, the feed-forward is not smoothed (docs/tether.md, the

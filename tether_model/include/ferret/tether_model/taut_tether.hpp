@@ -49,7 +49,8 @@ class TetherCorners {
   [[nodiscard]] static std::shared_ptr<const TetherCorners> from_map(const OccupancyMap2D& map,
                                                                      bool unknown_blocks = true);
   /// Corners from an explicit list (tests, polygonal worlds).
-  [[nodiscard]] static std::shared_ptr<const TetherCorners> from_list(std::vector<TetherCorner> corners);
+  [[nodiscard]] static std::shared_ptr<const TetherCorners> from_list(
+      std::vector<TetherCorner> corners);
 
   [[nodiscard]] const std::vector<TetherCorner>& all() const { return corners_; }
   /// Calls `visit` for every corner whose position lies in [lo, hi] (and maybe a few more).
@@ -85,8 +86,8 @@ class TautTether {
       : TautTether(std::move(corners), p_WE, p_WE) {}
 
   /// A tether that already bends at `wraps` (as a plan file records it), robot at p_WR.
-  TautTether(std::shared_ptr<const TetherCorners> corners, const Eigen::Vector2d& p_WE, std::vector<WrapPoint> wraps,
-             const Eigen::Vector2d& p_WR);
+  TautTether(std::shared_ptr<const TetherCorners> corners, const Eigen::Vector2d& p_WE,
+             std::vector<WrapPoint> wraps, const Eigen::Vector2d& p_WR);
 
   /// Drives the robot in a straight line to p_W, wrapping and unwrapping corners.
   void move_to(const Eigen::Vector2d& p_W);
@@ -95,7 +96,9 @@ class TautTether {
   [[nodiscard]] const Eigen::Vector2d& robot() const { return p_WR_; }
   [[nodiscard]] const std::vector<WrapPoint>& wrap_points() const { return wraps_; }
   /// The last fixed point of the tether: the last wrap point, or the entry.
-  [[nodiscard]] const Eigen::Vector2d& anchor() const { return wraps_.empty() ? p_WE_ : wraps_.back().p_W; }
+  [[nodiscard]] const Eigen::Vector2d& anchor() const {
+    return wraps_.empty() ? p_WE_ : wraps_.back().p_W;
+  }
   /// Taut length on the floor, from the entry through the wrap points to the robot.
   [[nodiscard]] double length_m() const { return fixed_length_m_ + (p_WR_ - anchor()).norm(); }
   /// The tether as a polyline: entry, wrap points, robot.

@@ -13,7 +13,7 @@
 namespace ferret {
 
 struct AdapterCheck {
-  std::string name;    ///< "hello", "state", "marker_frame", ...
+  std::string name;  ///< "hello", "state", "marker_frame", ...
   bool passed = false;
   std::string detail;  ///< what was seen (the failure's reason, or a summary)
 };

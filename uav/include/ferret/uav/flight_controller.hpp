@@ -18,8 +18,8 @@ struct FlightState {
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();  ///< base_link in the world
   double yaw_rad = 0.0;
   Eigen::Vector3d v_W = Eigen::Vector3d::Zero();
-  bool on_ground = true;            ///< landed, motors idle
-  double battery_fraction = 1.0;    ///< 1 full, 0 empty
+  bool on_ground = true;          ///< landed, motors idle
+  double battery_fraction = 1.0;  ///< 1 full, 0 empty
   /// The pilot has taken over with the remote (DJI: the RC's mode switch out of P/F):
   /// the mission stops commanding the vehicle.
   bool rc_override = false;
@@ -59,11 +59,11 @@ class UavCameras {
 
 /// The miniUGV as the UAV sees it over the robot link.
 struct UgvReport {
-  bool running = false;            ///< its mission started and not done
-  bool wants_retraction = false;   ///< at the entry, asking to be lifted out
+  bool running = false;           ///< its mission started and not done
+  bool wants_retraction = false;  ///< at the entry, asking to be lifted out
   bool done = false;
-  std::string outcome;             ///< its named outcome once done
-  bool object_held = false;        ///< its EPM reports contact
+  std::string outcome;       ///< its named outcome once done
+  bool object_held = false;  ///< its EPM reports contact
   Eigen::Vector2d p_WG = Eigen::Vector2d::Zero();
   Eigen::Vector2d v_WG = Eigen::Vector2d::Zero();  ///< desired velocity
   /// Its taut tether: the last fixed point (last wrap point or the entry) and the
@@ -72,7 +72,7 @@ struct UgvReport {
   double tether_to_anchor_m = 0.0;
   /// How much longer its tether may be than that (its bound less its estimate, m).
   double tether_uncertainty_m = 0.0;
-  double roll_rad = 0.0;           ///< its IMU attitude (the touchdown check)
+  double roll_rad = 0.0;  ///< its IMU attitude (the touchdown check)
   double pitch_rad = 0.0;
   double battery_fraction = 1.0;
   /// The link carries its messages: false once it has been silent past the link's

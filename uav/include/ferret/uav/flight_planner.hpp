@@ -9,7 +9,6 @@
 #include <memory>
 
 #include "ferret/planning/collision_map.hpp"
-
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/uav/uav_mission.hpp"
 #include "ferret/urdf/mission_config.hpp"
@@ -20,15 +19,17 @@ namespace ferret {
 /// Builds the planner (both shapes from the UAV's URDF) on `map`, or on the collision
 /// map of `world` when `map` is null. `max_velocity_mps` times the plans; OMPL is seeded
 /// once a process with `seed`. The planner keeps what it needs; `world` must outlive it.
-[[nodiscard]] FlightPlanner make_flight_planner(const PlanningWorld& world, const RobotDescription& uav_robot,
-                                                const MissionConfig& mission, double max_velocity_mps,
-                                                std::uint64_t seed,
+[[nodiscard]] FlightPlanner make_flight_planner(const PlanningWorld& world,
+                                                const RobotDescription& uav_robot,
+                                                const MissionConfig& mission,
+                                                double max_velocity_mps, std::uint64_t seed,
                                                 std::shared_ptr<const CollisionMap> map = nullptr);
 
 /// The UAV mission's options that come from the world the team describes: the markers
 /// it placed and their openings, the marker detector for them (unless the mission YAML
 /// set `uav.marker`), the drop zone, and the mission's tether (the openings and the drop
 /// zone only where the options have none).
-void fill_uav_mission_from_world(UavMissionOptions& options, const WorldSpec& world, const MissionConfig& mission);
+void fill_uav_mission_from_world(UavMissionOptions& options, const WorldSpec& world,
+                                 const MissionConfig& mission);
 
 }  // namespace ferret

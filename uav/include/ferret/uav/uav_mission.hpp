@@ -39,9 +39,9 @@
 #include "ferret/tether_model/tether_controller.hpp"
 #include "ferret/tether_model/tether_modes.hpp"
 #include "ferret/tether_model/winch.hpp"
+#include "ferret/tether_model/winch_controllers.hpp"
 #include "ferret/uav/coverage_pattern.hpp"
 #include "ferret/uav/flight_budget.hpp"
-#include "ferret/tether_model/winch_controllers.hpp"
 #include "ferret/uav/flight_controller.hpp"
 #include "ferret/uav/flight_path_follower.hpp"
 #include "ferret/uav/landing_zone.hpp"
@@ -52,8 +52,21 @@
 namespace ferret {
 
 enum class UavMissionState {
-  kIdle, kTakeoff, kSearch, kApproach, kSurvey, kLand, kLower, kUgvOps, kRetract,
-  kLiftoff, kDeliver, kDrop, kReturnHome, kLandHome, kDone
+  kIdle,
+  kTakeoff,
+  kSearch,
+  kApproach,
+  kSurvey,
+  kLand,
+  kLower,
+  kUgvOps,
+  kRetract,
+  kLiftoff,
+  kDeliver,
+  kDrop,
+  kReturnHome,
+  kLandHome,
+  kDone
 };
 [[nodiscard]] std::string_view to_string(UavMissionState state);
 
@@ -63,7 +76,8 @@ enum class UavMissionOutcome {
   kFlightBudget,    ///< the battery only covered the way home: returned early, landed
   kTakeoffFailed,   ///< never reached the search altitude
   kRetractFailed,   ///< the miniUGV could not be reeled in (the UAV stays landed)
-  kDeliveryFailed,  ///< no flight (or none in time) to the drop zone with the object: landed at home with it
+  kDeliveryFailed,  ///< no flight (or none in time) to the drop zone with the object: landed at
+                    ///< home with it
   kAborted,         ///< stop()
 };
 [[nodiscard]] std::string_view to_string(UavMissionOutcome outcome);
@@ -90,8 +104,8 @@ struct UavMissionOptions {
   /// Distance between the pattern's legs; 0: from the marker camera (twice the lateral
   /// reach, at half the range where a marker still spans min_marker_side_px).
   double leg_spacing_m = 0.0;
-  int passes = 2;                ///< 1: legs along x; 2: then legs along y
-  double frame_period_s = 0.5;   ///< marker frames while searching
+  int passes = 2;               ///< 1: legs along x; 2: then legs along y
+  double frame_period_s = 0.5;  ///< marker frames while searching
   double waypoint_tolerance_m = 0.4;
   /// The deceleration the flight controller stops with (0.8 of the M100 URDF's 2 m/s^2):
   /// where a new path starts when one is planned in flight.
@@ -105,9 +119,9 @@ struct UavMissionOptions {
   /// Detections of the same marker needed before the UAV goes (a single frame can lie).
   int confirm_detections = 2;
   LandingZoneDetector::Options landing;
-  double survey_height_m = 3.5;   ///< above the opening, for the depth frames
-  double survey_standoff_m = 1.0; ///< out from the opening, horizontally
-  int survey_views = 3;           ///< survey points tried (round the opening) before giving up
+  double survey_height_m = 3.5;    ///< above the opening, for the depth frames
+  double survey_standoff_m = 1.0;  ///< out from the opening, horizontally
+  int survey_views = 3;            ///< survey points tried (round the opening) before giving up
   /// Depth frames the hover at a survey point takes and fuses before it judges the ground
   /// (fuse_depth_frames: the noise of a cell falls with their square root; 8 frames of a
   /// D415 at 30 Hz take 0.27 s).
@@ -124,9 +138,9 @@ struct UavMissionOptions {
   /// No safe landing zone within reach: "hover" (lower from a hover over the opening's
   /// standoff point) or "skip" (leave the hidden space and search on).
   std::string no_landing_zone = "hover";
-  double hover_standoff_m = 0.6;  ///< out from the opening
-  double touchdown_height_m = 0.25; ///< the winch above the ground when landed (Z_W)
-  TetherParams tether;            ///< L and l_0
+  double hover_standoff_m = 0.6;     ///< out from the opening
+  double touchdown_height_m = 0.25;  ///< the winch above the ground when landed (Z_W)
+  TetherParams tether;               ///< L and l_0
   tether::TouchdownGuard::Options touchdown;
   std::string winch_controller = "mpc";  ///< tether::tether_controller_names()
   /// The winch's control (its slack reference is raised to 10 cm by default: the
@@ -154,7 +168,7 @@ struct UavMissionOptions {
   double ugv_return_speed_mps = 0.2;
   Eigen::Vector2d drop_zone_W = Eigen::Vector2d::Zero();
   double drop_altitude_m = 3.0;
-  double drop_time_s = 3.0;       ///< the EPM off and the object falling clear
+  double drop_time_s = 3.0;  ///< the EPM off and the object falling clear
   /// Flight endurance of a full battery (the M100 with its payload: about 20 min) and
   /// the reserve kept over what the way home costs at cruise speed.
   double flight_endurance_s = 20.0 * 60.0;
@@ -179,17 +193,17 @@ struct HiddenSpaceVisit {
   OpeningEstimate opening;         ///< from the nearest frame of its marker
   double marker_distance_m = 1e9;  ///< camera to marker in that frame
   double detected_s = 0.0;
-  std::size_t pattern_index = 0;   ///< the pattern waypoint the UAV was flying to then
+  std::size_t pattern_index = 0;  ///< the pattern waypoint the UAV was flying to then
   VisitState state = VisitState::kDetected;
-  std::string note;                ///< why skipped, or why the object was not delivered
-  bool landed = false;             ///< landed beside it (false: hovered)
+  std::string note;     ///< why skipped, or why the object was not delivered
+  bool landed = false;  ///< landed beside it (false: hovered)
   std::optional<LandingZone> landing_zone;
   double deployed_s = -1.0;
   double retracted_s = -1.0;
   std::string ugv_outcome;
-  bool object_retrieved = false;   ///< the miniUGV came out with it
-  bool object_dropped = false;     ///< released in the drop zone
-  double max_released_m = 0.0;     ///< longest l_t while the miniUGV worked
+  bool object_retrieved = false;  ///< the miniUGV came out with it
+  bool object_dropped = false;    ///< released in the drop zone
+  double max_released_m = 0.0;    ///< longest l_t while the miniUGV worked
 };
 
 /// A survey hover's depth frames, gathered one a control cycle and fused as they come
@@ -250,7 +264,9 @@ class UavMission {
   /// Seconds spent in each state.
   [[nodiscard]] const std::map<std::string, double>& time_in_state() const { return time_in_; }
   [[nodiscard]] tether::TetherMode tether_mode() const { return modes_.mode(); }
-  [[nodiscard]] const tether::TautControlOptions& winch_control() const { return options_.winch_control; }
+  [[nodiscard]] const tether::TautControlOptions& winch_control() const {
+    return options_.winch_control;
+  }
   [[nodiscard]] int frames_processed() const { return frames_; }
   [[nodiscard]] int plans_failed() const { return path_.plans_failed(); }
 
@@ -305,7 +321,9 @@ class UavMission {
   void resume_search(const std::string& reason);
   /// While the miniUGV is out: the hover over the release point held.
   void hold_over_release();
-  [[nodiscard]] HiddenSpaceVisit& current() { return visits_.at(static_cast<std::size_t>(current_)); }
+  [[nodiscard]] HiddenSpaceVisit& current() {
+    return visits_.at(static_cast<std::size_t>(current_));
+  }
   [[nodiscard]] Eigen::Vector3d survey_point(int view) const;
   [[nodiscard]] const Eigen::Vector3d& home_W() const { return budget_.home_W(); }
 

@@ -29,19 +29,21 @@ namespace ferret {
 [[nodiscard]] std::span<const std::string_view> uav_section_keys();
 
 /// Reads the mission's keys of the section `uav` over `options`, then validates the
-/// result. An undefined or null `node` (no section) changes and checks nothing. Keys that are not the mission's (the backends:
-/// winch, flight_controller) are left to their readers. Returns the keys the file set.
-/// Throws InputError naming the file and the field (`uav.KEY`) for a wrong type, a value
-/// out of range or an unknown choice.
+/// result. An undefined or null `node` (no section) changes and checks nothing. Keys that are not
+/// the mission's (the backends: winch, flight_controller) are left to their readers. Returns the
+/// keys the file set. Throws InputError naming the file and the field (`uav.KEY`) for a wrong type,
+/// a value out of range or an unknown choice.
 std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std::string& source,
                                                UavMissionOptions& options);
 
 /// read_uav_mission_options of the `uav` section of the mission YAML at `path`.
-std::set<std::string> load_uav_mission_options(const std::filesystem::path& path, UavMissionOptions& options);
+std::set<std::string> load_uav_mission_options(const std::filesystem::path& path,
+                                               UavMissionOptions& options);
 
 /// The mission's keys and values into an open YAML mapping, in the order of
 /// uav_mission_keys(); the search area only when `with_search_area` (without it, it is
 /// the world's). read_uav_mission_options reads it back to the same values.
-void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& options, bool with_search_area);
+void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& options,
+                              bool with_search_area);
 
 }  // namespace ferret

@@ -30,7 +30,9 @@ class AnchoredUgvBase final : public UgvBase {
   /// The base's frame, its view's sensor pose in the anchored frame (detections are in
   /// the camera's).
   [[nodiscard]] CameraFrame camera_frame(double time_s) override;
-  void command_velocity(double v_mps, double w_radps) override { base_.command_velocity(v_mps, w_radps); }
+  void command_velocity(double v_mps, double w_radps) override {
+    base_.command_velocity(v_mps, w_radps);
+  }
   void set_epm(bool on) override { base_.set_epm(on); }
   [[nodiscard]] UgvStatus status() const override { return base_.status(); }
 

@@ -200,7 +200,7 @@ class ExploreController {
   Eigen::Vector2d entry_W_ = Eigen::Vector2d::Zero();
   bool left_entry_ = false;  ///< moved the object map's min_move_m from entry_W_ at some time
   std::vector<Eigen::Vector2d> driven_W_;
-  std::vector<std::uint8_t> swept_;  ///< per cell of G: the robot drove over it
+  std::vector<std::uint8_t> swept_;           ///< per cell of G: the robot drove over it
   std::unique_ptr<TautTether> tether_;        ///< the estimate (G's obstacles and their bodies)
   std::unique_ptr<TautTether> reach_tether_;  ///< the bound (and unknown space)
   double corners_refreshed_s_ = -1e9;

@@ -60,13 +60,13 @@ class HwUgvError : public std::runtime_error {
 
 /// What the link has seen so far (for bring-up and logs).
 struct HwLinkStats {
-  mcu::ReaderStats reader;        ///< frames, bad CRCs, bad lengths, other versions, noise
-  std::uint64_t states = 0;       ///< STATE frames used
-  std::uint64_t bad_payloads = 0; ///< frames of a known type whose payload did not decode
+  mcu::ReaderStats reader;         ///< frames, bad CRCs, bad lengths, other versions, noise
+  std::uint64_t states = 0;        ///< STATE frames used
+  std::uint64_t bad_payloads = 0;  ///< frames of a known type whose payload did not decode
   std::uint64_t unknown_types = 0;
-  std::uint64_t lost_states = 0;  ///< gaps in the STATE sequence numbers
-  std::uint64_t link_losses = 0;  ///< times the link was declared lost
-  std::uint64_t mcu_restarts = 0; ///< times the MCU's clock went backwards
+  std::uint64_t lost_states = 0;   ///< gaps in the STATE sequence numbers
+  std::uint64_t link_losses = 0;   ///< times the link was declared lost
+  std::uint64_t mcu_restarts = 0;  ///< times the MCU's clock went backwards
   std::uint64_t drive_frames_sent = 0;
   std::uint64_t epm_frames_sent = 0;
 };

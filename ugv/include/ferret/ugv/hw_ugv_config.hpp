@@ -105,8 +105,7 @@ struct HwUgvConfig {
 /// (ugv_base_factory.hpp). Throws InputError naming the file and the field for an unknown key, a
 /// missing port or camera, a number out of range (NaN, negative radius ...) or a key
 /// without a value.
-[[nodiscard]] HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node,
-                                                  const std::string& source,
+[[nodiscard]] HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& source,
                                                   const std::string& path = "ugv.base");
 
 /// Emits every field of `config` as the keys of a mapping already begun (`serial`, `link`,

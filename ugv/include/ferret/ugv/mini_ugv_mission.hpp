@@ -29,7 +29,16 @@ namespace ferret {
 
 class GridPathPlanner;
 
-enum class UgvMissionState { kIdle, kExplore, kTrack, kTurn, kGrasp, kReturn, kAwaitRetract, kDone };
+enum class UgvMissionState {
+  kIdle,
+  kExplore,
+  kTrack,
+  kTurn,
+  kGrasp,
+  kReturn,
+  kAwaitRetract,
+  kDone
+};
 [[nodiscard]] std::string_view to_string(UgvMissionState state);
 
 enum class UgvMissionOutcome {
@@ -52,21 +61,22 @@ struct UgvMissionOptions {
   /// Hold the search within the tether's reach: unless `explore.tether_budget_m` is
   /// set, the budget is the mission's L - l_0 (tether.total_length_m - entry_offset_m).
   bool tether_aware = true;
-  double standoff_m = 0.3;             ///< d_min: the servo stops this far (centre to object)
+  double standoff_m = 0.3;  ///< d_min: the servo stops this far (centre to object)
   double servo_max_speed_mps = 0.3;
-  double servo_gain_per_s = 1.0;       ///< v = gain (d - d_min)
-  double servo_yaw_gain_per_s = 3.0;   ///< w = gain * bearing
-  double track_lost_s = 3.0;           ///< no detection this long: lost
+  double servo_gain_per_s = 1.0;      ///< v = gain (d - d_min)
+  double servo_yaw_gain_per_s = 3.0;  ///< w = gain * bearing
+  double track_lost_s = 3.0;          ///< no detection this long: lost
   double track_timeout_s = 30.0;
   double turn_timeout_s = 10.0;
-  double rear_offset_m = 0.065;        ///< centre to the EPM face (half of 130 mm)
+  double rear_offset_m = 0.065;  ///< centre to the EPM face (half of 130 mm)
   double grasp_speed_mps = 0.1;
-  double grasp_overshoot_m = 0.05;     ///< back up this much past the expected contact
+  double grasp_overshoot_m = 0.05;  ///< back up this much past the expected contact
   int grasp_attempts = 3;
-  double grasp_timeout_s = 15.0;       ///< per attempt
+  double grasp_timeout_s = 15.0;  ///< per attempt
   double explore_timeout_s = 600.0;
-  double entry_tolerance_m = 0.2;      ///< "at the entry"
-  double return_timeout_min_s = 30.0;  ///< and 4x the planned path's time at full speed, plus a half turn a corner
+  double entry_tolerance_m = 0.2;  ///< "at the entry"
+  double return_timeout_min_s =
+      30.0;  ///< and 4x the planned path's time at full speed, plus a half turn a corner
   double retract_timeout_s = 120.0;
   /// Driving time of a full battery at full speed, s (the real one: about 18 min); the
   /// return estimate divides the way back by half the top speed.

@@ -35,7 +35,8 @@ class UgvLinkEndpoint {
 
   /// @throws std::invalid_argument for a telemetry period that is not > 0 or no
   ///         `start_search`
-  UgvLinkEndpoint(const Clock& clock, StartSearch start_search, UgvLinkEndpointOptions options = {});
+  UgvLinkEndpoint(const Clock& clock, StartSearch start_search,
+                  UgvLinkEndpointOptions options = {});
   /// The IMU's attitude while no mission is attached: the UAV's touchdown check reads
   /// it while it lowers the robot.
   void set_attitude(double roll_rad, double pitch_rad);

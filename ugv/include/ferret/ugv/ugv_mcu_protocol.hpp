@@ -129,11 +129,11 @@ struct DecodeResult {
 
 /// Counts of what a FrameReader dropped.
 struct ReaderStats {
-  std::uint64_t frames = 0;        ///< valid frames
-  std::uint64_t bad_crc = 0;       ///< candidate frames with a bad CRC
-  std::uint64_t bad_length = 0;    ///< version-1 headers with an impossible length
-  std::uint64_t bad_version = 0;   ///< whole frames of another protocol version
-  std::uint64_t noise_bytes = 0;   ///< bytes outside any valid frame
+  std::uint64_t frames = 0;       ///< valid frames
+  std::uint64_t bad_crc = 0;      ///< candidate frames with a bad CRC
+  std::uint64_t bad_length = 0;   ///< version-1 headers with an impossible length
+  std::uint64_t bad_version = 0;  ///< whole frames of another protocol version
+  std::uint64_t noise_bytes = 0;  ///< bytes outside any valid frame
   std::uint8_t last_bad_version = 0;
 };
 
