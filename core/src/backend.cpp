@@ -1,19 +1,20 @@
 #include "ferret/core/backend.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 #include <string>
 
 namespace ferret {
 
-std::string_view to_string(Backend backend) { return backend == Backend::kHw ? "hw" : "sim"; }
-
-Backend read_backend(const yaml::MapReader& section) {
-  constexpr const char* kExpected = "one of sim, hw";
-  if (section.given_empty("backend")) section.fail("backend", kExpected, "a key without a value");
-  if (!section.has("backend")) return Backend::kSim;
-  const auto name = section.get<std::string>("backend");
-  if (name == "sim") return Backend::kSim;
-  if (name == "hw") return Backend::kHw;
-  section.fail("backend", kExpected, yaml::internal::describe(section.node()["backend"]));
+std::string read_backend(const yaml::MapReader& section, const std::vector<std::string>& names) {
+  const std::string expected = fmt::format("one of {}", fmt::join(names, ", "));
+  if (section.given_empty("backend")) section.fail("backend", expected, "a key without a value");
+  if (!section.has("backend")) return std::string(kSimBackend);
+  auto name = section.get<std::string>("backend");
+  if (std::find(names.begin(), names.end(), name) != names.end()) return name;
+  section.fail("backend", expected, yaml::internal::describe(section.node()["backend"]));
 }
 
 bool has_device_settings(const yaml::MapReader& section,

@@ -21,7 +21,7 @@
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/dynamixel_bus.hpp"
 #include "ferret/tether_model/winch_factory.hpp"
-#include "ferret/uav/adapter_flight_controller.hpp"
+#include "ferret/uav/flight_controller_config.hpp"
 #include "ferret/uav/linked_ugv.hpp"
 #include "ferret/uav/uav_mission.hpp"
 #include "ferret/ugv/anchored_ugv_base.hpp"
@@ -112,13 +112,11 @@ int print_uav_outcome(const UavMission& mission, double time_s) {
   return retrieved;
 }
 
-bool ugv_on_hardware(const MissionSetup& setup) {
-  return setup.backends.ugv_base.backend == Backend::kHw;
-}
+bool ugv_on_hardware(const MissionSetup& setup) { return !setup.backends.ugv_base.simulated(); }
 
 bool uav_on_hardware(const MissionSetup& setup, const std::string& mission_path) {
-  const bool winch_hw = setup.backends.winch.backend == Backend::kHw;
-  const bool flight_hw = setup.backends.flight_controller.backend == Backend::kHw;
+  const bool winch_hw = !setup.backends.winch.simulated();
+  const bool flight_hw = !setup.backends.flight_controller.simulated();
   if (winch_hw != flight_hw)
     throw InputError(
         mission_path, winch_hw ? "uav.flight_controller.backend" : "uav.winch.backend",
@@ -217,22 +215,17 @@ void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   if (!o.quiet)
     std::fprintf(stderr, "uav: winch up: l_t = %.3f m\n", winch->read_state().released_m);
 
-  link::StreamRpcChannel adapter_channel(
-      link::MessageStream::connect(
-          link::parse_ipv4_address(adapter_address, "uav.flight_controller.address",
-                                   o.mission_path),
-          5.0),
-      kAdapterReplyTimeoutMs);
-  AdapterFlightController flight(adapter_channel, "hw");
+  const std::unique_ptr<FlightBackend> vehicle =
+      make_flight_backend(setup.backends.flight_controller, {}, kAdapterReplyTimeoutMs);
   if (!o.quiet)
-    std::fprintf(stderr, "uav: flight adapter '%s' at %s\n", flight.adapter_name().c_str(),
+    std::fprintf(stderr, "uav: flight adapter '%s' at %s\n", vehicle->peer_name().c_str(),
                  adapter_address.c_str());
   SteadyClock clock;
   LinkedUgv ugv(clock);
   TransitionLog log;
   print_transitions(log, o.quiet);
   const std::unique_ptr<UavMission> uav =
-      assembly.uav_mission({flight, flight, *winch, ugv}, clock, &log);
+      assembly.uav_mission({vehicle->flight(), vehicle->cameras(), *winch, ugv}, clock, &log);
   UavMission& mission = *uav;
   mission.start();
   const PeriodicLoopResult loop = run_periodic(kUavPeriodS, o.duration_s, [&] {

@@ -1,5 +1,7 @@
 #include "ferret/sim/robot_backends.hpp"
 
+#include <tuple>
+
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
@@ -7,17 +9,19 @@
 namespace ferret {
 
 std::string RobotBackends::summary() const {
-  auto with = [](Backend b, const std::string& device) {
-    return std::string(to_string(b)) + (b == Backend::kHw ? " (" + device + ")" : "");
+  // A device's backend says where the device is.
+  auto with = [](const std::string& backend, bool simulated, const std::string& device) {
+    return backend + (simulated ? "" : " (" + device + ")");
   };
-  return "ugv.base: " + with(ugv_base.backend, ugv_base.hw ? ugv_base.hw->serial.port : "") +
-         ", uav.winch: " + with(winch.backend, winch.hw ? winch.hw->port : "") +
-         ", uav.flight_controller: " + with(flight_controller.backend, flight_controller.address);
+  return "ugv.base: " +
+         with(ugv_base.backend, ugv_base.simulated(), ugv_base.hw ? ugv_base.hw->serial.port : "") +
+         ", uav.winch: " + with(winch.backend, winch.simulated(), winch.hw ? winch.hw->port : "") +
+         ", uav.flight_controller: " +
+         with(flight_controller.backend, flight_controller.simulated(), flight_controller.address);
 }
 
 bool RobotBackends::all_sim() const {
-  return ugv_base.backend == Backend::kSim && winch.backend == Backend::kSim &&
-         flight_controller.backend == Backend::kSim;
+  return ugv_base.simulated() && winch.simulated() && flight_controller.simulated();
 }
 
 RobotBackends robot_backends_from_yaml(const YAML::Node& root, const std::string& source) {
@@ -62,14 +66,13 @@ std::string robot_backends_to_yaml(const RobotBackends& b) {
 }
 
 void require_all_sim(const RobotBackends& b, const std::string& source, const std::string& why) {
-  const std::pair<const char*, Backend> interfaces[] = {
-      {"ugv.base.backend", b.ugv_base.backend},
-      {"uav.winch.backend", b.winch.backend},
-      {"uav.flight_controller.backend", b.flight_controller.backend}};
-  for (const auto& [field, backend] : interfaces)
-    if (backend != Backend::kSim)
-      throw InputError(source, field, "sim (" + why + ")",
-                       "'" + std::string(to_string(backend)) + "'");
+  const std::tuple<const char*, const std::string&, bool> interfaces[] = {
+      {"ugv.base.backend", b.ugv_base.backend, b.ugv_base.simulated()},
+      {"uav.winch.backend", b.winch.backend, b.winch.simulated()},
+      {"uav.flight_controller.backend", b.flight_controller.backend,
+       b.flight_controller.simulated()}};
+  for (const auto& [field, backend, simulated] : interfaces)
+    if (!simulated) throw InputError(source, field, "sim (" + why + ")", "'" + backend + "'");
 }
 
 }  // namespace ferret

@@ -1,4 +1,5 @@
-// The `backend` key of a hardware interface's section: sim by default, hw, nothing else.
+// The `backend` key of a hardware interface's section: sim by default, one of the
+// interface's registered backends, nothing else.
 #include "ferret/core/backend.hpp"
 
 #include <gmock/gmock.h>
@@ -13,24 +14,47 @@ yaml::MapReader section(const std::string& text) {
   return yaml::MapReader(yaml::load_string(text, "m.yaml"), "m.yaml", "uav.winch");
 }
 
-TEST(Backend, LeftOutIsSimAndTheTwoNamesReadAsThemselves) {
-  EXPECT_EQ(read_backend(section("{}")), Backend::kSim);
-  EXPECT_EQ(read_backend(section("backend: sim")), Backend::kSim);
-  EXPECT_EQ(read_backend(section("backend: hw")), Backend::kHw);
-  EXPECT_EQ(to_string(Backend::kSim), "sim");
-  EXPECT_EQ(to_string(Backend::kHw), "hw");
+const std::vector<std::string> kNames{"sim", "hw", "ros"};
+
+TEST(Backend, LeftOutIsSimAndRegisteredNamesReadAsThemselves) {
+  EXPECT_EQ(read_backend(section("{}"), kNames), "sim");
+  EXPECT_EQ(read_backend(section("backend: sim"), kNames), "sim");
+  EXPECT_EQ(read_backend(section("backend: hw"), kNames), "hw");
+  EXPECT_EQ(read_backend(section("backend: ros"), kNames), "ros");
 }
 
-TEST(Backend, AnythingElseNamesTheFieldAndTheChoices) {
+TEST(Backend, AnythingElseNamesTheFieldAndListsTheRegisteredOnes) {
   for (const char* text : {"backend: HW", "backend:", "backend: [hw]", "backend: 1"}) {
     try {
-      (void)read_backend(section(text));
+      (void)read_backend(section(text), kNames);
       ADD_FAILURE() << "accepted: " << text;
     } catch (const InputError& e) {
       EXPECT_EQ(e.field(), "uav.winch.backend") << text;
       EXPECT_THAT(e.what(), ::testing::HasSubstr("m.yaml")) << text;
     }
   }
+  try {
+    (void)read_backend(section("backend: mavlink"), kNames);
+    ADD_FAILURE() << "accepted an unregistered name";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("one of sim, hw, ros"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("mavlink"));
+  }
+}
+
+TEST(Backend, ARegistryOfBackendsKeepsEachOnesTraits) {
+  struct Device {
+    virtual ~Device() = default;
+  };
+  BackendRegistry<Device, int> r;
+  r.add(
+      "sim", "simulated", [](const int&) { return std::make_unique<Device>(); }, {},
+      BackendTraits{.simulated = true});
+  r.add("hw", "a device", [](const int&) { return std::make_unique<Device>(); });
+  EXPECT_TRUE(r.traits("sim").simulated);
+  EXPECT_FALSE(r.traits("hw").simulated);
+  EXPECT_THROW((void)r.traits("ros"), std::logic_error);
+  EXPECT_EQ(r.expected(), "one of sim, hw");
 }
 
 TEST(Backend, DeviceSettingsAreEveryKeyButBackend) {

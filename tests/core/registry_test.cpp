@@ -94,5 +94,37 @@ TEST(Registry, AnUnknownNameIsAnInputErrorNamingTheFieldAndTheChoices) {
   EXPECT_NO_THROW(r.check("square", "--shape"));
 }
 
+int fills = 0;
+void fill_shapes(Shapes& r) {
+  ++fills;
+  r.add("square", "four equal sides",
+        [](const ShapeOptions& o) { return std::make_unique<Square>(o); });
+}
+
+TEST(Registry, AFilledRegistryIsFilledOnceWhenFirstAskedFor) {
+  EXPECT_EQ(fills, 0);
+  const Shapes& first = filled_registry<Shapes, fill_shapes>();
+  const Shapes& again = filled_registry<Shapes, fill_shapes>();
+  EXPECT_EQ(fills, 1);
+  EXPECT_EQ(&first, &again);
+  EXPECT_EQ(first.names(), (std::vector<std::string>{"square"}));
+}
+
+struct Kind {
+  bool simulated = false;
+};
+
+TEST(Registry, EachEntryKeepsItsTraits) {
+  Registry<Shape, ShapeOptions, Kind> r;
+  r.add("square", "", [](const ShapeOptions& o) { return std::make_unique<Square>(o); });
+  r.add(
+      "disc", "", [](const ShapeOptions& o) { return std::make_unique<Disc>(o); }, "Disc",
+      Kind{true});
+  EXPECT_FALSE(r.traits("square").simulated);
+  EXPECT_TRUE(r.traits("disc").simulated);
+  EXPECT_EQ(r.label("disc"), "Disc");
+  EXPECT_THROW((void)r.traits("triangle"), std::logic_error);
+}
+
 }  // namespace
 }  // namespace ferret

@@ -17,6 +17,7 @@
 #include "ferret/sim/sim_flight_adapter.hpp"
 #include "ferret/uav/adapter_flight_controller.hpp"
 #include "ferret/uav/flight_adapter_check.hpp"
+#include "ferret/uav/flight_controller_config.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -82,6 +83,17 @@ void advance(link::RpcChannel& channel, double seconds) {
   const json r =
       json::parse(channel.call(json{{"op", "sim_advance"}, {"seconds", seconds}}.dump()).header);
   ASSERT_TRUE(r.value("ok", false)) << r.dump();
+}
+
+TEST(FlightAdapter, TheHwBackendOfTheRegistryConnectsToTheConfiguredAdapter) {
+  ServedAdapter served(1);
+  FlightControllerConfig config;
+  config.backend = "hw";
+  config.address = served.address().to_string();
+  const std::unique_ptr<FlightBackend> vehicle = make_flight_backend(config);
+  EXPECT_EQ(vehicle->peer_name(), "sim");  // what the reference adapter says in its hello
+  EXPECT_EQ(vehicle->flight().backend(), "hw");
+  EXPECT_TRUE(vehicle->flight().state().on_ground);
 }
 
 TEST(FlightAdapter, TheClientFliesTheReferenceAdapterOverTcp) {

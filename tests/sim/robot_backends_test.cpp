@@ -66,7 +66,7 @@ TEST(RobotBackends, HwEverywhereCarriesEachDevicesSettings) {
   const RobotBackends b = parse(kAllHw);
   EXPECT_FALSE(b.all_sim());
   ASSERT_TRUE(b.ugv_base.hw && b.winch.hw);
-  EXPECT_EQ(b.ugv_base.backend, Backend::kHw);
+  EXPECT_EQ(b.ugv_base.backend, "hw");
   EXPECT_EQ(b.ugv_base.hw->serial.baud, 230400);
   EXPECT_EQ(b.ugv_base.hw->epm.line, 17u);
   EXPECT_DOUBLE_EQ(b.ugv_base.hw->odometry.track_width_m, 0.13);
@@ -107,7 +107,7 @@ TEST(RobotBackends, SimulatedWithTheRobotsSettingsStillChecksThem) {
   // Switching a robot's file to the simulator is one line; the rest stays checked.
   const RobotBackends b =
       parse("ugv: {base: {backend: sim, serial: {port: /dev/ttyAMA0}, camera: {device: '0'}}}\n");
-  EXPECT_EQ(b.ugv_base.backend, Backend::kSim);
+  EXPECT_EQ(b.ugv_base.backend, "sim");
   EXPECT_TRUE(b.ugv_base.hw);
   EXPECT_EQ(refusal("ugv: {base: {backend: sim, serial: {port: /dev/ttyAMA0, baud: 7}, "
                     "camera: {device: '0'}}}\n")
@@ -151,6 +151,7 @@ TEST(RobotBackends, BadInputNamesTheFieldAndWhatItShouldBe) {
        "spool: {payout_direction: 2}}}\n",
        "uav.winch.spool.payout_direction", "1 or -1"},
       {"uav: {winch: {backend: sim, motor: x}}\n", "uav.winch.motor", "one of"},
+      {"uav: {winch: {backend: ros}}\n", "uav.winch.backend", "one of sim, hw"},
       {"uav: {flight_controller: {backend: hw}}\n", "uav.flight_controller.address",
        "required field missing"},
       {"uav: {flight_controller: {backend: hw, address: 192.168.1.20}}\n",

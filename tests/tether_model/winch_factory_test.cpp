@@ -18,7 +18,7 @@ WinchConfig parse(const std::string& text) {
 
 TEST(WinchFactory, NoSectionIsTheSimulatedSpoolWithTheSimulatorsOptions) {
   const WinchConfig c = winch_config_from_yaml(YAML::Node(), "m.yaml");
-  EXPECT_EQ(c.backend, Backend::kSim);
+  EXPECT_EQ(c.backend, "sim");
   SimulatedWinch::Options sim;
   sim.initial_released_m = 2.5;
   const std::unique_ptr<Winch> w = make_winch(c, sim);
@@ -43,6 +43,28 @@ TEST(WinchFactory, HwConnectsToTheServoWithTheFilesSettings) {
 TEST(WinchFactory, HwOnAMissingPortThrowsTheDriversError) {
   const WinchConfig c = parse("backend: hw\nserial: {port: /dev/ttyUSB_ferret_missing}\n");
   EXPECT_THROW((void)make_winch(c), SerialError);
+}
+
+TEST(WinchFactory, TheBackendsAreARegistryAndAnotherNameListsThem) {
+  EXPECT_EQ(winch_backends().names(), (std::vector<std::string>{"sim", "hw"}));
+  EXPECT_TRUE(parse("backend: sim\n").simulated());
+  EXPECT_FALSE(parse("backend: hw\nserial: {port: /dev/ttyUSB0}\n").simulated());
+  try {
+    (void)parse("backend: ros\n");
+    FAIL() << "an unregistered backend passed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "uav.winch.backend");
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("one of sim, hw"));
+  }
+  // A backend registered beside the built-ins is built by name.
+  WinchBackendRegistry r;
+  register_builtin_winch_backends(r);
+  r.add("fixed", "a spool that reports 7 m", [](const WinchBackendSetup&) {
+    SimulatedWinch::Options o;
+    o.initial_released_m = 7.0;
+    return std::make_unique<SimulatedWinch>(o);
+  });
+  EXPECT_DOUBLE_EQ(r.make("fixed", {}, "test")->read_state().released_m, 7.0);
 }
 
 TEST(WinchFactory, AnUnknownKeyIsNamed) {

@@ -1,7 +1,10 @@
 // The flight controller's section: sim by default, hw only with the adapter's IPv4 address:port.
 #include "ferret/uav/flight_controller_config.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <stdexcept>
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
@@ -14,11 +17,36 @@ FlightControllerConfig parse(const std::string& text) {
 }
 
 TEST(FlightControllerConfig, SimByDefaultHwWithItsAddress) {
-  EXPECT_EQ(flight_controller_config_from_yaml(YAML::Node(), "m.yaml").backend, Backend::kSim);
+  EXPECT_EQ(flight_controller_config_from_yaml(YAML::Node(), "m.yaml").backend, "sim");
   const FlightControllerConfig c = parse("backend: hw\naddress: 127.0.0.1:47820\n");
-  EXPECT_EQ(c.backend, Backend::kHw);
+  EXPECT_EQ(c.backend, "hw");
   EXPECT_EQ(c.address, "127.0.0.1:47820");
   EXPECT_TRUE(parse("backend: sim\n").address.empty());
+}
+
+TEST(FlightControllerConfig, TheBackendsAreARegistryAndAnotherNameListsThem) {
+  EXPECT_EQ(flight_controller_backends().names(), (std::vector<std::string>{"sim", "hw"}));
+  EXPECT_TRUE(parse("backend: sim\n").simulated());
+  EXPECT_FALSE(parse("backend: hw\naddress: 127.0.0.1:47820\n").simulated());
+  try {
+    (void)parse("backend: mavlink\naddress: 127.0.0.1:14550\n");
+    FAIL() << "an unregistered backend passed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "uav.flight_controller.backend");
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("one of sim, hw"));
+  }
+}
+
+TEST(FlightControllerConfig, TheSimBackendIsTheSimulatorsToBuild) {
+  const FlightControllerConfig sim = parse("backend: sim\n");
+  EXPECT_THROW((void)make_flight_backend(sim), std::invalid_argument);
+  bool called = false;
+  (void)make_flight_backend(sim, [&](const FlightControllerConfig& c) {
+    called = true;
+    EXPECT_EQ(c.backend, "sim");
+    return std::unique_ptr<FlightBackend>();
+  });
+  EXPECT_TRUE(called);
 }
 
 TEST(FlightControllerConfig, AnAddressThatIsNotHostColonPortIsNamed) {

@@ -24,7 +24,7 @@ UgvBaseConfig parse(const std::string& text) {
 
 TEST(UgvBaseFactory, SimIsBuiltByTheSimulatorsFactoryWithTheContext) {
   const UgvBaseConfig c = ugv_base_config_from_yaml(YAML::Node(), "m.yaml");
-  EXPECT_EQ(c.backend, Backend::kSim);
+  EXPECT_EQ(c.backend, "sim");
   const Pose2 start{1.0, 2.0, 0.5};
   bool called = false;
   const UgvBaseFactory sim = [&](const UgvBaseConfig&, const UgvBaseContext& context) {
@@ -52,6 +52,20 @@ TEST(UgvBaseFactory, HwBringsUpTheRealBaseOnTheFilesPort) {
   EXPECT_FALSE(sim_called);
   EXPECT_EQ(base->backend(), "hw");
   EXPECT_DOUBLE_EQ(base->odometry().x_m, 0.5);  // the context's start pose
+}
+
+TEST(UgvBaseFactory, TheBackendsAreARegistryAndAnotherNameListsThem) {
+  EXPECT_EQ(ugv_base_backends().names(), (std::vector<std::string>{"sim", "hw"}));
+  EXPECT_TRUE(parse("backend: sim\n").simulated());
+  EXPECT_FALSE(
+      parse("backend: hw\nserial: {port: /dev/ttyAMA0}\ncamera: {device: '0'}\n").simulated());
+  try {
+    (void)parse("backend: ros\n");
+    FAIL() << "an unregistered backend passed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "ugv.base.backend");
+    EXPECT_NE(std::string(e.what()).find("one of sim, hw"), std::string::npos) << e.what();
+  }
 }
 
 TEST(UgvBaseFactory, TheBackendKeyAloneIsNotHardwareSettings) {

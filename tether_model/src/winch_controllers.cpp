@@ -125,12 +125,7 @@ void register_builtin_tether_controllers(TetherControllerRegistry& registry) {
 }
 
 const TetherControllerRegistry& tether_controllers() {
-  static const TetherControllerRegistry registry = [] {
-    TetherControllerRegistry r;
-    register_builtin_tether_controllers(r);
-    return r;
-  }();
-  return registry;
+  return filled_registry<TetherControllerRegistry, register_builtin_tether_controllers>();
 }
 
 std::unique_ptr<TetherController> make_tether_controller(

@@ -55,13 +55,13 @@ WinchConfig winch_config_from_yaml(const YAML::Node& node, const std::string& so
   if (!node.IsDefined() || node.IsNull()) return c;
   const yaml::MapReader root(node, source, "uav.winch");
   root.allow_only({"backend", "serial", "spool"});
-  c.backend = read_backend(root);
-  if (c.backend == Backend::kHw || has_device_settings(root)) c.hw = read_dynamixel(root);
+  c.backend = read_backend(root, winch_backends().names());
+  if (!c.simulated() || has_device_settings(root)) c.hw = read_dynamixel(root);
   return c;
 }
 
 void emit_winch_config(YAML::Emitter& e, const WinchConfig& c) {
-  e << YAML::BeginMap << YAML::Key << "backend" << YAML::Value << std::string(to_string(c.backend));
+  e << YAML::BeginMap << YAML::Key << "backend" << YAML::Value << c.backend;
   if (c.hw) {
     const DynamixelWinch::Options& o = *c.hw;
     e << YAML::Key << "serial" << YAML::Value << YAML::BeginMap;
@@ -81,18 +81,29 @@ void emit_winch_config(YAML::Emitter& e, const WinchConfig& c) {
   e << YAML::EndMap;
 }
 
+bool WinchConfig::simulated() const { return winch_backends().traits(backend).simulated; }
+
+void register_builtin_winch_backends(WinchBackendRegistry& registry) {
+  registry.add(
+      "sim", "the simulated winch (SimulatedWinch; the simulator advances it)",
+      [](const WinchBackendSetup& s) { return std::make_unique<SimulatedWinch>(s.sim); }, {},
+      BackendTraits{.simulated = true});
+  registry.add("hw", "a Dynamixel servo on a serial port (DynamixelWinch)",
+               [](const WinchBackendSetup& s) -> std::unique_ptr<Winch> {
+                 if (!s.config.hw)
+                   throw std::invalid_argument("make_winch: backend hw without its options");
+                 auto winch = std::make_unique<DynamixelWinch>(*s.config.hw);
+                 (void)winch->connect();
+                 return winch;
+               });
+}
+
+const WinchBackendRegistry& winch_backends() {
+  return filled_registry<WinchBackendRegistry, register_builtin_winch_backends>();
+}
+
 std::unique_ptr<Winch> make_winch(const WinchConfig& config, const SimulatedWinch::Options& sim) {
-  switch (config.backend) {
-    case Backend::kHw: {
-      if (!config.hw) throw std::invalid_argument("make_winch: backend hw without its options");
-      auto winch = std::make_unique<DynamixelWinch>(*config.hw);
-      (void)winch->connect();
-      return winch;
-    }
-    case Backend::kSim:
-      return std::make_unique<SimulatedWinch>(sim);
-  }
-  throw std::invalid_argument("make_winch: unknown backend");
+  return winch_backends().make(config.backend, {config, sim}, "make_winch", "uav.winch.backend");
 }
 
 }  // namespace ferret::tether

@@ -9,6 +9,7 @@
 #include "ferret/core/number.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/core/yaml_emit.hpp"
+#include "ferret/ugv/ugv_base_factory.hpp"
 
 namespace ferret::ugv {
 namespace {
@@ -79,7 +80,8 @@ HwUgvConfig hw_ugv_config_from_yaml(const YAML::Node& node, const std::string& s
   const yaml::MapReader root(node, source, path);
   // stall_time_s is the mission's (ugv_base_factory.hpp), read for every backend.
   root.allow_only({"backend", "stall_time_s", "serial", "link", "camera", "epm", "odometry"});
-  (void)read_backend(root);  // checked here too; which one runs is ugv_base_config's choice
+  // Checked here too; which one runs is ugv_base_config's choice.
+  (void)read_backend(root, ugv_base_backends().names());
 
   // Required sections are asked for by name, so a missing one says which.
   const yaml::MapReader serial = root.child("serial");

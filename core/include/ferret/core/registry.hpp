@@ -8,6 +8,9 @@
 //   Registry<TetherController, ControllerOptions> r;
 //   r.add("mpc", "the taut-tether MPC", [](const ControllerOptions& o) { ... });
 //   auto controller = r.make(name, options, "--controller");
+//
+// `Traits` is what an entry says about itself besides its factory, known before anything
+// is built (the backends: whether the simulator serves it; core/backend.hpp).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -19,13 +22,14 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "ferret/core/error.hpp"
 
 namespace ferret {
 
-template <class Interface, class Options>
+template <class Interface, class Options, class Traits = std::monostate>
 class Registry {
  public:
   using Factory = std::function<std::unique_ptr<Interface>(const Options&)>;
@@ -35,16 +39,27 @@ class Registry {
     std::string description;  ///< one line, for help texts and docs
     Factory factory;
     std::string label;  ///< how plots and reports print it (the name unless given)
+    Traits traits;
   };
 
   /// Adds `name`. @throws std::logic_error when the name is taken (two implementations
   /// under one name is a programming error, not input) or the factory is empty.
-  void add(std::string name, std::string description, Factory factory, std::string label = {}) {
+  void add(std::string name, std::string description, Factory factory, std::string label = {},
+           Traits traits = {}) {
     if (contains(name)) throw std::logic_error("registry: '" + name + "' is registered twice");
     if (!factory) throw std::logic_error("registry: '" + name + "' has no factory");
     if (label.empty()) label = name;
-    entries_.push_back(
-        {std::move(name), std::move(description), std::move(factory), std::move(label)});
+    entries_.push_back({std::move(name), std::move(description), std::move(factory),
+                        std::move(label), std::move(traits)});
+  }
+
+  /// The traits `name` was added with. @throws std::logic_error for a name that is not
+  /// registered (callers ask only for names a reader has checked).
+  [[nodiscard]] const Traits& traits(std::string_view name) const {
+    const Entry* e = find(name);
+    if (e == nullptr)
+      throw std::logic_error("registry: '" + std::string(name) + "' is not registered");
+    return e->traits;
   }
 
   /// The label of `name`; `name` itself when it is not registered.
@@ -97,5 +112,21 @@ class Registry {
  private:
   std::vector<Entry> entries_;
 };
+
+/// The registry `Fill` (a module's register_builtin_*()) fills, built the first time it is
+/// asked for (a function-local static: once, thread-safe, after main() has started):
+///
+///   const WinchBackendRegistry& winch_backends() {
+///     return filled_registry<WinchBackendRegistry, register_builtin_winch_backends>();
+///   }
+template <class R, void (*Fill)(R&)>
+[[nodiscard]] const R& filled_registry() {
+  static const R registry = [] {
+    R r;
+    Fill(r);
+    return r;
+  }();
+  return registry;
+}
 
 }  // namespace ferret

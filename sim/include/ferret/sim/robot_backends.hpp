@@ -8,6 +8,10 @@
 //     winch: {backend: sim}                  # Winch: sim | hw (DynamixelWinch)
 //     flight_controller: {backend: sim}      # FlightController: sim | hw (address)
 //
+// Each `backend` names an entry of that interface's registry (ugv_base_backends(),
+// winch_backends(), flight_controller_backends()); another name is an InputError listing
+// them.
+//
 // Every section and key is optional; the default is `sim` everywhere, so every mission
 // file written before backends existed still means the simulator.
 
@@ -30,7 +34,7 @@ struct RobotBackends {
   /// One line for a run's first log lines: "ugv.base: sim, uav.winch: hw (/dev/ttyUSB0),
   /// uav.flight_controller: sim".
   [[nodiscard]] std::string summary() const;
-  /// True when every interface runs on the simulator.
+  /// True when the simulated world serves every interface.
   [[nodiscard]] bool all_sim() const;
 };
 
@@ -46,8 +50,8 @@ struct RobotBackends {
 /// robot_backends_from_yaml reads back to the same values.
 [[nodiscard]] std::string robot_backends_to_yaml(const RobotBackends& backends);
 
-/// Throws InputError(source, FIELD.backend, "sim (" + why + ")", "hw") for the first
-/// interface that is not simulated: for commands that run only the simulator.
+/// Throws InputError(source, FIELD.backend, "sim (" + why + ")", "'<backend>'") for the
+/// first interface that is not simulated: for commands that run only the simulator.
 void require_all_sim(const RobotBackends& backends, const std::string& source,
                      const std::string& why);
 
