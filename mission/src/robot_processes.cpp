@@ -17,12 +17,16 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ferret/core/clock.hpp"
@@ -185,6 +189,36 @@ std::pair<json, StreamMessage> next_step(MessageStream& stream) {
   }
 }
 
+// The ops sim-world steps each robot with (sim/sim_world_server.hpp), parsed where they
+// arrive: the loops switch on them.
+enum class UavStep { kStart, kTick, kLink, kEnd };
+enum class UgvStep { kStart, kStep, kReport, kEnd };
+constexpr std::array<std::pair<std::string_view, UavStep>, 4> kUavSteps{{
+    {"start", UavStep::kStart},
+    {"tick", UavStep::kTick},
+    {"link", UavStep::kLink},
+    {"end", UavStep::kEnd},
+}};
+constexpr std::array<std::pair<std::string_view, UgvStep>, 4> kUgvSteps{{
+    {"start", UgvStep::kStart},
+    {"step", UgvStep::kStep},
+    {"report", UgvStep::kReport},
+    {"end", UgvStep::kEnd},
+}};
+
+// The step `j` ("op") asks `robot` for; an op not in `steps` is sim-world's mistake.
+template <class Step, std::size_t N>
+Step step_of(const json& j, const std::array<std::pair<std::string_view, Step>, N>& steps,
+             const std::string& robot) {
+  const std::string op = j["op"].get<std::string>();
+  const auto it = std::find_if(steps.begin(), steps.end(),
+                               [&](const auto& entry) { return entry.first == op; });
+  if (it == steps.end())
+    throw StreamError("sim-world sent the " + robot + " an op it does not know: '" + printable(op) +
+                      "'");
+  return it->second;
+}
+
 double time_of(const json& j) {
   if (!j.contains("t_s") || !j["t_s"].is_number() || !std::isfinite(j["t_s"].get<double>()))
     throw StreamError("sim-world's '" + j["op"].get<std::string>() + "' has no time 't_s'");
@@ -275,49 +309,53 @@ void run_uav_process(const RobotProcessOptions& o) {
   MessageStream& stream = channel.stream();
   for (;;) {
     auto [j, m] = next_step(stream);
-    const std::string op = j["op"].get<std::string>();
-    if (op == "start") {
-      flight.emplace(channel, "sim");
-      started = assembly.uav_mission({*flight, *flight, winch, ugv}, clock, &log);
-      started->start();
-      json r = state();
-      r["op"] = "start_done";
-      stream.send(dump(r));
-    } else if (op == "tick") {
-      clock.set(time_of(j));
-      ugv.set_lonely(j.value("lonely", false));
-      mission_or_throw().tick();
-      json r = state();
-      r["op"] = "tick_done";
-      stream.send(dump(r));
-    } else if (op == "link") {
-      clock.set(time_of(j));
-      for (const auto& d : link::unpack_datagrams(m.blob)) linked.session().receive(d);
-      stream.send(StreamMessage{R"({"op":"link_done"})",
-                                link::pack_datagrams(linked.session().take_outgoing())});
-    } else if (op == "end") {
-      clock.set(time_of(j));
-      UavMission& mission = mission_or_throw();
-      if (!mission.done()) mission.stop("the simulation's time limit");
-      const int retrieved = print_uav_outcome(mission, clock.now_s());
-      json visits = json::array();
-      for (const HiddenSpaceVisit& v : mission.visits())
-        visits.push_back({{"marker_id", v.marker_id},
-                          {"state", std::string(to_string(v.state))},
-                          {"landed", v.landed},
-                          {"ugv_outcome", v.ugv_outcome},
-                          {"object_retrieved", v.object_retrieved},
-                          {"object_dropped", v.object_dropped}});
-      std::printf("link: UAV end: %s\n", linked.session().counters().summary().c_str());
-      std::fflush(stdout);
-      stream.send(dump({{"op", "end_done"},
-                        {"outcome", std::string(to_string(mission.outcome()))},
-                        {"hidden_spaces_found", mission.visits().size()},
-                        {"objects_retrieved", retrieved},
-                        {"visits", visits}}));
-      return;
-    } else {
-      throw StreamError("sim-world sent the UAV an op it does not know: '" + printable(op) + "'");
+    switch (step_of(j, kUavSteps, "UAV")) {
+      case UavStep::kStart: {
+        flight.emplace(channel, "sim");
+        started = assembly.uav_mission({*flight, *flight, winch, ugv}, clock, &log);
+        started->start();
+        json r = state();
+        r["op"] = "start_done";
+        stream.send(dump(r));
+        break;
+      }
+      case UavStep::kTick: {
+        clock.set(time_of(j));
+        ugv.set_lonely(j.value("lonely", false));
+        mission_or_throw().tick();
+        json r = state();
+        r["op"] = "tick_done";
+        stream.send(dump(r));
+        break;
+      }
+      case UavStep::kLink:
+        clock.set(time_of(j));
+        for (const auto& d : link::unpack_datagrams(m.blob)) linked.session().receive(d);
+        stream.send(StreamMessage{R"({"op":"link_done"})",
+                                  link::pack_datagrams(linked.session().take_outgoing())});
+        break;
+      case UavStep::kEnd: {
+        clock.set(time_of(j));
+        UavMission& mission = mission_or_throw();
+        if (!mission.done()) mission.stop("the simulation's time limit");
+        const int retrieved = print_uav_outcome(mission, clock.now_s());
+        json visits = json::array();
+        for (const HiddenSpaceVisit& v : mission.visits())
+          visits.push_back({{"marker_id", v.marker_id},
+                            {"state", std::string(to_string(v.state))},
+                            {"landed", v.landed},
+                            {"ugv_outcome", v.ugv_outcome},
+                            {"object_retrieved", v.object_retrieved},
+                            {"object_dropped", v.object_dropped}});
+        std::printf("link: UAV end: %s\n", linked.session().counters().summary().c_str());
+        std::fflush(stdout);
+        stream.send(dump({{"op", "end_done"},
+                          {"outcome", std::string(to_string(mission.outcome()))},
+                          {"hidden_spaces_found", mission.visits().size()},
+                          {"objects_retrieved", retrieved},
+                          {"visits", visits}}));
+        return;
+      }
     }
   }
 }
@@ -367,43 +405,46 @@ void run_ugv_process(const RobotProcessOptions& o) {
   MessageStream& stream = channel.stream();
   for (;;) {
     auto [j, m] = next_step(stream);
-    const std::string op = j["op"].get<std::string>();
-    if (op == "start") {
-      base.emplace(channel, "sim");
-      stream.send(R"({"op":"start_done"})");
-    } else if (op == "step") {
-      clock.set(time_of(j));
-      for (const auto& d : link::unpack_datagrams(m.blob)) endpoint.session().receive(d);
-      const json& a = j.at("attitude_rad");
-      endpoint.set_attitude(a.at(0).get<double>(), a.at(1).get<double>());
-      const bool hold = endpoint.handle_requests();
-      MiniUgvMission* mission = endpoint.mission();
-      const bool set_down = j.value("set_down", false);
-      // The world steps a base whose controller is done or waits to be lifted no more.
-      const bool stopped = set_down && mission && (mission->done() || mission->wants_retraction());
-      if (set_down && !stopped && !hold && mission && mission->state() != UgvMissionState::kIdle)
-        mission->tick();
-      stream.send(dump({{"op", "step_done"}, {"hold", hold}, {"stopped", stopped}}));
-    } else if (op == "report") {
-      clock.set(time_of(j));
-      endpoint.report();
-      stream.send(StreamMessage{R"({"op":"report_done"})",
-                                link::pack_datagrams(endpoint.session().take_outgoing())});
-    } else if (op == "end") {
-      clock.set(time_of(j));
-      json deployments = json::array();
-      for (auto& mission : missions) {
-        if (!mission->done()) mission->stop("the mission ended");
-        std::printf("  miniUGV search: %s\n", std::string(to_string(mission->outcome())).c_str());
-        deployments.push_back(std::string(to_string(mission->outcome())));
+    switch (step_of(j, kUgvSteps, "miniUGV")) {
+      case UgvStep::kStart:
+        base.emplace(channel, "sim");
+        stream.send(R"({"op":"start_done"})");
+        break;
+      case UgvStep::kStep: {
+        clock.set(time_of(j));
+        for (const auto& d : link::unpack_datagrams(m.blob)) endpoint.session().receive(d);
+        const json& a = j.at("attitude_rad");
+        endpoint.set_attitude(a.at(0).get<double>(), a.at(1).get<double>());
+        const bool hold = endpoint.handle_requests();
+        MiniUgvMission* mission = endpoint.mission();
+        const bool set_down = j.value("set_down", false);
+        // The world steps a base whose controller is done or waits to be lifted no more.
+        const bool stopped =
+            set_down && mission && (mission->done() || mission->wants_retraction());
+        if (set_down && !stopped && !hold && mission && mission->state() != UgvMissionState::kIdle)
+          mission->tick();
+        stream.send(dump({{"op", "step_done"}, {"hold", hold}, {"stopped", stopped}}));
+        break;
       }
-      std::printf("link: miniUGV end: %s\n", endpoint.session().counters().summary().c_str());
-      std::fflush(stdout);
-      stream.send(dump({{"op", "end_done"}, {"searches", deployments}}));
-      return;
-    } else {
-      throw StreamError("sim-world sent the miniUGV an op it does not know: '" + printable(op) +
-                        "'");
+      case UgvStep::kReport:
+        clock.set(time_of(j));
+        endpoint.report();
+        stream.send(StreamMessage{R"({"op":"report_done"})",
+                                  link::pack_datagrams(endpoint.session().take_outgoing())});
+        break;
+      case UgvStep::kEnd: {
+        clock.set(time_of(j));
+        json deployments = json::array();
+        for (auto& mission : missions) {
+          if (!mission->done()) mission->stop("the mission ended");
+          std::printf("  miniUGV search: %s\n", std::string(to_string(mission->outcome())).c_str());
+          deployments.push_back(std::string(to_string(mission->outcome())));
+        }
+        std::printf("link: miniUGV end: %s\n", endpoint.session().counters().summary().c_str());
+        std::fflush(stdout);
+        stream.send(dump({{"op", "end_done"}, {"searches", deployments}}));
+        return;
+      }
     }
   }
 }
