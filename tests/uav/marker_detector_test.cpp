@@ -233,6 +233,21 @@ TEST(MarkerDetector, EveryKnownDictionaryMakesADetector) {
       EXPECT_NO_THROW((void)detector(test::dictionary(f, name))) << name;
 }
 
+TEST(MarkerDetector, EachFamilysDetectorIsARegistryEntry) {
+  EXPECT_EQ(marker_detectors().names(), (std::vector<std::string>{"apriltag", "aruco"}));
+  EXPECT_EQ(marker_detectors().label("apriltag"), "AprilTag");
+  MarkerDetectorOptions o;
+  o.dictionary = test::dictionary(MarkerFamily::kAprilTag, "tag36h11");
+  const auto april = marker_detectors().make("apriltag", o, "test");
+  EXPECT_EQ(april->options().dictionary.family, MarkerFamily::kAprilTag);
+  try {
+    (void)marker_detectors().make("chilitags", o, "test", "dictionary.family");
+    FAIL() << "an unregistered detector was built";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.expected(), "one of apriltag, aruco");
+  }
+}
+
 TEST(MarkerDetector, BadOptionsAreInputErrors) {
   auto expect_field = [](MarkerDetectorOptions o, const std::string& field) {
     try {

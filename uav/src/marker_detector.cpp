@@ -49,11 +49,21 @@ const char* default_marker_dictionary(MarkerFamily family) {
   return family == MarkerFamily::kAprilTag ? "tag36h11" : "DICT_4X4_50";
 }
 
+void register_builtin_marker_detectors(MarkerDetectorRegistry& registry) {
+  registry.add(to_string(MarkerFamily::kAprilTag), "AprilTag 3 (the paper's tag36h11)",
+               internal::make_apriltag_detector, "AprilTag");
+  registry.add(to_string(MarkerFamily::kAruco), "OpenCV 4.6 ArUco", internal::make_aruco_detector,
+               "ArUco");
+}
+
+const MarkerDetectorRegistry& marker_detectors() {
+  return filled_registry<MarkerDetectorRegistry, register_builtin_marker_detectors>();
+}
+
 std::unique_ptr<MarkerDetector> make_marker_detector(const MarkerDetectorOptions& options) {
   options.check("marker detector options");
-  return options.dictionary.family == MarkerFamily::kAprilTag
-             ? internal::make_apriltag_detector(options)
-             : internal::make_aruco_detector(options);
+  return marker_detectors().make(to_string(options.dictionary.family), options,
+                                 "marker detector options", "dictionary.family");
 }
 
 namespace internal {

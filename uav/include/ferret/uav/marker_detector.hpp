@@ -1,9 +1,9 @@
 #pragma once
 // Fiducial marker detection on a grey camera frame: one interface, two
-// implementations (AprilTag 3 and OpenCV 4.6 ArUco), chosen by the dictionary's
-// family. Each detection carries the marker's four corners, its pose X_CM in the
-// camera's optical frame C (x right, y down, z forward) and the pose fit's
-// reprojection error.
+// implementations (AprilTag 3 and OpenCV 4.6 ArUco) on a registry, marker_detectors(),
+// looked up by the dictionary's family ("apriltag", "aruco"). Each detection carries the marker's
+// four corners, its pose X_CM in the camera's optical frame C (x right, y down, z forward) and the
+// pose fit's reprojection error.
 //
 // The marker frame M is the world YAML's: origin at the centre of the black square,
 // z out of the printed face, x right and y up in the marker image. The black square
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "ferret/core/pose.hpp"
+#include "ferret/core/registry.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/image.hpp"
 #include "ferret/perception/marker_family.hpp"
@@ -106,8 +107,16 @@ class MarkerDetector {
   [[nodiscard]] virtual const MarkerDetectorOptions& options() const = 0;
 };
 
-/// The AprilTag 3 detector for kAprilTag dictionaries, OpenCV ArUco for kAruco.
-/// Checks the options first (InputError with source "marker detector options").
+using MarkerDetectorRegistry = Registry<MarkerDetector, MarkerDetectorOptions>;
+
+/// Adds "apriltag" (AprilTag 3) and "aruco" (OpenCV ArUco), one a family.
+void register_builtin_marker_detectors(MarkerDetectorRegistry& registry);
+/// The marker detectors by family name (to_string(MarkerFamily)), registered on first use.
+[[nodiscard]] const MarkerDetectorRegistry& marker_detectors();
+
+/// The detector of marker_detectors() for the dictionary's family: AprilTag 3 for
+/// kAprilTag dictionaries, OpenCV ArUco for kAruco. Checks the options first
+/// (InputError with source "marker detector options").
 [[nodiscard]] std::unique_ptr<MarkerDetector> make_marker_detector(
     const MarkerDetectorOptions& options);
 
