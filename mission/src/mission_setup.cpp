@@ -3,11 +3,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <optional>
+
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/robot_backends.hpp"
+#include "ferret/uav/uav_mission.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
 
 namespace ferret {
@@ -61,8 +64,9 @@ void check_openings_admit(const WorldSpec& world, const std::string& source,
 }
 
 MissionSetup load_mission_setup(const MissionSetupOptions& o) {
-  if (!o.no_landing_zone.empty() && o.no_landing_zone != "hover" && o.no_landing_zone != "skip")
-    throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
+  std::optional<NoLandingZone> no_landing_zone;
+  if (!o.no_landing_zone.empty())
+    no_landing_zone = parse_no_landing_zone(o.no_landing_zone, "--no-landing-zone");
   // The method with the frontier planner, or an InputError naming why not (the miniUGV's
   // ExploreController asks the same function).
   (void)exploration_policy_for(o.method, parse_frontier_planner(o.planner, "--planner"));
@@ -92,7 +96,7 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   // The UAV mission's keys of the mission YAML over what the world set (the search area
   // from its bounds); the command line's choice over both.
   if (!o.mission.empty()) (void)load_uav_mission_options(o.mission, settings.uav);
-  if (!o.no_landing_zone.empty()) settings.uav.no_landing_zone = o.no_landing_zone;
+  if (no_landing_zone) settings.uav.no_landing_zone = *no_landing_zone;
   // Checked here too, so that a value the miniUGV's commands accept but the UAV's mission
   // does not (l_0 = 0: no hover release) is named in the mission file.
   settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);

@@ -56,7 +56,7 @@ MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::u
   const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
   MissionRunOut r{{}, load_planning_world(world_path)};
   MissionRunSettings s = mission_settings_for(uav, ugv, mission, *r.world.spec);
-  s.uav.no_landing_zone = no_landing_zone;
+  s.uav.no_landing_zone = parse_no_landing_zone(no_landing_zone, "test");
   s.ugv.ugv.explore.planner = planner;
   if (flight_endurance_s > 0) s.uav.flight_endurance_s = flight_endurance_s;
   s.link_channel = link;

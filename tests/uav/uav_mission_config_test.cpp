@@ -71,7 +71,7 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   o.confirm_detections = 3;
   o.survey_frames = 12;
   o.survey_frames_max = 24;
-  o.no_landing_zone = "skip";
+  o.no_landing_zone = NoLandingZone::kSkip;
   o.release = ReleaseMode::kHover;
   o.battery_reserve_fraction = 0.1;  // 0.1 is not exact in binary: the text must round trip
   o.return_timeout_s = 412.5;
@@ -88,7 +88,7 @@ TEST(UavMissionConfig, TheDumpReadsBackToTheSameValues) {
   EXPECT_EQ(dump(again), text);
   EXPECT_EQ(given.size(), uav_mission_keys().size());  // the dump writes every key
   EXPECT_EQ(again.search_area_m, o.search_area_m);
-  EXPECT_EQ(again.no_landing_zone, "skip");
+  EXPECT_EQ(again.no_landing_zone, NoLandingZone::kSkip);
   EXPECT_EQ(again.release, ReleaseMode::kHover);
   EXPECT_NE(text.find("release: hover\n"), std::string::npos);  // the word, not a number
   EXPECT_NE(dump(UavMissionOptions{}).find("release: land\n"), std::string::npos);
@@ -127,6 +127,8 @@ TEST(UavMissionConfig, BadValuesNameTheFileAndTheField) {
       {"uav:\n  cruise_speed_mps: -1\n", "uav.cruise_speed_mps"},
       {"uav:\n  flight_endurance_s:\n", "uav.flight_endurance_s"},
       {"uav:\n  release: crash\n", "uav.release"},
+      {"uav:\n  no_landing_zone: crash\n", "uav.no_landing_zone"},
+      {"uav:\n  no_landing_zone:\n", "uav.no_landing_zone"},
       {"uav:\n  winch_controller: pid\n", "uav.winch_controller"},
       {"uav:\n  search_area_m: [1, 2, 3]\n", "uav.search_area_m"},
       {"uav:\n  search_area_m: [5, 0, 1, 8]\n", "uav.search_area_m"},

@@ -344,9 +344,16 @@ TEST(UavMission, BadOptionsNameTheField) {
   UavMissionOptions o;
   o.passes = 3;
   EXPECT_NE(field_of(o).find("uav.passes"), std::string::npos);
-  o = {};
-  o.no_landing_zone = "crash";
-  EXPECT_NE(field_of(o).find("uav.no_landing_zone"), std::string::npos);
+  // no_landing_zone is an enum: its words are checked where they are read.
+  for (const NoLandingZone c : {NoLandingZone::kHover, NoLandingZone::kSkip})
+    EXPECT_EQ(parse_no_landing_zone(std::string(to_string(c)), "mission.yaml"), c);
+  try {
+    (void)parse_no_landing_zone("crash", "mission.yaml", "uav.no_landing_zone");
+    ADD_FAILURE() << "crash accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "uav.no_landing_zone");
+    EXPECT_EQ(e.expected(), "hover or skip");
+  }
   o = {};
   o.search_altitude_m = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NE(field_of(o).find("uav.search_altitude_m"), std::string::npos);

@@ -73,6 +73,17 @@ std::string_view to_string(ReleaseMode release) {
   return "?";
 }
 
+std::string_view to_string(NoLandingZone choice) {
+  return choice == NoLandingZone::kSkip ? "skip" : "hover";
+}
+
+NoLandingZone parse_no_landing_zone(const std::string& word, const std::string& source,
+                                    const std::string& field) {
+  for (const NoLandingZone c : {NoLandingZone::kHover, NoLandingZone::kSkip})
+    if (word == to_string(c)) return c;
+  throw InputError(source, field, "hover or skip", word);
+}
+
 std::string_view to_string(VisitState state) {
   switch (state) {
     case VisitState::kDetected:
@@ -120,8 +131,6 @@ void UavMissionOptions::validate(const std::string& source) const {
     throw InputError(source, "uav.survey_frames_max",
                      "an integer in [1, " + std::to_string(kMaxHoverFrames) + "]",
                      std::to_string(survey_frames_max));
-  if (no_landing_zone != "hover" && no_landing_zone != "skip")
-    throw InputError(source, "uav.no_landing_zone", "hover or skip", no_landing_zone);
   positive(hover_standoff_m, "uav.hover_standoff_m", "m", 10.0);
   positive(touchdown_height_m, "uav.touchdown_height_m", "m", 5.0);
   positive(tether.total_length_m, "tether.total_length_m", "m", 1000.0);

@@ -54,8 +54,8 @@ constexpr std::array<std::pair<std::string_view, int Options::*>, 5> kIntegers{{
 }};
 // How the miniUGV goes down: an enum, read and written as its word, before the choices.
 constexpr std::string_view kRelease = "release";
-constexpr std::array<std::pair<std::string_view, std::string Options::*>, 2> kChoices{{
-    {"no_landing_zone", &Options::no_landing_zone},
+constexpr std::string_view kNoLandingZone = "no_landing_zone";
+constexpr std::array<std::pair<std::string_view, std::string Options::*>, 1> kChoices{{
     {"winch_controller", &Options::winch_controller},
 }};
 constexpr std::string_view kSearchArea = "search_area_m";
@@ -77,11 +77,12 @@ constexpr auto all_keys(bool with_backends) {
   for (const auto& [k, m] : kNumbers) out[i++] = k;
   for (const auto& [k, m] : kIntegers) out[i++] = k;
   out[i++] = kRelease;
+  out[i++] = kNoLandingZone;
   for (const auto& [k, m] : kChoices) out[i++] = k;
   return out;
 }
-// search_area_m, marker, winch_control and release, then the tables.
-constexpr std::size_t kMissionKeyCount = 4 + kNumbers.size() + kIntegers.size() + kChoices.size();
+// search_area_m, marker, winch_control, release and no_landing_zone, then the tables.
+constexpr std::size_t kMissionKeyCount = 5 + kNumbers.size() + kIntegers.size() + kChoices.size();
 constexpr auto kMissionKeys = all_keys<kMissionKeyCount>(false);
 constexpr auto kSectionKeys = all_keys<kMissionKeyCount + kBackendKeys.size()>(true);
 
@@ -145,6 +146,10 @@ std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std
   read(kIntegers);
   o.release = read_release_mode(r.get_or(kRelease, std::string(to_string(o.release))), source);
   note(kRelease);
+  o.no_landing_zone =
+      parse_no_landing_zone(r.get_or(kNoLandingZone, std::string(to_string(o.no_landing_zone))),
+                            source, "uav.no_landing_zone");
+  note(kNoLandingZone);
   read(kChoices);
   o.validate(source);
   return given;
@@ -174,6 +179,8 @@ void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& o, bool
   for (const auto& [key, member] : kIntegers)
     e << YAML::Key << key.data() << YAML::Value << o.*member;
   e << YAML::Key << kRelease.data() << YAML::Value << std::string(to_string(o.release));
+  e << YAML::Key << kNoLandingZone.data() << YAML::Value
+    << std::string(to_string(o.no_landing_zone));
   for (const auto& [key, member] : kChoices)
     e << YAML::Key << key.data() << YAML::Value << o.*member;
   e << YAML::Key << kWinchControl.data() << YAML::Value;

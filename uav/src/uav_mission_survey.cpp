@@ -98,7 +98,7 @@ void UavMission::start_survey_view() {
 
 void UavMission::choose_release(const std::string& why_no_zone) {
   HiddenSpaceVisit& v = current();
-  if (options_.no_landing_zone == "skip") {
+  if (options_.no_landing_zone == NoLandingZone::kSkip) {
     v.state = VisitState::kSkipped;
     v.note = why_no_zone;
     return resume_search("skipped marker " + std::to_string(v.marker_id) + ": " + why_no_zone);

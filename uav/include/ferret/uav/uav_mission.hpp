@@ -90,6 +90,18 @@ enum class ReleaseMode {
 /// "land", "hover": the YAML's words.
 [[nodiscard]] std::string_view to_string(ReleaseMode release);
 
+/// What the UAV does when no safe landing zone is within reach (uav.no_landing_zone).
+enum class NoLandingZone {
+  kHover,  ///< lower from a hover over the opening's standoff point
+  kSkip,   ///< leave the hidden space and search on
+};
+/// "hover", "skip": the YAML's and --no-landing-zone's words.
+[[nodiscard]] std::string_view to_string(NoLandingZone choice);
+/// The choice `word` names. @throws InputError(source, field, "hover or skip", word).
+[[nodiscard]] NoLandingZone parse_no_landing_zone(const std::string& word,
+                                                  const std::string& source,
+                                                  const std::string& field = {});
+
 /// What came of a hidden space the UAV found.
 enum class VisitState { kDetected, kSkipped, kServiced };
 /// "detected", "skipped", "serviced": the words of report.json.
@@ -135,9 +147,8 @@ struct UavMissionOptions {
   /// frames show within l_0 of it; none: no_landing_zone decides) or hover (always from
   /// a hover over the opening, no survey: for ground the team knows is unsafe).
   ReleaseMode release = ReleaseMode::kLand;
-  /// No safe landing zone within reach: "hover" (lower from a hover over the opening's
-  /// standoff point) or "skip" (leave the hidden space and search on).
-  std::string no_landing_zone = "hover";
+  /// No safe landing zone within reach: hover over the opening or skip it.
+  NoLandingZone no_landing_zone = NoLandingZone::kHover;
   double hover_standoff_m = 0.6;     ///< out from the opening
   double touchdown_height_m = 0.25;  ///< the winch above the ground when landed (Z_W)
   TetherParams tether;               ///< L and l_0
