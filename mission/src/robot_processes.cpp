@@ -82,6 +82,13 @@ void check_mode_options(const RobotProcessOptions& o, bool on_hardware) {
                        "given");
 }
 
+// The robot processes sim-world waits for, by the role each says in its hello.
+enum class Robot { kUav, kUgv };
+constexpr std::array<std::pair<std::string_view, Robot>, 2> kRoles{{
+    {"uav", Robot::kUav},
+    {"ugv", Robot::kUgv},
+}};
+
 RobotOnHardwareOptions hardware_options(const RobotProcessOptions& o) {
   return {o.setup.mission, o.link_bind, o.link_peer, o.duration_s, o.seed, o.quiet};
 }
@@ -125,8 +132,12 @@ void run_sim_world_process(const RobotProcessOptions& o) {
                                  : "";
     const bool ours = h.is_object() && h.value("op", "") == "robot_hello" &&
                       h.value("protocol", 0) == kSimWorldProtocol;
-    std::optional<MessageStream>& slot = role == "uav" ? uav : ugv;
-    if (!ours || (role != "uav" && role != "ugv") || slot) {
+    // The role read once: which process's slot the stream fills.
+    const auto it =
+        std::find_if(kRoles.begin(), kRoles.end(), [&](const auto& r) { return r.first == role; });
+    std::optional<MessageStream>* slot =
+        it == kRoles.end() ? nullptr : (it->second == Robot::kUav ? &uav : &ugv);
+    if (!ours || slot == nullptr || slot->has_value()) {
       s->send(
           dump({{"ok", false},
                 {"error", "expected robot_hello of protocol " + std::to_string(kSimWorldProtocol) +
@@ -135,7 +146,7 @@ void run_sim_world_process(const RobotProcessOptions& o) {
     }
     s->send(dump({{"ok", true}, {"protocol", kSimWorldProtocol}, {"seed", o.seed}}));
     std::fprintf(stderr, "sim-world: %s process at %s\n", role.c_str(), s->peer().c_str());
-    slot = std::move(s);
+    *slot = std::move(s);
   }
   TransitionLog log;
   const SimWorldReport r =
