@@ -370,14 +370,26 @@ std::vector<Eigen::Vector2d> sample_zone_objects(const OccupancyMap2D& map, cons
   return out;
 }
 
+std::string_view to_string(ExperimentPart part) {
+  switch (part) {
+    case ExperimentPart::kMain:
+      return "main";
+    case ExperimentPart::kCameraFov:
+      return "camera_fov";
+    case ExperimentPart::kIrFov:
+      return "ir_fov";
+  }
+  return "?";
+}
+
 std::vector<RunSpec> plan_runs(const ExperimentConfig& c) {
   std::vector<RunSpec> runs;
   std::size_t group = 0;
   const double cam_deg = rad_to_deg(c.base.sensors.camera_fov_rad),
                ir_deg = rad_to_deg(c.base.sensors.ir_fov_rad);
   const int most = std::max(c.objects_per_zone, c.sweep_objects_per_zone);
-  auto add = [&](const std::string& experiment, const std::vector<std::string>& methods,
-                 int objects, double cam, double ir) {
+  auto add = [&](ExperimentPart experiment, const std::vector<std::string>& methods, int objects,
+                 double cam, double ir) {
     for (std::size_t m = 0; m < c.maps.size(); ++m) {
       const auto& map = c.maps[m];
       const std::uint64_t map_hash = stable_hash(map.name.c_str());
@@ -407,11 +419,11 @@ std::vector<RunSpec> plan_runs(const ExperimentConfig& c) {
       }
     }
   };
-  add("main", c.methods, c.objects_per_zone, cam_deg, ir_deg);
+  add(ExperimentPart::kMain, c.methods, c.objects_per_zone, cam_deg, ir_deg);
   for (const double a : c.sweep_camera_fov_deg)
-    add("camera_fov", c.sweep_methods, c.sweep_objects_per_zone, a, ir_deg);
+    add(ExperimentPart::kCameraFov, c.sweep_methods, c.sweep_objects_per_zone, a, ir_deg);
   for (const double b : c.sweep_ir_fov_deg)
-    add("ir_fov", c.sweep_methods, c.sweep_objects_per_zone, cam_deg, b);
+    add(ExperimentPart::kIrFov, c.sweep_methods, c.sweep_objects_per_zone, cam_deg, b);
   return runs;
 }
 
@@ -440,7 +452,7 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
       settings.sensors.camera_fov_rad = deg_to_rad(s.camera_fov_deg);
       settings.sensors.ir_fov_rad = deg_to_rad(s.ir_fov_deg);
       // A swept IR fov spreads the robot's beams evenly over it.
-      if (s.experiment == "ir_fov") settings.sensors.ir_bearings_rad.clear();
+      if (s.experiment == ExperimentPart::kIrFov) settings.sensors.ir_bearings_rad.clear();
       try {
         outcomes[k].result = run_exploration(c.maps[s.map_index].map, c.maps[s.map_index].start,
                                              s.object_W, settings, s.seed);
@@ -482,7 +494,7 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const RunSpec& s = runs[k];
     const EpisodeResult& r = outcomes[k].result;
-    runs_csv << s.experiment << ',' << c.maps[s.map_index].name << ',' << s.zone << ','
+    runs_csv << to_string(s.experiment) << ',' << c.maps[s.map_index].name << ',' << s.zone << ','
              << s.object_index << ',' << s.method << ',' << format_double(s.camera_fov_deg) << ','
              << format_double(s.ir_fov_deg) << ',' << s.seed << ',' << format_double(s.object_W.x())
              << ',' << format_double(s.object_W.y()) << ',' << (r.found ? 1 : 0) << ','
@@ -520,9 +532,17 @@ void run_experiment(const ExperimentConfig& c, const fs::path& out_dir,
         c.maps[s.map_index].name + "," + std::to_string(s.zone) + "," + s.method + ",";
     const std::string fovs =
         format_double(s.camera_fov_deg) + "," + format_double(s.ir_fov_deg) + ",";
-    if (s.experiment == "main") summary << key << stats.str();
-    if (s.experiment == "camera_fov") sweep_cam << key << fovs << stats.str();
-    if (s.experiment == "ir_fov") sweep_ir << key << fovs << stats.str();
+    switch (s.experiment) {
+      case ExperimentPart::kMain:
+        summary << key << stats.str();
+        break;
+      case ExperimentPart::kCameraFov:
+        sweep_cam << key << fovs << stats.str();
+        break;
+      case ExperimentPart::kIrFov:
+        sweep_ir << key << fovs << stats.str();
+        break;
+    }
     k = end;
   }
   OutputSet out(out_dir, OutputKind::kDirectory);

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ferret/mapping/occupancy_map_2d.hpp"
@@ -61,8 +62,17 @@ struct ExperimentConfig {
                                                                double clearance_m,
                                                                std::uint64_t seed);
 
+/// Which part of the paper's experiment a run belongs to.
+enum class ExperimentPart {
+  kMain,       ///< every method at the base sensors (summary.csv)
+  kCameraFov,  ///< the camera's field-of-view sweep (sweep_camera_fov.csv)
+  kIrFov,      ///< the IR sensors' field-of-view sweep, bearings cleared (sweep_ir_fov.csv)
+};
+/// "main", "camera_fov", "ir_fov": runs.csv's words.
+[[nodiscard]] std::string_view to_string(ExperimentPart part);
+
 struct RunSpec {
-  std::string experiment;  ///< "main", "camera_fov" or "ir_fov"
+  ExperimentPart experiment = ExperimentPart::kMain;
   std::size_t map_index = 0;
   int zone = 0;
   int object_index = 0;
