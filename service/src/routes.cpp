@@ -194,14 +194,15 @@ std::function<bool()> PlannerService::Impl::cancel_flag(const httplib::Request& 
 
 json PlannerService::Impl::plan_response(const PlanResult& r, double wall_s,
                                          httplib::Response& res) {
-  metrics.record_plan(r.solved                               ? "solved"
-                      : r.failure == PlanFailure::kCancelled ? "cancelled"
-                                                             : "failed");
+  const bool cancelled = !r.solved && r.failure == PlanFailure::kCancelled;
+  metrics.record_plan(r.solved    ? internal::PlanOutcome::kSolved
+                      : cancelled ? internal::PlanOutcome::kCancelled
+                                  : internal::PlanOutcome::kFailed);
   if (!r.solved) {
     const ApiError e{422, failure_code(r.failure), r.status, ""};
     json body = error_body(e);
     body["planning_time_s"] = wall_s;
-    res.status = e.code == std::string("CANCELLED") ? 503 : 422;
+    res.status = cancelled ? 503 : 422;
     return body;
   }
   res.status = 200;

@@ -17,10 +17,19 @@ void ServiceMetrics::record(const std::string& route, int status, double seconds
   h.sum_s += seconds;
 }
 
-void ServiceMetrics::record_plan(const char* result) {
+void ServiceMetrics::record_plan(PlanOutcome outcome) {
   const std::lock_guard lock(mutex_);
-  const std::string r = result;
-  ++(r == "solved" ? plans_solved_ : r == "cancelled" ? plans_cancelled_ : plans_failed_);
+  switch (outcome) {
+    case PlanOutcome::kSolved:
+      ++plans_solved_;
+      break;
+    case PlanOutcome::kCancelled:
+      ++plans_cancelled_;
+      break;
+    case PlanOutcome::kFailed:
+      ++plans_failed_;
+      break;
+  }
 }
 
 void ServiceMetrics::record_setup_built(const char* kind) {

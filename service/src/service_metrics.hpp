@@ -12,6 +12,9 @@
 
 namespace ferret::internal {
 
+/// How a plan request ended, as GET /metrics counts it.
+enum class PlanOutcome { kSolved, kFailed, kCancelled };
+
 class ServiceMetrics {
  public:
   static constexpr std::array<double, 13> kBuckets_s{0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1,
@@ -19,7 +22,7 @@ class ServiceMetrics {
   /// One request answered: its route pattern, HTTP status and wall time.
   void record(const std::string& route, int status, double seconds);
   /// A plan answered: solved, failed, or cancelled (its client went away, a shutdown).
-  void record_plan(const char* result);
+  void record_plan(PlanOutcome outcome);
   /// A map's setup built (a cache miss): "uav", "ugv" or "validation".
   void record_setup_built(const char* kind);
   /// The whole exposition; gauges passed in as they are now.
