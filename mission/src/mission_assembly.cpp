@@ -1,9 +1,22 @@
 #include "ferret/mission/mission_assembly.hpp"
 
 #include "ferret/core/error.hpp"
+#include "ferret/mission/exploration_run.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 
 namespace ferret {
+
+UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std::uint64_t seed,
+                                      const std::optional<Eigen::Vector2d>& object_W,
+                                      const GridGeometry& truth) {
+  // An empty hidden space: the object far outside the map (the oracle's option only).
+  const Eigen::Vector2d far_W(truth.origin_x_m - 1e6, truth.origin_y_m - 1e6);
+  UgvMissionOptions options = settings.ugv;
+  options.explore = explore_options(settings.exploration, seed, object_W.value_or(far_W));
+  options.explore.planner = settings.ugv.explore.planner;  // grid or the OMPL frontier planner
+  if (!object_W) options.explore.oracle_object_W.reset();
+  return options;
+}
 
 MissionAssembly::MissionAssembly(const PlanningWorld& world, const RobotDescription& uav_robot,
                                  const MissionRunSettings& settings, std::uint64_t seed,

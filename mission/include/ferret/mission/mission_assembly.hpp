@@ -26,6 +26,13 @@
 
 namespace ferret {
 
+/// The controller's options for a deployment with `seed` (the search's own, derived
+/// from it); `truth` only places the oracle's object of an empty space out of reach.
+[[nodiscard]] UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings,
+                                                    std::uint64_t seed,
+                                                    const std::optional<Eigen::Vector2d>& object_W,
+                                                    const GridGeometry& truth);
+
 /// The UAV's hardware interfaces as a backend set provides them.
 using UavBackends = UavMission::Hardware;
 

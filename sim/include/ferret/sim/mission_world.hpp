@@ -26,7 +26,6 @@
 #include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/sim/mission_run.hpp"
-#include "ferret/sim/search_robot.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/simulated_winch.hpp"

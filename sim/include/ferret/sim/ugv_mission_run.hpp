@@ -13,7 +13,7 @@
 
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
-#include "ferret/sim/exploration_run.hpp"
+#include "ferret/sim/exploration_settings.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
 #include "ferret/ugv/mini_ugv_mission.hpp"
 
@@ -121,11 +121,5 @@ class UgvMissionSim {
 /// The controller's map for a mission from `start`: the settings' window, or the truth's extent.
 [[nodiscard]] GridGeometry ugv_mission_map(const GridGeometry& truth, const Pose2& start,
                                            const UgvMissionRunSettings& settings);
-/// The controller's options for a deployment with `seed` (the search's own, derived
-/// from it); `truth` only places the oracle's object of an empty space out of reach.
-[[nodiscard]] UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings,
-                                                    std::uint64_t seed,
-                                                    const std::optional<Eigen::Vector2d>& object_W,
-                                                    const GridGeometry& truth);
 
 }  // namespace ferret
