@@ -17,7 +17,7 @@
 #include "ferret/link/lossy_channel.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
-#include "ferret/uav/uav_mission.hpp"
+#include "ferret/uav/uav_mission_options.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

@@ -30,6 +30,7 @@
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/simulated_winch.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
+#include "ferret/uav/flight_controller.hpp"
 
 namespace ferret::internal {
 
