@@ -1,5 +1,7 @@
 #include "ferret/mission/mission_assembly.hpp"
 
+#include <stdexcept>
+
 #include "ferret/core/error.hpp"
 #include "ferret/mission/exploration_run.hpp"
 #include "ferret/sim/sensor_sim.hpp"
@@ -48,11 +50,42 @@ std::unique_ptr<MiniUgvMission> MissionAssembly::ugv_mission(
                                           ugv_mission_options(settings, seed, object_W, map), log);
 }
 
+void SimMiniUgvMission::report(UgvMissionRunResult& result) const {
+  const MiniUgvMission& m = *mission_;
+  result.outcome = m.outcome();
+  result.final_state = m.state();
+  result.found_W = m.found_W();
+  result.grasp_attempts = m.grasp_attempts();
+  result.decisions = m.explore_controller().decisions();
+  result.grid = m.explore_controller().grid_ptr();
+  result.objects = m.explore_controller().objects_ptr();
+}
+
+namespace {
+[[noreturn]] void no_ugv_mission() {
+  throw std::logic_error("the simulated deployment has no miniUGV mission controller");
+}
+}  // namespace
+
+MiniUgvMission& ugv_mission_of(UgvMissionSim& sim) {
+  auto* c = sim.has_controller() ? dynamic_cast<SimMiniUgvMission*>(&sim.controller()) : nullptr;
+  if (!c) no_ugv_mission();
+  return c->mission();
+}
+
+const MiniUgvMission& ugv_mission_of(const UgvMissionSim& sim) {
+  const auto* c =
+      sim.has_controller() ? dynamic_cast<const SimMiniUgvMission*>(&sim.controller()) : nullptr;
+  if (!c) no_ugv_mission();
+  return c->mission();
+}
+
 UgvControllerFactory MissionAssembly::ugv_controllers(const UgvMissionRunSettings& settings,
                                                       const Clock& clock, TransitionLog* log) {
   return [settings, &clock, log](SimUgvBase& base, const GridGeometry& map, std::uint64_t seed,
                                  const std::optional<Eigen::Vector2d>& object_W) {
-    return ugv_mission(settings, base, clock, map, seed, object_W, log);
+    return std::make_unique<SimMiniUgvMission>(
+        ugv_mission(settings, base, clock, map, seed, object_W, log));
   };
 }
 
