@@ -25,10 +25,10 @@
 #include <vector>
 
 #include "ferret/mapping/frontier.hpp"
+#include "ferret/mission/experiment.hpp"
+#include "ferret/mission/exploration_run.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/grid_path_planner.hpp"
-#include "ferret/sim/experiment.hpp"
-#include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
 #include "ferret/ugv/explore_controller.hpp"
 

@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "ferret/core/random.hpp"
-#include "ferret/sim/experiment.hpp"
-#include "ferret/sim/exploration_run.hpp"
+#include "ferret/mission/experiment.hpp"
+#include "ferret/mission/exploration_run.hpp"
 #include "ferret/sim/hidden_space_generator.hpp"
 
 namespace ferret {

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "ferret/core/error.hpp"
-#include "ferret/sim/experiment.hpp"
+#include "ferret/mission/experiment.hpp"
 #include "fixtures.hpp"
 #include "fuzz_support.hpp"
 

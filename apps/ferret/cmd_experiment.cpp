@@ -1,5 +1,5 @@
 // `ferret experiment CONFIG.yaml -o DIR [--jobs N] [--shard I/N]`: the paper's
-// exploration experiment (sim/experiment.hpp). Writes runs.csv, summary.csv and the
+// exploration experiment (mission/experiment.hpp). Writes runs.csv, summary.csv and the
 // sweep CSVs into DIR, then draws the plots with examples/plot_experiment.py when it
 // can find it (unsharded runs only: shards are merged first, see docs/object_search.md).
 
@@ -20,8 +20,8 @@
 #include "command.hpp"
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
+#include "ferret/mission/experiment.hpp"
 #include "ferret/planning/exploration_policy.hpp"
-#include "ferret/sim/experiment.hpp"
 
 namespace ferret::cli {
 namespace {

@@ -22,12 +22,12 @@
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/mission/exploration_run.hpp"
+#include "ferret/mission/search_robot.hpp"
 #include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/mission/ugv_mission_run.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/sim/exploration_run.hpp"
-#include "ferret/sim/search_robot.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
@@ -63,14 +63,15 @@ void run_retrieval(const Options& o, const OccupancyMap2D& map, const Pose2& sta
   settings.exploration = s;
   settings.ugv.explore_timeout_s = o.time_limit_s;
   UgvMissionRecorder recorder;  // mission.mcap, with --out
-  if (!o.out.empty()) settings.on_tick = recorder.hook();
   TransitionLog log;
   log.on_transition([&](const Transition& t) {
     std::printf("%s\n", TransitionLog::format(t).c_str());
     std::fflush(stdout);
     if (!o.out.empty()) recorder.transition(t);
   });
-  const UgvMissionRunResult r = run_ugv_mission(map, start, object, settings, o.seed, &log);
+  const UgvMissionRunResult r =
+      run_ugv_mission(map, start, object, settings, o.seed, &log,
+                      o.out.empty() ? UgvMissionTickHook{} : recorder.hook());
   std::printf(
       "method: %s\noutcome: %s\ntime_s: %.2f\npath_m: %.2f\nbattery_left: %.3f\n"
       "grasp_attempts: %d\ntether_max_m: %.2f\ntether_max_in: %s\n",

@@ -16,6 +16,7 @@
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/link/message_stream.hpp"
+#include "ferret/mission/mission_settings.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/sim_flight_adapter.hpp"

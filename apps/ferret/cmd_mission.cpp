@@ -22,6 +22,7 @@
 #include "ferret/core/output_set.hpp"
 #include "ferret/mission/mission_outputs.hpp"
 #include "ferret/mission/mission_run.hpp"
+#include "ferret/mission/mission_settings.hpp"
 #include "ferret/mission/mission_setup.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/robot_backends.hpp"

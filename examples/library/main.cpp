@@ -11,11 +11,11 @@
 #include <ferret/core/data_path.hpp>
 #include <ferret/core/error.hpp>
 #include <ferret/mapping/occupancy_map_2d.hpp>
+#include <ferret/mission/search_robot.hpp>
 #include <ferret/planning/plan_validation.hpp>
 #include <ferret/planning/planning_world.hpp>
 #include <ferret/planning/uav_approach.hpp>
 #include <ferret/planning/ugv_path.hpp>
-#include <ferret/sim/search_robot.hpp>
 #include <ferret/urdf/robot_description.hpp>
 #include <filesystem>
 #include <string>

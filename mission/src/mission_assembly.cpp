@@ -1,9 +1,24 @@
 #include "ferret/mission/mission_assembly.hpp"
 
+#include <stdexcept>
+
 #include "ferret/core/error.hpp"
+#include "ferret/mission/exploration_run.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 
 namespace ferret {
+
+UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std::uint64_t seed,
+                                      const std::optional<Eigen::Vector2d>& object_W,
+                                      const GridGeometry& truth) {
+  // An empty hidden space: the object far outside the map (the oracle's option only).
+  const Eigen::Vector2d far_W(truth.origin_x_m - 1e6, truth.origin_y_m - 1e6);
+  UgvMissionOptions options = settings.ugv;
+  options.explore = explore_options(settings.exploration, seed, object_W.value_or(far_W));
+  options.explore.planner = settings.ugv.explore.planner;  // grid or the OMPL frontier planner
+  if (!object_W) options.explore.oracle_object_W.reset();
+  return options;
+}
 
 MissionAssembly::MissionAssembly(const PlanningWorld& world, const RobotDescription& uav_robot,
                                  const MissionRunSettings& settings, std::uint64_t seed,
@@ -35,11 +50,42 @@ std::unique_ptr<MiniUgvMission> MissionAssembly::ugv_mission(
                                           ugv_mission_options(settings, seed, object_W, map), log);
 }
 
+void SimMiniUgvMission::report(UgvMissionRunResult& result) const {
+  const MiniUgvMission& m = *mission_;
+  result.outcome = m.outcome();
+  result.final_state = m.state();
+  result.found_W = m.found_W();
+  result.grasp_attempts = m.grasp_attempts();
+  result.decisions = m.explore_controller().decisions();
+  result.grid = m.explore_controller().grid_ptr();
+  result.objects = m.explore_controller().objects_ptr();
+}
+
+namespace {
+[[noreturn]] void no_ugv_mission() {
+  throw std::logic_error("the simulated deployment has no miniUGV mission controller");
+}
+}  // namespace
+
+MiniUgvMission& ugv_mission_of(UgvMissionSim& sim) {
+  auto* c = sim.has_controller() ? dynamic_cast<SimMiniUgvMission*>(&sim.controller()) : nullptr;
+  if (!c) no_ugv_mission();
+  return c->mission();
+}
+
+const MiniUgvMission& ugv_mission_of(const UgvMissionSim& sim) {
+  const auto* c =
+      sim.has_controller() ? dynamic_cast<const SimMiniUgvMission*>(&sim.controller()) : nullptr;
+  if (!c) no_ugv_mission();
+  return c->mission();
+}
+
 UgvControllerFactory MissionAssembly::ugv_controllers(const UgvMissionRunSettings& settings,
                                                       const Clock& clock, TransitionLog* log) {
   return [settings, &clock, log](SimUgvBase& base, const GridGeometry& map, std::uint64_t seed,
                                  const std::optional<Eigen::Vector2d>& object_W) {
-    return ugv_mission(settings, base, clock, map, seed, object_W, log);
+    return std::make_unique<SimMiniUgvMission>(
+        ugv_mission(settings, base, clock, map, seed, object_W, log));
   };
 }
 

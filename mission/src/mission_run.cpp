@@ -30,17 +30,19 @@ class InProcessUgvLink final : public UgvLink {
   }
   void retracted() override {
     if (UgvMissionSim* s = spaces_.active()) {
-      if (s->mission().wants_retraction()) s->mission().retracted();
-      if (!s->mission().done()) s->mission().stop("lifted out");
+      MiniUgvMission& m = ugv_mission_of(*s);
+      if (m.wants_retraction()) m.retracted();
+      if (!m.done()) m.stop("lifted out");
     }
     spaces_.lift();
   }
   void release_object() override { spaces_.release_object(); }
   void abort(const std::string& reason) override {
-    if (UgvMissionSim* s = spaces_.active(); s && !s->mission().done()) s->mission().stop(reason);
+    if (UgvMissionSim* s = spaces_.active(); s && !ugv_mission_of(*s).done())
+      ugv_mission_of(*s).stop(reason);
   }
   void recall(const std::string& reason) override {
-    if (UgvMissionSim* s = spaces_.active()) s->mission().recall(reason);
+    if (UgvMissionSim* s = spaces_.active()) ugv_mission_of(*s).recall(reason);
   }
   [[nodiscard]] UgvReport report() const override {
     UgvReport r;
@@ -52,7 +54,7 @@ class InProcessUgvLink final : public UgvLink {
       r.pitch_rad = spaces_.touchdown().pitch_rad;
       return r;
     }
-    const MiniUgvMission& m = s->mission();
+    const MiniUgvMission& m = ugv_mission_of(*s);
     r.running = !m.done();
     r.done = m.done();
     r.wants_retraction = m.wants_retraction();
@@ -154,7 +156,7 @@ class SimLinkedUgv final : public UgvLink {
   UgvLinkEndpoint::Deployment set_down() {
     UgvMissionSim* s = spaces_.active();
     if (!s) return {};
-    return {&s->mission(), &s->base()};
+    return {&ugv_mission_of(*s), &s->base()};
   }
 
   SimHiddenSpaces& spaces_;

@@ -8,6 +8,7 @@
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mapping/world_spec.hpp"
+#include "ferret/mission/mission_settings.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/robot_backends.hpp"
 #include "ferret/uav/uav_mission.hpp"

@@ -15,7 +15,7 @@ const RgbaColor kTruthColor{0.9, 0.0, 0.0, 0.6};
 
 }  // namespace
 
-std::function<void(double, const MiniUgvMission&, const SimUgvBase&)> UgvMissionRecorder::hook() {
+UgvMissionTickHook UgvMissionRecorder::hook() {
   return [this](double t_s, const MiniUgvMission& mission, const SimUgvBase& base) {
     last_t_s_ = t_s;
     const Pose2 pose = base.odometry();

@@ -10,7 +10,7 @@ namespace ferret {
 UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& start,
                                     const std::optional<Eigen::Vector2d>& object_W,
                                     const UgvMissionRunSettings& settings, std::uint64_t seed,
-                                    TransitionLog* log) {
+                                    TransitionLog* log, const UgvMissionTickHook& on_tick) {
   SimClock clock;
   TransitionLog own_log;
   TransitionLog& transitions = log ? *log : own_log;
@@ -20,7 +20,7 @@ UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& st
   const double dt = sim.tick_s();
   const auto max_steps = static_cast<long>(std::ceil(settings.time_limit_s / dt));
   std::optional<double> retract_at_s;
-  MiniUgvMission& mission = sim.mission();
+  MiniUgvMission& mission = ugv_mission_of(sim);
   sim.start();
   for (long step = 0; step < max_steps && !mission.done(); ++step) {
     clock.set(static_cast<double>(step) * dt);
@@ -32,7 +32,7 @@ UgvMissionRunResult run_ugv_mission(const OccupancyMap2D& truth, const Pose2& st
       }
     }
     sim.step(dt);
-    if (settings.on_tick) settings.on_tick(clock.now_s(), mission, sim.base());
+    if (on_tick) on_tick(clock.now_s(), mission, sim.base());
   }
   if (!mission.done()) mission.stop("the simulation's time limit");
   UgvMissionRunResult result = sim.result(transitions);

@@ -28,7 +28,7 @@ UgvMissionSim::UgvMissionSim(const OccupancyMap2D& truth, const Pose2& start,
                              const UgvMissionRunSettings& settings, std::uint64_t seed,
                              const UgvControllerFactory& make_controller)
     : UgvMissionSim(truth, start, object_W, settings, seed) {
-  mission_ =
+  controller_ =
       make_controller(*base_, ugv_mission_map(truth.geometry, start, settings), seed, object_W);
 }
 
@@ -40,65 +40,40 @@ GridGeometry ugv_mission_map(const GridGeometry& truth, const Pose2& start,
              : truth;
 }
 
-UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings, std::uint64_t seed,
-                                      const std::optional<Eigen::Vector2d>& object_W,
-                                      const GridGeometry& truth) {
-  // An empty hidden space: the object far outside the map (the oracle's option only).
-  const Eigen::Vector2d far_W(truth.origin_x_m - 1e6, truth.origin_y_m - 1e6);
-  UgvMissionOptions options = settings.ugv;
-  options.explore = explore_options(settings.exploration, seed, object_W.value_or(far_W));
-  options.explore.planner = settings.ugv.explore.planner;  // grid or the OMPL frontier planner
-  if (!object_W) options.explore.oracle_object_W.reset();
-  return options;
-}
-
 UgvMissionSim::~UgvMissionSim() = default;
 
 void UgvMissionSim::step(double dt_s, bool hold) {
   if (record_) trajectory_.push_back(base_->true_pose());
   if (hold) base_->command_velocity(0.0, 0.0);
   // Set down but not told to search yet (its start on its way over the link): it stands.
-  if (!mission_ || hold || mission_->state() == UgvMissionState::kIdle) {
+  if (!controller_ || hold || controller_->state() == UgvMissionState::kIdle) {
     base_->step(dt_s);
     return;
   }
-  mission_->tick();
+  controller_->tick();
   base_->step(dt_s);
-  if (const double l = mission_->explore_controller().tether_length_m(); l > max_tether_m_) {
+  if (const double l = controller_->tether_length_m(); l > max_tether_m_) {
     max_tether_m_ = l;
-    max_tether_state_ = mission_->state();
+    max_tether_state_ = controller_->state();
   }
 }
 
 UgvMissionRunResult UgvMissionSim::result(const TransitionLog& log) const {
   UgvMissionRunResult result;
-  if (!mission_) {  // the base alone: what the truth knows
-    result.path_m = base_->distance_driven_m();
-    result.battery_left = base_->status().battery_fraction;
-    result.object_held = base_->object_held();
-    result.body_contacts = base_->body_contacts();
-    result.deepest_contact_m = base_->deepest_contact_m();
-    result.trajectory = trajectory_;
-    return result;
-  }
-  result.outcome = mission_->outcome();
-  result.final_state = mission_->state();
+  // What the truth knows.
   result.path_m = base_->distance_driven_m();
   result.battery_left = base_->status().battery_fraction;
   result.object_held = base_->object_held();
   result.body_contacts = base_->body_contacts();
   result.deepest_contact_m = base_->deepest_contact_m();
-  result.found_W = mission_->found_W();
+  result.trajectory = trajectory_;
+  if (!controller_) return result;  // the base alone
+  controller_->report(result);
   if (result.found_W && object_W_)
     result.found_right = (*result.found_W - *object_W_).norm() <= object_radius_m_;
-  result.grasp_attempts = mission_->grasp_attempts();
-  result.decisions = mission_->explore_controller().decisions();
   result.max_tether_m = max_tether_m_;
   result.max_tether_state = max_tether_state_;
   result.transitions = log.all();
-  result.trajectory = trajectory_;
-  result.grid = mission_->explore_controller().grid_ptr();
-  result.objects = mission_->explore_controller().objects_ptr();
   return result;
 }
 

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "ferret/core/data_path.hpp"
+#include "ferret/mission/mission_settings.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"

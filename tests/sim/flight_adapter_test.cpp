@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "ferret/core/data_path.hpp"
+#include "ferret/mission/mission_settings.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/sim_flight_adapter.hpp"

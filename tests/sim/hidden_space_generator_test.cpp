@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "ferret/core/error.hpp"
+#include "ferret/mission/experiment.hpp"  // the experiment samples objects in the zones
 
 namespace ferret {
 namespace {

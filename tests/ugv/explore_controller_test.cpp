@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "ferret/core/error.hpp"
+#include "ferret/mission/exploration_run.hpp"
 #include "ferret/planning/exploration_policy.hpp"
-#include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
 #include "support/test_maps.hpp"

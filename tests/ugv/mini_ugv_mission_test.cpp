@@ -222,18 +222,18 @@ TEST(UgvMission, ARecallEndsTheSearchWithTheWayHomeAndIsLiftedOutAsRecalled) {
     }
   };
   run_until([] { return false; }, 3.0);  // 3 s into the search
-  ASSERT_EQ(sim.mission().state(), UgvMissionState::kExplore);
-  sim.mission().recall("the UAV's flight budget");
-  EXPECT_EQ(sim.mission().state(), UgvMissionState::kReturn);
-  EXPECT_EQ(sim.mission().return_outcome(), UgvMissionOutcome::kRecalled);
+  ASSERT_EQ(ugv_mission_of(sim).state(), UgvMissionState::kExplore);
+  ugv_mission_of(sim).recall("the UAV's flight budget");
+  EXPECT_EQ(ugv_mission_of(sim).state(), UgvMissionState::kReturn);
+  EXPECT_EQ(ugv_mission_of(sim).return_outcome(), UgvMissionOutcome::kRecalled);
   EXPECT_NE(log.all().back().reason.find("recalled: the UAV's flight budget"), std::string::npos);
-  run_until([&] { return sim.mission().wants_retraction(); }, 60.0);
-  ASSERT_TRUE(sim.mission().wants_retraction());
+  run_until([&] { return ugv_mission_of(sim).wants_retraction(); }, 60.0);
+  ASSERT_TRUE(ugv_mission_of(sim).wants_retraction());
   EXPECT_LE((sim.base().true_pose().position() - kEntry.position()).norm(), 0.2 + 1e-9);
-  sim.mission().recall("again");  // waiting at the entry: nothing changes
-  EXPECT_TRUE(sim.mission().wants_retraction());
-  sim.mission().retracted();
-  EXPECT_EQ(sim.mission().outcome(), UgvMissionOutcome::kRecalled);
+  ugv_mission_of(sim).recall("again");  // waiting at the entry: nothing changes
+  EXPECT_TRUE(ugv_mission_of(sim).wants_retraction());
+  ugv_mission_of(sim).retracted();
+  EXPECT_EQ(ugv_mission_of(sim).outcome(), UgvMissionOutcome::kRecalled);
 }
 
 // Each tick of a mission on its line: the base's speed, and the limit a catch puts on it
@@ -245,19 +245,20 @@ std::vector<LineTick> line_ticks(UgvMissionRunSettings s, const tether::LineCatc
                                  UgvMissionRunResult& result) {
   std::vector<LineTick> ticks;
   const double l0_m = s.exploration.mission.tether.entry_offset_m;
-  s.on_tick = [&](double, const MiniUgvMission& m, const SimUgvBase& base) {
+  const auto on_tick = [&](double, const MiniUgvMission& m, const SimUgvBase& base) {
     const ExploreController& e = m.explore_controller();
     const double line_m = l0_m + e.tether_length_m();
     const bool doubt = e.reach_length_m() - e.tether_length_m() > line.stretch_m(line_m);
     ticks.push_back({std::abs(base.speed_mps()), m.line_speed_limit_mps(),
                      doubt ? line.speed_mps(line_m) : std::numeric_limits<double>::infinity()});
   };
-  result = run_ugv_mission(test::small_hidden_space(), kEntry, kBehindPartition, s, 5);
+  result =
+      run_ugv_mission(test::small_hidden_space(), kEntry, kBehindPartition, s, 5, nullptr, on_tick);
   return ticks;
 }
 
 TEST(UgvMission, OnItsLineTheRobotDrivesNoFasterThanTheWinchCanFollowACatch) {
-  // The mission's limit (sim/mission_run.cpp): 8 N of pull on a 1 mm nylon line.
+  // The mission's limit (mission/mission_settings.cpp): 8 N of pull on a 1 mm nylon line.
   const tether::LineCatchLimit line{8.0, 1500.0, 0.065, 1.8};
   UgvMissionRunResult free_run, held_run;
   const auto free_ticks = line_ticks(settings(), line, free_run);

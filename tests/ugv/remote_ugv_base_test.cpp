@@ -11,6 +11,7 @@
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
 #include "ferret/link/json_dispatcher.hpp"
+#include "ferret/mission/mission_assembly.hpp"
 #include "ferret/mission/ugv_mission_run.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/ugv/mini_ugv_mission.hpp"

@@ -40,7 +40,7 @@ struct Linked {
   UgvLinkEndpoint ugv{clock, [this](const link::UavRequest& r) {
                         ++searches_asked;
                         last_entry = {r.entry_x_m, r.entry_y_m};
-                        return UgvLinkEndpoint::Deployment{&sim.mission(), &sim.base()};
+                        return UgvLinkEndpoint::Deployment{&ugv_mission_of(sim), &sim.base()};
                       }};
   LinkedUgv uav{clock};
   Eigen::Vector2d last_entry = Eigen::Vector2d::Zero();
@@ -74,7 +74,7 @@ TEST(UgvLinkEndpoint, TheUavsCallsReachTheMissionAndTheTelemetryAnswersThem) {
   k.step();
   EXPECT_EQ(k.searches_asked, 1);
   EXPECT_EQ(k.last_entry, Eigen::Vector2d(0.5, 1.0));
-  EXPECT_EQ(k.sim.mission().state(), UgvMissionState::kExplore);
+  EXPECT_EQ(ugv_mission_of(k.sim).state(), UgvMissionState::kExplore);
   EXPECT_EQ(k.ugv.last_request_id(), 1u);
   for (int i = 0; i < 40; ++i) k.step();
   r = k.uav.report();
@@ -88,11 +88,11 @@ TEST(UgvLinkEndpoint, TheUavsCallsReachTheMissionAndTheTelemetryAnswersThem) {
   // Recalled: it turns for home and says why once it is there.
   k.uav.recall("the UAV's flight budget");
   k.step();
-  EXPECT_EQ(k.sim.mission().return_outcome(), UgvMissionOutcome::kRecalled);
+  EXPECT_EQ(ugv_mission_of(k.sim).return_outcome(), UgvMissionOutcome::kRecalled);
   // Aborted: the mission ends, and the UAV reads the outcome's name.
   k.uav.abort("test");
   k.step();
-  EXPECT_TRUE(k.sim.mission().done());
+  EXPECT_TRUE(ugv_mission_of(k.sim).done());
   k.step();
   r = k.uav.report();
   EXPECT_TRUE(r.done);
@@ -144,7 +144,7 @@ TEST(UgvLinkEndpoint, ASilentUavStopsTheRobotWithinTwoControlPeriods) {
   k.uav.deploy({0.5, 1.0, 0.0}, 0.0);
   for (int i = 0; i < 60; ++i) k.step();  // 3 s of search, the UAV heard all along
   ASSERT_FALSE(k.ugv.holding());
-  ASSERT_EQ(k.sim.mission().state(), UgvMissionState::kExplore);
+  ASSERT_EQ(ugv_mission_of(k.sim).state(), UgvMissionState::kExplore);
   // The UAV goes silent: within two control periods of the link's timeout (0.5 s after
   // the last frame heard) the robot holds, its wheels commanded to 0.
   const double last_heard = k.clock.now_s() - k.ugv.session().watchdog().since_heard_s();
@@ -165,7 +165,7 @@ TEST(UgvLinkEndpoint, ASilentUavStopsTheRobotWithinTwoControlPeriods) {
   // Heard again: it goes on.
   for (int i = 0; i < 20; ++i) k.step();
   EXPECT_FALSE(k.ugv.holding());
-  EXPECT_EQ(k.sim.mission().state(), UgvMissionState::kExplore);
+  EXPECT_EQ(ugv_mission_of(k.sim).state(), UgvMissionState::kExplore);
 }
 
 TEST(UgvLinkEndpoint, ASearchAskedOfARobotWithNothingToSearchIsCounted) {

@@ -13,18 +13,58 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/mission_run.hpp"
+#include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/uav/flight_planner.hpp"
 #include "ferret/uav/uav_mission.hpp"
 #include "ferret/ugv/mini_ugv_mission.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {
+
+/// The controller's options for a deployment with `seed` (the search's own, derived
+/// from it); `truth` only places the oracle's object of an empty space out of reach.
+[[nodiscard]] UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings,
+                                                    std::uint64_t seed,
+                                                    const std::optional<Eigen::Vector2d>& object_W,
+                                                    const GridGeometry& truth);
+
+/// A deployment's miniUGV mission controller as the simulated world steps it
+/// (sim/ugv_mission_run.hpp): the world calls it through SimUgvController, the mission
+/// module reaches the controller itself (ugv_mission_of).
+class SimMiniUgvMission final : public SimUgvController {
+ public:
+  explicit SimMiniUgvMission(std::unique_ptr<MiniUgvMission> mission)
+      : mission_(std::move(mission)) {}
+  [[nodiscard]] MiniUgvMission& mission() { return *mission_; }
+  [[nodiscard]] const MiniUgvMission& mission() const { return *mission_; }
+
+  void start() override { mission_->start(); }
+  void tick() override { mission_->tick(); }
+  void stop(const std::string& reason) override { mission_->stop(reason); }
+  [[nodiscard]] UgvMissionState state() const override { return mission_->state(); }
+  [[nodiscard]] bool done() const override { return mission_->done(); }
+  [[nodiscard]] bool wants_retraction() const override { return mission_->wants_retraction(); }
+  [[nodiscard]] double tether_length_m() const override {
+    return mission_->explore_controller().tether_length_m();
+  }
+  void report(UgvMissionRunResult& result) const override;
+
+ private:
+  std::unique_ptr<MiniUgvMission> mission_;
+};
+
+/// The miniUGV mission controller of a simulated deployment whose controller came from
+/// MissionAssembly::ugv_controllers. Throws std::logic_error for one without (the base
+/// alone) or with another controller.
+[[nodiscard]] MiniUgvMission& ugv_mission_of(UgvMissionSim& sim);
+[[nodiscard]] const MiniUgvMission& ugv_mission_of(const UgvMissionSim& sim);
 
 /// The UAV's hardware interfaces as a backend set provides them.
 using UavBackends = UavMission::Hardware;

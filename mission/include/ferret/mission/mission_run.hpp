@@ -11,6 +11,7 @@
 #include "ferret/core/transition_log.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/mission_run.hpp"
+#include "ferret/uav/uav_mission.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

@@ -6,7 +6,7 @@
 //   /maps/O        O: the object probability x 100, every 5 s and at the end (foxglove.Grid)
 //   /objects       the object as found (and, the simulator's truth, where it is)
 //   /log           every state transition, with its reason (foxglove.Log)
-// Hook it into run_ugv_mission with settings.on_tick = recorder.hook() and the
+// Hook it into run_ugv_mission as its on_tick, recorder.hook(), and the
 // transition log's listener; finish() gives the file's bytes.
 
 #include <Eigen/Core>
@@ -17,7 +17,7 @@
 
 #include "ferret/core/foxglove_log.hpp"
 #include "ferret/core/transition_log.hpp"
-#include "ferret/sim/ugv_mission_run.hpp"
+#include "ferret/mission/ugv_mission_run.hpp"
 
 namespace ferret {
 
@@ -29,8 +29,8 @@ void log_search_maps(FoxgloveLog& log, double t_s, const IrGrid& g, const Object
 class UgvMissionRecorder {
  public:
   UgvMissionRecorder() = default;
-  /// For UgvMissionRunSettings::on_tick.
-  [[nodiscard]] std::function<void(double, const MiniUgvMission&, const SimUgvBase&)> hook();
+  /// For run_ugv_mission's on_tick.
+  [[nodiscard]] UgvMissionTickHook hook();
   /// For TransitionLog::on_transition (chain it after a printer if there is one).
   void transition(const Transition& t);
   /// Closes the log with the final maps and the objects; returns the MCAP bytes.

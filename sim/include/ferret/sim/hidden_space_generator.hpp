@@ -21,9 +21,15 @@
 
 #include "ferret/core/pose.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
-#include "ferret/sim/experiment.hpp"
 
 namespace ferret {
+
+/// A zone of a hidden space's map, where the experiment samples objects (an axis-aligned
+/// rectangle in the map's frame, m).
+struct ZoneSpec {
+  int id = 0;
+  double xmin_m = 0, ymin_m = 0, xmax_m = 0, ymax_m = 0;
+};
 
 enum class HiddenSpaceClutter { kSparse, kDense };
 

@@ -26,11 +26,11 @@
 #include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/sim/mission_run.hpp"
-#include "ferret/sim/search_robot.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/simulated_winch.hpp"
 #include "ferret/tether_model/taut_tether.hpp"
+#include "ferret/uav/flight_controller.hpp"
 
 namespace ferret::internal {
 
@@ -310,7 +310,8 @@ class SimHiddenSpaces {
   // `hold`: the controller holds (its link silent): the base stands, nothing ticks.
   void step(double dt, bool hold = false) {
     if (!sim_) return;
-    if (sim_->has_controller() && (sim_->mission().done() || sim_->mission().wants_retraction()))
+    if (sim_->has_controller() &&
+        (sim_->controller().done() || sim_->controller().wants_retraction()))
       return;
     sim_->step(dt, hold);
     const Pose2& p = sim_->base().true_pose();
@@ -339,8 +340,8 @@ class SimHiddenSpaces {
   // Closes the deployment still running when the simulation ends.
   void close() {
     if (!sim_) return;
-    if (sim_->has_controller() && !sim_->mission().done())
-      sim_->mission().stop("the mission ended");
+    if (sim_->has_controller() && !sim_->controller().done())
+      sim_->controller().stop("the mission ended");
     deployments_.back().result = sim_->result(log_);
     deployments_.back().result.time_s = clock_.now_s() - deployments_.back().deployed_s;
     finished_.push_back(std::move(sim_));

@@ -9,13 +9,14 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
-#include "ferret/sim/exploration_run.hpp"
+#include "ferret/sim/exploration_settings.hpp"
 #include "ferret/sim/sim_ugv_base.hpp"
-#include "ferret/ugv/mini_ugv_mission.hpp"
+#include "ferret/ugv/mini_ugv_mission_options.hpp"
 
 namespace ferret {
 
@@ -31,9 +32,6 @@ struct UgvMissionRunSettings {
   /// extent (the paper's experiment, where the map is given).
   std::optional<Eigen::Vector2d> map_window_m;
   double time_limit_s = 3600.0;  ///< the simulation's own bound (a mission that never ends)
-  /// Called after every tick with the time, the controller and the simulated robot (a
-  /// recorder's hook: UgvMissionRecorder writes the MCAP log from it).
-  std::function<void(double t_s, const MiniUgvMission&, const SimUgvBase&)> on_tick;
 };
 
 struct UgvMissionRunResult {
@@ -60,10 +58,33 @@ struct UgvMissionRunResult {
   std::shared_ptr<const ObjectMap> objects;
 };
 
+/// The miniUGV's controller as the simulated world steps it: what the world calls on it
+/// and reads from it. The simulation knows no controller; mission/ implements this over
+/// the miniUGV's mission controller (MissionAssembly::ugv_controllers).
+class SimUgvController {
+ public:
+  virtual ~SimUgvController() = default;
+  /// At the entry: the search begins.
+  virtual void start() = 0;
+  /// One control step at the clock's time.
+  virtual void tick() = 0;
+  /// Ends the mission (the simulation's end, or the UAV's).
+  virtual void stop(const std::string& reason) = 0;
+  [[nodiscard]] virtual UgvMissionState state() const = 0;
+  [[nodiscard]] virtual bool done() const = 0;
+  /// Waiting at the entry to be lifted out: the world no longer steps the base.
+  [[nodiscard]] virtual bool wants_retraction() const = 0;
+  /// The controller's taut tether model, now (m).
+  [[nodiscard]] virtual double tether_length_m() const = 0;
+  /// Fills the controller's part of a result: outcome, final state, where it found the
+  /// object, grasp attempts, decisions, its maps.
+  virtual void report(UgvMissionRunResult& result) const = 0;
+};
+
 /// The miniUGV's controller for a deployment, built elsewhere (MissionAssembly, in
 /// mission/): on `base`, its maps over `map`, its search seeded from `seed`; `object_W`
 /// the oracle's object (none: an empty space).
-using UgvControllerFactory = std::function<std::unique_ptr<MiniUgvMission>(
+using UgvControllerFactory = std::function<std::unique_ptr<SimUgvController>(
     SimUgvBase& base, const GridGeometry& map, std::uint64_t seed,
     const std::optional<Eigen::Vector2d>& object_W)>;
 
@@ -90,16 +111,17 @@ class UgvMissionSim {
   UgvMissionSim(const UgvMissionSim&) = delete;
   UgvMissionSim& operator=(const UgvMissionSim&) = delete;
 
-  void start() { mission_->start(); }
+  void start() { controller_->start(); }
   /// The controller's tick at the clock's time (when it has one), then the robot moves
   /// by `dt_s`. `hold`: the controller does not tick and the wheels stop (the robot
   /// link's watchdog).
   void step(double dt_s, bool hold = false);
-  [[nodiscard]] bool has_controller() const { return mission_ != nullptr; }
+  [[nodiscard]] bool has_controller() const { return controller_ != nullptr; }
   /// The control period (the IR rate).
   [[nodiscard]] double tick_s() const { return tick_s_; }
-  [[nodiscard]] MiniUgvMission& mission() { return *mission_; }
-  [[nodiscard]] const MiniUgvMission& mission() const { return *mission_; }
+  /// The controller (has_controller()).
+  [[nodiscard]] SimUgvController& controller() { return *controller_; }
+  [[nodiscard]] const SimUgvController& controller() const { return *controller_; }
   [[nodiscard]] const SimUgvBase& base() const { return *base_; }
   [[nodiscard]] SimUgvBase& base() { return *base_; }
   /// The result so far (outcome kNone while running); `log` fills transitions.
@@ -112,7 +134,7 @@ class UgvMissionSim {
   double tick_s_ = 0.05;
   std::unique_ptr<HiddenSpaceSim> sim_;
   std::unique_ptr<SimUgvBase> base_;
-  std::unique_ptr<MiniUgvMission> mission_;
+  std::unique_ptr<SimUgvController> controller_;
   std::vector<Pose2> trajectory_;
   double max_tether_m_ = 0.0;
   UgvMissionState max_tether_state_ = UgvMissionState::kIdle;
@@ -121,11 +143,5 @@ class UgvMissionSim {
 /// The controller's map for a mission from `start`: the settings' window, or the truth's extent.
 [[nodiscard]] GridGeometry ugv_mission_map(const GridGeometry& truth, const Pose2& start,
                                            const UgvMissionRunSettings& settings);
-/// The controller's options for a deployment with `seed` (the search's own, derived
-/// from it); `truth` only places the oracle's object of an empty space out of reach.
-[[nodiscard]] UgvMissionOptions ugv_mission_options(const UgvMissionRunSettings& settings,
-                                                    std::uint64_t seed,
-                                                    const std::optional<Eigen::Vector2d>& object_W,
-                                                    const GridGeometry& truth);
 
 }  // namespace ferret

@@ -10,7 +10,8 @@
 
 #include "ferret/planning/collision_map.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/uav/uav_mission.hpp"
+#include "ferret/uav/flight_path_follower.hpp"
+#include "ferret/uav/uav_mission_options.hpp"
 #include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 

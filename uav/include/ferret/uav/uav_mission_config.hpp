@@ -18,7 +18,7 @@
 #include <string>
 #include <string_view>
 
-#include "ferret/uav/uav_mission.hpp"
+#include "ferret/uav/uav_mission_options.hpp"
 
 namespace ferret {
 

@@ -2,7 +2,7 @@
 // 2.5 m IR, 50 deg array, 68.75 deg / 320 px / 3 m camera and 0.5 m/s wheels, which
 // differ from the miniUGV's 4 m / 30 deg / 90 deg / 640 px / 2 m/s in every value.
 
-#include "ferret/sim/search_robot.hpp"
+#include "ferret/mission/search_robot.hpp"
 
 #include <gtest/gtest.h>
 

@@ -18,14 +18,10 @@
 #include <vector>
 
 #include "ferret/mapping/occupancy_map_2d.hpp"
-#include "ferret/sim/exploration_run.hpp"
+#include "ferret/mission/exploration_run.hpp"
+#include "ferret/sim/hidden_space_generator.hpp"
 
 namespace ferret {
-
-struct ZoneSpec {
-  int id = 0;
-  double xmin_m = 0, ymin_m = 0, xmax_m = 0, ymax_m = 0;
-};
 
 struct ExperimentMap {
   std::string name;

@@ -1,4 +1,4 @@
-#include "ferret/sim/experiment.hpp"
+#include "ferret/mission/experiment.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -17,9 +17,9 @@
 #include "ferret/core/output_set.hpp"
 #include "ferret/core/random.hpp"
 #include "ferret/core/yaml_config.hpp"
+#include "ferret/mission/search_robot.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/sim/hidden_space_generator.hpp"
-#include "ferret/sim/search_robot.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

@@ -1,4 +1,4 @@
-#include "ferret/sim/exploration_run.hpp"
+#include "ferret/mission/exploration_run.hpp"
 
 #include <gtest/gtest.h>
 

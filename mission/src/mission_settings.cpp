@@ -1,8 +1,8 @@
-#include "ferret/sim/mission_run.hpp"
+#include "ferret/mission/mission_settings.hpp"
 
 #include <algorithm>
 
-#include "ferret/sim/search_robot.hpp"
+#include "ferret/mission/search_robot.hpp"
 #include "ferret/uav/flight_planner.hpp"
 
 namespace ferret {

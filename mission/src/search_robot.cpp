@@ -1,4 +1,4 @@
-#include "ferret/sim/search_robot.hpp"
+#include "ferret/mission/search_robot.hpp"
 
 #include <algorithm>
 

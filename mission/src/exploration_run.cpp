@@ -1,4 +1,4 @@
-#include "ferret/sim/exploration_run.hpp"
+#include "ferret/mission/exploration_run.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -33,13 +33,6 @@ ExploreOptions explore_options(const ExplorationSettings& settings, std::uint64_
   o.oracle_object_W = object_W;  // the controller hands it only to a policy that asks
   o.record_decisions = settings.record;
   return o;
-}
-
-void check_episode(const OccupancyMap2D& truth, const Pose2& start, const std::string& method) {
-  if (!has_exploration_policy(method))
-    throw std::invalid_argument("unknown exploration method: " + method);
-  if (!truth.is_free(truth.geometry.cell_at(start.x_m, start.y_m)))
-    throw std::invalid_argument("the start pose is not on a free cell of the map");
 }
 
 EpisodeResult run_exploration(const OccupancyMap2D& truth, const Pose2& start,

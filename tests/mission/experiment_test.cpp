@@ -1,4 +1,4 @@
-#include "ferret/sim/experiment.hpp"
+#include "ferret/mission/experiment.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -16,27 +16,10 @@
 #include "ferret/mapping/ir_grid.hpp"
 #include "ferret/mapping/object_map.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
-#include "ferret/sim/hidden_space_sim.hpp"
+#include "ferret/sim/exploration_settings.hpp"
 #include "ferret/ugv/explore_controller.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
-
-struct ExplorationSettings {
-  std::string method = "cdos";
-  SensorOptions sensors;
-  RobotOptions robot;
-  MissionConfig mission;
-  double time_limit_s = 300.0;
-  double decision_period_s = 0.1;
-  int max_revisits = 3;  ///< revisits of the strongest evidence once exploration ends
-  bool cdos_candidates_global = false;  ///< cdos option: score F_g, not F_v
-  bool cdos_closest_approach = false;   ///< cdos option: d_{t+1} at the closest approach
-  bool record = false;                  ///< keep the trajectory, decisions and final maps
-  /// Time each step that ran a decision cycle (EpisodeResult::decision_cycle_s): wall
-  /// time, for benchmarks only; it changes nothing the search does.
-  bool time_decision_cycles = false;
-};
 
 struct EpisodeResult {
   bool found = false;
@@ -63,10 +46,6 @@ struct EpisodeResult {
 /// position is kept for the oracle policy only.
 [[nodiscard]] ExploreOptions explore_options(const ExplorationSettings& settings,
                                              std::uint64_t seed, const Eigen::Vector2d& object_W);
-
-/// The checks every simulated episode makes of its inputs.
-/// @throws std::invalid_argument for an unknown method or a start off the free space.
-void check_episode(const OccupancyMap2D& truth, const Pose2& start, const std::string& method);
 
 /// Runs one search. Deterministic for a given seed.
 /// @throws std::invalid_argument for an unknown method or a start off the free space.

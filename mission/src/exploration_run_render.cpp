@@ -8,7 +8,7 @@
 
 #include "ferret/core/output_set.hpp"
 #include "ferret/mapping/map_render.hpp"
-#include "ferret/sim/exploration_run.hpp"
+#include "ferret/mission/exploration_run.hpp"
 
 namespace ferret {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "ferret/core/pose.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
-#include "ferret/sim/exploration_run.hpp"
+#include "ferret/mission/exploration_run.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

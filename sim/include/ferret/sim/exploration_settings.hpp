@@ -1,0 +1,37 @@
+#pragma once
+// The settings of one simulated object search (the paper's episode, and the miniUGV's
+// search in a hidden space of a simulated mission): the method, the simulated sensors,
+// the robot's motion limits, the mission. The controller that runs the search is
+// mission/'s (mission/exploration_run.hpp); the simulation only checks its inputs.
+
+#include <string>
+
+#include "ferret/core/pose.hpp"
+#include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/sim/hidden_space_sim.hpp"
+#include "ferret/ugv/path_follower.hpp"
+#include "ferret/urdf/mission_config.hpp"
+
+namespace ferret {
+
+struct ExplorationSettings {
+  std::string method = "cdos";
+  SensorOptions sensors;
+  RobotOptions robot;
+  MissionConfig mission;
+  double time_limit_s = 300.0;
+  double decision_period_s = 0.1;
+  int max_revisits = 3;  ///< revisits of the strongest evidence once exploration ends
+  bool cdos_candidates_global = false;  ///< cdos option: score F_g, not F_v
+  bool cdos_closest_approach = false;   ///< cdos option: d_{t+1} at the closest approach
+  bool record = false;                  ///< keep the trajectory, decisions and final maps
+  /// Time each step that ran a decision cycle (EpisodeResult::decision_cycle_s): wall
+  /// time, for benchmarks only; it changes nothing the search does.
+  bool time_decision_cycles = false;
+};
+
+/// The checks every simulated episode makes of its inputs.
+/// @throws std::invalid_argument for an unknown method or a start off the free space.
+void check_episode(const OccupancyMap2D& truth, const Pose2& start, const std::string& method);
+
+}  // namespace ferret
