@@ -25,10 +25,10 @@
 #include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/mission/ugv_mission_run.hpp"
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/search_robot.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {

@@ -21,6 +21,7 @@
 #include "ferret/mapping/world_octree.hpp"
 #include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/exploration_run.hpp"
 #include "ferret/sim/mission_run.hpp"
@@ -29,7 +30,6 @@
 #include "ferret/sim/tether_sim.hpp"
 #include "ferret/sim/time_series_plot.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

@@ -16,9 +16,9 @@
 #include "ferret/mapping/ir_grid.hpp"
 #include "ferret/mapping/object_map.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/sim/hidden_space_sim.hpp"
 #include "ferret/ugv/explore_controller.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 

@@ -9,9 +9,9 @@
 #include <memory>
 
 #include "ferret/planning/collision_map.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/uav/uav_mission.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

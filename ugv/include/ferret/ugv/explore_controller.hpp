@@ -16,8 +16,8 @@
 #include "ferret/core/pose.hpp"
 #include "ferret/mapping/ir_grid.hpp"
 #include "ferret/mapping/object_map.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/ugv/path_follower.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 
