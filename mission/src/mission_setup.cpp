@@ -61,7 +61,8 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
     throw InputError("--no-landing-zone", "", "hover or skip", o.no_landing_zone);
   // The method with the frontier planner, or an InputError naming why not (the miniUGV's
   // ExploreController asks the same function).
-  (void)exploration_policy_for(o.method, parse_frontier_planner(o.planner, "--planner"));
+  const FrontierPlanner planner = parse_frontier_planner(o.planner, "--planner");
+  (void)exploration_policy_for(o.method, planner);
   const MissionDocument document = load_mission_document_or_defaults(o.mission);
   MissionSetup s{
       o.world.empty() ? data_path("worlds/default.yaml") : std::filesystem::path(o.world),
@@ -92,7 +93,7 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   // Checked here too, so that a value the miniUGV's commands accept but the UAV's mission
   // does not (l_0 = 0: no hover release) is named in the mission file.
   settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
-  settings.ugv.ugv.explore.planner = o.planner;
+  settings.ugv.ugv.explore.planner = planner;
   // How long the base may stand still when told to drive is the base's (ugv.base).
   settings.ugv.ugv.bump_time_s = s.backends.ugv_base.stall_time_s;
   return s;

@@ -57,7 +57,7 @@ MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::u
   MissionRunOut r{{}, load_planning_world(world_path)};
   MissionRunSettings s = mission_settings_for(uav, ugv, mission, *r.world.spec);
   s.uav.no_landing_zone = no_landing_zone;
-  s.ugv.ugv.explore.planner = planner;
+  s.ugv.ugv.explore.planner = parse_frontier_planner(planner, "test");
   if (flight_endurance_s > 0) s.uav.flight_endurance_s = flight_endurance_s;
   s.link_channel = link;
   r.result = run_mission(r.world, uav, s, seed);

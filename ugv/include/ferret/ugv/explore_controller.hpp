@@ -16,6 +16,7 @@
 #include "ferret/core/pose.hpp"
 #include "ferret/mapping/ir_grid.hpp"
 #include "ferret/mapping/object_map.hpp"
+#include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/mission_config.hpp"
 #include "ferret/ugv/path_follower.hpp"
 
@@ -41,11 +42,11 @@ struct UgvSensorGeometry {
 
 struct ExploreOptions {
   std::string method = "cdos";
-  /// How goals are chosen and reached (FrontierPlanner): "grid" (the Dijkstra field
-  /// over G) or "ompl" (cdos and rapid run as cdos+ompl and rapid+ompl: PRM with the
-  /// CDOS frontier sampler; other methods have none: an InputError).
-  /// exploration_policy_for() decides; docs/planning.md compares the two.
-  std::string planner = "grid";
+  /// How goals are chosen and reached: the Dijkstra field over G, or OMPL (cdos and
+  /// rapid run as cdos+ompl and rapid+ompl: PRM with the CDOS frontier sampler; other
+  /// methods have none: an InputError). exploration_policy_for() decides;
+  /// docs/planning.md compares the two. Parsed from text by parse_frontier_planner.
+  FrontierPlanner planner = FrontierPlanner::kGrid;
   UgvSensorGeometry sensors;
   RobotOptions robot;
   MissionConfig mission;
