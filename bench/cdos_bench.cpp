@@ -24,9 +24,9 @@
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/planning/exploration_policy.hpp"
 #include "ferret/planning/grid_path_planner.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/sim/hidden_space_generator.hpp"
 #include "ferret/sim/hidden_space_sim.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 namespace {

@@ -1,14 +1,13 @@
-// Mission YAML (config/mission.yaml's format) -> MissionConfig, the robots' backends and
-// the UAV mission's keys.
+// Mission YAML (config/mission.yaml's format) -> MissionDocument: MissionConfig, the
+// robots' backends and the UAV mission's keys.
 #include <cstdint>
 #include <optional>
 #include <string>
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
-#include "ferret/sim/robot_backends.hpp"
+#include "ferret/mission/mission_document.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "fuzz_support.hpp"
 
 namespace {
@@ -26,12 +25,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::optional<ferret::RobotBackends> backends;
   ferret::UavMissionOptions uav;
   try {
-    const ferret::MissionConfig config = ferret::load_mission_config(path);
+    const ferret::MissionDocument document = ferret::load_mission_document(path);
     // What `ferret config --dump` does next with a config that loaded.
-    (void)ferret::mission_config_to_yaml(config);
-    backends = ferret::load_robot_backends(path);
-    uav.tether = config.tether;
-    (void)ferret::load_uav_mission_options(path, uav);
+    (void)ferret::mission_config_to_yaml(document.config);
+    backends = document.backends;
+    uav = document.uav_mission;
     // A file without a uav section leaves the options unchecked; `ferret mission` checks
     // them before it flies (l_0 = 0 is a tether the miniUGV's commands take, the UAV's
     // hover release not: regression winch_at_the_entry_no_uav_section.yaml).

@@ -20,8 +20,8 @@
 #include "ferret/core/error.hpp"
 #include "ferret/core/number.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/service/planner_service.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace {

@@ -18,7 +18,7 @@
 #include "ferret/mission/mission_files.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/planning/collision_map.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 struct MissionSetupOptions;

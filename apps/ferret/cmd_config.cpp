@@ -6,7 +6,6 @@
 
 #include <filesystem>
 #include <iostream>
-#include <set>
 #include <sstream>
 #include <string>
 
@@ -14,12 +13,11 @@
 #include "command.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
+#include "ferret/mission/mission_document.hpp"
 #include "ferret/perception/camera_info.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/camera_summary.hpp"
-#include "ferret/sim/robot_backends.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {
@@ -55,20 +53,14 @@ void run(const Options& o) {
   else if (!to_stdout)
     out_file = check_output_target(o.out, OutputKind::kFile, "--out");
   std::string mission_source = "(built-in defaults)";
-  MissionConfig mission;
-  RobotBackends backends;
   if (!o.mission.empty())
     mission_source = o.mission;
   else if (fs::is_regular_file("config/mission.yaml"))
     mission_source = "config/mission.yaml";
-  UavMissionOptions uav_mission;
-  std::set<std::string> uav_mission_given;
-  if (mission_source != "(built-in defaults)") {
-    mission = load_mission_config(mission_source);
-    backends = load_robot_backends(mission_source);
-    uav_mission.tether = mission.tether;
-    uav_mission_given = load_uav_mission_options(mission_source, uav_mission);
-  }
+  const MissionDocument document = mission_source == "(built-in defaults)"
+                                       ? MissionDocument{}
+                                       : load_mission_document(mission_source);
+  const MissionConfig& mission = document.config;
   const RobotDescription robot =
       load_robot_description(resolve_robot(o.robot, "miniugv.urdf"), mission);
 
@@ -99,14 +91,14 @@ void run(const Options& o) {
           indent("source: \"" + mission_source + "\"\n" + mission_config_to_yaml(mission) +
                  "provenance:\n" + indent(mission_provenance_to_yaml(mission)));
   text += "# backends: which implementation each hardware interface runs on (sim or hw)\n";
-  text += "backends:\n" + indent(robot_backends_to_yaml(backends));
-  const bool search_area_given = uav_mission_given.count("search_area_m") > 0;
+  text += "backends:\n" + indent(robot_backends_to_yaml(document.backends));
+  const bool search_area_given = document.uav_mission_given.count("search_area_m") > 0;
   text += std::string(
               "# the UAV mission's settings (the mission YAML's uav section takes these keys)") +
           (search_area_given ? "" : "; the search area is the world's bounds less 1 m") + "\n";
   YAML::Emitter uav_yaml;
   uav_yaml << YAML::BeginMap;
-  emit_uav_mission_options(uav_yaml, uav_mission, search_area_given);
+  emit_uav_mission_options(uav_yaml, document.uav_mission, search_area_given);
   uav_yaml << YAML::EndMap;
   text += "uav_mission:\n" + indent(std::string(uav_yaml.c_str()) + "\n");
   if (to_stdout) {

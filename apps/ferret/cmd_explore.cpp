@@ -27,8 +27,8 @@
 #include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/mission/ugv_mission_run.hpp"
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {
@@ -174,11 +174,8 @@ void run(const Options& o) {
   ExplorationSettings s = robot ? exploration_settings_for(*robot, mission) : ExplorationSettings{};
   s.mission = mission;
   s.method = policy;
-  if (!robot) {  // the mission's ugv_limits, as a robot's limits would be
-    s.robot.max_velocity_mps = mission.ugv_limits.max_velocity_mps;
-    s.robot.max_yaw_rate_radps = mission.ugv_limits.max_yaw_rate_radps;
-    s.robot.max_acceleration_mps2 = mission.ugv_limits.max_acceleration_mps2;
-  }
+  // The mission's ugv_limits, as a robot's limits would be.
+  if (!robot) s.robot.set_limits(mission.ugv_limits);
   if (o.camera_fov_deg) s.sensors.camera_fov_rad = deg_to_rad(*o.camera_fov_deg);
   if (o.ir_fov_deg) {
     s.sensors.ir_fov_rad = deg_to_rad(*o.ir_fov_deg);

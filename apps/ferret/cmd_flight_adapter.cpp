@@ -17,11 +17,11 @@
 #include "ferret/core/error.hpp"
 #include "ferret/link/message_stream.hpp"
 #include "ferret/mission/mission_settings.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/sim_flight_adapter.hpp"
 #include "ferret/uav/flight_adapter_check.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {

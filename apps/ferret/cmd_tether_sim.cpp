@@ -16,9 +16,9 @@
 #include "command.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/sim/tether_sim.hpp"
 #include "ferret/tether_model/winch_controllers.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret::cli {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/mapping/object_search_params.hpp"
 
 namespace ferret {
 

@@ -279,9 +279,7 @@ ExperimentConfig load_experiment_config(const fs::path& path) {
   c.base.time_limit_s = r.get_in_range_or("time_limit_s", 1, 1e6, 300);
   c.object_clearance_m = r.get_in_range_or("object_clearance_m", 0, 10, 0.25);
   // The mission's ugv_limits unless the robot's URDF or the robot: keys say otherwise.
-  c.base.robot.max_velocity_mps = c.base.mission.ugv_limits.max_velocity_mps;
-  c.base.robot.max_yaw_rate_radps = c.base.mission.ugv_limits.max_yaw_rate_radps;
-  c.base.robot.max_acceleration_mps2 = c.base.mission.ugv_limits.max_acceleration_mps2;
+  c.base.robot.set_limits(c.base.mission.ugv_limits);
   if (const auto robot = r.optional_child("robot")) {
     robot->allow_only({"urdf", "max_velocity", "max_yaw_rate", "clearance"});
     // A URDF gives the sensors and limits; the keys beside it and `sensors:` override.

@@ -23,13 +23,13 @@
 #include "ferret/mission/search_robot.hpp"
 #include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/robot_backends.hpp"
 #include "ferret/sim/tether_sim.hpp"
 #include "ferret/sim/time_series_plot.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

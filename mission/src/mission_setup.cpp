@@ -10,9 +10,7 @@
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/mission/mission_settings.hpp"
 #include "ferret/planning/exploration_policy.hpp"
-#include "ferret/sim/robot_backends.hpp"
-#include "ferret/uav/uav_mission.hpp"
-#include "ferret/uav/uav_mission_config.hpp"
+#include "ferret/uav/uav_mission_options.hpp"
 
 namespace ferret {
 
@@ -34,17 +32,15 @@ std::filesystem::path resolve_robot(const std::string& robot, std::string_view d
   return robot;
 }
 
+MissionDocument load_mission_document_or_defaults(const std::string& path) {
+  return path.empty() ? MissionDocument{} : load_mission_document(path);
+}
+
 MissionConfig load_mission_or_defaults(const std::string& path) {
-  if (path.empty()) return {};
-  MissionConfig mission = load_mission_config(path);
-  // The backend sections and the UAV mission's keys too, although this command may not
-  // build a robot or fly: a typo there is reported by the first command that reads the
-  // file, not by the robot at start-up.
-  (void)load_robot_backends(path);
-  UavMissionOptions uav;
-  uav.tether = mission.tether;
-  (void)load_uav_mission_options(path, uav);
-  return mission;
+  // The whole document, the backend sections and the UAV mission's keys too, although
+  // this command may not build a robot or fly: a typo there is reported by the first
+  // command that reads the file, not by the robot at start-up.
+  return load_mission_document_or_defaults(path).config;
 }
 
 void check_openings_admit(const WorldSpec& world, const std::string& source,
@@ -70,16 +66,17 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
     no_landing_zone = parse_no_landing_zone(o.no_landing_zone, "--no-landing-zone");
   // The method with the frontier planner, or an InputError naming why not (the miniUGV's
   // ExploreController asks the same function).
-  (void)exploration_policy_for(o.method, parse_frontier_planner(o.planner, "--planner"));
+  const FrontierPlanner planner = parse_frontier_planner(o.planner, "--planner");
+  (void)exploration_policy_for(o.method, planner);
+  const MissionDocument document = load_mission_document_or_defaults(o.mission);
   MissionSetup s{
       o.world.empty() ? data_path("worlds/default.yaml") : std::filesystem::path(o.world),
-      load_mission_or_defaults(o.mission),
-      {},
+      document.config,
+      document.backends,
       {},
       {},
       {},
       {}};
-  s.backends = o.mission.empty() ? RobotBackends{} : load_robot_backends(o.mission);
   s.uav = load_robot_description(resolve_robot(o.robot_uav, "m100.urdf"), s.mission);
   s.ugv = load_robot_description(resolve_robot(o.robot_ugv, "miniugv.urdf"), s.mission);
   s.world = load_planning_world(s.world_path);
@@ -96,12 +93,12 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   settings.ugv.exploration.method = o.method;
   // The UAV mission's keys of the mission YAML over what the world set (the search area
   // from its bounds); the command line's choice over both.
-  if (!o.mission.empty()) (void)load_uav_mission_options(o.mission, settings.uav);
+  document.apply_uav_mission(settings.uav);
   if (no_landing_zone) settings.uav.no_landing_zone = *no_landing_zone;
   // Checked here too, so that a value the miniUGV's commands accept but the UAV's mission
   // does not (l_0 = 0: no hover release) is named in the mission file.
   settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
-  settings.ugv.ugv.explore.planner = o.planner;
+  settings.ugv.ugv.explore.planner = planner;
   // How long the base may stand still when told to drive is the base's (ugv.base).
   settings.ugv.ugv.bump_time_s = s.backends.ugv_base.stall_time_s;
   return s;

@@ -24,9 +24,7 @@ SensorOptions sensor_options_for(const RobotDescription& robot, const SensorOpti
 
 RobotOptions robot_options_for(const RobotDescription& robot, const RobotOptions& base) {
   RobotOptions r = base;
-  r.max_velocity_mps = robot.limits.max_velocity_mps;
-  r.max_yaw_rate_radps = robot.limits.max_yaw_rate_radps;
-  r.max_acceleration_mps2 = robot.limits.max_acceleration_mps2;
+  r.set_limits(robot.limits);
   r.clearance_m = std::max(base.clearance_m, robot.circumscribed_radius_m);
   return r;
 }

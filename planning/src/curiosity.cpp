@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "ferret/mapping/ir_grid.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 namespace {

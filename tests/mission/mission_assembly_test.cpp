@@ -10,8 +10,8 @@
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/mission/mission_settings.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/sim/mission_run.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

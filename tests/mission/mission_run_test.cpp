@@ -14,9 +14,10 @@
 #include <string>
 
 #include "ferret/core/data_path.hpp"
+#include "ferret/mission/mission_document.hpp"
 #include "ferret/mission/mission_settings.hpp"
-#include "ferret/uav/uav_mission_config.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
+#include "ferret/uav/uav_mission_options.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {
@@ -58,7 +59,7 @@ MissionRunOut run(const fs::path& world_path, MissionConfig mission = {}, std::u
   MissionRunOut r{{}, load_planning_world(world_path)};
   MissionRunSettings s = mission_settings_for(uav, ugv, mission, *r.world.spec);
   s.uav.no_landing_zone = parse_no_landing_zone(no_landing_zone, "test");
-  s.ugv.ugv.explore.planner = planner;
+  s.ugv.ugv.explore.planner = parse_frontier_planner(planner, "test");
   if (flight_endurance_s > 0) s.uav.flight_endurance_s = flight_endurance_s;
   s.link_channel = link;
   r.result = run_mission(r.world, uav, s, seed);
@@ -259,12 +260,13 @@ TEST(MissionRun, AHoverReleaseFromTheMissionYamlNeverLands) {
   // brought out and dropped.
   const fs::path mission_yaml = fs::temp_directory_path() / "ferret_mission_hover_release.yaml";
   std::ofstream(mission_yaml) << "uav:\n  release: hover\n";
-  const MissionConfig mission = load_mission_config(mission_yaml);
+  const MissionDocument document = load_mission_document(mission_yaml);
+  const MissionConfig& mission = document.config;
   const RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), mission);
   const RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), mission);
   const PlanningWorld world = load_planning_world(data_path("worlds/two_sites.yaml"));
   MissionRunSettings s = mission_settings_for(uav, ugv, mission, *world.spec);
-  (void)load_uav_mission_options(mission_yaml, s.uav);
+  document.apply_uav_mission(s.uav);
   ASSERT_EQ(s.uav.release, ReleaseMode::kHover);
   const MissionRunResult r = run_mission(world, uav, s, 1);
   expect_safe(r, mission);

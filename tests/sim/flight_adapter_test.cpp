@@ -13,13 +13,13 @@
 
 #include "ferret/core/data_path.hpp"
 #include "ferret/mission/mission_settings.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/sim_flight_adapter.hpp"
 #include "ferret/uav/adapter_flight_controller.hpp"
 #include "ferret/uav/flight_adapter_check.hpp"
 #include "ferret/uav/flight_controller_config.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

@@ -10,7 +10,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 namespace {

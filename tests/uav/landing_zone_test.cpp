@@ -13,6 +13,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/random.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

@@ -9,9 +9,9 @@
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/mapping/world_spec.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/sim/robot_backends.hpp"
 #include "ferret/uav/flight_planner.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 namespace {

@@ -14,7 +14,7 @@
 #include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
 #include "ferret/perception/camera_model.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

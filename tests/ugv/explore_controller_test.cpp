@@ -42,7 +42,7 @@ Search search(const std::string& planner, double budget_m, double time_s = 120.0
   base_options.battery_endurance_s = std::numeric_limits<double>::infinity();
   SimUgvBase base(sim, kEntry, base_options);
   ExploreOptions options = explore_options(settings, 5, kBehindPartition);
-  options.planner = planner;
+  options.planner = parse_frontier_planner(planner, "test");
   options.tether_budget_m = budget_m;
   ExploreController controller(truth.geometry, kEntry, options);
   Search run;
@@ -226,10 +226,10 @@ TEST(ExploreController, APolicyAskingTheTetherFirstStillReadsTheCyclesFrontierSe
 }
 
 TEST(ExploreController, AnUnknownPlannerIsRefused) {
+  // The planner is an enum: a name that is none is refused where the text is parsed.
+  EXPECT_THROW((void)parse_frontier_planner("rrt", "--planner"), InputError);
   ExploreOptions options;
-  options.planner = "rrt";
-  EXPECT_THROW(ExploreController(test::small_hidden_space().geometry, kEntry, options), InputError);
-  options.planner = "ompl";  // the sampler serves cdos and rapid, not nearest
+  options.planner = FrontierPlanner::kOmpl;  // the sampler serves cdos and rapid, not nearest
   options.method = "nearest";
   EXPECT_THROW(ExploreController(test::small_hidden_space().geometry, kEntry, options), InputError);
 }

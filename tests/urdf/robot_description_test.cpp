@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "ferret/core/error.hpp"
+#include "urdf/robot_mission_yaml.hpp"
 
 namespace ferret {
 namespace {
@@ -30,7 +31,7 @@ std::string robot_xml(const std::string& extra) {
          "</robot>\n";
 }
 
-RobotDescription from(const std::string& xml, const MissionConfig& mission = {}) {
+RobotDescription from(const std::string& xml, const RobotMissionSettings& mission = {}) {
   return robot_description_from_string(xml, "t.urdf", mission);
 }
 
@@ -104,7 +105,7 @@ TEST(MiniUgvModel, EpmImuTetherAndLimits) {
 }
 
 TEST(MiniUgvModel, WheelLimitCapsAFasterMission) {
-  MissionConfig mission;
+  RobotMissionSettings mission;
   mission.ugv_limits.max_velocity_mps = 3.0;
   mission.ugv_limits.max_yaw_rate_radps = 1.25;
   const auto r = load_robot_description(models("miniugv.urdf"), mission);
@@ -115,7 +116,7 @@ TEST(MiniUgvModel, WheelLimitCapsAFasterMission) {
 TEST(M100Model, RotorsDepthCameraAndWinch) {
   const auto r = load_robot_description(models("m100.urdf"));
   EXPECT_EQ(r.kind, RobotKind::kUav);
-  EXPECT_DOUBLE_EQ(r.limits.max_velocity_mps, MissionConfig{}.uav_limits.max_velocity_mps);
+  EXPECT_DOUBLE_EQ(r.limits.max_velocity_mps, RobotMissionSettings{}.uav_limits.max_velocity_mps);
   // 650 mm motor to motor across the diagonal.
   const auto d = r.frame("rotor_front_left_link").translation() -
                  r.frame("rotor_rear_right_link").translation();
@@ -403,8 +404,8 @@ TEST(RoverModel, ProvenanceNamesTheUrdfLinesAndTheMission) {
   EXPECT_EQ(from("motion_limits.max_velocity_mps").rfind("urdf:" + rover() + ":", 0), 0u)
       << from("motion_limits.max_velocity_mps");
   EXPECT_EQ(from("motion_limits.max_yaw_rate_radps"), "default");
-  YAML::Node node = YAML::Load("ugv_limits: {max_yaw_rate_radps: 1.5, max_velocity_mps: 0.3}");
-  const MissionConfig mission = mission_config_from_yaml(node, "m.yaml");
+  const RobotMissionSettings mission = test::robot_mission_from_yaml(
+      "ugv_limits: {max_yaw_rate_radps: 1.5, max_velocity_mps: 0.3}", "m.yaml");
   const auto m = load_robot_description(rover(), mission);
   EXPECT_EQ(m.provenance.at("motion_limits.max_yaw_rate_radps"), "mission:m.yaml");
   // The mission's 0.3 m/s is below the wheels' 0.5: the mission's value holds.
@@ -424,9 +425,8 @@ TEST(Roles, TheMissionNamesSensorsForRolesAndOverridesMarkers) {
   EXPECT_EQ(plain.find_object_camera(), nullptr);  // no marker, no mission: no role
   EXPECT_EQ(plain.ir_array().beams.size(), 3u);
 
-  const MissionConfig mission = mission_config_from_yaml(
-      YAML::Load("roles: {t: {object_camera: c1, ir: [r2], epm: sensor_link}, other: {ir: x}}"),
-      "m.yaml");
+  const RobotMissionSettings mission = test::robot_mission_from_yaml(
+      "roles: {t: {object_camera: c1, ir: [r2], epm: sensor_link}, other: {ir: x}}", "m.yaml");
   const auto r = from(robot_xml(sensors), mission);
   EXPECT_EQ(r.object_camera().name, "c1");
   EXPECT_EQ(r.provenance.at("roles.object_camera"), "mission:m.yaml");

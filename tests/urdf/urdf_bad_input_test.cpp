@@ -10,6 +10,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/urdf/robot_description.hpp"
+#include "urdf/robot_mission_yaml.hpp"
 
 namespace ferret {
 namespace {
@@ -315,8 +316,8 @@ TEST(UrdfBadInput, TwoSensorsForARoleThatTakesOne) {
 }
 
 TEST(UrdfBadInput, MissionRolesNamingNoSensorOrLinkOfTheUrdf) {
-  YAML::Node node = YAML::Load("roles: {bad: {object_camera: nothing_here}}");
-  const MissionConfig mission = mission_config_from_yaml(node, "mission.yaml");
+  const RobotMissionSettings mission =
+      test::robot_mission_from_yaml("roles: {bad: {object_camera: nothing_here}}", "mission.yaml");
   try {
     (void)robot_description_from_string(robot(""), "bad.urdf", mission);
     FAIL();
@@ -325,10 +326,10 @@ TEST(UrdfBadInput, MissionRolesNamingNoSensorOrLinkOfTheUrdf) {
     EXPECT_EQ(e.field(), "roles.bad.object_camera");
     EXPECT_NE(e.expected().find("the name of a sensor of bad.urdf"), std::string::npos) << e.what();
   }
-  node = YAML::Load("roles: {bad: {epm: no_link}}");
   try {
-    (void)robot_description_from_string(robot(""), "bad.urdf",
-                                        mission_config_from_yaml(node, "mission.yaml"));
+    (void)robot_description_from_string(
+        robot(""), "bad.urdf",
+        test::robot_mission_from_yaml("roles: {bad: {epm: no_link}}", "mission.yaml"));
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "roles.bad.epm");
@@ -340,7 +341,7 @@ TEST(UrdfBadInput, MissionRolesSectionIsChecked) {
   auto fails = [](const std::string& yaml, const std::string& field, const std::string& expect) {
     SCOPED_TRACE(yaml);
     try {
-      (void)mission_config_from_yaml(YAML::Load(yaml), "mission.yaml");
+      (void)test::robot_mission_from_yaml(yaml, "mission.yaml");
       ADD_FAILURE() << "no InputError";
     } catch (const InputError& e) {
       EXPECT_EQ(e.source(), "mission.yaml");

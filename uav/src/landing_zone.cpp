@@ -9,7 +9,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/number.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 #include "landing_points.hpp"
 

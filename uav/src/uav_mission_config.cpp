@@ -155,14 +155,6 @@ std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std
   return given;
 }
 
-std::set<std::string> load_uav_mission_options(const std::filesystem::path& path,
-                                               UavMissionOptions& o) {
-  const YAML::Node root = yaml::load_file(path);
-  // The document's shape is mission_config_from_yaml's to check; a section is a mapping.
-  if (!root.IsMap()) return {};
-  return read_uav_mission_options(root["uav"], path.string(), o);
-}
-
 void emit_uav_mission_options(YAML::Emitter& e, const UavMissionOptions& o, bool with_search_area) {
   if (with_search_area)
     internal::emit_key_numbers(

@@ -30,8 +30,7 @@ constexpr int kMaxUnwinds = 3;
 ExploreController::ExploreController(const GridGeometry& geometry, const Pose2& start,
                                      ExploreOptions options)
     : geo_(geometry), options_(std::move(options)), follower_(options_.robot) {
-  const std::string policy_name = exploration_policy_for(
-      options_.method, parse_frontier_planner(options_.planner, "--planner"));
+  const std::string policy_name = exploration_policy_for(options_.method, options_.planner);
   if (!(options_.tether_obstacle_depth_m >= 0.0 && options_.tether_obstacle_depth_m <= 10.0))
     throw std::invalid_argument("ExploreOptions::tether_obstacle_depth_m: expected 0 to 10 m");
   const UgvSensorGeometry& s = options_.sensors;

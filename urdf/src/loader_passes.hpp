@@ -144,10 +144,10 @@ std::vector<SensorSpec> read_sensors(const XmlSource& src, const TiXmlElement* r
 void sensor_provenance(const std::vector<SensorSpec>& specs, RobotDescription& out);
 
 // Motion limits and wheels (motion_limits.cpp), roles (robot_roles.cpp).
-void read_limits(const urdf::ModelInterface& model, const MissionConfig& mission,
+void read_limits(const urdf::ModelInterface& model, const RobotMissionSettings& mission,
                  const Structure& structure, RobotDescription& out);
 void assign_roles(const XmlSource& src, const std::vector<SensorSpec>& specs,
                   const Structure& structure, const std::vector<std::string>& links,
-                  const MissionConfig& mission, RobotDescription& out);
+                  const RobotMissionSettings& mission, RobotDescription& out);
 
 }  // namespace ferret::internal

@@ -14,7 +14,7 @@ bool is_wheel_joint(const urdf::Joint& j) {
 
 }  // namespace
 
-void read_limits(const urdf::ModelInterface& model, const MissionConfig& mission,
+void read_limits(const urdf::ModelInterface& model, const RobotMissionSettings& mission,
                  const Structure& structure, RobotDescription& out) {
   bool has_wheels = false;
   std::string wheel_note;

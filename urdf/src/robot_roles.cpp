@@ -41,7 +41,7 @@ bool single_role(const std::string& role) {
 /// `roles: {ROBOT: {...}}` entries; every role checked for the kind of sensor it needs.
 void assign_roles(const XmlSource& src, const std::vector<SensorSpec>& specs,
                   const Structure& structure, const std::vector<std::string>& links,
-                  const MissionConfig& mission, RobotDescription& out) {
+                  const RobotMissionSettings& mission, RobotDescription& out) {
   struct Holder {
     std::string name;
     std::string at;  ///< where the role was given: file:line, or the mission file

@@ -81,7 +81,7 @@ std::vector<std::string> link_order(const TiXmlElement* robot) {
 }
 
 RobotDescription describe_robot(const std::string& urdf_xml, const std::string& source,
-                                const MissionConfig& mission) {
+                                const RobotMissionSettings& mission) {
   const XmlSource src(source);
   // Before any recursive parser: well-formed, and within the size and depth limits.
   internal::check_well_formed_xml(urdf_xml, source);
@@ -142,7 +142,7 @@ RobotDescription describe_robot(const std::string& urdf_xml, const std::string& 
 
 RobotDescription robot_description_from_string(const std::string& urdf_xml,
                                                const std::string& source,
-                                               const MissionConfig& mission) {
+                                               const RobotMissionSettings& mission) {
   try {
     return describe_robot(urdf_xml, source, mission);
   } catch (const InputError& e) {
@@ -150,7 +150,7 @@ RobotDescription robot_description_from_string(const std::string& urdf_xml,
   }
 }
 
-RobotDescription load_robot(const std::string& urdf_or_name, const MissionConfig& mission) {
+RobotDescription load_robot(const std::string& urdf_or_name, const RobotMissionSettings& mission) {
   for (const char* name : {"miniugv", "m100"})
     if (urdf_or_name == name || urdf_or_name == std::string(name) + ".urdf")
       return load_robot_description(find_model(std::string(name) + ".urdf"), mission);
@@ -158,7 +158,7 @@ RobotDescription load_robot(const std::string& urdf_or_name, const MissionConfig
 }
 
 RobotDescription load_robot_description(const std::filesystem::path& urdf_path,
-                                        const MissionConfig& mission) {
+                                        const RobotMissionSettings& mission) {
   std::ifstream in(urdf_path, std::ios::binary);
   std::error_code ec;
   if (!in || std::filesystem::is_directory(urdf_path, ec))

@@ -22,10 +22,9 @@
 
 #include "ferret/core/grid.hpp"
 #include "ferret/mapping/ir_grid.hpp"
+#include "ferret/mapping/object_search_params.hpp"
 
 namespace ferret {
-
-struct ObjectSearchParams;
 
 /// One output of the object detector, in the camera frame.
 struct ObjectDetection {
@@ -54,12 +53,14 @@ enum class ObjectLabel : std::uint8_t { kFree, kUnknown, kObject };
 class ObjectMap {
  public:
   struct Options {
-    double lambda1 = 0.10;
-    double lambda2 = 0.95;
-    double eta_m = 1.0;
-    double conf_floor = 0.55;
-    double conf_cap = 0.99;
-    double miss_likelihood = 0.4;      ///< "no object" likelihood of a cell seen at distance 0
+    // The object search's defaults have one home: ObjectSearchParams.
+    double lambda1 = ObjectSearchParams{}.lambda1;
+    double lambda2 = ObjectSearchParams{}.lambda2;
+    double eta_m = ObjectSearchParams{}.eta_m;
+    double conf_floor = ObjectSearchParams{}.conf_floor;
+    double conf_cap = ObjectSearchParams{}.conf_cap;
+    /// "no object" likelihood of a cell seen at distance 0
+    double miss_likelihood = ObjectSearchParams{}.miss_likelihood;
     double camera_range_m = 4.0;       ///< D_cam: the miss likelihood is 0.5 from here on
     double object_radius_m = 0.1;      ///< cells within this of a detected spot take the detection
     double min_move_m = 0.2;           ///< a new viewpoint: moved this far ...

@@ -7,7 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/mission/mission_document.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 
@@ -19,8 +20,11 @@ namespace ferret {
 [[nodiscard]] std::filesystem::path resolve_robot(const std::string& robot,
                                                   std::string_view default_model);
 
-/// The mission YAML, or the built-in defaults when `path` is empty. Its backend sections
-/// (`ugv`, `uav`: load_robot_backends) are checked as well.
+/// The mission YAML parsed once (mission_document.hpp), or the built-in defaults when
+/// `path` is empty.
+[[nodiscard]] MissionDocument load_mission_document_or_defaults(const std::string& path);
+/// Its common sections: for commands that build no robot backend. The backend sections
+/// and the UAV mission's keys are checked as well.
 [[nodiscard]] MissionConfig load_mission_or_defaults(const std::string& path);
 
 }  // namespace ferret

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "ferret/mission/mission_files.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/robot_backends.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

@@ -24,17 +24,22 @@
 
 #include "ferret/core/grid.hpp"
 #include "ferret/mapping/object_map.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/mapping/object_search_params.hpp"
+#include "ferret/planning/curiosity_params.hpp"
 
 namespace ferret {
 
+struct MissionConfig;
+
 struct CuriosityOptions {
-  CuriosityParams params;    ///< a, b, K
-  double eta_m = 1.0;        ///< conf = eta / d
-  double conf_floor = 0.55;  ///< a predicted detection is clipped like a real one
-  double conf_cap = 0.99;
-  double lambda1 = 0.10;  ///< for use_labels
-  double lambda2 = 0.95;
+  CuriosityParams params;  ///< a, b, K
+  // The object search's defaults have one home: ObjectSearchParams.
+  double eta_m = ObjectSearchParams{}.eta_m;  ///< conf = eta / d
+  /// A predicted detection is clipped like a real one.
+  double conf_floor = ObjectSearchParams{}.conf_floor;
+  double conf_cap = ObjectSearchParams{}.conf_cap;
+  double lambda1 = ObjectSearchParams{}.lambda1;  ///< for use_labels
+  double lambda2 = ObjectSearchParams{}.lambda2;
   double camera_range_m = 4.0;  ///< D_cam: no observation is predicted beyond it
   bool use_labels = false;      ///< c of the relabelled probability (literal reading)
   bool cap_prediction =

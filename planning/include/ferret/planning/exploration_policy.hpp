@@ -31,6 +31,7 @@
 #include "ferret/mapping/object_map.hpp"
 #include "ferret/planning/curiosity.hpp"
 #include "ferret/planning/grid_path_planner.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 

@@ -13,7 +13,7 @@
 #include "ferret/core/grid.hpp"
 #include "ferret/core/pose.hpp"
 #include "ferret/planning/exploration_policy.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 

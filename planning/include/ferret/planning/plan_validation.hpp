@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "ferret/core/motion_limits.hpp"
 #include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/plan_file.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace octomap {
 class OcTree;

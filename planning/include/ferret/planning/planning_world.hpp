@@ -14,11 +14,11 @@
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/mapping/world_spec.hpp"
 #include "ferret/planning/collision_map.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/plan_failure.hpp"
 #include "ferret/planning/plan_file.hpp"
 #include "ferret/planning/robot_shape.hpp"
 #include "ferret/planning/ugv_planner.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace octomap {
 class OcTree;

@@ -12,9 +12,9 @@
 #include <optional>
 #include <string>
 
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/plan_file.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "ferret/core/pose.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 

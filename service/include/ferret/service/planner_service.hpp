@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 

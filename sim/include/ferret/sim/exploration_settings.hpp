@@ -10,7 +10,7 @@
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/sim/hidden_space_sim.hpp"
 #include "ferret/ugv/path_follower.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 

@@ -41,8 +41,8 @@ struct SensorOptions {
   double size_noise_px = 0.5;    ///< noise of the measured apparent width
   double bearing_noise_rad = 0.005;
   double detection_probability = 0.9;
-  double confidence_noise = 0.02;  ///< added to eta / d
-  double eta_m = 1.0;              ///< conf = eta / d
+  double confidence_noise = 0.02;             ///< added to eta / d
+  double eta_m = ObjectSearchParams{}.eta_m;  ///< conf = eta / d
 };
 
 class HiddenSpaceSim {

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "ferret/core/grid.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/tether_model/tether_params.hpp"
 
 namespace ferret {
 

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/tether_model/tether_params.hpp"
 
 namespace ferret::tether {
 

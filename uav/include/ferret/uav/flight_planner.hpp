@@ -9,10 +9,10 @@
 #include <memory>
 
 #include "ferret/planning/collision_map.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/uav/flight_path_follower.hpp"
 #include "ferret/uav/uav_mission_options.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

@@ -36,10 +36,6 @@ namespace ferret {
 std::set<std::string> read_uav_mission_options(const YAML::Node& node, const std::string& source,
                                                UavMissionOptions& options);
 
-/// read_uav_mission_options of the `uav` section of the mission YAML at `path`.
-std::set<std::string> load_uav_mission_options(const std::filesystem::path& path,
-                                               UavMissionOptions& options);
-
 /// The mission's keys and values into an open YAML mapping, in the order of
 /// uav_mission_keys(); the search area only when `with_search_area` (without it, it is
 /// the world's). read_uav_mission_options reads it back to the same values.

@@ -17,7 +17,7 @@
 #include "ferret/uav/landing_zone.hpp"
 #include "ferret/uav/marker_detector.hpp"
 #include "ferret/uav/opening_locator.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 

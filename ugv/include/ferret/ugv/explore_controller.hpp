@@ -18,7 +18,6 @@
 #include "ferret/mapping/object_map.hpp"
 #include "ferret/ugv/explore_options.hpp"
 #include "ferret/ugv/path_follower.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 

@@ -9,8 +9,9 @@
 #include <string>
 
 #include "ferret/core/pose.hpp"
+#include "ferret/planning/exploration_policy.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/ugv/path_follower.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret {
 
@@ -28,11 +29,11 @@ struct UgvSensorGeometry {
 
 struct ExploreOptions {
   std::string method = "cdos";
-  /// How goals are chosen and reached (FrontierPlanner): "grid" (the Dijkstra field
-  /// over G) or "ompl" (cdos and rapid run as cdos+ompl and rapid+ompl: PRM with the
-  /// CDOS frontier sampler; other methods have none: an InputError).
-  /// exploration_policy_for() decides; docs/planning.md compares the two.
-  std::string planner = "grid";
+  /// How goals are chosen and reached: the Dijkstra field over G, or OMPL (cdos and
+  /// rapid run as cdos+ompl and rapid+ompl: PRM with the CDOS frontier sampler; other
+  /// methods have none: an InputError). exploration_policy_for() decides;
+  /// docs/planning.md compares the two. Parsed from text by parse_frontier_planner.
+  FrontierPlanner planner = FrontierPlanner::kGrid;
   UgvSensorGeometry sensors;
   RobotOptions robot;
   MissionConfig mission;

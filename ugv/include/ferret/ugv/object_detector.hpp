@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "ferret/mapping/object_map.hpp"
+#include "ferret/mapping/object_search_params.hpp"
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/image.hpp"
 #include "ferret/perception/object_appearance.hpp"
-#include "ferret/urdf/mission_config.hpp"
 
 namespace ferret::ugv {
 

@@ -9,15 +9,18 @@
 #include <optional>
 #include <vector>
 
+#include "ferret/core/motion_limits.hpp"
 #include "ferret/core/pose.hpp"
 #include "ferret/mapping/ir_grid.hpp"
 
 namespace ferret {
 
-struct RobotOptions {
-  double max_velocity_mps = 2.0;
-  double max_yaw_rate_radps = 2.0;
-  double max_acceleration_mps2 = 2.0;
+/// The robot's motion limits (the mission's ugv_limits, capped by its URDF) and how it
+/// keeps off obstacles.
+struct RobotOptions : MotionLimits {
+  /// Takes the limits of a robot or a mission section, keeping the rest.
+  void set_limits(const MotionLimits& limits) { static_cast<MotionLimits&>(*this) = limits; }
+
   double clearance_m = 0.15;  ///< paths keep this far from occupied cells of G
   /// Within this of the robot the clearance is waived, so that a robot that finds a
   /// wall (or a gap narrower than twice the clearance) around it can drive out.

@@ -19,9 +19,9 @@
 
 #include "ferret/core/backend.hpp"
 #include "ferret/core/pose.hpp"
+#include "ferret/mapping/object_search_params.hpp"
 #include "ferret/ugv/hw_ugv_config.hpp"
 #include "ferret/ugv/ugv_base.hpp"
-#include "ferret/urdf/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::ugv {

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "ferret/core/pose.hpp"
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/urdf/robot_mission_settings.hpp"
 
 namespace ferret {
 
@@ -227,17 +227,17 @@ struct RobotDescription {
 /// when A is named PKG, else A/PKG/PATH); `file://PATH` and plain names are paths,
 /// relative ones to the URDF's folder.
 [[nodiscard]] RobotDescription load_robot_description(const std::filesystem::path& urdf_path,
-                                                      const MissionConfig& mission = {});
+                                                      const RobotMissionSettings& mission = {});
 /// The same from URDF text; `source` names it in errors.
-[[nodiscard]] RobotDescription robot_description_from_string(const std::string& urdf_xml,
-                                                             const std::string& source,
-                                                             const MissionConfig& mission = {});
+[[nodiscard]] RobotDescription robot_description_from_string(
+    const std::string& urdf_xml, const std::string& source,
+    const RobotMissionSettings& mission = {});
 
 /// A URDF path, or the name of a shipped model ("miniugv", "m100", with or without
 /// ".urdf"), loaded with the mission: the one call that gives a robot and where each
 /// of its values came from (RobotDescription::provenance).
 [[nodiscard]] RobotDescription load_robot(const std::string& urdf_or_name,
-                                          const MissionConfig& mission = {});
+                                          const RobotMissionSettings& mission = {});
 
 /// YAML summary of a description (what `ferret config --dump` prints under `robot:`).
 /// Angles are given in degrees and radians; lengths in metres.

@@ -1,4 +1,4 @@
-#include "ferret/urdf/mission_config.hpp"
+#include "ferret/planning/mission_config.hpp"
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>

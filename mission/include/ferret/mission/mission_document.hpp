@@ -1,0 +1,49 @@
+#pragma once
+// The mission YAML, parsed once: every section read from the one document by the reader
+// beside the component that owns it (docs/configuration.md):
+//  - the common sections (curiosity, object_search, tether, ugv_limits, uav_limits,
+//    roles): MissionConfig, planning/mission_config.hpp;
+//  - the robots' backends (ugv.base, uav.winch, uav.flight_controller): RobotBackends,
+//    sim/robot_backends.hpp;
+//  - the UAV mission's keys in `uav`: uav/uav_mission_config.hpp.
+// Commands load it once and take each section from here.
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "ferret/planning/mission_config.hpp"
+#include "ferret/sim/robot_backends.hpp"
+#include "ferret/uav/uav_mission.hpp"
+
+namespace ferret {
+
+struct MissionDocument {
+  MissionConfig config;    ///< the common sections, with their provenance
+  RobotBackends backends;  ///< all sim without a file
+  /// The UAV mission's keys of the file over the defaults (the tether from `config`),
+  /// and the keys the file set: what `ferret config --dump` shows.
+  UavMissionOptions uav_mission;
+  std::set<std::string> uav_mission_given;
+
+  /// Reads the file's UAV mission keys over `options` (what the world set, such as the
+  /// search area from its bounds): the file's keys win, the rest keep their values.
+  /// InputError as read_uav_mission_options.
+  void apply_uav_mission(UavMissionOptions& options) const;
+
+  /// The document's `uav` section (undefined without one) and the file it came from.
+  YAML::Node uav_section;
+  std::string source;
+};
+
+/// Reads every section of a parsed mission YAML (`root`; an empty document means all
+/// defaults): the common sections first, then the backends, then the UAV mission's keys.
+/// Throws InputError naming `source` and the field, as each section's reader does.
+[[nodiscard]] MissionDocument mission_document_from_yaml(const YAML::Node& root,
+                                                         const std::string& source);
+/// The same from a mission YAML file, loaded once.
+[[nodiscard]] MissionDocument load_mission_document(const std::filesystem::path& path);
+
+}  // namespace ferret

@@ -1,0 +1,29 @@
+#include "ferret/mission/mission_document.hpp"
+
+#include "ferret/core/yaml_config.hpp"
+#include "ferret/uav/uav_mission_config.hpp"
+
+namespace ferret {
+
+MissionDocument mission_document_from_yaml(const YAML::Node& root, const std::string& source) {
+  MissionDocument d;
+  d.source = source;
+  d.config = mission_config_from_yaml(root, source);
+  d.backends = robot_backends_from_yaml(root, source);
+  // The document's shape is mission_config_from_yaml's to check; a section is a mapping.
+  // Only a key that is there is kept: yaml-cpp refuses to assign a missing key's node.
+  if (root.IsMap() && root["uav"]) d.uav_section = root["uav"];
+  d.uav_mission.tether = d.config.tether;
+  d.uav_mission_given = read_uav_mission_options(d.uav_section, source, d.uav_mission);
+  return d;
+}
+
+MissionDocument load_mission_document(const std::filesystem::path& path) {
+  return mission_document_from_yaml(yaml::load_file(path), path.string());
+}
+
+void MissionDocument::apply_uav_mission(UavMissionOptions& options) const {
+  (void)read_uav_mission_options(uav_section, source, options);
+}
+
+}  // namespace ferret
