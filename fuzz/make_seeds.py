@@ -281,6 +281,26 @@ def tether_seeds():
         "mpc: {ugv_velocity_error_mps: .nan, ugv_velocity_error_window_s: -1}\n")
 
 
+def fault_plan_seeds():
+    t = "fault_plan"
+    reset(t)
+    put(t, "every_start.yaml",
+        "faults:\n"
+        "  - {kind: link_outage, on: ugv.explore, at_s: 20, duration_s: 60, target: uav_to_ugv}\n"
+        "  - {kind: link_loss, permanent: true, strength: 0.5, burst_s: 2}\n"
+        "  - {kind: battery_drain, target: ugv, at_s: 300}\n"
+        "  - {kind: imu_spike, at_s: 12.5}\n")
+    put(t, "every_number.yaml",
+        "tether: {total_length_m: 15}\n"
+        "faults:\n"
+        "  - {kind: link_latency, target: ugv_to_uav, at_s: 0.1, duration_s: 33.3, strength: 0.25, jitter_s: 0.05}\n"
+        "  - {kind: controller_stop, target: uav, on: uav.lower, duration_s: 45}\n"
+        "  - {kind: motor_stall, target: right_wheel, on: ugv.return, permanent: true}\n"
+        "  - {kind: landing_zone_obstructed, strength: 0.7, at_s: 400}\n"
+        "  - {kind: detection_false, target: marker_detector, strength: 0.1, duration_s: 60}\n")
+    put(t, "bad.yaml", "faults: [{kind: link_loss, strength: .nan}, {kind: meteor}]\n")
+
+
 def dynamixel_seeds():
     t = "dynamixel"
     reset(t)
@@ -543,6 +563,7 @@ def main():
     map_seeds()
     plan_seeds()
     tether_seeds()
+    fault_plan_seeds()
     dynamixel_seeds()
     link_seeds()
     ugv_mcu_seeds()

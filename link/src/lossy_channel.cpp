@@ -86,7 +86,10 @@ Corruption corrupt(std::vector<std::uint8_t>& d, Rng& rng) {
   return first;
 }
 
-LossyChannel::LossyChannel(LossyChannelOptions options) : options_(options), rng_(options.seed) {
+LossyChannel::LossyChannel(LossyChannelOptions options)
+    : options_(options),
+      rng_(options.seed),
+      impairment_rng_(derive_seed(options.seed, {stable_hash("impairment")})) {
   require_fraction(options.drop_fraction, "drop_fraction");
   require_fraction(options.duplicate_fraction, "duplicate_fraction");
   require_fraction(options.reorder_fraction, "reorder_fraction");
@@ -95,6 +98,17 @@ LossyChannel::LossyChannel(LossyChannelOptions options) : options_(options), rng
     throw std::invalid_argument(
         fmt::format("lossy channel: max_reorder_delay: expected an integer >= 1 (got {})",
                     options.max_reorder_delay));
+}
+
+void LossyChannel::set_impairment(const LinkImpairment& i) {
+  require_fraction(i.drop_fraction, "impairment drop_fraction");
+  require_fraction(i.duplicate_fraction, "impairment duplicate_fraction");
+  if (!(i.burst_deliveries >= 0.0) || !std::isfinite(i.burst_deliveries) ||
+      i.latency_deliveries < 0 || i.jitter_deliveries < 0)
+    throw std::invalid_argument(
+        "lossy channel: impairment: expected a burst, latency and jitter >= 0");
+  impairment_ = i;
+  if (i.drop_fraction == 0.0 || i.burst_deliveries == 0.0) in_burst_ = false;
 }
 
 void LossyChannel::send(std::span<const std::uint8_t> datagram) {
@@ -121,11 +135,47 @@ void LossyChannel::enqueue(std::span<const std::uint8_t> datagram) {
     ++counters_.corrupted;
     corrupt(f.bytes, rng_);
   }
-  queue_.push_back(std::move(f));
+  if (impairment_.none()) {
+    queue_.push_back(std::move(f));
+    return;
+  }
+  impair(std::move(f));
+}
+
+void LossyChannel::impair(InFlight f) {
+  const LinkImpairment& i = impairment_;
+  const bool lost = i.outage || in_burst_ || i.drop_fraction >= 1.0 ||
+                    (i.burst_deliveries == 0.0 && impairment_rng_.bernoulli(i.drop_fraction));
+  if (lost) {
+    ++counters_.dropped;
+    ++counters_.impaired;
+    return;
+  }
+  const int copies = impairment_rng_.bernoulli(i.duplicate_fraction) ? 2 : 1;
+  if (copies == 2) ++counters_.duplicated;
+  for (int c = 0; c < copies; ++c) {
+    InFlight copy = f;
+    copy.order = c == 0 ? f.order : order_++;
+    copy.due_step += static_cast<std::uint64_t>(i.latency_deliveries);
+    if (i.jitter_deliveries > 0)
+      copy.due_step +=
+          static_cast<std::uint64_t>(impairment_rng_.uniform_int(0, i.jitter_deliveries));
+    queue_.push_back(std::move(copy));
+  }
 }
 
 std::vector<std::vector<std::uint8_t>> LossyChannel::deliver() {
   ++step_;
+  // Bursts of loss: a two-state chain stepped once a delivery, in a burst for
+  // drop_fraction of the time with bursts burst_deliveries long on average.
+  const LinkImpairment& i = impairment_;
+  if (i.burst_deliveries > 0.0 && i.drop_fraction > 0.0) {
+    const double leave = 1.0 / std::max(1.0, i.burst_deliveries);
+    const double enter = i.drop_fraction >= 1.0
+                             ? 1.0
+                             : std::min(1.0, leave * i.drop_fraction / (1.0 - i.drop_fraction));
+    in_burst_ = in_burst_ ? !impairment_rng_.bernoulli(leave) : impairment_rng_.bernoulli(enter);
+  }
   const auto arrives = std::partition(queue_.begin(), queue_.end(),
                                       [&](const InFlight& f) { return f.due_step > step_; });
   // Arrival order: those sent on time in the order sent, then the held-back ones (they

@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -126,6 +131,146 @@ TEST(LinkLossyChannel, RefusesFractionsOutsideZeroToOne) {
   o = {};
   o.max_reorder_delay = 0;
   EXPECT_THROW(LossyChannel{o}, std::invalid_argument);
+}
+
+// -- Impairments: a fault plan's link faults, on top of the options.
+
+// Sends one datagram a step for n steps (no drain); for each, the delivery it arrived in
+// (none: lost), with the impairment set by `impaired(step)` before the step.
+template <class Impaired>
+std::vector<std::optional<std::uint32_t>> arrivals(LossyChannel& channel, std::uint32_t n,
+                                                   Impaired impaired) {
+  std::vector<std::optional<std::uint32_t>> at(n);
+  for (std::uint32_t step = 0; step < n + 64; ++step) {
+    channel.set_impairment(impaired(step));
+    if (step < n) channel.send(numbered(step));
+    for (const auto& d : channel.deliver())
+      if (number_of(d) < n && !at[number_of(d)]) at[number_of(d)] = step;
+  }
+  return at;
+}
+
+TEST(LinkLossyChannel, NoImpairmentKeepsEveryDrawOfTheOptions) {
+  LossyChannelOptions o;
+  o.drop_fraction = 0.2;
+  o.duplicate_fraction = 0.1;
+  o.reorder_fraction = 0.2;
+  o.corrupt_fraction = 0.1;
+  o.seed = 11;
+  LossyChannel plain(o), cleared(o), delayed(o);
+  cleared.set_impairment({});
+  LinkImpairment late;
+  late.latency_deliveries = 3;
+  delayed.set_impairment(late);
+  const auto a = run(plain, 2000);
+  EXPECT_EQ(a, run(cleared, 2000));
+  // Delayed, the same datagrams arrive with the same damage: the options' draws are
+  // the same, only later.
+  const auto sorted = [](const std::vector<Bytes>& datagrams) {
+    std::vector<std::string> out;
+    for (const Bytes& d : datagrams) out.emplace_back(d.begin(), d.end());
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_EQ(sorted(a), sorted(run(delayed, 2000)));
+  EXPECT_EQ(delayed.counters().impaired, 0u);
+}
+
+TEST(LinkLossyChannel, AnOutageLetsNothingThroughWhileItLasts) {
+  LossyChannel c;
+  const auto at = arrivals(c, 300, [](std::uint32_t step) {
+    LinkImpairment i;
+    i.outage = step >= 100 && step < 160;
+    return i;
+  });
+  for (std::uint32_t k = 0; k < 300; ++k) {
+    if (k >= 100 && k < 160) {
+      EXPECT_FALSE(at[k]) << k;
+    } else {
+      ASSERT_TRUE(at[k]) << k;
+      EXPECT_EQ(*at[k], k) << k;  // one step later, as always
+    }
+  }
+  EXPECT_EQ(c.counters().impaired, 60u);
+  EXPECT_EQ(c.counters().dropped, 60u);
+}
+
+TEST(LinkLossyChannel, ImpairedLossIsTheFractionAskedForWithOrWithoutBursts) {
+  for (const double burst : {0.0, 20.0}) {
+    LinkImpairment i;
+    i.drop_fraction = 0.3;
+    i.burst_deliveries = burst;
+    LossyChannel c;
+    const auto at = arrivals(c, 40000, [&](std::uint32_t) { return i; });
+    int lost = 0, runs = 0;
+    for (std::size_t k = 0; k < at.size(); ++k)
+      if (!at[k]) {
+        ++lost;
+        if (k == 0 || at[k - 1]) ++runs;
+      }
+    EXPECT_NEAR(lost / 40000.0, 0.3, 0.03) << burst;
+    const double mean_run = static_cast<double>(lost) / runs;
+    if (burst > 0.0) {
+      EXPECT_NEAR(mean_run, 20.0, 4.0);  // the mean burst
+    } else {
+      EXPECT_LT(mean_run, 2.0);  // independent: runs of 1/(1 - 0.3) on average
+    }
+  }
+  LinkImpairment all;
+  all.drop_fraction = 1.0;
+  all.burst_deliveries = 5.0;
+  LossyChannel c;
+  for (const auto& a : arrivals(c, 500, [&](std::uint32_t) { return all; })) EXPECT_FALSE(a);
+}
+
+TEST(LinkLossyChannel, LatencyAndJitterDelayEachDatagram) {
+  LinkImpairment i;
+  i.latency_deliveries = 5;
+  LossyChannel fixed;
+  const auto at = arrivals(fixed, 200, [&](std::uint32_t) { return i; });
+  for (std::uint32_t k = 0; k < 200; ++k) {
+    ASSERT_TRUE(at[k]);
+    EXPECT_EQ(*at[k], k + 5);
+  }
+  i.jitter_deliveries = 4;
+  LossyChannel jittery;
+  const auto j = arrivals(jittery, 2000, [&](std::uint32_t) { return i; });
+  std::set<std::uint32_t> delays;
+  bool reordered = false;
+  for (std::uint32_t k = 0; k < 2000; ++k) {
+    ASSERT_TRUE(j[k]);
+    delays.insert(*j[k] - k);
+    if (k > 0 && *j[k] < *j[k - 1]) reordered = true;
+  }
+  EXPECT_EQ(delays, (std::set<std::uint32_t>{5, 6, 7, 8, 9}));
+  EXPECT_TRUE(reordered);
+}
+
+TEST(LinkLossyChannel, ImpairedDuplicatesAreTheFractionAskedFor) {
+  LinkImpairment i;
+  i.duplicate_fraction = 0.25;
+  LossyChannel c;
+  c.set_impairment(i);
+  const auto out = run(c, 20000);
+  EXPECT_NEAR((out.size() - 20000.0) / 20000.0, 0.25, 0.02);
+  EXPECT_EQ(c.counters().duplicated, out.size() - 20000);
+}
+
+TEST(LinkLossyChannel, RefusesABadImpairment) {
+  LossyChannel c;
+  LinkImpairment i;
+  i.drop_fraction = 1.5;
+  EXPECT_THROW(c.set_impairment(i), std::invalid_argument);
+  i = {};
+  i.duplicate_fraction = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(c.set_impairment(i), std::invalid_argument);
+  i = {};
+  i.burst_deliveries = -1.0;
+  EXPECT_THROW(c.set_impairment(i), std::invalid_argument);
+  i = {};
+  i.latency_deliveries = -2;
+  EXPECT_THROW(c.set_impairment(i), std::invalid_argument);
+  EXPECT_TRUE(c.impairment().none());  // a refused one changes nothing
 }
 
 }  // namespace

@@ -42,11 +42,29 @@ struct LossyChannelOptions {
   std::uint64_t seed = 1;
 };
 
+/// Faults that come and go on top of the channel's options (a fault plan's link faults:
+/// sim/fault_plan.hpp), set by the simulation before each step. Time counts in
+/// deliveries, as everywhere in the channel.
+struct LinkImpairment {
+  bool outage = false;         ///< nothing gets through
+  double drop_fraction = 0.0;  ///< a further share lost (of the time, with bursts)
+  /// Mean length of a loss burst in deliveries: while a burst lasts every datagram is
+  /// lost, and bursts cover drop_fraction of the time. 0: each datagram lost on its own.
+  double burst_deliveries = 0.0;
+  int latency_deliveries = 0;       ///< every datagram this many deliveries late
+  int jitter_deliveries = 0;        ///< plus 0 to this many more, drawn each (reorders)
+  double duplicate_fraction = 0.0;  ///< a further share delivered twice
+
+  bool operator==(const LinkImpairment&) const = default;
+  [[nodiscard]] bool none() const { return *this == LinkImpairment{}; }
+};
+
 class LossyChannel {
  public:
   struct Counters {
     std::uint64_t sent = 0, dropped = 0, duplicated = 0, reordered = 0, corrupted = 0,
                   delivered = 0;
+    std::uint64_t impaired = 0;  ///< copies lost to the impairment (also in `dropped`)
   };
 
   /// @throws std::invalid_argument for a fraction outside [0, 1] or a delay < 1
@@ -62,6 +80,12 @@ class LossyChannel {
   /// datagrams sent in the step they arrive in.
   [[nodiscard]] std::vector<std::vector<std::uint8_t>> deliver();
 
+  /// The impairment from now on (none: the options alone). Its random numbers come from
+  /// a stream of their own, so a run keeps the options' draws whatever is impaired.
+  /// @throws std::invalid_argument for a fraction outside [0, 1], a negative delay or burst
+  void set_impairment(const LinkImpairment& impairment);
+  [[nodiscard]] const LinkImpairment& impairment() const { return impairment_; }
+
   /// Datagrams in the channel, not yet delivered.
   [[nodiscard]] std::size_t in_flight() const { return queue_.size(); }
   [[nodiscard]] const Counters& counters() const { return counters_; }
@@ -74,9 +98,13 @@ class LossyChannel {
     std::vector<std::uint8_t> bytes;
   };
   void enqueue(std::span<const std::uint8_t> datagram);
+  void impair(InFlight f);
 
   LossyChannelOptions options_;
   Rng rng_;
+  LinkImpairment impairment_;
+  Rng impairment_rng_;
+  bool in_burst_ = false;
   std::uint64_t step_ = 0;
   std::uint64_t order_ = 0;
   std::vector<InFlight> queue_;
