@@ -7,8 +7,8 @@
 #include <limits>
 #include <optional>
 #include <set>
-#include <string>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace ferret::link {

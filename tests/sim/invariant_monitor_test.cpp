@@ -128,7 +128,7 @@ TEST(InvariantMonitor, AStateHeldPastItsTimeoutOncePerVisit) {
   InvariantMonitor m(limits());
   InvariantSample s = at(0);
   s.uav_state = "lower";
-  s.ugv_state = "";  // no controller: no clock
+  s.ugv_state = "";                 // no controller: no clock
   for (int i = 0; i <= 200; ++i) {  // 100 s in `lower`, timeout 60 s
     s.t_s = 0.5 * i;
     m.observe(s);

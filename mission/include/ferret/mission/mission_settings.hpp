@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/planning/planning_world.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/uav/opening_locator.hpp"
-#include "ferret/planning/mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret {

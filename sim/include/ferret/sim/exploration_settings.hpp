@@ -8,9 +8,9 @@
 
 #include "ferret/core/pose.hpp"
 #include "ferret/mapping/occupancy_map_2d.hpp"
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/sim/hidden_space_sim.hpp"
 #include "ferret/ugv/path_follower.hpp"
-#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 

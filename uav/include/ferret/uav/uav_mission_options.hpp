@@ -11,13 +11,13 @@
 #include <string_view>
 #include <vector>
 
+#include "ferret/planning/mission_config.hpp"
 #include "ferret/tether_model/taut_control_options.hpp"
 #include "ferret/tether_model/tether_modes.hpp"
 #include "ferret/tether_model/winch_controllers.hpp"
 #include "ferret/uav/landing_zone.hpp"
 #include "ferret/uav/marker_detector.hpp"
 #include "ferret/uav/opening_locator.hpp"
-#include "ferret/planning/mission_config.hpp"
 
 namespace ferret {
 
