@@ -1,7 +1,11 @@
 #include "ferret/mission/mission_document.hpp"
 
+#include <array>
+
 #include "ferret/core/yaml_config.hpp"
+#include "ferret/sim/fault_schedule.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
+#include "ferret/ugv/mini_ugv_mission_options.hpp"
 
 namespace ferret {
 
@@ -15,7 +19,37 @@ MissionDocument mission_document_from_yaml(const YAML::Node& root, const std::st
   if (root.IsMap() && root["uav"]) d.uav_section = root["uav"];
   d.uav_mission.tether = d.config.tether;
   d.uav_mission_given = read_uav_mission_options(d.uav_section, source, d.uav_mission);
+  if (root.IsMap() && root["faults"])
+    d.faults = fault_plan_from_yaml(root["faults"], source, mission_fault_states());
+  check_injectable(d.faults, source);
   return d;
+}
+
+const FaultStates& mission_fault_states() {
+  static const auto uav = [] {
+    std::array<std::string_view, static_cast<std::size_t>(UavMissionState::kDone) + 1> n{};
+    for (std::size_t k = 0; k < n.size(); ++k) n[k] = to_string(static_cast<UavMissionState>(k));
+    return n;
+  }();
+  static const auto ugv = [] {
+    std::array<std::string_view, static_cast<std::size_t>(UgvMissionState::kDone) + 2> n{};
+    for (std::size_t k = 0; k + 1 < n.size(); ++k)
+      n[k] = to_string(static_cast<UgvMissionState>(k));
+    n.back() = "link_hold";
+    return n;
+  }();
+  static const FaultStates states{uav, ugv};
+  return states;
+}
+
+FaultPlan load_fault_plan(const std::filesystem::path& path) {
+  const YAML::Node root = yaml::load_file(path);
+  if (root.IsNull()) return {};
+  const yaml::MapReader doc(root, path.string());
+  doc.allow_only({"faults"});
+  FaultPlan plan = fault_plan_from_yaml(root["faults"], path.string(), mission_fault_states());
+  check_injectable(plan, path.string());
+  return plan;
 }
 
 MissionDocument load_mission_document(const std::filesystem::path& path) {

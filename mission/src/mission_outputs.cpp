@@ -20,6 +20,7 @@
 #include "ferret/mapping/map_render.hpp"
 #include "ferret/mapping/world_octree.hpp"
 #include "ferret/mission/exploration_run.hpp"
+#include "ferret/mission/safety_report.hpp"
 #include "ferret/mission/search_robot.hpp"
 #include "ferret/mission/ugv_mission_log.hpp"
 #include "ferret/planning/exploration_policy.hpp"
@@ -74,6 +75,7 @@ nlohmann::json report_json(std::uint64_t seed, const fs::path& world, const Miss
       {"pattern_done", r.pattern_done},
       {"marker_frames", r.frames},
       {"marker_frames_rendered", r.marker_frames_rendered}};
+  j["safety"] = safety_json(r.invariant_violations);
   j["time_in_state_s"] = r.time_in_state;
   auto& visits = j["hidden_spaces"] = nlohmann::json::array();
   for (const HiddenSpaceVisit& v : r.visits) {
@@ -327,6 +329,7 @@ void print_mission_summary(const MissionRunResult& r) {
         std::string(to_string(d.result.outcome)).c_str(), d.result.time_s, d.result.path_m,
         d.result.battery_left, d.result.body_contacts, d.result.deepest_contact_m);
   if (!r.link_counters.empty()) std::printf("link: %s\n", r.link_counters.c_str());
+  std::printf("safety: %s\n", safety_summary(r.invariant_violations).c_str());
 }
 
 void write_mission_outputs(const fs::path& dir, const MissionOutputsInput& in,

@@ -88,8 +88,11 @@ class InProcessUgvLink final : public UgvLink {
 class SimLinkedUgv final : public UgvLink {
  public:
   SimLinkedUgv(SimHiddenSpaces& spaces, const Clock& clock,
-               const link::LossyChannelOptions& channel, std::uint64_t seed)
-      : spaces_(spaces),
+               const link::LossyChannelOptions& channel, std::uint64_t seed,
+               const FaultSchedule* faults, double delivery_s)
+      : faults_(faults),
+        delivery_s_(delivery_s),
+        spaces_(spaces),
         uav_(clock),
         ugv_(clock, [this](const link::UavRequest&) { return set_down(); }),
         up_(seeded(channel, seed, 1)),
@@ -120,6 +123,10 @@ class SimLinkedUgv final : public UgvLink {
   // At the miniUGV's control rate, before its step: the requests that arrived are acted
   // on. True while the miniUGV holds (its link silent).
   bool receive() {
+    if (faults_) {  // the link's faults acting now, each way
+      up_.set_impairment(faults_->link_impairment(FaultTarget::kUavToUgv, delivery_s_));
+      down_.set_impairment(faults_->link_impairment(FaultTarget::kUgvToUav, delivery_s_));
+    }
     for (const auto& d : up_.deliver()) ugv_.session().receive(d);
     const ImuReading& hanging = spaces_.touchdown();
     if (spaces_.active())
@@ -159,6 +166,8 @@ class SimLinkedUgv final : public UgvLink {
     return {&ugv_mission_of(*s), &s->base()};
   }
 
+  const FaultSchedule* faults_;
+  double delivery_s_;
   SimHiddenSpaces& spaces_;
   LinkedUgv uav_;
   UgvLinkEndpoint ugv_;
@@ -166,6 +175,15 @@ class SimLinkedUgv final : public UgvLink {
   std::vector<std::pair<std::uint32_t, std::size_t>>
       pending_results_;  // (retracted request, deployment)
 };
+
+// Why the mission left the miniUGV where it is, as the UAV recorded it for the visit it
+// lowered it at and never lifted it from (empty: no reason recorded).
+std::string ugv_left_reason(const UavMission& mission) {
+  const auto& visits = mission.visits();
+  for (auto v = visits.rbegin(); v != visits.rend(); ++v)
+    if (v->deployed_s >= 0.0 && v->retracted_s < 0.0) return v->note;
+  return {};
+}
 
 }  // namespace
 
@@ -191,9 +209,11 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
       MissionAssembly::ugv_controllers(sim.settings().ugv, sim.clock(), &transitions));
   InProcessUgvLink in_process(sim.spaces());
   std::unique_ptr<SimLinkedUgv> linked;
-  if (settings.link_channel)
-    linked =
-        std::make_unique<SimLinkedUgv>(sim.spaces(), sim.clock(), *settings.link_channel, seed);
+  // Link faults act on the link's messages: without a channel of its own, a clean one.
+  if (settings.link_channel || breaks_link(settings.faults))
+    linked = std::make_unique<SimLinkedUgv>(
+        sim.spaces(), sim.clock(), settings.link_channel.value_or(link::LossyChannelOptions{}),
+        seed, sim.faults(), 1.0 / settings.ugv.exploration.sensors.ir_rate_hz);
   UgvLink& link = linked ? static_cast<UgvLink&>(*linked) : in_process;
   const std::unique_ptr<UavMission> uav = assembly.uav_mission(
       {sim.flight(), sim.cameras(), sim.winch(), link}, sim.clock(), &transitions);
@@ -214,7 +234,9 @@ MissionRunResult run_mission(const PlanningWorld& world, const RobotDescription&
   sim.run(controllers, [&](double t_s) {
     if (settings.on_sample) settings.on_sample(t_s, view);
   });
-  if (!mission.done()) mission.stop("the simulation's time limit");
+  const bool ended = mission.done();
+  if (!ended) mission.stop("the simulation's time limit");
+  sim.finish_invariants(ended, ugv_left_reason(mission));
   sim.spaces().close();
   MissionRunResult result = std::move(sim.result());
   result.outcome = mission.outcome();

@@ -101,6 +101,12 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   settings.ugv.ugv.explore.planner = planner;
   // How long the base may stand still when told to drive is the base's (ugv.base).
   settings.ugv.ugv.bump_time_s = s.backends.ugv_base.stall_time_s;
+  settings.faults = document.faults;
+  if (!o.faults.empty()) {
+    const FaultPlan extra = load_fault_plan(o.faults);
+    settings.faults.faults.insert(settings.faults.faults.end(), extra.faults.begin(),
+                                  extra.faults.end());
+  }
   return s;
 }
 

@@ -38,9 +38,10 @@ MissionConfig mission_config_from_yaml(const YAML::Node& node, const std::string
   if (!node.IsDefined() || node.IsNull()) return c;  // an empty file means all defaults
   const yaml::MapReader root(node, source);
   // `ugv` and `uav` choose and configure the robots' hardware backends and the UAV
-  // mission: their owners read those sections (mission/mission_document.hpp).
-  root.allow_only(
-      {"curiosity", "object_search", "tether", "ugv_limits", "uav_limits", "roles", "ugv", "uav"});
+  // mission, `faults` what a simulated run breaks on purpose: their owners read those
+  // sections (mission/mission_document.hpp).
+  root.allow_only({"curiosity", "object_search", "tether", "ugv_limits", "uav_limits", "roles",
+                   "ugv", "uav", "faults"});
   c.source = source;
   for (const auto& [section, keys] : sections())
     if (const auto r = root.optional_child(section)) note(*r, section, c.given);

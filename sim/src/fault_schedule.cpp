@@ -1,7 +1,12 @@
 #include "ferret/sim/fault_schedule.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <cmath>
+
+#include "ferret/core/error.hpp"
 
 namespace ferret {
 
@@ -75,6 +80,55 @@ link::LinkImpairment FaultSchedule::link_impairment(FaultTarget direction,
       i.duplicate_fraction = std::max(i.duplicate_fraction, f->strength);
   }
   return i;
+}
+
+bool simulation_injects(const Fault& fault) {
+  switch (fault.kind) {
+    case FaultKind::kLinkLoss:
+    case FaultKind::kLinkOutage:
+    case FaultKind::kLinkLatency:
+    case FaultKind::kLinkDuplicate:
+    case FaultKind::kBatterySag:
+    case FaultKind::kBatteryDrain:
+      return true;
+    case FaultKind::kCameraBlackout:  // the UAV's cameras (the miniUGV's: not yet)
+      return fault.target == FaultTarget::kMarkerCamera ||
+             fault.target == FaultTarget::kDepthCamera;
+    default:
+      return false;
+  }
+}
+
+void check_injectable(const FaultPlan& plan, const std::string& source) {
+  // "link_loss, ..., camera_blackout (marker_camera, depth_camera), ...": a kind's
+  // targets are named when only some of them are injected.
+  std::string injected;
+  for (const FaultKindSpec& k : fault_kinds()) {
+    std::vector<std::string_view> targets;
+    for (const FaultTarget t : k.targets) {
+      Fault probe;
+      probe.kind = k.kind;
+      probe.target = t;
+      if (simulation_injects(probe)) targets.push_back(to_string(t));
+    }
+    if (targets.empty()) continue;
+    injected += std::string(injected.empty() ? "" : ", ") + std::string(k.name);
+    if (targets.size() < k.targets.size())
+      injected += " (" + fmt::format("{}", fmt::join(targets, ", ")) + ")";
+  }
+  for (std::size_t i = 0; i < plan.faults.size(); ++i)
+    if (!simulation_injects(plan.faults[i]))
+      throw InputError(source, "faults[" + std::to_string(i) + "]",
+                       "a fault the simulation injects: " + injected,
+                       std::string(to_string(plan.faults[i].kind)) + " on " +
+                           std::string(to_string(plan.faults[i].target)));
+}
+
+bool breaks_link(const FaultPlan& plan) {
+  return std::any_of(plan.faults.begin(), plan.faults.end(), [](const Fault& f) {
+    return f.kind == FaultKind::kLinkLoss || f.kind == FaultKind::kLinkOutage ||
+           f.kind == FaultKind::kLinkLatency || f.kind == FaultKind::kLinkDuplicate;
+  });
 }
 
 }  // namespace ferret

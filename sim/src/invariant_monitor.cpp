@@ -61,7 +61,8 @@ void InvariantMonitor::observe(const InvariantSample& s) {
   check(InvariantKind::kTetherOverLength, over(s.released_m, limits_.tether_length_m), s.released_m,
         limits_.tether_length_m, s, true);
   check(InvariantKind::kUavCollision, s.uav_collision, 1.0, 0.0, s, true);
-  check(InvariantKind::kUgvBodyContact, over(s.ugv_contact_depth_m, limits_.contact_tolerance_m),
+  check(InvariantKind::kUgvBodyContact,
+        s.ugv_body_contact && !(s.ugv_contact_depth_m < limits_.contact_tolerance_m),
         s.ugv_contact_depth_m, limits_.contact_tolerance_m, s, true);
   check(InvariantKind::kBatteryEmpty, !(s.uav_battery > limits_.battery_floor), s.uav_battery,
         limits_.battery_floor, s, false, "uav");

@@ -10,11 +10,38 @@
 #include "ferret/uav/flight_planner.hpp"
 
 namespace ferret::internal {
+namespace {
+
+// A controller acts on a timeout at its next tick after it passed: the invariant allows
+// that tick and a little more (the miniUGV's controller ticks at the IR rate).
+constexpr double kTimeoutSlack_s = 0.5;
+
+InvariantLimits invariant_limits(const MissionRunSettings& s) {
+  InvariantLimits l;
+  l.max_tension_n = s.uav.winch_control.slack_estimator.tension.max_tension_n;
+  l.tether_length_m = s.uav.tether.total_length_m;
+  for (int k = 0; k <= static_cast<int>(UavMissionState::kDone); ++k) {
+    const auto state = static_cast<UavMissionState>(k);
+    if (const auto t = s.uav.state_timeout_s(state))
+      l.state_timeout_s["uav"][std::string(to_string(state))] = *t + kTimeoutSlack_s;
+  }
+  for (int k = 0; k <= static_cast<int>(UgvMissionState::kDone); ++k) {
+    const auto state = static_cast<UgvMissionState>(k);
+    if (const auto t = s.ugv.ugv.state_timeout_s(state))
+      l.state_timeout_s["ugv"][std::string(to_string(state))] = *t + kTimeoutSlack_s;
+  }
+  return l;
+}
+
+}  // namespace
 
 MissionWorld::MissionWorld(const PlanningWorld& world, const RobotDescription& uav_robot,
                            const MissionRunSettings& settings, std::uint64_t seed,
                            TransitionLog& log)
-    : world_(world), settings_(settings), sensors_(world.spec ? *world.spec : WorldSpec{}) {
+    : world_(world),
+      settings_(settings),
+      sensors_(world.spec ? *world.spec : WorldSpec{}),
+      invariants_(InvariantLimits{}) {
   if (!world.spec)
     throw InputError(world.source.string(), "",
                      "a world YAML (an OctoMap file names no hidden spaces)");
@@ -55,6 +82,9 @@ MissionWorld::MissionWorld(const PlanningWorld& world, const RobotDescription& u
                       settings_.ugv.exploration.mission, 0.0, "UAV");
   truth_checker_ = std::make_unique<CollisionChecker>(map_, alone.shape);
 
+  invariants_ = InvariantMonitor(invariant_limits(settings_));
+  check_injectable(settings_.faults, "the mission's fault plan");
+  if (!settings_.faults.empty()) faults_.emplace(settings_.faults);
   result_.hidden_spaces_in_world = static_cast<int>(spec.hidden_spaces.size());
   for (const WorldObject& o : spec.objects) result_.objects_in_world += o.hidden_space >= 0 ? 1 : 0;
 }
@@ -73,6 +103,7 @@ void MissionWorld::run(const MissionControllers& controllers,
   tether::SimulatedWinch& winch = *winch_;
   SimHiddenSpaces& spaces = *spaces_;
   std::string state = controllers.uav_state();
+  bool ugv_hold = false;
   long step = 0;
   for (; step < max_steps && !controllers.uav_done(); ++step) {
     clock_.set(static_cast<double>(step) * kDt);
@@ -84,6 +115,7 @@ void MissionWorld::run(const MissionControllers& controllers,
     }
     if (step % ugv_every == 0) {
       const bool hold = controllers.link_receive && controllers.link_receive();
+      ugv_hold = hold;
       if (spaces.active()) {
         if (controllers.ugv_tick) controllers.ugv_tick();
         if (!controllers.ugv_stopped || !controllers.ugv_stopped())
@@ -109,11 +141,36 @@ void MissionWorld::run(const MissionControllers& controllers,
     if (over && !over_tension) ++result.over_tension_events;
     over_tension = over;
     const FlightState fs = flight.state();
-    if (step % 10 == 0 && !fs.on_ground && fs.p_W.z() - flight.ground_below() > 0.6 &&
-        truth_checker_->in_collision(body_pose(fs))) {
+    const bool collided = step % 10 == 0 && !fs.on_ground &&
+                          fs.p_W.z() - flight.ground_below() > 0.6 &&
+                          truth_checker_->in_collision(body_pose(fs));
+    if (collided) {
       ++result.uav_collisions;
       ++result.collisions_in[state];
       if (result.uav_collisions == 1) result.first_collision_W = fs.p_W;
+    }
+    {
+      InvariantSample& s = last_sample_;
+      s.t_s = clock_.now_s();
+      s.tension_n = tension_n;
+      s.released_m = winch.released_m();
+      s.uav_collision = collided;
+      s.uav_battery = fs.battery_fraction;
+      s.uav_state = state;
+      const UgvMissionSim* ugv = spaces.active();
+      s.ugv_body_contact = ugv && ugv->base().in_contact();
+      s.ugv_contact_depth_m = ugv ? ugv->base().contact_depth_m() : 0.0;
+      s.ugv_battery = ugv ? std::optional(ugv->base().status().battery_fraction) : std::nullopt;
+      if (!ugv)
+        s.ugv_state.clear();
+      else if (ugv_hold)
+        s.ugv_state = "link_hold";  // the watchdog's: the controller does not tick
+      else if (controllers.ugv_state)
+        s.ugv_state = controllers.ugv_state();
+      else if (ugv->has_controller())
+        s.ugv_state = to_string(ugv->controller().state());
+      invariants_.observe(s);
+      if (faults_) inject_faults(s.uav_state, s.ugv_state);
     }
     if (step % 50 == 0) {
       MissionSample s;
@@ -138,6 +195,32 @@ void MissionWorld::run(const MissionControllers& controllers,
     for (const Eigen::Vector3d& p : spaces.released_at())
       result.objects_dropped +=
           (p.head<2>() - spec.drop_zone->center_m).norm() <= spec.drop_zone->radius_m ? 1 : 0;
+}
+
+void MissionWorld::inject_faults(const std::string& uav_state, const std::string& ugv_state) {
+  FaultSchedule& f = *faults_;
+  f.note_state(FaultRobot::kUav, uav_state, clock_.now_s());
+  if (!ugv_state.empty()) f.note_state(FaultRobot::kUgv, ugv_state, clock_.now_s());
+  f.advance(clock_.now_s());
+  const auto drain = [&](FaultTarget robot) {
+    const Fault* d = f.acting(FaultKind::kBatteryDrain, robot);
+    return d ? d->strength : 1.0;
+  };
+  flight_->set_battery_drain_factor(drain(FaultTarget::kUav));
+  for (const Fault& sag : f.take_due(FaultKind::kBatterySag, FaultTarget::kUav))
+    flight_->sag_battery(sag.strength);
+  if (UgvMissionSim* ugv = spaces_->active()) {
+    ugv->base().set_battery_drain_factor(drain(FaultTarget::kUgv));
+    for (const Fault& sag : f.take_due(FaultKind::kBatterySag, FaultTarget::kUgv))
+      ugv->base().sag_battery(sag.strength);
+  }
+  cameras_->set_blackout(f.acts(FaultKind::kCameraBlackout, FaultTarget::kMarkerCamera),
+                         f.acts(FaultKind::kCameraBlackout, FaultTarget::kDepthCamera));
+}
+
+void MissionWorld::finish_invariants(bool ended, const std::string& ugv_left_reason) {
+  invariants_.finish(last_sample_, spaces_->active() != nullptr, ugv_left_reason, ended);
+  result_.invariant_violations = invariants_.violations();
 }
 
 }  // namespace ferret::internal

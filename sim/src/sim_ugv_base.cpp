@@ -73,6 +73,7 @@ void SimUgvBase::step(double dt_s) {
   } else {
     in_contact_ = false;
   }
+  contact_depth_m_ = in_contact_ ? depth : 0.0;
   driven_m_ += (next.position() - pose_.position()).norm();
   v_mps_ = (next.position() - pose_.position()).norm() / dt_s * (command_.v_mps < 0 ? -1.0 : 1.0);
   pose_ = next;
@@ -80,7 +81,7 @@ void SimUgvBase::step(double dt_s) {
   const double drain =
       (options_.idle_drain_share + (1.0 - options_.idle_drain_share) * speed_share) * dt_s /
       options_.battery_endurance_s;
-  battery_ = std::max(0.0, battery_ - drain);
+  battery_ = std::max(0.0, battery_ - drain_factor_ * drain);
 }
 
 UgvStatus SimUgvBase::status() const {

@@ -39,7 +39,7 @@ TEST(InvariantMonitor, ACleanRunIsSafe) {
     InvariantSample s = at(0.1 * i);
     s.tension_n = 9.99;  // at the limit is within it
     s.released_m = 15.0;
-    s.ugv_contact_depth_m = 0.01;
+    s.ugv_contact_depth_m = 0.01;  // deep, but not against a wall: no contact
     m.observe(s);
   }
   m.finish(at(100.0), false, "", true);
@@ -86,7 +86,11 @@ TEST(InvariantMonitor, CatchesEachKindWhenInjected) {
       {InvariantKind::kTensionOverLimit, [](InvariantSample& s) { s.tension_n = 30.0; }},
       {InvariantKind::kTetherOverLength, [](InvariantSample& s) { s.released_m = 15.2; }},
       {InvariantKind::kUavCollision, [](InvariantSample& s) { s.uav_collision = true; }},
-      {InvariantKind::kUgvBodyContact, [](InvariantSample& s) { s.ugv_contact_depth_m = 0.05; }},
+      {InvariantKind::kUgvBodyContact,
+       [](InvariantSample& s) {
+         s.ugv_body_contact = true;
+         s.ugv_contact_depth_m = 0.05;
+       }},
       {InvariantKind::kBatteryEmpty, [](InvariantSample& s) { s.uav_battery = 0.0; }},
       {InvariantKind::kBatteryEmpty, [](InvariantSample& s) { s.ugv_battery = -0.1; }},
   };
@@ -180,6 +184,21 @@ TEST(InvariantMonitor, NamesEveryKind) {
   for (std::size_t k = 0; k < kInvariantKinds; ++k)
     EXPECT_NE(to_string(static_cast<InvariantKind>(k)), "?") << k;
   EXPECT_EQ(to_string(InvariantKind::kTensionOverLimit), "tension_over_limit");
+}
+
+TEST(InvariantMonitor, AContactShallowerThanTheToleranceIsNone) {
+  InvariantLimits l = limits();  // tolerance 0.01 m
+  InvariantMonitor m(l);
+  InvariantSample s = at(1);
+  s.ugv_body_contact = true;
+  s.ugv_contact_depth_m = 0.005;
+  m.observe(s);
+  EXPECT_TRUE(m.safe());
+  l.contact_tolerance_m = 0.0;  // every contact, even one stopped at the face
+  InvariantMonitor strict(l);
+  s.ugv_contact_depth_m = 0.0;
+  strict.observe(s);
+  ASSERT_EQ(strict.count(InvariantKind::kUgvBodyContact), 1);
 }
 
 }  // namespace

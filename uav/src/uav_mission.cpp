@@ -96,6 +96,39 @@ std::string_view to_string(VisitState state) {
   return "?";
 }
 
+std::optional<double> UavMissionOptions::state_timeout_s(UavMissionState state) const {
+  using S = UavMissionState;
+  switch (state) {
+    case S::kTakeoff:
+    case S::kLiftoff:
+      return takeoff_timeout_s;
+    case S::kApproach:
+      return approach_timeout_s;
+    case S::kSurvey:
+      return survey_timeout_s;
+    case S::kLand:
+    case S::kLandHome:
+      return land_timeout_s;
+    case S::kLower:
+      return lower_timeout_s;
+    case S::kUgvOps:
+      return ugv_ops_timeout_s;
+    case S::kRetract:
+      return retract_timeout_s;
+    case S::kDeliver:
+      return deliver_timeout_s;
+    case S::kDrop:
+      return drop_time_s;
+    case S::kReturnHome:
+      return return_timeout_s;
+    case S::kIdle:
+    case S::kSearch:
+    case S::kDone:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 void UavMissionOptions::validate(const std::string& source) const {
   const auto positive = [&](double v, const char* field, std::string_view unit, double hi = 1e6) {
     check_number(v, NumberRange::positive(hi, unit), source, field);

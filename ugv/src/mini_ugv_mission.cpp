@@ -72,6 +72,27 @@ std::string_view to_string(UgvMissionOutcome outcome) {
   return "?";
 }
 
+std::optional<double> UgvMissionOptions::state_timeout_s(UgvMissionState state) const {
+  using S = UgvMissionState;
+  switch (state) {
+    case S::kExplore:
+      return explore_timeout_s;
+    case S::kTrack:
+      return track_timeout_s;
+    case S::kTurn:
+      return turn_timeout_s;
+    case S::kGrasp:
+      return grasp_timeout_s;
+    case S::kAwaitRetract:
+      return retract_timeout_s;
+    case S::kIdle:
+    case S::kReturn:
+    case S::kDone:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 void UgvMissionOptions::validate(const std::string& source) const {
   const auto positive = [&](double v, const char* field, std::string_view unit) {
     check_number(v, NumberRange::positive(1e6, unit), source, field);

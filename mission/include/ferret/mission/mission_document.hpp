@@ -5,7 +5,8 @@
 //    roles): MissionConfig, planning/mission_config.hpp;
 //  - the robots' backends (ugv.base, uav.winch, uav.flight_controller): RobotBackends,
 //    sim/robot_backends.hpp;
-//  - the UAV mission's keys in `uav`: uav/uav_mission_config.hpp.
+//  - the UAV mission's keys in `uav`: uav/uav_mission_config.hpp;
+//  - what a simulated run breaks on purpose, `faults`: sim/fault_plan.hpp.
 // Commands load it once and take each section from here.
 
 #include <yaml-cpp/yaml.h>
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "ferret/planning/mission_config.hpp"
+#include "ferret/sim/fault_plan.hpp"
 #include "ferret/sim/robot_backends.hpp"
 #include "ferret/uav/uav_mission.hpp"
 
@@ -33,6 +35,9 @@ struct MissionDocument {
   /// InputError as read_uav_mission_options.
   void apply_uav_mission(UavMissionOptions& options) const;
 
+  /// The faults a simulated run injects (docs/safety.md); empty without a `faults` key.
+  FaultPlan faults;
+
   /// The document's `uav` section (undefined without one) and the file it came from.
   YAML::Node uav_section;
   std::string source;
@@ -43,6 +48,13 @@ struct MissionDocument {
 /// Throws InputError naming `source` and the field, as each section's reader does.
 [[nodiscard]] MissionDocument mission_document_from_yaml(const YAML::Node& root,
                                                          const std::string& source);
+/// The states a fault may start on (`on: uav.<state>` / `ugv.<state>`): the two mission
+/// controllers' state names, and the miniUGV's `link_hold` (its watchdog holding).
+[[nodiscard]] const FaultStates& mission_fault_states();
+/// A `faults:` list from a file of its own (`ferret mission --faults`): the file's
+/// `faults` key, InputError naming the file for anything else.
+[[nodiscard]] FaultPlan load_fault_plan(const std::filesystem::path& path);
+
 /// The same from a mission YAML file, loaded once.
 [[nodiscard]] MissionDocument load_mission_document(const std::filesystem::path& path);
 

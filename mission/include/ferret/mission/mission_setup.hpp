@@ -24,6 +24,7 @@ namespace ferret {
 struct MissionSetupOptions {
   std::string world, robot_uav, robot_ugv, mission, method = "cdos", planner = "grid";
   std::string no_landing_zone;  ///< empty: the mission YAML's uav.no_landing_zone (hover)
+  std::string faults;           ///< a `faults:` file, after the mission YAML's (empty: none)
 };
 
 struct MissionSetup {

@@ -14,6 +14,16 @@
 
 namespace ferret {
 
+/// Whether the simulation applies `fault` (its kind on its target). The others are read,
+/// drawn and written, but a mission refuses them until their injector exists
+/// (docs/safety.md lists which do).
+[[nodiscard]] bool simulation_injects(const Fault& fault);
+/// InputError naming `source` and `faults[i].kind` for the first fault the simulation
+/// does not inject.
+void check_injectable(const FaultPlan& plan, const std::string& source);
+/// Whether a plan breaks the robot link (its faults act on the link's messages).
+[[nodiscard]] bool breaks_link(const FaultPlan& plan);
+
 class FaultSchedule {
  public:
   explicit FaultSchedule(FaultPlan plan);

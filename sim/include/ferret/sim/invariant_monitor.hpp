@@ -33,7 +33,8 @@ inline constexpr std::size_t kInvariantKinds = 8;
 struct InvariantLimits {
   double max_tension_n = 10.0;
   double tether_length_m = 15.0;  ///< L
-  /// A body contact counts when deeper than this (the truth's raster is half a cell).
+  /// A body contact counts when at least this deep (0: every contact, also a body
+  /// stopped at the wall's face).
   double contact_tolerance_m = 0.0;
   double battery_floor = 0.0;  ///< a battery at or below this fraction is empty
   /// Per robot ("uav", "ugv"), per state name: the longest the controller may stay in it
@@ -47,7 +48,9 @@ struct InvariantSample {
   double tension_n = 0.0;
   double released_m = 0.0;  ///< l_t
   bool uav_collision = false;
-  double ugv_contact_depth_m = 0.0;  ///< 0: no contact
+  /// The miniUGV's body against a wall (SimUgvBase::in_contact), and how deep.
+  bool ugv_body_contact = false;
+  double ugv_contact_depth_m = 0.0;
   double uav_battery = 1.0;
   std::optional<double> ugv_battery;  ///< none: the miniUGV reports none (aboard, off)
   std::string uav_state;              ///< the controllers' state names ("" when none)

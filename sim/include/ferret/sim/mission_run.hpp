@@ -16,6 +16,8 @@
 #include "ferret/core/transition_log.hpp"
 #include "ferret/link/lossy_channel.hpp"
 #include "ferret/planning/planning_world.hpp"
+#include "ferret/sim/fault_plan.hpp"
+#include "ferret/sim/invariant_monitor.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/uav/uav_mission_options.hpp"
 #include "ferret/urdf/robot_description.hpp"
@@ -44,6 +46,10 @@ struct MissionRunSettings {
   /// sessions (docs/link.md), through a simulated network with these faults each way
   /// (its seed drawn from the run's), and the UAV reads the miniUGV from telemetry.
   std::optional<link::LossyChannelOptions> link_channel;
+  /// What breaks on purpose (docs/safety.md): the simulated backends and the link's
+  /// network apply it on the simulation's clock. A plan with link faults runs the robot
+  /// link's messages (a clean network where link_channel is unset).
+  FaultPlan faults;
   /// Called every 0.1 s of simulated time (the MCAP recorder's hook).
   std::function<void(double t_s, const class MissionSim&)> on_sample;
 };
@@ -101,6 +107,10 @@ struct MissionRunResult {
   int marker_frames_rendered = 0;      ///< of which rendered (render_markerless_frames)
   std::vector<MissionSample> samples;  ///< every 0.5 s
   std::vector<Transition> transitions;
+  /// The safety invariants, checked at every step from the truth (docs/safety.md): each
+  /// episode of a violation. Any makes the run unsafe.
+  std::vector<InvariantViolation> invariant_violations;
+  [[nodiscard]] bool safe() const { return invariant_violations.empty(); }
 };
 
 }  // namespace ferret

@@ -25,6 +25,7 @@
 #include "ferret/perception/colour.hpp"
 #include "ferret/planning/collision_checker.hpp"
 #include "ferret/planning/collision_map.hpp"
+#include "ferret/sim/fault_schedule.hpp"
 #include "ferret/sim/mission_run.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
@@ -117,7 +118,7 @@ class SimFlightController final : public FlightController {
     state_.battery_fraction =
         std::max(0.0, state_.battery_fraction -
                           dt * (1.0 + 0.15 * state_.v_W.norm() / settings_.uav_max_speed_mps) /
-                              settings_.uav.flight_endurance_s);
+                              settings_.uav.flight_endurance_s * drain_factor_);
     if (mode_ == Mode::kLand) {
       const double ground = ground_below();
       if (state_.p_W.z() <= ground + settings_.landed_height_m) {
@@ -130,6 +131,11 @@ class SimFlightController final : public FlightController {
     }
   }
   [[nodiscard]] double flown_m() const { return flown_m_; }
+  /// Faults: the battery drains `factor` times as fast, or loses `fraction` at once.
+  void set_battery_drain_factor(double factor) { drain_factor_ = factor; }
+  void sag_battery(double fraction) {
+    state_.battery_fraction = std::max(0.0, state_.battery_fraction - fraction);
+  }
   [[nodiscard]] double ground_below() const {
     const auto d = world_.cast_ray(state_.p_W, -Eigen::Vector3d::UnitZ(), 100.0);
     return d ? state_.p_W.z() - *d : 0.0;
@@ -145,6 +151,7 @@ class SimFlightController final : public FlightController {
   double yaw_sp_ = 0.0;
   double speed_ = 0.0;
   double flown_m_ = 0.0;
+  double drain_factor_ = 1.0;
   Eigen::Vector3d velocity_sp_ = Eigen::Vector3d::Zero();
   double yaw_rate_sp_ = 0.0;
 };
@@ -162,13 +169,18 @@ class SimUavCameras final : public UavCameras {
         depth_model_(std::move(depth_model)),
         seed_(seed),
         render_markerless_(render_markerless_frames) {}
+  /// A camera blackout (sim/fault_plan.hpp): its frames come empty, as dropped frames.
+  void set_blackout(bool marker, bool depth) {
+    marker_blackout_ = marker;
+    depth_blackout_ = depth;
+  }
   CameraShot<GrayImage> marker_frame() override {
     const Pose3 X_WC = optical_pose(body_pose(flight_.state()), marker_);
     const std::uint64_t frame_seed =
         seed_ + 2 * frame_++;  // drawn either way: later frames keep their noise
     // No marker's quad in the image: a detector has nothing to find, so the frame is not
     // rendered (MissionRunSettings::render_markerless_frames).
-    if (!render_markerless_ && !world_.markers_in_frame(marker_model_, X_WC))
+    if (marker_blackout_ || (!render_markerless_ && !world_.markers_in_frame(marker_model_, X_WC)))
       return {GrayImage{}, X_WC};
     ++marker_frames_rendered_;
     return {world_.render_gray(marker_model_, X_WC, CameraFrameOptions{}, frame_seed), X_WC};
@@ -176,6 +188,10 @@ class SimUavCameras final : public UavCameras {
   [[nodiscard]] std::uint64_t marker_frames_rendered() const { return marker_frames_rendered_; }
   CameraShot<DepthImageMm> depth_frame() override {
     const Pose3 X_WC = optical_pose(body_pose(flight_.state()), depth_);
+    if (depth_blackout_) {
+      ++frame_;  // drawn either way: later frames keep their noise
+      return {DepthImageMm{}, X_WC};
+    }
     return {world_.render_depth(depth_model_, X_WC, DepthFrameOptions{}, seed_ + 2 * frame_++ + 1),
             X_WC};
   }
@@ -190,6 +206,7 @@ class SimUavCameras final : public UavCameras {
   bool render_markerless_;
   std::uint64_t frame_ = 0;
   std::uint64_t marker_frames_rendered_ = 0;
+  bool marker_blackout_ = false, depth_blackout_ = false;
 };
 
 // The hidden spaces as the miniUGV meets them: where it is set down, the truth there
@@ -427,6 +444,9 @@ struct MissionControllers {
   /// the ones it sends, after it. Empty: no link (one process).
   std::function<bool()> link_receive;
   std::function<void()> link_send;
+  /// The miniUGV controller's state name when it runs elsewhere (a robot process);
+  /// empty: the world asks the controller it steps, if any.
+  std::function<std::string()> ugv_state;
 };
 
 class MissionWorld {
@@ -453,6 +473,13 @@ class MissionWorld {
   /// hook (every 0.1 s) sees the world. Fills the truth side of result().
   void run(const MissionControllers& controllers, const std::function<void(double t_s)>& on_sample);
   [[nodiscard]] MissionRunResult& result() { return result_; }
+  /// The settings' fault plan on the clock (null without faults): the link's ends ask
+  /// it for their impairment.
+  [[nodiscard]] const FaultSchedule* faults() const { return faults_ ? &*faults_ : nullptr; }
+  /// The mission's end for the invariants: whether the UAV's controller ended (not the
+  /// simulation's bound), and, should the miniUGV still be in a hidden space, the reason
+  /// the mission recorded for leaving it (empty: none). Fills result()'s violations.
+  void finish_invariants(bool ended, const std::string& ugv_left_reason);
 
  private:
   const PlanningWorld& world_;
@@ -467,6 +494,11 @@ class MissionWorld {
   std::unique_ptr<CollisionChecker> truth_checker_;
   std::shared_ptr<const CollisionMap> map_;
   MissionRunResult result_;
+  InvariantMonitor invariants_;
+  std::optional<FaultSchedule> faults_;
+  /// Applies the faults acting at the step's time to the simulated backends.
+  void inject_faults(const std::string& uav_state, const std::string& ugv_state);
+  InvariantSample last_sample_;
 };
 
 }  // namespace ferret::internal

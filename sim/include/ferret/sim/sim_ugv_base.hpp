@@ -53,6 +53,10 @@ class SimUgvBase final : public UgvBase {
 
   /// Moves the robot by dt under the last command (the world's step).
   void step(double dt_s);
+  /// Faults (sim/fault_plan.hpp): the battery drains `factor` times as fast from now on
+  /// (1: as it should), or loses `fraction` of a full charge at once.
+  void set_battery_drain_factor(double factor) { drain_factor_ = factor; }
+  void sag_battery(double fraction) { battery_ = std::max(0.0, battery_ - fraction); }
   /// Ground truth, for the simulation's own bookkeeping (never for a controller).
   [[nodiscard]] const Pose2& true_pose() const { return pose_; }
   [[nodiscard]] bool object_held() const { return held_; }
@@ -62,6 +66,10 @@ class SimUgvBase final : public UgvBase {
   /// started in a wall: the base stops it at the face).
   [[nodiscard]] int body_contacts() const { return contacts_; }
   [[nodiscard]] double deepest_contact_m() const { return deepest_contact_m_; }
+  /// Against a wall at the last step (blocked, or inside by more than half a cell), and
+  /// how far inside then.
+  [[nodiscard]] bool in_contact() const { return in_contact_; }
+  [[nodiscard]] double contact_depth_m() const { return contact_depth_m_; }
 
  private:
   [[nodiscard]] Eigen::Vector2d rear(const Pose2& pose) const;
@@ -77,10 +85,12 @@ class SimUgvBase final : public UgvBase {
   bool contact_ = false;
   bool held_ = false;
   double battery_ = 1.0;
+  double drain_factor_ = 1.0;
   double driven_m_ = 0.0;
   int contacts_ = 0;
   bool in_contact_ = false;
   double deepest_contact_m_ = 0.0;
+  double contact_depth_m_ = 0.0;
 };
 
 }  // namespace ferret

@@ -166,6 +166,10 @@ struct UavMissionOptions {
 
   /// Throws InputError(source, field, ...) for a value out of range.
   void validate(const std::string& source) const;
+  /// The longest the controller stays in `state` before its timeout moves it on (none:
+  /// the state has no timeout of its own: idle, search, bounded by the flight budget,
+  /// and done). The simulation's invariants check it (docs/safety.md).
+  [[nodiscard]] std::optional<double> state_timeout_s(UavMissionState state) const;
 };
 
 /// One hidden space the UAV found, and what came of it.

@@ -4,6 +4,7 @@
 // A simulation's settings and results hold these without the controller. The functions
 // are defined beside the controller (mini_ugv_mission.cpp).
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -77,6 +78,10 @@ struct UgvMissionOptions {
   /// Checks every value (finite, positive where it must be). Throws InputError naming
   /// the field with `source` as the file.
   void validate(const std::string& source) const;
+  /// The longest the controller stays in `state` before its timeout moves it on (none:
+  /// idle and done; return, whose timeout the controller sets from the path it plans).
+  /// The simulation's invariants check it (docs/safety.md).
+  [[nodiscard]] std::optional<double> state_timeout_s(UgvMissionState state) const;
 };
 
 }  // namespace ferret
