@@ -1,5 +1,5 @@
 // One process a robot (docs/robots.md, "One process a robot"):
-//   ferret sim-world [--world W] [--mission M] [--seed N] [--listen ADDR] [--link-loss F
+//   ferret sim-world [--world W] [--mission M] [--seed N] [-o DIR] [--listen ADDR] [--link-loss F
 //   --link-reorder F]
 //       the simulated world, serving both robots' hardware and the link between them
 //   ferret uav [--world W] [--mission M] [--seed N] [--sim-world ADDR | --link-bind A --link-peer A
@@ -41,6 +41,10 @@ void add_common(CLI::App* sub, Options& o) {
   add_mission_setup_options(sub, o.setup);
   add_seed_option(sub, o.seed, "mission");
   sub->add_flag("-q,--quiet", o.quiet, "Print the summary only");
+  sub->add_option("-o,--out", o.out,
+                  "Directory for this process's record of the run: report.json and the pictures "
+                  "and mission.mcap it has the data for (docs/robots.md) (default: none, summary "
+                  "only)");
 }
 
 void add_robot_options(CLI::App* sub, Options& o, const std::string& own_port,

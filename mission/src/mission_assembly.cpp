@@ -4,6 +4,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/mission/exploration_run.hpp"
+#include "ferret/mission/robot_records.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 
 namespace ferret {
@@ -51,14 +52,7 @@ std::unique_ptr<MiniUgvMission> MissionAssembly::ugv_mission(
 }
 
 void SimMiniUgvMission::report(UgvMissionRunResult& result) const {
-  const MiniUgvMission& m = *mission_;
-  result.outcome = m.outcome();
-  result.final_state = m.state();
-  result.found_W = m.found_W();
-  result.grasp_attempts = m.grasp_attempts();
-  result.decisions = m.explore_controller().decisions();
-  result.grid = m.explore_controller().grid_ptr();
-  result.objects = m.explore_controller().objects_ptr();
+  report_ugv_controller(*mission_, result);
 }
 
 namespace {

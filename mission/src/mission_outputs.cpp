@@ -46,38 +46,47 @@ int ugv_body_contacts(const MissionRunResult& r) {
   return n;
 }
 
-nlohmann::json report_json(std::uint64_t seed, const fs::path& world, const MissionRunResult& r) {
-  nlohmann::json j;
-  j["schema"] = "ferret.mission_report/1";
-  j["world"] = world.string();
-  j["seed"] = seed;
-  j["backends"] = r.backends;
-  if (!r.link_counters.empty()) j["link_counters"] = r.link_counters;
-  j["outcome"] = to_string(r.outcome);
-  j["time_s"] = r.time_s;
-  j["summary"] = {
-      {"hidden_spaces_in_world", r.hidden_spaces_in_world},
-      {"hidden_spaces_found", r.visits.size()},
-      {"objects_in_world", r.objects_in_world},
-      {"objects_retrieved", std::count_if(r.visits.begin(), r.visits.end(),
-                                          [](const auto& v) { return v.object_retrieved; })},
-      {"objects_dropped", r.objects_dropped},
-      {"flown_m", r.flown_m},
-      {"battery_left", r.battery_left},
-      {"uav_collisions", r.uav_collisions},
-      {"ugv_body_contacts", ugv_body_contacts(r)},
-      {"tether_max_released_m", r.max_released_m},
-      {"tether_required_over_length_steps", r.required_over_length},
-      {"tether_over_tension_events", r.over_tension_events},
-      {"tether_max_tension_n", r.max_tension_n},
-      {"leg_spacing_m", r.leg_spacing_m},
-      {"pattern_waypoints", r.pattern_waypoints},
-      {"pattern_done", r.pattern_done},
-      {"marker_frames", r.frames},
-      {"marker_frames_rendered", r.marker_frames_rendered}};
-  j["safety"] = safety_json(r.invariant_violations);
-  j["time_in_state_s"] = r.time_in_state;
-  auto& visits = j["hidden_spaces"] = nlohmann::json::array();
+// What each side of a run knows (RunSide): the UAV's mission (its visits, pattern, time
+// in state), the truth of the simulated world, the miniUGV's controllers.
+bool knows_uav_mission(RunSide side) { return side == RunSide::kMission || side == RunSide::kUav; }
+bool knows_truth(RunSide side) { return side == RunSide::kMission || side == RunSide::kWorld; }
+bool knows_ugv_controller(RunSide side) {
+  return side == RunSide::kMission || side == RunSide::kUgv;
+}
+
+nlohmann::json summary_json(RunSide side, const MissionRunResult& r) {
+  nlohmann::json s = nlohmann::json::object();
+  if (knows_uav_mission(side)) {
+    s["hidden_spaces_found"] = r.visits.size();
+    s["objects_retrieved"] = std::count_if(r.visits.begin(), r.visits.end(),
+                                           [](const auto& v) { return v.object_retrieved; });
+    s["leg_spacing_m"] = r.leg_spacing_m;
+    s["pattern_waypoints"] = r.pattern_waypoints;
+    s["pattern_done"] = r.pattern_done;
+    s["marker_frames"] = r.frames;
+  }
+  if (side != RunSide::kUgv) {  // the UAV's flight and winch: measured, or the truth
+    s["flown_m"] = r.flown_m;
+    s["battery_left"] = r.battery_left;
+    s["tether_max_released_m"] = r.max_released_m;
+    s["tether_max_tension_n"] = r.max_tension_n;
+  }
+  if (knows_truth(side)) {
+    s["hidden_spaces_in_world"] = r.hidden_spaces_in_world;
+    s["objects_in_world"] = r.objects_in_world;
+    s["objects_dropped"] = r.objects_dropped;
+    s["uav_collisions"] = r.uav_collisions;
+    s["ugv_body_contacts"] = ugv_body_contacts(r);
+    s["tether_required_over_length_steps"] = r.required_over_length;
+    s["tether_over_tension_events"] = r.over_tension_events;
+  }
+  if (side == RunSide::kMission) s["marker_frames_rendered"] = r.marker_frames_rendered;
+  if (side == RunSide::kUgv) s["searches"] = r.deployments.size();
+  return s;
+}
+
+nlohmann::json visits_json(const MissionRunResult& r) {
+  nlohmann::json visits = nlohmann::json::array();
   for (const HiddenSpaceVisit& v : r.visits) {
     nlohmann::json e = {{"marker_id", v.marker_id},
                         {"detected_s", v.detected_s},
@@ -102,37 +111,114 @@ nlohmann::json report_json(std::uint64_t seed, const fs::path& world, const Miss
             : nlohmann::json();
     visits.push_back(e);
   }
-  auto& deps = j["ugv_deployments"] = nlohmann::json::array();
+  return visits;
+}
+
+// Each deployment with what the side saw of it: the world the base and the truth, the
+// miniUGV its controller.
+nlohmann::json deployments_json(RunSide side, const MissionRunResult& r) {
+  nlohmann::json deps = nlohmann::json::array();
   for (const UgvDeployment& d : r.deployments) {
     const UgvMissionRunResult& u = d.result;
-    deps.push_back({{"hidden_space", d.hidden_space},
-                    {"deployed_s", d.deployed_s},
-                    {"object_present", d.object_W.has_value()},
-                    {"outcome", to_string(u.outcome)},
-                    {"time_s", u.time_s},
-                    {"path_m", u.path_m},
-                    {"battery_left", u.battery_left},
-                    {"grasp_attempts", u.grasp_attempts},
-                    {"decisions", u.decisions},
-                    {"object_held", u.object_held},
-                    {"body_contacts", u.body_contacts},
-                    {"deepest_contact_m", u.deepest_contact_m},
-                    {"tether_model_max_m", u.max_tether_m},
-                    {"tether_true_max_m", d.max_true_tether_m}});
+    nlohmann::json e = {{"deployed_s", d.deployed_s}, {"time_s", u.time_s}};
+    if (knows_truth(side)) {
+      e["hidden_space"] = d.hidden_space;
+      e["object_present"] = d.object_W.has_value();
+      e["path_m"] = u.path_m;
+      e["battery_left"] = u.battery_left;
+      e["object_held"] = u.object_held;
+      e["body_contacts"] = u.body_contacts;
+      e["deepest_contact_m"] = u.deepest_contact_m;
+      e["tether_true_max_m"] = d.max_true_tether_m;
+    }
+    if (knows_ugv_controller(side)) {
+      e["outcome"] = to_string(u.outcome);
+      e["grasp_attempts"] = u.grasp_attempts;
+      e["decisions"] = u.decisions;
+      e["tether_model_max_m"] = u.max_tether_m;
+    }
+    if (side == RunSide::kUgv) {
+      e["final_state"] = to_string(u.final_state);
+      e["object_found_m"] = u.found_W ? nlohmann::json{u.found_W->x(), u.found_W->y()} : nullptr;
+    }
+    deps.push_back(e);
   }
-  auto& tr = j["transitions"] = nlohmann::json::array();
-  for (const Transition& t : r.transitions)
+  return deps;
+}
+
+nlohmann::json transitions_json(const std::vector<Transition>& transitions) {
+  nlohmann::json tr = nlohmann::json::array();
+  for (const Transition& t : transitions)
     tr.push_back({{"t_s", t.t_s},
                   {"component", t.component},
                   {"from", t.from},
                   {"to", t.to},
                   {"reason", t.reason}});
-  auto& samples = j["samples"] = nlohmann::json::array();  // every 0.5 s
-  for (const MissionSample& s : r.samples)
-    samples.push_back({s.t_s, s.p_W.x(), s.p_W.y(), s.p_W.z(), s.yaw_rad, s.state, s.battery,
-                       s.released_m, s.required_m, s.tension_n, s.ugv_battery});
-  j["samples_columns"] = {"t_s",     "x_m",        "y_m",        "z_m",       "yaw_rad",    "state",
-                          "battery", "released_m", "required_m", "tension_n", "ugv_battery"};
+  return tr;
+}
+
+// Every 0.5 s. The UAV's own samples have no true taut tether and no miniUGV battery.
+void add_samples(RunSide side, const MissionRunResult& r, nlohmann::json& j) {
+  const bool truth = knows_truth(side);
+  auto& samples = j["samples"] = nlohmann::json::array();
+  for (const MissionSample& s : r.samples) {
+    nlohmann::json row = {s.t_s,     s.p_W.x(), s.p_W.y(), s.p_W.z(),
+                          s.yaw_rad, s.state,   s.battery, s.released_m};
+    if (truth) row.push_back(s.required_m);
+    row.push_back(s.tension_n);
+    if (truth) row.push_back(s.ugv_battery);
+    samples.push_back(row);
+  }
+  j["samples_columns"] =
+      truth ? nlohmann::json{"t_s",        "x_m",       "y_m",        "z_m",
+                             "yaw_rad",    "state",     "battery",    "released_m",
+                             "required_m", "tension_n", "ugv_battery"}
+            : nlohmann::json{"t_s",   "x_m",     "y_m",        "z_m",      "yaw_rad",
+                             "state", "battery", "released_m", "tension_n"};
+}
+
+constexpr const char* side_name(RunSide side) {
+  switch (side) {
+    case RunSide::kMission:
+      return "mission";
+    case RunSide::kWorld:
+      return "world";
+    case RunSide::kUav:
+      return "uav";
+    case RunSide::kUgv:
+      return "ugv";
+  }
+  return "mission";
+}
+
+nlohmann::json report_json(const RunOutputsInput& in, const MissionRunResult& r) {
+  const RunSide side = in.side;
+  nlohmann::json j;
+  j["schema"] = "ferret.mission_report/1";
+  j["world"] = in.world_path.string();
+  j["seed"] = in.seed;
+  if (side != RunSide::kMission) {  // `ferret mission`'s report stays as it was
+    j["side"] = side_name(side);
+    j["ended_early"] = in.ended_early.empty() ? nlohmann::json() : nlohmann::json(in.ended_early);
+  }
+  j["backends"] = r.backends;
+  if (!r.link_counters.empty()) j["link_counters"] = r.link_counters;
+  if (knows_uav_mission(side)) j["outcome"] = to_string(r.outcome);
+  j["time_s"] = r.time_s;
+  j["summary"] = summary_json(side, r);
+  // The invariants are checked where the whole mission runs in one process.
+  if (side == RunSide::kMission) j["safety"] = safety_json(r.invariant_violations);
+  if (knows_uav_mission(side)) {
+    j["time_in_state_s"] = r.time_in_state;
+    j["hidden_spaces"] = visits_json(r);
+  }
+  if (side != RunSide::kUav) j["ugv_deployments"] = deployments_json(side, r);
+  for (const auto& [robot, said] : in.robot_summaries) {  // null: the robot said none
+    const nlohmann::json summary = nlohmann::json::parse(said, nullptr, false);
+    j["robot_summaries"][robot] = summary.is_discarded() ? nlohmann::json() : summary;
+  }
+  j["transitions"] = transitions_json(r.transitions);
+  if (side != RunSide::kUgv) add_samples(side, r, j);
   return j;
 }
 
@@ -209,15 +295,22 @@ void write_tether_png(const MissionRunResult& r, const UavMissionOptions& uav,
   if (t.log.size() >= 2) sim::write_tether_sim_plot(t, band_m, total_length_m, path);
 }
 
+// The miniUGV lowered into a hidden space, as the UAV's visits say.
+long lowered(const MissionRunResult& r) {
+  return std::count_if(r.visits.begin(), r.visits.end(),
+                       [](const HiddenSpaceVisit& v) { return v.deployed_s >= 0.0; });
+}
+
 // Both batteries over the mission: the UAV's with the reserve it keeps over the way home,
 // the miniUGV's while it works in a hidden space (a gap while it is aboard).
-void write_battery_png(const MissionRunResult& r, const UavMissionOptions& uav,
+void write_battery_png(const MissionRunResult& r, const UavMissionOptions& uav, bool with_ugv,
                        const fs::path& path) {
   sim::TimeSeriesPlot plot;
   plot.title = fmt::format("Batteries: the UAV's {:.0f} % left at the end", 100.0 * r.battery_left);
   plot.subtitle = fmt::format(
       "UAV endurance {:.0f} s, reserve {:.0f} % over the way home; {} miniUGV deployment(s)",
-      uav.flight_endurance_s, 100.0 * uav.battery_reserve_fraction, r.deployments.size());
+      uav.flight_endurance_s, 100.0 * uav.battery_reserve_fraction,
+      with_ugv ? r.deployments.size() : static_cast<std::size_t>(lowered(r)));
   plot.y_label = "battery [%]";
   plot.y_min = 0.0;
   plot.y_max = 100.0;
@@ -231,7 +324,8 @@ void write_battery_png(const MissionRunResult& r, const UavMissionOptions& uav,
     g.y.push_back(s.required_m > 0 ? 100.0 * s.ugv_battery
                                    : std::numeric_limits<double>::quiet_NaN());
   }
-  plot.series = {a, g};
+  plot.series = {a};
+  if (with_ugv) plot.series.push_back(g);
   if (!r.samples.empty()) sim::write_time_series_plot(plot, path);
 }
 
@@ -334,16 +428,32 @@ void print_mission_summary(const MissionRunResult& r) {
 
 void write_mission_outputs(const fs::path& dir, const MissionOutputsInput& in,
                            const MissionRunResult& r) {
-  const PlanningWorld& world = in.world;
-  const WorldSpec& spec = *world.spec;
+  RunOutputsInput all;
+  all.world = &in.world;
+  all.world_path = in.world_path;
+  all.seed = in.seed;
+  all.uav = &in.uav;
+  all.tether_total_length_m = in.tether_total_length_m;
+  write_run_outputs(dir, all, r);
+}
+
+void write_run_outputs(const fs::path& dir, const RunOutputsInput& in, const MissionRunResult& r) {
   OutputSet files(dir, OutputKind::kDirectory);
-  files.write_text("report.json", report_json(in.seed, in.world_path, r).dump(1) + "\n");
-  files.write("aerial.png", [&](const fs::path& p) { write_aerial_png(*world.tree, spec, r, p); });
-  files.write("battery.png", [&](const fs::path& p) { write_battery_png(r, in.uav, p); });
-  files.write("tether.png",
-              [&](const fs::path& p) { write_tether_png(r, in.uav, in.tether_total_length_m, p); });
+  files.write_text("report.json", report_json(in, r).dump(1) + "\n");
+  const bool truth = knows_truth(in.side);
+  if (in.world && truth)
+    files.write("aerial.png", [&](const fs::path& p) {
+      write_aerial_png(*in.world->tree, *in.world->spec, r, p);
+    });
+  if (in.uav && in.side != RunSide::kUgv) {
+    files.write("battery.png", [&](const fs::path& p) { write_battery_png(r, *in.uav, truth, p); });
+    if (truth)  // the true taut tether against l_t; the UAV has only its l_t
+      files.write("tether.png", [&](const fs::path& p) {
+        write_tether_png(r, *in.uav, in.tether_total_length_m, p);
+      });
+  }
   for (const UgvDeployment& d : r.deployments) {
-    if (d.hidden_space.empty() || !d.result.grid) continue;
+    if (!truth || d.hidden_space.empty() || !d.result.grid) continue;
     EpisodeResult figure;
     figure.found = d.result.found_right;
     figure.time_s = d.result.time_s;
@@ -359,7 +469,8 @@ void write_mission_outputs(const fs::path& dir, const MissionOutputsInput& in,
                              space_dir,
                              fmt::format("{}: {}", d.hidden_space, to_string(d.result.outcome)));
   }
-  files.write("map.bt", [&](const fs::path& p) { save_octree(*world.tree, p); });
+  if (in.world && truth)
+    files.write("map.bt", [&](const fs::path& p) { save_octree(*in.world->tree, p); });
   files.write_text("mission.mcap", mission_mcap(r, r.transitions));
   files.commit();
 }

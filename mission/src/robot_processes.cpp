@@ -36,6 +36,7 @@
 #include "ferret/link/message_stream.hpp"
 #include "ferret/mission/mission_assembly.hpp"
 #include "ferret/mission/mission_setup.hpp"
+#include "ferret/mission/robot_records.hpp"
 #include "ferret/mission/robots_on_hardware.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/sim_world_server.hpp"
@@ -90,14 +91,19 @@ constexpr std::array<std::pair<std::string_view, Robot>, 2> kRoles{{
 }};
 
 RobotOnHardwareOptions hardware_options(const RobotProcessOptions& o) {
-  return {o.setup.mission, o.link_bind, o.link_peer, o.duration_s, o.seed, o.quiet};
+  return {o.setup.mission, o.link_bind, o.link_peer, o.duration_s, o.seed, o.quiet, o.out};
 }
+
+// What drives each interface of a robot served by sim-world, as its record says.
+constexpr const char* kServed = "sim (served)";
+constexpr const char* kRelayed = "messages (relayed)";
 
 // --- sim-world ---------------------------------------------------------------------
 
 }  // namespace
 
 void run_sim_world_process(const RobotProcessOptions& o) {
+  check_record_target(o.out);
   for (const auto& [option, value] :
        {std::pair{"--link-loss", o.link_loss}, std::pair{"--link-reorder", o.link_reorder}})
     if (!(std::isfinite(value) && value >= 0.0 && value <= 0.9))
@@ -163,6 +169,13 @@ void run_sim_world_process(const RobotProcessOptions& o) {
                 d.hidden_space.empty() ? "(none)" : d.hidden_space.c_str(), d.result.path_m,
                 d.result.battery_left, d.result.object_held ? ", holding the object" : "");
   std::printf("uav: %s\nugv: %s\n", r.uav_summary.c_str(), r.ugv_summary.c_str());
+  RunOutputsInput record = robot_side(RunSide::kWorld, o.seed, r.lost_peer);
+  record.world = &setup.world;
+  record.robot_summaries = {{"uav", r.uav_summary}, {"ugv", r.ugv_summary}};
+  MissionRunResult truth = t;
+  truth.transitions = log.all();
+  write_robot_record(o.out, record, setup, truth);
+  if (!r.lost_peer.empty()) throw StreamError(r.lost_peer);
 }
 
 namespace {
@@ -281,6 +294,7 @@ class SimWorldUgvLink final : public UgvLink {
 }  // namespace
 
 void run_uav_process(const RobotProcessOptions& o) {
+  check_record_target(o.out);
   const MissionSetup setup = load_mission_setup(o.setup);
   const bool on_hardware = uav_on_hardware(setup, o.setup.mission);
   check_mode_options(o, on_hardware);
@@ -308,6 +322,7 @@ void run_uav_process(const RobotProcessOptions& o) {
   // Requests go out only inside a lockstep step (between sim-world's message and this
   // process's answer), so the adapter's greeting waits for "start".
   std::optional<AdapterFlightController> flight;
+  std::optional<UavRunRecorder> recorder;  // the UAV's own record, from "start"
   std::unique_ptr<UavMission> started;
   const auto mission_or_throw = [&]() -> UavMission& {
     if (!started) throw StreamError("sim-world stepped the UAV before its 'start'");
@@ -317,63 +332,82 @@ void run_uav_process(const RobotProcessOptions& o) {
     const UavMission& mission = mission_or_throw();
     return json{{"state", std::string(to_string(mission.state()))}, {"done", mission.done()}};
   };
+  const auto write_record = [&](const std::string& ended_early) {
+    MissionRunResult r =
+        recorder ? recorder->result(started.get(), clock.now_s(), log) : MissionRunResult{};
+    r.backends = {{"uav.flight_controller", kServed},
+                  {"uav.cameras", kServed},
+                  {"uav.winch", kServed},
+                  {"link", kRelayed}};
+    r.link_counters = linked.session().counters().summary();
+    write_robot_record(o.out, robot_side(RunSide::kUav, o.seed, ended_early), setup, r);
+  };
   MessageStream& stream = channel.stream();
-  for (;;) {
-    auto [j, m] = next_step(stream);
-    switch (step_of(j, kUavSteps, "UAV")) {
-      case UavStep::kStart: {
-        flight.emplace(channel, "sim");
-        started = assembly.uav_mission({*flight, *flight, winch, ugv}, clock, &log);
-        started->start();
-        json r = state();
-        r["op"] = "start_done";
-        stream.send(dump(r));
-        break;
-      }
-      case UavStep::kTick: {
-        clock.set(time_of(j));
-        ugv.set_lonely(j.value("lonely", false));
-        mission_or_throw().tick();
-        json r = state();
-        r["op"] = "tick_done";
-        stream.send(dump(r));
-        break;
-      }
-      case UavStep::kLink:
-        clock.set(time_of(j));
-        for (const auto& d : link::unpack_datagrams(m.blob)) linked.session().receive(d);
-        stream.send(StreamMessage{R"({"op":"link_done"})",
-                                  link::pack_datagrams(linked.session().take_outgoing())});
-        break;
-      case UavStep::kEnd: {
-        clock.set(time_of(j));
-        UavMission& mission = mission_or_throw();
-        if (!mission.done()) mission.stop("the simulation's time limit");
-        const int retrieved = print_uav_outcome(mission, clock.now_s());
-        json visits = json::array();
-        for (const HiddenSpaceVisit& v : mission.visits())
-          visits.push_back({{"marker_id", v.marker_id},
-                            {"state", std::string(to_string(v.state))},
-                            {"landed", v.landed},
-                            {"ugv_outcome", v.ugv_outcome},
-                            {"object_retrieved", v.object_retrieved},
-                            {"object_dropped", v.object_dropped}});
-        std::printf("link: UAV end: %s\n", linked.session().counters().summary().c_str());
-        std::fflush(stdout);
-        stream.send(dump({{"op", "end_done"},
-                          {"outcome", std::string(to_string(mission.outcome()))},
-                          {"hidden_spaces_found", mission.visits().size()},
-                          {"objects_retrieved", retrieved},
-                          {"visits", visits}}));
-        return;
-      }
-    }
-  }
+  recording_failures(
+      [&] {
+        for (;;) {
+          auto [j, m] = next_step(stream);
+          switch (step_of(j, kUavSteps, "UAV")) {
+            case UavStep::kStart: {
+              flight.emplace(channel, "sim");
+              recorder.emplace(*flight, winch);
+              started = assembly.uav_mission({recorder->flight(), *flight, recorder->winch(), ugv},
+                                             clock, &log);
+              started->start();
+              json r = state();
+              r["op"] = "start_done";
+              stream.send(dump(r));
+              break;
+            }
+            case UavStep::kTick: {
+              clock.set(time_of(j));
+              ugv.set_lonely(j.value("lonely", false));
+              mission_or_throw().tick();
+              recorder->after_tick(clock.now_s(), *started);
+              json r = state();
+              r["op"] = "tick_done";
+              stream.send(dump(r));
+              break;
+            }
+            case UavStep::kLink:
+              clock.set(time_of(j));
+              for (const auto& d : link::unpack_datagrams(m.blob)) linked.session().receive(d);
+              stream.send(StreamMessage{R"({"op":"link_done"})",
+                                        link::pack_datagrams(linked.session().take_outgoing())});
+              break;
+            case UavStep::kEnd: {
+              clock.set(time_of(j));
+              UavMission& mission = mission_or_throw();
+              if (!mission.done()) mission.stop("the simulation's time limit");
+              const int retrieved = print_uav_outcome(mission, clock.now_s());
+              json visits = json::array();
+              for (const HiddenSpaceVisit& v : mission.visits())
+                visits.push_back({{"marker_id", v.marker_id},
+                                  {"state", std::string(to_string(v.state))},
+                                  {"landed", v.landed},
+                                  {"ugv_outcome", v.ugv_outcome},
+                                  {"object_retrieved", v.object_retrieved},
+                                  {"object_dropped", v.object_dropped}});
+              std::printf("link: UAV end: %s\n", linked.session().counters().summary().c_str());
+              std::fflush(stdout);
+              stream.send(dump({{"op", "end_done"},
+                                {"outcome", std::string(to_string(mission.outcome()))},
+                                {"hidden_spaces_found", mission.visits().size()},
+                                {"objects_retrieved", retrieved},
+                                {"visits", visits}}));
+              write_record("");
+              return;
+            }
+          }
+        }
+      },
+      write_record);
 }
 
 // --- ugv -----------------------------------------------------------------------------
 
 void run_ugv_process(const RobotProcessOptions& o) {
+  check_record_target(o.out);
   const MissionSetup setup = load_mission_setup(o.setup);
   const bool on_hardware = ugv_on_hardware(setup);
   check_mode_options(o, on_hardware);
@@ -394,6 +428,7 @@ void run_ugv_process(const RobotProcessOptions& o) {
   TransitionLog log;
   print_transitions(log, o.quiet);
   std::vector<std::unique_ptr<MiniUgvMission>> missions;
+  UgvRunRecorder recorder;
   // A search request: the mission for where the winch set the robot down. On the robot
   // it starts where it stands; here the world says where that is, with the search's seed.
   UgvLinkEndpoint endpoint(clock, [&](const link::UavRequest&) -> UgvLinkEndpoint::Deployment {
@@ -411,53 +446,69 @@ void run_ugv_process(const RobotProcessOptions& o) {
     if (!base) throw StreamError("sim-world asked the miniUGV to search before its 'start'");
     missions.push_back(MissionAssembly::ugv_mission(
         settings, *base, clock, ugv_mission_map(truth, start, settings), seed, std::nullopt, &log));
+    recorder.started(clock.now_s(), *missions.back());
     return {missions.back().get(), &*base};
   });
+  const auto write_record = [&](const std::string& ended_early) {
+    MissionRunResult r = recorder.result(clock.now_s(), log);
+    r.backends = {{"ugv.base", kServed}, {"link", kRelayed}};
+    r.link_counters = endpoint.session().counters().summary();
+    write_robot_record(o.out, robot_side(RunSide::kUgv, o.seed, ended_early), setup, r);
+  };
   MessageStream& stream = channel.stream();
-  for (;;) {
-    auto [j, m] = next_step(stream);
-    switch (step_of(j, kUgvSteps, "miniUGV")) {
-      case UgvStep::kStart:
-        base.emplace(channel, "sim");
-        stream.send(R"({"op":"start_done"})");
-        break;
-      case UgvStep::kStep: {
-        clock.set(time_of(j));
-        for (const auto& d : link::unpack_datagrams(m.blob)) endpoint.session().receive(d);
-        const json& a = j.at("attitude_rad");
-        endpoint.set_attitude(a.at(0).get<double>(), a.at(1).get<double>());
-        const bool hold = endpoint.handle_requests();
-        MiniUgvMission* mission = endpoint.mission();
-        const bool set_down = j.value("set_down", false);
-        // The world steps a base whose controller is done or waits to be lifted no more.
-        const bool stopped =
-            set_down && mission && (mission->done() || mission->wants_retraction());
-        if (set_down && !stopped && !hold && mission && mission->state() != UgvMissionState::kIdle)
-          mission->tick();
-        stream.send(dump({{"op", "step_done"}, {"hold", hold}, {"stopped", stopped}}));
-        break;
-      }
-      case UgvStep::kReport:
-        clock.set(time_of(j));
-        endpoint.report();
-        stream.send(StreamMessage{R"({"op":"report_done"})",
-                                  link::pack_datagrams(endpoint.session().take_outgoing())});
-        break;
-      case UgvStep::kEnd: {
-        clock.set(time_of(j));
-        json deployments = json::array();
-        for (auto& mission : missions) {
-          if (!mission->done()) mission->stop("the mission ended");
-          std::printf("  miniUGV search: %s\n", std::string(to_string(mission->outcome())).c_str());
-          deployments.push_back(std::string(to_string(mission->outcome())));
+  recording_failures(
+      [&] {
+        for (;;) {
+          auto [j, m] = next_step(stream);
+          switch (step_of(j, kUgvSteps, "miniUGV")) {
+            case UgvStep::kStart:
+              base.emplace(channel, "sim");
+              stream.send(R"({"op":"start_done"})");
+              break;
+            case UgvStep::kStep: {
+              clock.set(time_of(j));
+              for (const auto& d : link::unpack_datagrams(m.blob)) endpoint.session().receive(d);
+              const json& a = j.at("attitude_rad");
+              endpoint.set_attitude(a.at(0).get<double>(), a.at(1).get<double>());
+              const bool hold = endpoint.handle_requests();
+              MiniUgvMission* mission = endpoint.mission();
+              const bool set_down = j.value("set_down", false);
+              // The world steps a base whose controller is done or waits to be lifted no more.
+              const bool stopped =
+                  set_down && mission && (mission->done() || mission->wants_retraction());
+              if (set_down && !stopped && !hold && mission &&
+                  mission->state() != UgvMissionState::kIdle)
+                mission->tick();
+              recorder.after_tick(clock.now_s());
+              stream.send(dump({{"op", "step_done"}, {"hold", hold}, {"stopped", stopped}}));
+              break;
+            }
+            case UgvStep::kReport:
+              clock.set(time_of(j));
+              endpoint.report();
+              stream.send(StreamMessage{R"({"op":"report_done"})",
+                                        link::pack_datagrams(endpoint.session().take_outgoing())});
+              break;
+            case UgvStep::kEnd: {
+              clock.set(time_of(j));
+              json deployments = json::array();
+              for (auto& mission : missions) {
+                if (!mission->done()) mission->stop("the mission ended");
+                std::printf("  miniUGV search: %s\n",
+                            std::string(to_string(mission->outcome())).c_str());
+                deployments.push_back(std::string(to_string(mission->outcome())));
+              }
+              std::printf("link: miniUGV end: %s\n",
+                          endpoint.session().counters().summary().c_str());
+              std::fflush(stdout);
+              stream.send(dump({{"op", "end_done"}, {"searches", deployments}}));
+              write_record("");
+              return;
+            }
+          }
         }
-        std::printf("link: miniUGV end: %s\n", endpoint.session().counters().summary().c_str());
-        std::fflush(stdout);
-        stream.send(dump({{"op", "end_done"}, {"searches", deployments}}));
-        return;
-      }
-    }
-  }
+      },
+      write_record);
 }
 
 }  // namespace ferret

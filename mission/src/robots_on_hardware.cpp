@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <octomap/OcTree.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "ferret/link/udp_link.hpp"
 #include "ferret/mission/mission_assembly.hpp"
 #include "ferret/mission/robot_loop.hpp"
+#include "ferret/mission/robot_records.hpp"
 #include "ferret/sim/sensor_sim.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/tether_model/dynamixel_bus.hpp"
@@ -150,6 +152,7 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   TransitionLog log;
   print_transitions(log, o.quiet);
   std::vector<std::unique_ptr<MiniUgvMission>> missions;
+  UgvRunRecorder recorder;
   // A search request: the mission from where the robot stands, which is where the winch
   // set it down: the request's entry E, heading into the space. Its map is the window
   // of the settings around E at the world's resolution (nothing of the space is known).
@@ -162,6 +165,7 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
         derive_seed(o.seed, {static_cast<std::uint64_t>(missions.size() + 1)});
     missions.push_back(
         MissionAssembly::ugv_mission(settings, base, clock, map, seed, std::nullopt, &log));
+    recorder.started(clock.now_s(), *missions.back());
     if (!o.quiet)
       std::fprintf(stderr,
                    "ugv: search %zu from (%.2f, %.2f) heading %.0f deg, a %.1f x %.1f m map\n",
@@ -181,11 +185,15 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
     if (!hold && mission && mission->state() != UgvMissionState::kIdle && !mission->done() &&
         !mission->wants_retraction())
       mission->tick();
+    recorder.after_tick(clock.now_s());
     endpoint.report();
     send_outgoing(udp, endpoint.session());
     return true;
   });
   base.command_velocity(0.0, 0.0);
+  // The miniUGV runs until stopped: a search it had to cut short is what ended early.
+  const bool cut_short =
+      std::any_of(missions.begin(), missions.end(), [](const auto& m) { return !m->done(); });
   for (auto& mission : missions)
     if (!mission->done()) mission->stop("the process ended (" + loop.why_stopped + ")");
 
@@ -197,6 +205,14 @@ void run_ugv_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
               endpoint.session().counters().summary().c_str(), loop.summary(kUgvPeriodS).c_str());
   if (hw_base) std::printf("base: %s\n", hw_base->diagnosis().c_str());
   std::fflush(stdout);
+  MissionRunResult r = recorder.result(clock.now_s(), log);
+  r.backends = {{"ugv.base", setup.backends.ugv_base.simulated() ? "sim" : "hw"}, {"link", "udp"}};
+  r.link_counters = endpoint.session().counters().summary();
+  write_robot_record(
+      o.out,
+      robot_side(RunSide::kUgv, o.seed,
+                 cut_short ? "the process ended (" + loop.why_stopped + ") in a search" : ""),
+      setup, r);
 }
 
 // --- UAV -----------------------------------------------------------------------------
@@ -217,6 +233,7 @@ void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
 
   const std::unique_ptr<FlightBackend> vehicle =
       make_flight_backend(setup.backends.flight_controller, {}, kAdapterReplyTimeoutMs);
+  UavRunRecorder recorder(vehicle->flight(), *winch);
   if (!o.quiet)
     std::fprintf(stderr, "uav: flight adapter '%s' at %s\n", vehicle->peer_name().c_str(),
                  adapter_address.c_str());
@@ -224,17 +241,36 @@ void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   LinkedUgv ugv(clock);
   TransitionLog log;
   print_transitions(log, o.quiet);
-  const std::unique_ptr<UavMission> uav =
-      assembly.uav_mission({vehicle->flight(), vehicle->cameras(), *winch, ugv}, clock, &log);
+  const std::unique_ptr<UavMission> uav = assembly.uav_mission(
+      {recorder.flight(), vehicle->cameras(), recorder.winch(), ugv}, clock, &log);
   UavMission& mission = *uav;
-  mission.start();
-  const PeriodicLoopResult loop = run_periodic(kUavPeriodS, o.duration_s, [&] {
-    receive_waiting(udp, ugv.session());
-    mission.tick();
-    send_outgoing(udp, ugv.session());
-    return !mission.done();
-  });
-  if (!mission.done()) mission.stop("the process ended (" + loop.why_stopped + ")");
+  const auto write_record = [&](const std::string& ended_early) {
+    MissionRunResult r = recorder.result(&mission, clock.now_s(), log);
+    r.backends = {{"uav.flight_controller", vehicle->flight().backend()},
+                  {"uav.cameras", "hw"},
+                  {"uav.winch", "hw"},
+                  {"link", "udp"}};
+    r.link_counters = ugv.session().counters().summary();
+    write_robot_record(o.out, robot_side(RunSide::kUav, o.seed, ended_early), setup, r);
+  };
+  PeriodicLoopResult loop;
+  recording_failures(
+      [&] {
+        mission.start();
+        loop = run_periodic(kUavPeriodS, o.duration_s, [&] {
+          receive_waiting(udp, ugv.session());
+          mission.tick();
+          recorder.after_tick(clock.now_s(), mission);
+          send_outgoing(udp, ugv.session());
+          return !mission.done();
+        });
+      },
+      write_record);
+  std::string ended_early;
+  if (!mission.done()) {
+    ended_early = "the process ended (" + loop.why_stopped + ")";
+    mission.stop(ended_early);
+  }
   winch->command_velocity_mps(0.0);  // hold the tether's length; the servo keeps its torque
   // Tell the miniUGV, once, if a search was under way (the link is lossy: best effort).
   send_outgoing(udp, ugv.session());
@@ -243,6 +279,7 @@ void run_uav_on_hardware(const MissionSetup& setup, const RobotOnHardwareOptions
   std::printf("link: UAV end: %s\nloop: %s\n", ugv.session().counters().summary().c_str(),
               loop.summary(kUavPeriodS).c_str());
   std::fflush(stdout);
+  write_record(ended_early);
 }
 
 }  // namespace ferret

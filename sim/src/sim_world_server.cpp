@@ -60,18 +60,22 @@ std::pair<json, std::vector<std::uint8_t>> exchange(MessageStream& robot, const 
                                                     const std::vector<std::uint8_t>& blob,
                                                     int timeout_ms, Serve&& serve) {
   const std::string done = message.at("op").get<std::string>() + "_done";
-  robot.send(StreamMessage{dump(message), blob});
-  for (;;) {
-    std::optional<StreamMessage> m = robot.receive(timeout_ms);
-    if (!m)
-      throw StreamError("the " + role + " process did not answer '" +
-                        done.substr(0, done.size() - 5) + "' for " +
-                        std::to_string(timeout_ms / 1000) + " s");
-    json j = json::parse(m->header, nullptr, false);
-    if (j.is_object() && j.contains("op") && j["op"] == done)
-      return {std::move(j), std::move(m->blob)};
-    robot.send(serve(*m));
+  std::optional<StreamMessage> m;
+  try {  // the stream's errors name the address; the run's, which robot that was
+    robot.send(StreamMessage{dump(message), blob});
+    for (;;) {
+      m = robot.receive(timeout_ms);
+      if (!m) break;
+      json j = json::parse(m->header, nullptr, false);
+      if (j.is_object() && j.contains("op") && j["op"] == done)
+        return {std::move(j), std::move(m->blob)};
+      robot.send(serve(*m));
+    }
+  } catch (const StreamError& e) {
+    throw StreamError("lost the " + role + " process: " + e.what());
   }
+  throw StreamError("the " + role + " process did not answer '" + done.substr(0, done.size() - 5) +
+                    "' for " + std::to_string(timeout_ms / 1000) + " s");
 }
 
 }  // namespace
@@ -138,6 +142,17 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
   const auto serve_uav = [&](const StreamMessage& m) { return flight_service.handle(m); };
   const auto serve_ugv = [&](const StreamMessage& m) { return base_service.handle(m); };
 
+  // A robot lost (StreamError) ends the run where it is; the world's truth up to then is
+  // still reported (SimWorldReport::lost_peer).
+  std::string lost_peer;
+  const auto guarded = [&](const auto& exchanges) {
+    if (!lost_peer.empty()) return;
+    try {
+      exchanges();
+    } catch (const StreamError& e) {
+      lost_peer = e.what();
+    }
+  };
   std::string uav_state;
   bool uav_done = false, ugv_stopped = false;
   const auto uav_said = [&](const json& j) {
@@ -146,17 +161,21 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
     uav_state = j["state"].get<std::string>();
     uav_done = flag_at(j, "done");
   };
-  uav_said(exchange(uav, "UAV", {{"op", "start"}}, {}, reply_timeout_ms, serve_uav).first);
-  (void)exchange(ugv, "miniUGV", {{"op", "start"}}, {}, reply_timeout_ms, serve_ugv);
+  guarded([&] {
+    uav_said(exchange(uav, "UAV", {{"op", "start"}}, {}, reply_timeout_ms, serve_uav).first);
+    (void)exchange(ugv, "miniUGV", {{"op", "start"}}, {}, reply_timeout_ms, serve_ugv);
+  });
 
   internal::MissionControllers controllers;
   controllers.uav_tick = [&] {
-    uav_said(exchange(uav, "UAV",
-                      {{"op", "tick"}, {"t_s", sim.clock().now_s()}, {"lonely", lonely()}}, {},
-                      reply_timeout_ms, serve_uav)
-                 .first);
+    guarded([&] {
+      uav_said(exchange(uav, "UAV",
+                        {{"op", "tick"}, {"t_s", sim.clock().now_s()}, {"lonely", lonely()}}, {},
+                        reply_timeout_ms, serve_uav)
+                   .first);
+    });
   };
-  controllers.uav_done = [&] { return uav_done; };
+  controllers.uav_done = [&] { return uav_done || !lost_peer.empty(); };
   controllers.uav_state = [&] { return uav_state; };
   controllers.ugv_tick = [] {};
   controllers.ugv_stopped = [&] { return ugv_stopped; };
@@ -171,26 +190,35 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
         {"set_down", set_down},
         {"attitude_rad",
          set_down ? json::array({0.0, 0.0}) : json::array({hanging.roll_rad, hanging.pitch_rad})}};
-    const auto [r, blob] = exchange(ugv, "miniUGV", step, link::pack_datagrams(up.deliver()),
-                                    reply_timeout_ms, serve_ugv);
-    ugv_stopped = flag_at(r, "stopped");
-    return flag_at(r, "hold");
+    bool hold = false;
+    guarded([&] {
+      const auto [r, blob] = exchange(ugv, "miniUGV", step, link::pack_datagrams(up.deliver()),
+                                      reply_timeout_ms, serve_ugv);
+      ugv_stopped = flag_at(r, "stopped");
+      hold = flag_at(r, "hold");
+    });
+    return hold;
   };
   controllers.link_send = [&] {
-    const auto [r, sent] =
-        exchange(ugv, "miniUGV", {{"op", "report"}, {"t_s", sim.clock().now_s()}}, {},
-                 reply_timeout_ms, serve_ugv);
-    down.send(link::unpack_datagrams(sent));
-    const auto [r2, reply] =
-        exchange(uav, "UAV", {{"op", "link"}, {"t_s", sim.clock().now_s()}},
-                 link::pack_datagrams(down.deliver()), reply_timeout_ms, serve_uav);
-    up.send(link::unpack_datagrams(reply));
+    guarded([&] {
+      const auto [r, sent] =
+          exchange(ugv, "miniUGV", {{"op", "report"}, {"t_s", sim.clock().now_s()}}, {},
+                   reply_timeout_ms, serve_ugv);
+      down.send(link::unpack_datagrams(sent));
+      const auto [r2, reply] =
+          exchange(uav, "UAV", {{"op", "link"}, {"t_s", sim.clock().now_s()}},
+                   link::pack_datagrams(down.deliver()), reply_timeout_ms, serve_uav);
+      up.send(link::unpack_datagrams(reply));
+    });
   };
   sim.run(controllers, {});
   const json end{{"op", "end"}, {"t_s", sim.clock().now_s()}};
   SimWorldReport report;
-  report.uav_summary = dump(exchange(uav, "UAV", end, {}, reply_timeout_ms, serve_uav).first);
-  report.ugv_summary = dump(exchange(ugv, "miniUGV", end, {}, reply_timeout_ms, serve_ugv).first);
+  guarded([&] {
+    report.uav_summary = dump(exchange(uav, "UAV", end, {}, reply_timeout_ms, serve_uav).first);
+    report.ugv_summary = dump(exchange(ugv, "miniUGV", end, {}, reply_timeout_ms, serve_ugv).first);
+  });
+  report.lost_peer = lost_peer;
   spaces.close();
   report.truth = std::move(sim.result());
   report.truth.deployments = std::move(spaces.deployments());

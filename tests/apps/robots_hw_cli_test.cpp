@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -88,7 +89,8 @@ TEST(RobotsOnHardware, TheMiniUgvSearchesWhereTheUavSetItDownAndHoldsWhileTheUav
   std::thread process([&] {
     result = run_cli("ugv --mission " + mission.string() +
                      " --seed 3 --duration-s 12 --link-bind 127.0.0.1:" + std::to_string(ugv_port) +
-                     " --link-peer " + uav.udp.local_address().to_string());
+                     " --link-peer " + uav.udp.local_address().to_string() + " -o " +
+                     (dir.path() / "record").string());
   });
   // The robot is up when its telemetry arrives (it reports from the start: the UAV's
   // touchdown check reads its attitude while it is lowered).
@@ -132,6 +134,18 @@ TEST(RobotsOnHardware, TheMiniUgvSearchesWhereTheUavSetItDownAndHoldsWhileTheUav
   EXPECT_GE(std::stoi(result.out.substr(holds_at + 7)), 1) << result.out;
   EXPECT_NE(result.out.find("miniUGV search 1: aborted"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("stopped: duration"), std::string::npos) << result.out;
+  // Its record: the one search as its controller saw it, ended before the process did.
+  const auto record = nlohmann::json::parse(slurp(dir.path() / "record" / "report.json"));
+  EXPECT_EQ(record.at("side"), "ugv");
+  EXPECT_TRUE(record.at("ended_early").is_null()) << record.at("ended_early");
+  EXPECT_EQ(record.at("backends").at("ugv.base"), "hw");
+  ASSERT_EQ(record.at("ugv_deployments").size(), 1u);
+  const auto& search = record.at("ugv_deployments").at(0);
+  EXPECT_EQ(search.at("outcome"), "aborted");
+  EXPECT_GT(search.at("time_s").get<double>(), 0.0);
+  EXPECT_LT(search.at("deployed_s").get<double>() + search.at("time_s").get<double>(),
+            record.at("time_s").get<double>() + 0.1);
+  EXPECT_FALSE(record.contains("samples"));
 }
 
 TEST(RobotsOnHardware, TheUavTakesOffWithTheFlightAdapterAndTheWinchsServo) {
@@ -158,7 +172,7 @@ TEST(RobotsOnHardware, TheUavTakesOffWithTheFlightAdapterAndTheWinchsServo) {
       "127.0.0.1:0 "
       "--link-peer 127.0.0.1:" +
       std::to_string(free_udp_port()) +
-      " >\"$D/uav.out\" 2>\"$D/uav.err\"; U=$?\n"
+      " -o \"$D/record\" >\"$D/uav.out\" 2>\"$D/uav.err\"; U=$?\n"
       "wait $FA; A=$?\n"
       "echo \"$U $A\" >\"$D/codes\"\n";
   write_file(dir, "run.sh", script);
@@ -176,6 +190,15 @@ TEST(RobotsOnHardware, TheUavTakesOffWithTheFlightAdapterAndTheWinchsServo) {
   // The winch was driven: torque on, and read at the control rate.
   EXPECT_EQ(servo.read_table(64, 1), 1u);
   EXPECT_GT(servo.requests(), 100);
+  // Its record: cut short by the duration, its own readings of its flight and winch.
+  const auto record = nlohmann::json::parse(slurp(dir.path() / "record" / "report.json"));
+  EXPECT_EQ(record.at("side"), "uav");
+  EXPECT_EQ(record.at("ended_early"), "the process ended (duration)");
+  EXPECT_EQ(record.at("backends").at("uav.winch"), "hw");
+  EXPECT_GT(record.at("summary").at("flown_m").get<double>(), 1.0);
+  EXPECT_GE(record.at("samples").size(), 10u);
+  EXPECT_FALSE(record.at("summary").contains("uav_collisions"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "record" / "mission.mcap"));
 }
 
 TEST(RobotsOnHardware, BadConfigurationExits2NamingTheField) {

@@ -7,22 +7,13 @@
 
 #include <string>
 
-#include "ferret/core/data_path.hpp"
 #include "ferret/core/error.hpp"
-#include "ferret/mission/mission_settings.hpp"
-#include "ferret/planning/mission_config.hpp"
-#include "ferret/sim/mission_run.hpp"
-#include "ferret/urdf/robot_description.hpp"
+#include "two_sites_mission.hpp"
 
 namespace ferret {
 namespace {
 
-struct Loaded {
-  PlanningWorld world = load_planning_world(data_path("worlds/two_sites.yaml"));
-  RobotDescription uav = load_robot_description(data_path("models/m100.urdf"), MissionConfig{});
-  RobotDescription ugv = load_robot_description(data_path("models/miniugv.urdf"), MissionConfig{});
-  MissionRunSettings settings = mission_settings_for(uav, ugv, MissionConfig{}, *world.spec);
-};
+using Loaded = test::TwoSitesMission;
 
 TEST(MissionAssembly, FillsTheUavOptionsFromTheWorld) {
   const Loaded l;

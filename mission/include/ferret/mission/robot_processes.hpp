@@ -3,7 +3,8 @@
 // the simulated world to a `ferret uav` and a `ferret ugv` process, which run their
 // mission controllers against it in lockstep (the client side of sim/sim_world_server.hpp's
 // protocol), or, with the mission YAML's backends hw, on the robots' own hardware
-// (robots_on_hardware.hpp). Each prints its summary on stdout.
+// (robots_on_hardware.hpp). Each prints its summary on stdout and, with --out, writes its
+// own record of the run (robot_records.hpp).
 
 #include <cstdint>
 #include <string>
@@ -26,10 +27,14 @@ struct RobotProcessOptions {
   std::string link_bind, link_peer;
   double duration_s = 0.0;
   bool sim_world_given = false;  ///< --sim-world on the command line
+  /// --out: the directory for the process's record of the run (mission_outputs.hpp's
+  /// RunSide); empty: the summary only.
+  std::string out;
 };
 
 /// The world: waits for both robots' hello, runs the mission with them, prints what the
-/// world saw and the robots' summaries. Throws link::StreamError when a robot goes away.
+/// world saw and the robots' summaries. Throws link::StreamError when a robot goes away
+/// (after writing its record of the run so far).
 void run_sim_world_process(const RobotProcessOptions& o);
 /// The UAV's mission controller, against sim-world or on its hardware.
 void run_uav_process(const RobotProcessOptions& o);

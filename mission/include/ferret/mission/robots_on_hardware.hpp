@@ -21,6 +21,7 @@ struct RobotOnHardwareOptions {
   double duration_s = 0.0;   ///< stop after this long (0: when done or interrupted)
   std::uint64_t seed = 1;    ///< the planners' and searches' tie-breaks
   bool quiet = false;
+  std::string out;  ///< the directory for the robot's record of the run (empty: none)
 };
 
 /// The miniUGV: HwUgvBase, a MiniUgvMission for each search the UAV asks for (from

@@ -38,13 +38,17 @@ inline constexpr int kSimWorldProtocol = 1;
 struct SimWorldReport {
   MissionRunResult truth;  ///< what the world saw (collisions, tether, objects dropped, ...)
   std::string uav_summary, ugv_summary;  ///< the robots' own end-of-mission summaries (JSON)
+  /// Why the run ended when a robot process was lost (the link::StreamError's message;
+  /// the truth then runs up to that step and a summary it did not send is empty);
+  /// empty when the run ended.
+  std::string lost_peer;
 };
 
 /// Runs the mission against the two robot processes. The streams are connected and each
 /// has said its hello (`robot_hello` with its role, answered by the caller). The link's
-/// faults come from settings.link_channel (none: a perfect network). Throws
-/// link::StreamError when a robot process goes away or stops answering for
-/// `reply_timeout_ms`.
+/// faults come from settings.link_channel (none: a perfect network). A robot process that
+/// goes away or stops answering for `reply_timeout_ms` ends the run there, with
+/// SimWorldReport::lost_peer saying so.
 [[nodiscard]] SimWorldReport run_sim_world(const PlanningWorld& world,
                                            const RobotDescription& uav_robot,
                                            const MissionRunSettings& settings, std::uint64_t seed,
