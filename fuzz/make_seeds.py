@@ -129,6 +129,10 @@ def mission_seeds():
         "uav: {flight_controller: {backend: hw, address: 'host:99999'}, winch: }\n")
     put(t, "uav_marker.yaml", "uav:\n  marker: {family: apriltag, dictionary: tag25h9, size_m: 0.2}\n"
         "  survey_frames: 8\n  survey_frames_max: 32\n")
+    put(t, "ugv_mission.yaml", "ugv:\n  base: {backend: sim, stall_time_s: 0.5}\n"
+        "  explore_timeout_s: 240\n  grasp_attempts: 2\n  tether_aware: false\n"
+        "  battery_reserve_fraction: 0.1\n"
+        "  explore: {max_revisits: 1, decision_period_s: 0.2, tether_margin_m: 0.4}\n")
 
 
 def world_seeds():

@@ -1,5 +1,5 @@
 // Mission YAML (config/mission.yaml's format) -> MissionDocument: MissionConfig, the
-// robots' backends and the UAV mission's keys.
+// robots' backends and the UAV and miniUGV missions' keys.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -8,6 +8,7 @@
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/mission/mission_document.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
+#include "ferret/ugv/ugv_mission_config.hpp"
 #include "fuzz_support.hpp"
 
 namespace {
@@ -18,18 +19,27 @@ std::string uav_mission_dump(const ferret::UavMissionOptions& o) {
   e << YAML::EndMap;
   return e.c_str();
 }
+std::string ugv_mission_dump(const ferret::UgvMissionOptions& o) {
+  YAML::Emitter e;
+  e << YAML::BeginMap;
+  ferret::emit_ugv_mission_options(e, o);
+  e << YAML::EndMap;
+  return e.c_str();
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = ferret::fuzz::ScratchDir::instance().write("mission.yaml", data, size);
   std::optional<ferret::RobotBackends> backends;
   ferret::UavMissionOptions uav;
+  ferret::UgvMissionOptions ugv;
   try {
     const ferret::MissionDocument document = ferret::load_mission_document(path);
     // What `ferret config --dump` does next with a config that loaded.
     (void)ferret::mission_config_to_yaml(document.config);
     backends = document.backends;
     uav = document.uav_mission;
+    ugv = document.ugv_mission;
     // A file without a uav section leaves the options unchecked; `ferret mission` checks
     // them before it flies (l_0 = 0 is a tether the miniUGV's commands take, the UAV's
     // hover release not: regression winch_at_the_entry_no_uav_section.yaml).
@@ -48,5 +58,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   (void)ferret::read_uav_mission_options(ferret::yaml::load_string(uav_dump, "dump"), "dump",
                                          uav_again);
   if (uav_mission_dump(uav_again) != uav_dump) __builtin_trap();
+  const std::string ugv_dump = ugv_mission_dump(ugv);
+  ferret::UgvMissionOptions ugv_again;
+  (void)ferret::read_ugv_mission_options(ferret::yaml::load_string(ugv_dump, "dump"), "dump",
+                                         ugv_again);
+  if (ugv_mission_dump(ugv_again) != ugv_dump) __builtin_trap();
   return 0;
 }

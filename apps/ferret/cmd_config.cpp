@@ -18,6 +18,7 @@
 #include "ferret/perception/camera_model.hpp"
 #include "ferret/perception/camera_summary.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
+#include "ferret/ugv/ugv_mission_config.hpp"
 #include "ferret/urdf/robot_description.hpp"
 
 namespace ferret::cli {
@@ -101,6 +102,21 @@ void run(const Options& o) {
   emit_uav_mission_options(uav_yaml, document.uav_mission, search_area_given);
   uav_yaml << YAML::EndMap;
   text += "uav_mission:\n" + indent(std::string(uav_yaml.c_str()) + "\n");
+  // The miniUGV's: every key with its value; which of them the file set (the rest are
+  // the defaults), as a comment so that the section reads back as a `ugv` section.
+  std::string given;
+  for (const auto& key : document.ugv_mission_given) given += (given.empty() ? "" : ", ") + key;
+  text +=
+      "# the miniUGV mission's settings (the mission YAML's ugv section takes these keys, "
+      "the search's under explore); from " +
+      (given.empty() ? std::string("the defaults")
+                     : "mission:" + mission_source + ": " + given + "; the rest the defaults") +
+      "\n";
+  YAML::Emitter ugv_yaml;
+  ugv_yaml << YAML::BeginMap;
+  emit_ugv_mission_options(ugv_yaml, document.ugv_mission);
+  ugv_yaml << YAML::EndMap;
+  text += "ugv_mission:\n" + indent(std::string(ugv_yaml.c_str()) + "\n");
   if (to_stdout) {
     std::cout << text;
   } else {

@@ -21,14 +21,11 @@ UgvSensorGeometry sensor_geometry(const SensorOptions& s) {
 ExploreOptions explore_options(const ExplorationSettings& settings, std::uint64_t seed,
                                const Eigen::Vector2d& object_W) {
   ExploreOptions o;
+  o.set_tuning(settings);
   o.method = settings.method;
   o.sensors = sensor_geometry(settings.sensors);
   o.robot = settings.robot;
   o.mission = settings.mission;
-  o.decision_period_s = settings.decision_period_s;
-  o.max_revisits = settings.max_revisits;
-  o.cdos_candidates_global = settings.cdos_candidates_global;
-  o.cdos_closest_approach = settings.cdos_closest_approach;
   o.seed = derive_seed(seed, {stable_hash("policy")});  // the OMPL frontier policies
   o.oracle_object_W = object_W;  // the controller hands it only to a policy that asks
   o.record_decisions = settings.record;

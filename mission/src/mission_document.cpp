@@ -6,6 +6,7 @@
 #include "ferret/sim/fault_schedule.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
 #include "ferret/ugv/mini_ugv_mission_options.hpp"
+#include "ferret/ugv/ugv_mission_config.hpp"
 
 namespace ferret {
 
@@ -19,6 +20,8 @@ MissionDocument mission_document_from_yaml(const YAML::Node& root, const std::st
   if (root.IsMap() && root["uav"]) d.uav_section = root["uav"];
   d.uav_mission.tether = d.config.tether;
   d.uav_mission_given = read_uav_mission_options(d.uav_section, source, d.uav_mission);
+  if (root.IsMap() && root["ugv"]) d.ugv_section = root["ugv"];
+  d.ugv_mission_given = read_ugv_mission_options(d.ugv_section, source, d.ugv_mission);
   if (root.IsMap() && root["faults"])
     d.faults = fault_plan_from_yaml(root["faults"], source, mission_fault_states());
   check_injectable(d.faults, source);
@@ -58,6 +61,13 @@ MissionDocument load_mission_document(const std::filesystem::path& path) {
 
 void MissionDocument::apply_uav_mission(UavMissionOptions& options) const {
   (void)read_uav_mission_options(uav_section, source, options);
+}
+
+void MissionDocument::apply_ugv_mission(UgvMissionRunSettings& settings) const {
+  // The file's keys as read once above; what the run filled (the line's catch, the stall
+  // time, the planner) stays.
+  assign_ugv_mission_keys(settings.ugv, ugv_mission);
+  settings.exploration.set_tuning(ugv_mission.explore);
 }
 
 }  // namespace ferret

@@ -98,6 +98,9 @@ MissionSetup load_mission_setup(const MissionSetupOptions& o) {
   // Checked here too, so that a value the miniUGV's commands accept but the UAV's mission
   // does not (l_0 = 0: no hover release) is named in the mission file.
   settings.uav.validate(o.mission.empty() ? "(built-in defaults)" : o.mission);
+  // The miniUGV mission's keys of the mission YAML (timeouts, grasp, the search's tuning)
+  // over the defaults; what the robot and the winch set stays.
+  document.apply_ugv_mission(settings.ugv);
   settings.ugv.ugv.explore.planner = planner;
   // How long the base may stand still when told to drive is the base's (ugv.base).
   settings.ugv.ugv.bump_time_s = s.backends.ugv_base.stall_time_s;

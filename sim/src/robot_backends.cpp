@@ -5,6 +5,7 @@
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/uav/uav_mission_config.hpp"
+#include "ferret/ugv/ugv_mission_config.hpp"
 
 namespace ferret {
 
@@ -29,7 +30,8 @@ RobotBackends robot_backends_from_yaml(const YAML::Node& root, const std::string
   if (!root.IsDefined() || root.IsNull()) return b;
   const yaml::MapReader doc(root, source);
   if (const auto ugv = doc.optional_child("ugv")) {
-    ugv->allow_only({"base"});
+    // The section also holds the miniUGV mission's keys (ugv/ugv_mission_config.hpp).
+    ugv->allow_only(ugv_section_keys());
     b.ugv_base = ugv::ugv_base_config_from_yaml(ugv->node()["base"], source);
   } else if (doc.given_empty("ugv")) {
     doc.fail("ugv", "a mapping with the miniUGV's backends (base)", "a key without a value");

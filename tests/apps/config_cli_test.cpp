@@ -144,6 +144,30 @@ TEST(ConfigCli, TheUavMissionSectionShowsTheFilesValuesAndTheDefaults) {
   EXPECT_TRUE(contains(bad.err, "uav.passes")) << bad.err;
 }
 
+TEST(ConfigCli, TheUgvMissionSectionShowsTheFilesValuesWhereTheyCameFromAndReadsBack) {
+  TempDir dir;
+  write_text(dir / "mission.yaml",
+             "ugv:\n  base: {backend: sim}\n  explore_timeout_s: 250\n  explore: {max_revisits: "
+             "1}\n");
+  const auto r = run_cli("config --dump --config '" + dir / "mission.yaml" + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string ugv = section(r.out, "ugv_mission:");
+  EXPECT_TRUE(contains(ugv, "explore_timeout_s: 250\n")) << r.out;
+  EXPECT_TRUE(contains(ugv, "max_revisits: 1\n")) << r.out;
+  EXPECT_TRUE(contains(ugv, "grasp_attempts: 3\n")) << r.out;  // a default
+  EXPECT_TRUE(contains(r.out, "explore.max_revisits, explore_timeout_s; the rest the defaults"))
+      << r.out;
+  // The section is a mission YAML's `ugv` section: it reads back, and dumps the same.
+  write_text(dir / "again.yaml", "ugv:\n" + ugv.substr(ugv.find('\n') + 1));
+  const auto again = run_cli("config --dump --config '" + dir / "again.yaml" + "'");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(section(again.out, "ugv_mission:"), ugv);
+  write_text(dir / "bad.yaml", "ugv:\n  grasp_attempts: 0\n");
+  const auto bad = run_cli("config --dump --config '" + dir / "bad.yaml" + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(contains(bad.err, "ugv.grasp_attempts")) << bad.err;
+}
+
 TEST(ConfigCli, OutputFileIsWrittenWholeOrNotAtAll) {
   TempDir dir;
   const auto ok = run_cli("config --dump -o '" + dir / "effective.yaml" + "'");

@@ -6,6 +6,8 @@
 //  - the robots' backends (ugv.base, uav.winch, uav.flight_controller): RobotBackends,
 //    sim/robot_backends.hpp;
 //  - the UAV mission's keys in `uav`: uav/uav_mission_config.hpp;
+//  - the miniUGV mission's keys in `ugv` (its search's under `ugv.explore`):
+//    ugv/ugv_mission_config.hpp;
 //  - what a simulated run breaks on purpose, `faults`: sim/fault_plan.hpp.
 // Commands load it once and take each section from here.
 
@@ -18,7 +20,9 @@
 #include "ferret/planning/mission_config.hpp"
 #include "ferret/sim/fault_plan.hpp"
 #include "ferret/sim/robot_backends.hpp"
+#include "ferret/sim/ugv_mission_run.hpp"
 #include "ferret/uav/uav_mission.hpp"
+#include "ferret/ugv/mini_ugv_mission_options.hpp"
 
 namespace ferret {
 
@@ -38,13 +42,27 @@ struct MissionDocument {
   /// The faults a simulated run injects (docs/safety.md); empty without a `faults` key.
   FaultPlan faults;
 
-  /// The document's `uav` section (undefined without one) and the file it came from.
+  /// The miniUGV mission's keys of the file over the defaults, and the keys the file set
+  /// (its search's as `explore.KEY`): what `ferret config --dump` shows.
+  UgvMissionOptions ugv_mission;
+  std::set<std::string> ugv_mission_given;
+
+  /// The miniUGV mission's keys of the file into a simulated deployment's settings: the
+  /// mission's into `settings.ugv`, the search's tuning into `settings.exploration` (the
+  /// controller's search takes it from there, explore_options). What the file leaves out
+  /// keeps its value (what the robot and the winch set: the line's catch, the stall time).
+  void apply_ugv_mission(UgvMissionRunSettings& settings) const;
+
+  /// The document's `uav` and `ugv` sections (undefined without one) and the file it
+  /// came from.
   YAML::Node uav_section;
+  YAML::Node ugv_section;
   std::string source;
 };
 
 /// Reads every section of a parsed mission YAML (`root`; an empty document means all
-/// defaults): the common sections first, then the backends, then the UAV mission's keys.
+/// defaults): the common sections first, then the backends, then the UAV mission's keys,
+/// then the miniUGV mission's.
 /// Throws InputError naming `source` and the field, as each section's reader does.
 [[nodiscard]] MissionDocument mission_document_from_yaml(const YAML::Node& root,
                                                          const std::string& source);

@@ -10,21 +10,20 @@
 #include "ferret/mapping/occupancy_map_2d.hpp"
 #include "ferret/planning/mission_config.hpp"
 #include "ferret/sim/hidden_space_sim.hpp"
+#include "ferret/ugv/explore_options.hpp"
 #include "ferret/ugv/path_follower.hpp"
 
 namespace ferret {
 
-struct ExplorationSettings {
+/// The search's tuning (decision period, revisits, the cdos options, the tether's margins)
+/// is the controller's own (ExploreTuning), embedded, not copied.
+struct ExplorationSettings : ExploreTuning {
   std::string method = "cdos";
   SensorOptions sensors;
   RobotOptions robot;
   MissionConfig mission;
   double time_limit_s = 300.0;
-  double decision_period_s = 0.1;
-  int max_revisits = 3;  ///< revisits of the strongest evidence once exploration ends
-  bool cdos_candidates_global = false;  ///< cdos option: score F_g, not F_v
-  bool cdos_closest_approach = false;   ///< cdos option: d_{t+1} at the closest approach
-  bool record = false;                  ///< keep the trajectory, decisions and final maps
+  bool record = false;  ///< keep the trajectory, decisions and final maps
   /// Time each step that ran a decision cycle (EpisodeResult::decision_cycle_s): wall
   /// time, for benchmarks only; it changes nothing the search does.
   bool time_decision_cycles = false;
