@@ -397,9 +397,10 @@ void MiniUgvMission::tick() {
       options_.explore.mission.tether.entry_offset_m + explore_->tether_length_m();
   const double doubt_m = explore_->reach_length_m() - explore_->tether_length_m();
   line_speed_mps_ =
-      options_.explore.tether_budget_m && doubt_m > options_.line_catch.stretch_m(line_m)
-          ? options_.line_catch.speed_mps(line_m)
-          : std::numeric_limits<double>::infinity();
+      std::min(link_speed_mps_,
+               options_.explore.tether_budget_m && doubt_m > options_.line_catch.stretch_m(line_m)
+                   ? options_.line_catch.speed_mps(line_m)
+                   : std::numeric_limits<double>::infinity());
   explore_->set_speed_limit_mps(line_speed_mps_);
   follower_.set_speed_limit_mps(line_speed_mps_);
   std::optional<CameraFrame> frame;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -97,13 +98,43 @@ bool UgvLinkEndpoint::handle_requests() {
   if (hold && !holding_) ++holds_;
   holding_ = hold;
   if (holding_ && base_) base_->command_velocity(0.0, 0.0);
+  if (mission_) mission_->set_link_speed_limit_mps(winch_view_speed_limit_mps());
   return holding_;
+}
+
+double UgvLinkEndpoint::winch_view_age_s() const {
+  const auto& heartbeat = session_.heartbeat();
+  if (!heartbeat || !(heartbeat->ugv_telemetry_t_s > 0.0))
+    return std::numeric_limits<double>::infinity();
+  return std::max(0.0, clock_.now_s() - heartbeat->ugv_telemetry_t_s);
+}
+
+double UgvLinkEndpoint::reported_speed_mps(double t_s) const {
+  for (const auto& [t, v] : reported_)
+    if (t == t_s) return v;  // the echo is the very number sent
+  return 0.0;
+}
+
+double UgvLinkEndpoint::winch_view_speed_limit_mps() const {
+  const double fresh_s = options_.winch_view_fresh_s, stale_s = options_.winch_view_stale_s;
+  if (!(fresh_s > 0.0)) return std::numeric_limits<double>::infinity();
+  const double age_s = winch_view_age_s();
+  if (!(age_s < stale_s)) return 0.0;
+  const double known_mps = reported_speed_mps(session_.heartbeat()->ugv_telemetry_t_s);
+  if (age_s <= fresh_s) return known_mps + options_.winch_acceleration_mps2 * (fresh_s - age_s);
+  return known_mps * (stale_s - age_s) / (stale_s - fresh_s);
 }
 
 void UgvLinkEndpoint::report() {
   const double now = clock_.now_s();
   if (now + 1e-9 < next_telemetry_s_) return;
-  session_.send_telemetry(telemetry());
+  const link::UgvTelemetry t = telemetry();
+  session_.send_telemetry(t);
+  reported_.emplace_back(t.t_s, std::hypot(t.vx_mps, t.vy_mps));
+  // Echoes older than the stale limit stop the robot anyway.
+  while (!reported_.empty() &&
+         reported_.front().first < t.t_s - 2.0 * options_.winch_view_stale_s - 1.0)
+    reported_.pop_front();
   next_telemetry_s_ = now + options_.telemetry_period_s;
 }
 

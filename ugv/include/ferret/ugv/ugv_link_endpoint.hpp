@@ -5,6 +5,7 @@
 // simulated mission (datagrams through a LossyChannel) and the robot (a UdpLink).
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 
 #include "ferret/core/clock.hpp"
@@ -18,6 +19,15 @@ class UgvBase;
 struct UgvLinkEndpointOptions {
   link::UgvLinkOptions link;         ///< the watchdog's timeout, the reorder window
   double telemetry_period_s = 0.05;  ///< 20 Hz, the control rate (docs/link.md)
+  /// How fresh the UAV's view of the robot must be for it to drive as it likes: the
+  /// UAV's heartbeats echo the newest telemetry it accepted, and the winch follows only
+  /// what it heard. Up to `winch_view_fresh_s` old the robot may speed up beyond the
+  /// speed the UAV knows by what the spool can catch up in the rest of that time; older,
+  /// it keeps below that known speed, down to standing at `winch_view_stale_s` (the
+  /// winch holds its length after 0.3 s without telemetry). 0 turns the limit off.
+  double winch_view_fresh_s = 0.1;
+  double winch_view_stale_s = 0.35;
+  double winch_acceleration_mps2 = 2.0;  ///< the spool's (WinchLimits)
 };
 
 class UgvLinkEndpoint {
@@ -69,12 +79,18 @@ class UgvLinkEndpoint {
   [[nodiscard]] std::uint64_t requests_without_mission() const { return without_mission_; }
   /// Times the watchdog made the robot hold.
   [[nodiscard]] std::uint64_t holds() const { return holds_; }
+  /// How old the UAV's newest view of the robot is (infinite: it has not heard it), and
+  /// the top speed that allows (winch_view_fresh_s).
+  [[nodiscard]] double winch_view_age_s() const;
+  [[nodiscard]] double winch_view_speed_limit_mps() const;
 
   [[nodiscard]] link::UgvLinkSession& session() { return session_; }
   [[nodiscard]] const link::UgvLinkSession& session() const { return session_; }
 
  private:
   void act_on(const link::UavRequest& request);
+  /// The speed the robot reported in its telemetry stamped `t_s` (0 when forgotten).
+  [[nodiscard]] double reported_speed_mps(double t_s) const;
 
   const Clock& clock_;
   StartSearch start_search_;
@@ -87,6 +103,7 @@ class UgvLinkEndpoint {
   double next_telemetry_s_ = 0.0;
   bool holding_ = false;
   std::uint64_t without_mission_ = 0, holds_ = 0;
+  std::deque<std::pair<double, double>> reported_;  ///< (t_s, speed) of recent telemetry
 };
 
 }  // namespace ferret
