@@ -70,6 +70,9 @@ class MiniUgvMission {
   /// The top speed the line and the link allowed at the last tick (infinite: none).
   [[nodiscard]] double line_speed_limit_mps() const { return line_speed_mps_; }
   [[nodiscard]] double tick_s() const { return explore_->tick_s(); }
+  /// The line from the winch as the robot's model has it: l_0 and the taut estimate
+  /// from the entry (the real line is no shorter).
+  [[nodiscard]] double line_length_m() const;
   [[nodiscard]] const Eigen::Vector2d& entry_W() const { return entry_W_; }
   [[nodiscard]] int grasp_attempts() const { return grasp_attempt_; }
 
