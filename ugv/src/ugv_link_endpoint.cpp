@@ -146,18 +146,25 @@ double UgvLinkEndpoint::winch_known_line_speed_mps() const {
   return std::max(0.0, known_mps);
 }
 
-double UgvLinkEndpoint::winch_view_line_speed_mps() const {
-  if (!options_.winch_view_limit) return std::numeric_limits<double>::infinity();
+double winch_view_line_speed_mps(const UgvLinkEndpointOptions& o, double age_s, double known_mps,
+                                 double catch_mps) {
+  if (!o.winch_view_limit) return std::numeric_limits<double>::infinity();
   // The winch holds no earlier than winch_follow_s after the echoed telemetry (it heard
   // it no earlier than it was sent); till then it pays out at least the known speed.
   // The robot keeps within the line catch of that, and brakes so that it is within the
   // line catch of a holding winch by then: what the winch feels, it pays out.
-  const double follow_left_s = options_.winch_follow_s - winch_view_age_s();
-  const double follow_mps = follow_left_s > 0.0 ? std::min(winch_known_line_speed_mps(),
-                                                           options_.braking_mps2 * follow_left_s)
-                                                : 0.0;
+  const double follow_left_s = o.winch_follow_s - age_s;
+  const double follow_mps = follow_left_s > 0.0
+                                ? std::min(std::max(known_mps, 0.0), o.braking_mps2 * follow_left_s)
+                                : 0.0;
+  return catch_mps + follow_mps;
+}
+
+double UgvLinkEndpoint::winch_view_line_speed_mps() const {
+  if (!options_.winch_view_limit) return std::numeric_limits<double>::infinity();
   const double line_m = mission_ ? mission_->line_length_m() : 0.0;
-  return line_catch_.speed_mps(line_m) + follow_mps;
+  return ferret::winch_view_line_speed_mps(
+      options_, winch_view_age_s(), winch_known_line_speed_mps(), line_catch_.speed_mps(line_m));
 }
 
 double UgvLinkEndpoint::winch_view_speed_limit_mps() const {

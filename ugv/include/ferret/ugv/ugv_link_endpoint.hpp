@@ -39,6 +39,13 @@ struct UgvLinkEndpointOptions {
   std::optional<tether::LineCatchLimit> line_catch;
 };
 
+/// The link's rule (UgvLinkEndpoint::winch_view_line_speed_mps()): how fast the line
+/// may grow `age_s` after the telemetry the UAV echoed (infinite: none), `known_mps` the
+/// slowest line speed the robot reported since then and `catch_mps` what the winch
+/// catches up by the pull it feels. Infinite with the limit off.
+[[nodiscard]] double winch_view_line_speed_mps(const UgvLinkEndpointOptions& options, double age_s,
+                                               double known_mps, double catch_mps);
+
 class UgvLinkEndpoint {
  public:
   /// The mission a search request starts, and the base it drives.
