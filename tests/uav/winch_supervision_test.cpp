@@ -28,9 +28,10 @@ WinchSupervision::Options options() {
   return o;
 }
 
-tether::WinchState released(double m) {
+tether::WinchState released(double m, double tension_n = 0.0) {
   tether::WinchState w;
   w.released_m = m;
+  w.tension_n = tension_n;
   return w;
 }
 
@@ -64,12 +65,6 @@ TEST(WinchSupervision, LowersToTheEntryAndTheSlackThenHandsOverAndReelsIn) {
   EXPECT_TRUE(ws.reeled_in(released(0.01)));
 }
 
-tether::WinchState pulled(double tension_n) {
-  tether::WinchState w = released(2.0);
-  w.tension_n = tension_n;
-  return w;
-}
-
 TEST(WinchSupervision, ASilentLinkHoldsTheLineYetPaysOutAgainstAPullAboveTheGuard) {
   RecordingWinch winch;
   WinchSupervision ws(winch, options());
@@ -81,7 +76,7 @@ TEST(WinchSupervision, ASilentLinkHoldsTheLineYetPaysOutAgainstAPullAboveTheGuar
   // The line's defaults: 0.5 N hanging, a 1.5 N guard, 10 N the limit, 0.6 m/s the
   // spool's top speed: the pull above 2 N over the 8 N left, times 0.6 m/s.
   const auto command_at = [&](double tension_n) {
-    ws.follow_ugv(1.0, silent, pulled(tension_n));
+    ws.follow_ugv(1.0, silent, released(2.0, tension_n));
     return winch.commands.back();
   };
   EXPECT_EQ(command_at(0.0), 0.0);
@@ -94,7 +89,7 @@ TEST(WinchSupervision, ASilentLinkHoldsTheLineYetPaysOutAgainstAPullAboveTheGuar
   EXPECT_EQ(command_at(std::numeric_limits<double>::quiet_NaN()), 0.0);
   // A miniUGV that has not started is not followed either: the same yield.
   UgvReport idle;
-  ws.follow_ugv(1.0, idle, pulled(6.0));
+  ws.follow_ugv(1.0, idle, released(2.0, 6.0));
   EXPECT_NEAR(winch.commands.back(), 0.3, 1e-12);
 }
 
