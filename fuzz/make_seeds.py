@@ -327,9 +327,9 @@ def dynamixel_seeds():
     put(t, "truncated.bin", status[:-3])
 
 
-def link_frame(msg_type, sender, sequence, payload):
+def link_frame(msg_type, sender, sequence, payload, version=3):
     """A robot link frame (docs/link.md), written independently of the C++ codec."""
-    head = b"FL" + bytes([2, msg_type, sender]) + struct.pack("<IH", sequence, len(payload))
+    head = b"FL" + bytes([version, msg_type, sender]) + struct.pack("<IH", sequence, len(payload))
     return head + payload + struct.pack("<I", zlib.crc32(head + payload))
 
 
@@ -357,11 +357,15 @@ def link_seeds():
     put(t, "request_recall_utf8.bin", link_request(2, 2, "batterie faible \u2013 retour"))
     put(t, "request_abort_no_reason.bin", link_request(3, 5, ""))
     put(t, "ack.bin", link_frame(3, 2, 5, struct.pack("<I", 3)))
-    put(t, "heartbeat.bin", link_frame(4, 1, 100, struct.pack("<d", 20.0)))
-    bad = bytearray(link_frame(4, 1, 101, struct.pack("<d", 20.2)))
+    put(t, "heartbeat.bin", link_frame(4, 1, 100, struct.pack("<dd", 20.0, 0.0)))
+    # The UAV echoes the newest telemetry it accepted (the miniUGV's clock).
+    put(t, "heartbeat_echo.bin", link_frame(4, 1, 102, struct.pack("<dd", 20.25, 12.5)))
+    bad = bytearray(link_frame(4, 1, 101, struct.pack("<dd", 20.2, 12.45)))
     bad[-1] ^= 0xFF
     put(t, "heartbeat_bad_crc.bin", bytes(bad))
     put(t, "version_1.bin", b"FL\x01" + link_frame(4, 1, 1, struct.pack("<d", 1.0))[3:])
+    # Version 2's heartbeat (the UAV's time alone): refused by its version.
+    put(t, "version_2_heartbeat.bin", link_frame(4, 1, 1, struct.pack("<d", 1.0), version=2))
     put(t, "truncated.bin", link_telemetry([])[:40])
 
 

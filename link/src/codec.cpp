@@ -117,7 +117,10 @@ void fields(Io& io, M& m) { io.u32("request_id", m.request_id, 1); }
 
 template <class Io, class M>
 requires Is<M, Heartbeat>
-void fields(Io& io, M& m) { io.f64("t_s", m.t_s, kTime); }
+void fields(Io& io, M& m) {
+  io.f64("t_s", m.t_s, kTime);
+  io.f64("ugv_telemetry_t_s", m.ugv_telemetry_t_s, kTime);
+}
 
 // Appends the payload's bytes. It checks nothing: encode() validates first.
 class Writer {

@@ -184,7 +184,7 @@ std::vector<Datagram> UavLinkSession::take_outgoing() {
   const double now = clock_.now_s();
   if (!last_heartbeat_s_ ||
       now - *last_heartbeat_s_ >= options_.heartbeat_period_s - kClockSlack_s) {
-    queue(Heartbeat{now});
+    queue(Heartbeat{now, telemetry_ ? telemetry_->t_s : 0.0});
     last_heartbeat_s_ = now;
   }
   const std::uint64_t resends_before = requests_.resends();

@@ -51,7 +51,7 @@ UgvTelemetry fixed_telemetry() {
 
 const Bytes kTelemetryFrame = {
     0x46, 0x4c,                                      // magic "FL"
-    0x02,                                            // version 2
+    0x03,                                            // version 3
     0x01,                                            // type: telemetry
     0x02,                                            // sender: ugv
     0x04, 0x03, 0x02, 0x01,                          // sequence 0x01020304
@@ -81,7 +81,7 @@ const Bytes kTelemetryFrame = {
     0x00, 0x00, 0x00, 0x3f,                          // plan[0].y_m 0.5f
     0x00, 0x00, 0x00, 0x3f,                          // plan[0].vx_mps 0.5f
     0x00, 0x00, 0x00, 0x00,                          // plan[0].vy_mps 0
-    0x44, 0x9c, 0xa6, 0xef,                          // CRC-32
+    0x75, 0xfd, 0xb7, 0x6f,                          // CRC-32
 };
 
 UavRequest fixed_request() {
@@ -97,7 +97,7 @@ UavRequest fixed_request() {
 }
 
 const Bytes kRequestFrame = {
-    0x46, 0x4c, 0x02,
+    0x46, 0x4c, 0x03,
     0x02,                                            // type: request
     0x01,                                            // sender: uav
     0x01, 0x00, 0x00, 0x00,                          // sequence 1
@@ -109,34 +109,35 @@ const Bytes kRequestFrame = {
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xe0, 0x3f,  // entry_z_m 0.5
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xd0, 0x3f,  // entry_yaw_rad 0.25
     0x02, 'g',  'o',                                 // reason: length, bytes
-    0x6a, 0x41, 0xb4, 0xab,                          // CRC-32
+    0x79, 0x6e, 0xec, 0x24,                          // CRC-32
 };
 
 const Bytes kAckFrame = {
-    0x46, 0x4c, 0x02,
+    0x46, 0x4c, 0x03,
     0x03,                    // type: ack
     0x02,                    // sender: ugv
     0x02, 0x00, 0x00, 0x00,  // sequence 2
     0x04, 0x00,              // payload length 4
     0x03, 0x00, 0x00, 0x00,  // request_id 3
-    0x0b, 0x29, 0xe1, 0x96,  // CRC-32
+    0x8e, 0xf0, 0x77, 0x4b,  // CRC-32
 };
 
 const Bytes kHeartbeatFrame = {
-    0x46, 0x4c, 0x02,
+    0x46, 0x4c, 0x03,
     0x04,                                            // type: heartbeat
     0x01,                                            // sender: uav
     0x07, 0x00, 0x00, 0x00,                          // sequence 7
-    0x08, 0x00,                                      // payload length 8
+    0x10, 0x00,                                      // payload length 16
     0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xf8, 0x3f,  // t_s 1.5
-    0x2a, 0x8c, 0x47, 0x09,                          // CRC-32
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xf4, 0x3f,  // ugv_telemetry_t_s 1.25
+    0x4a, 0x12, 0xa0, 0x07,                          // CRC-32
 };
 
 TEST(LinkCodec, EncodesEachMessageToItsDocumentedBytes) {
   EXPECT_EQ(encode(0x01020304, fixed_telemetry()), kTelemetryFrame);
   EXPECT_EQ(encode(1, fixed_request()), kRequestFrame);
   EXPECT_EQ(encode(2, Ack{3}), kAckFrame);
-  EXPECT_EQ(encode(7, Heartbeat{1.5}), kHeartbeatFrame);
+  EXPECT_EQ(encode(7, Heartbeat{1.5, 1.25}), kHeartbeatFrame);
 }
 
 TEST(LinkCodec, DecodesTheDocumentedBytes) {
@@ -150,7 +151,7 @@ TEST(LinkCodec, DecodesTheDocumentedBytes) {
   expect_frame(kTelemetryFrame, 0x01020304, fixed_telemetry());
   expect_frame(kRequestFrame, 1, fixed_request());
   expect_frame(kAckFrame, 2, Ack{3});
-  expect_frame(kHeartbeatFrame, 7, Heartbeat{1.5});
+  expect_frame(kHeartbeatFrame, 7, Heartbeat{1.5, 1.25});
 }
 
 TEST(LinkCodec, FrameSizesAreTheBandwidthTablesBytes) {
@@ -167,7 +168,7 @@ TEST(LinkCodec, FrameSizesAreTheBandwidthTablesBytes) {
   r.reason = std::string(200, 'x');
   EXPECT_EQ(encoded_size(r), 53u + UavRequest::kMaxReasonBytes);
   EXPECT_EQ(encoded_size(Ack{1}), 19u);
-  EXPECT_EQ(encoded_size(Heartbeat{}), 23u);
+  EXPECT_EQ(encoded_size(Heartbeat{}), 31u);
 }
 
 TEST(LinkCodec, EveryMessageRoundTripsExactly) {
@@ -305,7 +306,7 @@ TEST(LinkCodecRejects, AnotherProtocolAsBadMagic) {
 
 TEST(LinkCodecRejects, OtherVersionsNamingTheVersion) {
   expect_rejected(with_byte(kHeartbeatFrame, 2, 1), Reason::kUnknownVersion, "header.version",
-                  "header.version: expected protocol version 2 (got version 1)");
+                  "header.version: expected protocol version 3 (got version 1)");
   expect_rejected(with_byte(kHeartbeatFrame, 2, 0), Reason::kUnknownVersion, "header.version",
                   "(got version 0)");
   expect_rejected(Bytes{'F', 'L', 9}, Reason::kUnknownVersion, "header.version");
@@ -326,15 +327,22 @@ TEST(LinkCodecRejects, LengthsThatDoNotAddUp) {
   expect_rejected(longer, Reason::kLengthMismatch, "frame", "19 bytes");
   // A payload length that promises fewer bytes than the fields need, resealed: the
   // fields do not fit.
-  Bytes short_payload = {0x46, 0x4c, 0x02, 0x03, 0x02, 0x02, 0x00, 0x00, 0x00,
+  Bytes short_payload = {0x46, 0x4c, 0x03, 0x03, 0x02, 0x02, 0x00, 0x00, 0x00,
                          0x02, 0x00, 0x03, 0x00, 0,    0,    0,    0};
   expect_rejected(reseal(short_payload), Reason::kLengthMismatch, "header.payload_length",
                   "room for ack.request_id");
   // One that promises more than the fields: a byte left over.
-  Bytes long_payload = {0x46, 0x4c, 0x02, 0x03, 0x02, 0x02, 0x00, 0x00, 0x00, 0x05,
+  Bytes long_payload = {0x46, 0x4c, 0x03, 0x03, 0x02, 0x02, 0x00, 0x00, 0x00, 0x05,
                         0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0,    0,    0,    0};
   expect_rejected(reseal(long_payload), Reason::kLengthMismatch, "header.payload_length",
                   "4 bytes for this ack");
+  // A heartbeat as version 2 had it (the UAV's time alone), under this version's
+  // number: the echo of the telemetry is missing.
+  Bytes old_heartbeat(kHeartbeatFrame.begin(), kHeartbeatFrame.begin() + 19);
+  old_heartbeat[9] = 0x08;
+  old_heartbeat.insert(old_heartbeat.end(), {0, 0, 0, 0});
+  expect_rejected(reseal(old_heartbeat), Reason::kLengthMismatch, "header.payload_length",
+                  "room for heartbeat.ugv_telemetry_t_s");
   // A plan count above what the payload holds.
   expect_rejected(with_byte(kTelemetryFrame, kTelPlanCount, 2), Reason::kLengthMismatch,
                   "header.payload_length", "telemetry.plan[1].dt_s");
@@ -343,9 +351,9 @@ TEST(LinkCodecRejects, LengthsThatDoNotAddUp) {
 TEST(LinkCodecRejects, DamagedBytesByTheirCrc) {
   expect_rejected(with_byte(kTelemetryFrame, kTelX, 0x01, /*seal=*/false), Reason::kCrcMismatch,
                   "crc");
-  // The CRC's last byte 96 -> ab.
+  // The CRC's last byte 4b -> ab.
   expect_rejected(with_byte(kAckFrame, 18, 0xab, /*seal=*/false), Reason::kCrcMismatch, "crc",
-                  "(got 0xabe1290b)");
+                  "(got 0xab77f08e)");
 }
 
 TEST(LinkCodecRejects, NanAndInfinityNamingTheField) {
@@ -356,6 +364,8 @@ TEST(LinkCodecRejects, NanAndInfinityNamingTheField) {
                   Reason::kNotFinite, "telemetry.x_m", "(got inf)");
   expect_rejected(put_float(kHeartbeatFrame, 11, -std::numeric_limits<double>::infinity()),
                   Reason::kNotFinite, "heartbeat.t_s");
+  expect_rejected(put_float(kHeartbeatFrame, 19, std::numeric_limits<double>::quiet_NaN()),
+                  Reason::kNotFinite, "heartbeat.ugv_telemetry_t_s");
   expect_rejected(put_float(kTelemetryFrame, kTelPlan0Dt, std::numeric_limits<float>::quiet_NaN()),
                   Reason::kNotFinite, "telemetry.plan[0].dt_s");
 }
@@ -367,6 +377,10 @@ TEST(LinkCodecRejects, NumbersOutsideTheirRange) {
   expect_rejected(put_float(kTelemetryFrame, kTelRoll, 4.0f), Reason::kOutOfRange,
                   "telemetry.roll_rad");
   expect_rejected(put_float(kHeartbeatFrame, 11, -1.0), Reason::kOutOfRange, "heartbeat.t_s");
+  expect_rejected(put_float(kHeartbeatFrame, 19, -1.0), Reason::kOutOfRange,
+                  "heartbeat.ugv_telemetry_t_s", "expected a number in [0, 1e9] s (got -1)");
+  expect_rejected(put_float(kHeartbeatFrame, 19, 2e9), Reason::kOutOfRange,
+                  "heartbeat.ugv_telemetry_t_s");
   expect_rejected(with_byte(kTelemetryFrame, kTelPlanCount, 11), Reason::kOutOfRange,
                   "telemetry.plan_count", "at most 10 plan samples (got 11)");
   Bytes zero_id = kAckFrame;

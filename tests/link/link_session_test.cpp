@@ -4,9 +4,11 @@
 
 #include <cstdint>
 #include <stdexcept>
+#include <variant>
 #include <vector>
 
 #include "ferret/core/clock.hpp"
+#include "ferret/link/codec.hpp"
 #include "ferret/link/lossy_channel.hpp"
 
 namespace ferret::link {
@@ -247,7 +249,7 @@ TEST(LinkSessions, EachSideHoldsWhenThePeerFallsSilent) {
   // timeouts after the last frame heard.
   EXPECT_GT(uav_held_at - cut_at, 0.3 - 1e-9);
   EXPECT_LE(uav_held_at - cut_at, 0.3 + TwoRobots::kDt + 1e-9);
-  // Heartbeats come every 0.2 s: the miniUGV last heard the UAV up to 0.2 s before the cut.
+  // Heartbeats come every 0.05 s: the miniUGV last heard the UAV up to 0.05 s before the cut.
   ASSERT_TRUE(robots.ugv.heartbeat().has_value());
   const double last_heartbeat_s = robots.ugv.heartbeat()->t_s;
   EXPECT_LE(last_heartbeat_s, cut_at);
@@ -292,7 +294,7 @@ TEST(LinkSessions, OwnFramesLoopedBackAndGarbageAreCountedNotActedOn) {
   UavLinkSession uav(clock);
   uav.request(request_of(UavRequest::Kind::kAbort));
   for (const auto& d : uav.take_outgoing()) uav.receive(d);  // a heartbeat and a request
-  uav.receive(std::vector<std::uint8_t>{'F', 'L', 2});
+  uav.receive(std::vector<std::uint8_t>{'F', 'L', 3});
   uav.receive(std::vector<std::uint8_t>(40, 0xFF));
   const auto& c = uav.counters();
   EXPECT_EQ(c.received, 4u);
@@ -309,17 +311,43 @@ TEST(LinkSessions, OwnFramesLoopedBackAndGarbageAreCountedNotActedOn) {
 
 TEST(LinkSessions, TheUavHeartbeatsAtItsPeriodWithNothingElseToSay) {
   SimClock clock;
-  UavLinkSession uav(clock);  // 0.2 s
+  UavLinkSession uav(clock);  // 0.05 s
   int heartbeats = 0;
-  for (int k = 0; k <= 100; ++k) {  // 5 s at 20 Hz
-    clock.set(k * 0.05);
+  for (int k = 0; k <= 100; ++k) {  // 1 s at 100 Hz
+    clock.set(k * 0.01);
     heartbeats += static_cast<int>(uav.take_outgoing().size());
   }
-  EXPECT_EQ(heartbeats, 26);  // at 0, 0.2, ..., 5.0 s
+  EXPECT_EQ(heartbeats, 21);  // at 0, 0.05, ..., 1.0 s
   UavLinkOptions no_period;
   no_period.heartbeat_period_s = 0;
   EXPECT_THROW(UavLinkSession(clock, no_period), std::invalid_argument);
   EXPECT_THROW(UgvLinkSession(clock, {.uav_timeout_s = -1}), std::invalid_argument);
+}
+
+TEST(LinkSessions, TheHeartbeatEchoesTheNewestTelemetryTheUavAccepted) {
+  SimClock clock;
+  UavLinkSession uav(clock);
+  const auto heartbeat_echo = [&] {
+    for (const auto& d : uav.take_outgoing()) {
+      const DecodeResult r = decode(d);
+      if (r.ok() && std::holds_alternative<Heartbeat>(r.frame().message))
+        return std::get<Heartbeat>(r.frame().message).ugv_telemetry_t_s;
+    }
+    return -1.0;
+  };
+  EXPECT_EQ(heartbeat_echo(), 0.0);  // none heard yet
+  SimClock ugv_clock;
+  UgvLinkSession ugv(ugv_clock);
+  const auto send = [&](double t_s) {
+    ugv_clock.set(t_s);
+    ugv.send_telemetry(telemetry_at(t_s));
+    return ugv.take_outgoing();
+  };
+  const auto first = send(2.5), second = send(2.55);
+  for (const auto& d : second) uav.receive(d);
+  for (const auto& d : first) uav.receive(d);  // late: dropped as stale, not echoed
+  clock.set(1.0);
+  EXPECT_EQ(heartbeat_echo(), 2.55);
 }
 
 }  // namespace

@@ -74,7 +74,7 @@ inline Message random_message(Rng& rng) {
     case 2:
       return Ack{static_cast<std::uint32_t>(rng.uniform_int(1, 1'000'000))};
     default:
-      return Heartbeat{rng.uniform(0, 3600)};
+      return Heartbeat{rng.uniform(0, 3600), rng.uniform(0, 3600)};
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 namespace ferret {
@@ -27,9 +28,10 @@ WinchSupervision::Options options() {
   return o;
 }
 
-tether::WinchState released(double m) {
+tether::WinchState released(double m, double tension_n = 0.0) {
   tether::WinchState w;
   w.released_m = m;
+  w.tension_n = tension_n;
   return w;
 }
 
@@ -61,6 +63,34 @@ TEST(WinchSupervision, LowersToTheEntryAndTheSlackThenHandsOverAndReelsIn) {
   EXPECT_DOUBLE_EQ(winch.commands.back(), -0.4);
   EXPECT_FALSE(ws.reeled_in(released(0.02)));
   EXPECT_TRUE(ws.reeled_in(released(0.01)));
+}
+
+TEST(WinchSupervision, ASilentLinkHoldsTheLineYetPaysOutAgainstAPullAboveTheGuard) {
+  RecordingWinch winch;
+  WinchSupervision ws(winch, options());
+  ws.switch_on();
+  ws.start_taut_control();
+  UgvReport silent;
+  silent.link_ok = false;
+  silent.running = true;
+  // The line's defaults: 0.5 N hanging, a 1.5 N guard, 10 N the limit, 0.6 m/s the
+  // spool's top speed: the pull above 2 N over the 8 N left, times 0.6 m/s.
+  const auto command_at = [&](double tension_n) {
+    ws.follow_ugv(1.0, silent, released(2.0, tension_n));
+    return winch.commands.back();
+  };
+  EXPECT_EQ(command_at(0.0), 0.0);
+  EXPECT_EQ(command_at(0.5), 0.0);  // the hanging part alone
+  EXPECT_EQ(command_at(2.0), 0.0);  // at the guard
+  EXPECT_NEAR(command_at(4.0), 0.6 * 2.0 / 8.0, 1e-12);
+  EXPECT_NEAR(command_at(6.0), 0.6 * 4.0 / 8.0, 1e-12);
+  EXPECT_NEAR(command_at(10.0), 0.6, 1e-12);
+  EXPECT_NEAR(command_at(40.0), 0.6, 1e-12);  // no faster than the spool
+  EXPECT_EQ(command_at(std::numeric_limits<double>::quiet_NaN()), 0.0);
+  // A miniUGV that has not started is not followed either: the same yield.
+  UgvReport idle;
+  ws.follow_ugv(1.0, idle, released(2.0, 6.0));
+  EXPECT_NEAR(winch.commands.back(), 0.3, 1e-12);
 }
 
 TEST(WinchSupervision, AnUnknownControllerIsRefusedWhenBuilt) {

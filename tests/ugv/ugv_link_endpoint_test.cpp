@@ -7,12 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "ferret/core/clock.hpp"
 #include "ferret/core/transition_log.hpp"
 #include "ferret/link/codec.hpp"
 #include "ferret/mission/mission_assembly.hpp"
 #include "ferret/sim/ugv_mission_run.hpp"
+#include "ferret/tether_model/taut_control_options.hpp"
 #include "ferret/uav/linked_ugv.hpp"
 #include "ferret/ugv/mini_ugv_mission.hpp"
 #include "support/test_maps.hpp"
@@ -47,14 +49,15 @@ struct Linked {
   int steps = 0;
 
   // One control period: the UAV's datagrams to the miniUGV, its step, its answer back.
-  void step(bool uav_speaks = true) {
+  void step(bool uav_speaks = true, bool uav_hears = true) {
     clock.set(0.05 * ++steps);
     if (uav_speaks)
       for (const auto& d : uav.session().take_outgoing()) ugv.session().receive(d);
     const bool hold = ugv.handle_requests();
     sim.step(0.05, hold);
     ugv.report();
-    for (const auto& d : ugv.session().take_outgoing()) uav.session().receive(d);
+    for (const auto& d : ugv.session().take_outgoing())
+      if (uav_hears) uav.session().receive(d);
   }
 };
 
@@ -166,6 +169,64 @@ TEST(UgvLinkEndpoint, ASilentUavStopsTheRobotWithinTwoControlPeriods) {
   for (int i = 0; i < 20; ++i) k.step();
   EXPECT_FALSE(k.ugv.holding());
   EXPECT_EQ(ugv_mission_of(k.sim).state(), UgvMissionState::kExplore);
+}
+
+TEST(UgvLinkEndpoint, TheLinesSpeedFollowsWhatTheWinchHeardAndHowLongAgo) {
+  UgvLinkEndpointOptions o;
+  // The winch follows for the UAV's telemetry timeout, 0.3 s; the robot brakes at
+  // 2 m/s^2; the line catch is 0.05 m/s here.
+  ASSERT_EQ(o.winch_follow_s, link::UavLinkOptions{}.telemetry_timeout_s);
+  ASSERT_EQ(o.winch_follow_s, 0.3);
+  const double catch_mps = 0.05;
+  const auto limit = [&](double age_s, double known_mps) {
+    return winch_view_line_speed_mps(o, age_s, known_mps, catch_mps);
+  };
+  // Fresh: the known 0.25 m/s (braking could still allow 2 * 0.25 = 0.5) and the catch.
+  EXPECT_NEAR(limit(0.05, 0.25), 0.30, 1e-12);
+  EXPECT_NEAR(limit(0.0, 0.25), 0.30, 1e-12);
+  // Older: braking to be within the catch by 0.3 s: 2 * (0.3 - 0.2) = 0.2 < 0.25.
+  EXPECT_NEAR(limit(0.2, 0.25), 0.25, 1e-12);
+  EXPECT_NEAR(limit(0.29, 0.25), 0.07, 1e-12);
+  // Stale (the winch may hold), never heard, or shortening the line: the catch alone.
+  EXPECT_NEAR(limit(0.3, 0.25), catch_mps, 1e-12);
+  EXPECT_NEAR(limit(5.0, 0.25), catch_mps, 1e-12);
+  EXPECT_NEAR(limit(std::numeric_limits<double>::infinity(), 0.25), catch_mps, 1e-12);
+  EXPECT_NEAR(limit(0.05, -0.2), catch_mps, 1e-12);
+  o.winch_view_limit = false;
+  EXPECT_EQ(limit(5.0, 0.0), std::numeric_limits<double>::infinity());
+}
+
+TEST(UgvLinkEndpoint, ARobotTheWinchNoLongerHearsGrowsTheLineNoFasterThanTheCatch) {
+  Linked k;
+  EXPECT_EQ(k.ugv.winch_view_age_s(), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(k.ugv.winch_known_line_speed_mps(), 0.0);
+  k.uav.deploy({0.5, 1.0, 0.0}, 0.0);
+  for (int i = 0; i < 60; ++i) k.step();  // 3 s of search over a perfect link
+  const MiniUgvMission& m = ugv_mission_of(k.sim);
+  ASSERT_EQ(m.state(), UgvMissionState::kExplore);
+  // The echo comes back a control period after the telemetry went out.
+  EXPECT_LE(k.ugv.winch_view_age_s(), 0.05 + 1e-9);
+  tether::LineCatchLimit line_catch = tether::LineCatchLimit::for_winch({});
+  line_catch.pull_budget_n *= 0.5;  // the half the link leaves to the catch
+  // The UAV stops hearing the robot, and keeps telling it so: once 0.3 s have passed
+  // since the telemetry it heard last, the line grows no faster than the catch.
+  Eigen::Vector2d anchor = m.entry_W();
+  double line_m = (k.sim.base().odometry().position() - anchor).norm();
+  int driving = 0;
+  for (int i = 0; i < 60; ++i) {
+    k.step(/*uav_speaks=*/true, /*uav_hears=*/false);
+    if (const auto a = m.explore_controller().tether_anchor()) anchor = a->first;
+    const double now_m = (k.sim.base().odometry().position() - anchor).norm();
+    if (k.ugv.winch_view_age_s() > 0.3 + 0.05 + 1e-9) {
+      const double catch_mps = line_catch.speed_mps(m.line_length_m());
+      EXPECT_NEAR(k.ugv.winch_view_line_speed_mps(), catch_mps, 1e-9);
+      EXPECT_LE((now_m - line_m) / 0.05, catch_mps + 1e-6) << "at step " << i;
+      if (std::abs(k.sim.base().speed_mps()) > 0.01) ++driving;
+    }
+    line_m = now_m;
+  }
+  EXPECT_GT(driving, 0) << "a robot that stands is not on its way";
+  EXPECT_FALSE(k.ugv.holding());  // the UAV still speaks: not the watchdog's hold
 }
 
 TEST(UgvLinkEndpoint, ASearchAskedOfARobotWithNothingToSearchIsCounted) {

@@ -92,8 +92,21 @@ void WinchSupervision::follow_ugv(double now_s, const UgvReport& r, const tether
   obs.ugv.v_WG = r.v_WG;
   obs.slack_margin_m = r.tether_uncertainty_m;
   // Without word from the miniUGV the winch holds its length (the miniUGV holds too,
-  // docs/link.md "Watchdogs").
-  winch_.command_velocity_mps(heard ? controller_->step(obs) : 0.0);
+  // docs/link.md "Watchdogs"), but never against the line: a miniUGV still driving on a
+  // stale link pulls it, and the winch measures that pull itself.
+  winch_.command_velocity_mps(heard ? controller_->step(obs) : yield_to_tension_mps(w));
+}
+
+double WinchSupervision::yield_to_tension_mps(const tether::WinchState& w) const {
+  // Pay out in proportion to the pull above the guard, all the spool can at the limit:
+  // a metre of line is stiff (1.5 kN/m), so a few centimetres held against a moving
+  // robot are tens of newtons.
+  const tether::SlackEstimator& e = options_.control.slack_estimator;
+  const double pull_n = w.tension_n - e.tension.hanging_weight_n - e.guard_n;
+  if (!(pull_n > 0.0)) return 0.0;
+  const double span_n =
+      std::max(e.tension.max_tension_n - e.tension.hanging_weight_n - e.guard_n, 1e-3);
+  return options_.control.limits.max_speed_mps * std::min(1.0, pull_n / span_n);
 }
 
 void WinchSupervision::reel_in() { winch_.command_velocity_mps(-options_.retract_speed_mps); }

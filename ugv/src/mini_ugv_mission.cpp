@@ -388,6 +388,10 @@ VelocityCommand MiniUgvMission::servo(const Pose2& pose, const CameraFrame* fram
   return guarded(pose, c);
 }
 
+double MiniUgvMission::line_length_m() const {
+  return options_.explore.mission.tether.entry_offset_m + explore_->tether_length_m();
+}
+
 void MiniUgvMission::tick() {
   if (state_ == UgvMissionState::kIdle || state_ == UgvMissionState::kDone) return;
   const double now = clock_.now_s();
@@ -414,13 +418,13 @@ void MiniUgvMission::tick() {
   // (tether::LineCatchLimit); the line is l_0 and the taut estimate from the entry. A
   // line that can be longer than the estimate only by less than the stretch the limit
   // allows (the bound, with unknown space, less the estimate) cannot pull more.
-  const double line_m =
-      options_.explore.mission.tether.entry_offset_m + explore_->tether_length_m();
+  const double line_m = line_length_m();
   const double doubt_m = explore_->reach_length_m() - explore_->tether_length_m();
   line_speed_mps_ =
-      options_.explore.tether_budget_m && doubt_m > options_.line_catch.stretch_m(line_m)
-          ? options_.line_catch.speed_mps(line_m)
-          : std::numeric_limits<double>::infinity();
+      std::min(link_speed_mps_,
+               options_.explore.tether_budget_m && doubt_m > options_.line_catch.stretch_m(line_m)
+                   ? options_.line_catch.speed_mps(line_m)
+                   : std::numeric_limits<double>::infinity());
   explore_->set_speed_limit_mps(line_speed_mps_);
   follower_.set_speed_limit_mps(line_speed_mps_);
   std::optional<CameraFrame> frame;

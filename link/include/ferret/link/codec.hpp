@@ -1,5 +1,5 @@
 #pragma once
-// The robot link's wire format, version 2 (docs/link.md has it byte by byte): a fixed
+// The robot link's wire format, version 3 (docs/link.md has it byte by byte): a fixed
 // little-endian header, the message's payload, and a CRC-32 over both. decode() never
 // throws on bad bytes and never reads past the buffer: it returns the frame, or why
 // the bytes were refused, naming the field and what was expected.
@@ -19,7 +19,7 @@
 namespace ferret::link {
 
 /// A receiver refuses every other version (it cannot know another version's layout).
-inline constexpr std::uint8_t kProtocolVersion = 2;
+inline constexpr std::uint8_t kProtocolVersion = 3;
 /// "FL": the first two bytes of every frame.
 inline constexpr std::array<std::uint8_t, 2> kMagic{0x46, 0x4C};
 /// magic 2, version 1, type 1, sender 1, sequence 4, payload length 2.

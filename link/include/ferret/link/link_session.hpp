@@ -195,8 +195,9 @@ class LinkSession {
 };
 
 struct UavLinkOptions {
-  /// The UAV's heartbeat, so the miniUGV hears it between requests: 5 Hz.
-  double heartbeat_period_s = 0.2;
+  /// The UAV's heartbeat, so the miniUGV hears it between requests and learns what the
+  /// UAV last heard of it: 20 Hz, as the telemetry.
+  double heartbeat_period_s = 0.05;
   /// The winch holds its length after this long without telemetry: six frames at 20 Hz.
   double telemetry_timeout_s = 0.3;
   RequestSenderOptions requests;

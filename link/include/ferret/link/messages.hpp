@@ -134,10 +134,15 @@ struct Ack {
   bool operator==(const Ack&) const = default;
 };
 
-/// UAV -> miniUGV at 5 Hz, so that the miniUGV's watchdog hears the UAV when it has no
-/// request to send. (Telemetry is the miniUGV's heartbeat.)
+/// UAV -> miniUGV at 20 Hz, so that the miniUGV's watchdog hears the UAV when it has no
+/// request to send, and knows what the UAV last heard of it. (Telemetry is the
+/// miniUGV's heartbeat.)
 struct Heartbeat {
   double t_s = 0.0;  ///< the UAV's clock when it was sent
+  /// The `t_s` of the newest miniUGV telemetry the UAV had accepted (the miniUGV's own
+  /// clock; 0: none yet): the miniUGV learns how fresh the winch's view of it is
+  /// without the two clocks agreeing (docs/link.md "Watchdogs").
+  double ugv_telemetry_t_s = 0.0;
   bool operator==(const Heartbeat&) const = default;
 };
 

@@ -62,6 +62,9 @@ class WinchSupervision {
  private:
   /// What the miniUGV is lowered to: l_0 and the slack reference.
   [[nodiscard]] double release_length_m() const;
+  /// The spool's speed while it holds without word from the miniUGV: 0, or paying out
+  /// against a pull it measures above the guard.
+  [[nodiscard]] double yield_to_tension_mps(const tether::WinchState& w) const;
 
   tether::Winch& winch_;
   Options options_;

@@ -52,6 +52,9 @@ class MiniUgvMission {
   void recall(const std::string& reason);
   /// The winch has lifted the robot out: await_retract -> done.
   void retracted();
+  /// The top speed the robot link allows from the next tick on (infinite: none): the
+  /// winch follows only what it has heard (UgvLinkEndpoint sets it).
+  void set_link_speed_limit_mps(double v_mps) { link_speed_mps_ = v_mps; }
 
   [[nodiscard]] UgvMissionState state() const { return state_; }
   [[nodiscard]] UgvMissionOutcome outcome() const { return outcome_; }
@@ -64,9 +67,12 @@ class MiniUgvMission {
   [[nodiscard]] const ExploreController& explore_controller() const { return *explore_; }
   /// How often the base stood still when told to drive forwards (bumps into G).
   [[nodiscard]] int bumps() const { return bumps_; }
-  /// The top speed the line allowed at the last tick (infinite: none).
+  /// The top speed the line and the link allowed at the last tick (infinite: none).
   [[nodiscard]] double line_speed_limit_mps() const { return line_speed_mps_; }
   [[nodiscard]] double tick_s() const { return explore_->tick_s(); }
+  /// The line from the winch as the robot's model has it: l_0 and the taut estimate
+  /// from the entry (the real line is no shorter).
+  [[nodiscard]] double line_length_m() const;
   [[nodiscard]] const Eigen::Vector2d& entry_W() const { return entry_W_; }
   [[nodiscard]] int grasp_attempts() const { return grasp_attempt_; }
 
@@ -87,6 +93,7 @@ class MiniUgvMission {
   const Clock& clock_;
   GridGeometry geo_;
   double line_speed_mps_ = std::numeric_limits<double>::infinity();
+  double link_speed_mps_ = std::numeric_limits<double>::infinity();
   /// A bump: forwards at least this fast, yet stood still for
   /// UgvMissionOptions::bump_time_s.
   static constexpr double kBumpMinSpeed_mps = 0.02;

@@ -5,10 +5,13 @@
 // simulated mission (datagrams through a LossyChannel) and the robot (a UdpLink).
 
 #include <cstdint>
+#include <deque>
 #include <functional>
+#include <optional>
 
 #include "ferret/core/clock.hpp"
 #include "ferret/link/link_session.hpp"
+#include "ferret/tether_model/line_catch.hpp"
 
 namespace ferret {
 
@@ -18,7 +21,30 @@ class UgvBase;
 struct UgvLinkEndpointOptions {
   link::UgvLinkOptions link;         ///< the watchdog's timeout, the reorder window
   double telemetry_period_s = 0.05;  ///< 20 Hz, the control rate (docs/link.md)
+  /// The link's speed limit (docs/link.md "Watchdogs"): the robot's line grows no faster
+  /// than the winch is known to pay out, plus what the winch catches up by the tension
+  /// it measures. The UAV's heartbeats echo the newest telemetry it accepted; the winch
+  /// follows what it heard for `winch_follow_s`, then holds.
+  bool winch_view_limit = true;
+  /// How long the winch follows the newest telemetry it heard before it holds: the
+  /// UAV's telemetry timeout (link::UavLinkOptions).
+  double winch_follow_s = link::UavLinkOptions{}.telemetry_timeout_s;
+  /// How fast the robot brakes to be within the line catch by the time the winch may
+  /// hold: its path follower brakes at twice its 2 m/s^2, taken as 2 m/s^2.
+  double braking_mps2 = 2.0;
+  /// The most the robot's heading turns between two ticks: 2 rad/s for 0.05 s.
+  double turn_per_tick_rad = 0.1;
+  /// What a winch that feels the pull catches up by itself (none: the default winch's,
+  /// tether::LineCatchLimit::for_winch).
+  std::optional<tether::LineCatchLimit> line_catch;
 };
+
+/// The link's rule (UgvLinkEndpoint::winch_view_line_speed_mps()): how fast the line
+/// may grow `age_s` after the telemetry the UAV echoed (infinite: none), `known_mps` the
+/// slowest line speed the robot reported since then and `catch_mps` what the winch
+/// catches up by the pull it feels. Infinite with the limit off.
+[[nodiscard]] double winch_view_line_speed_mps(const UgvLinkEndpointOptions& options, double age_s,
+                                               double known_mps, double catch_mps);
 
 class UgvLinkEndpoint {
  public:
@@ -69,6 +95,21 @@ class UgvLinkEndpoint {
   [[nodiscard]] std::uint64_t requests_without_mission() const { return without_mission_; }
   /// Times the watchdog made the robot hold.
   [[nodiscard]] std::uint64_t holds() const { return holds_; }
+  /// How old the UAV's newest view of the robot is (infinite: it has not echoed one).
+  [[nodiscard]] double winch_view_age_s() const;
+  /// The slowest the winch may take the line to grow (m/s, >= 0): the least outward
+  /// line speed the robot reported since the telemetry the UAV echoed (whichever of
+  /// them the UAV heard last, the winch follows it); 0 when none is echoed or recorded.
+  [[nodiscard]] double winch_known_line_speed_mps() const;
+  /// How fast the line may grow now: the line catch on the mission's line, plus the
+  /// known line speed while the winch surely follows it, braking to nothing by the time
+  /// it may hold (winch_follow_s after the echoed telemetry). Infinite with the limit
+  /// off.
+  [[nodiscard]] double winch_view_line_speed_mps() const;
+  /// winch_view_line_speed_mps() as the robot's top speed: divided by the share of its
+  /// speed that can grow the line by the next tick (heading and direction of travel
+  /// against the line; infinite for a robot that can only shorten it).
+  [[nodiscard]] double winch_view_speed_limit_mps() const;
 
   [[nodiscard]] link::UgvLinkSession& session() { return session_; }
   [[nodiscard]] const link::UgvLinkSession& session() const { return session_; }
@@ -87,6 +128,9 @@ class UgvLinkEndpoint {
   double next_telemetry_s_ = 0.0;
   bool holding_ = false;
   std::uint64_t without_mission_ = 0, holds_ = 0;
+  tether::LineCatchLimit line_catch_;
+  /// (t_s, outward line speed) of the telemetry sent lately, oldest first.
+  std::deque<std::pair<double, double>> reported_;
 };
 
 }  // namespace ferret
