@@ -4,6 +4,9 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <utility>
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/output_set.hpp"
@@ -128,6 +131,34 @@ CameraModel resolve_camera(const std::string& camera_yaml, const std::string& ro
   else
     throw std::logic_error("resolve_camera: not a camera role: " + std::string(role));
   return camera_model(*sensor, description.source);
+}
+
+std::pair<int, int> parse_shard(const std::string& text, bool given) {
+  std::string shard = text;
+  std::string option = "--shard";
+  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+  if (!given && id && count) {
+    const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+    try {
+      shard = std::to_string(std::stoll(id) - (min ? std::stoll(min) : 0)) + "/" + count;
+    } catch (const std::exception&) {
+      shard = std::string(id) + "/" + count;
+    }
+    option = "SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT";
+  }
+  const auto slash = shard.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument(shard);
+    std::size_t u1 = 0, u2 = 0;
+    const int i = std::stoi(shard.substr(0, slash), &u1);
+    const int n = std::stoi(shard.substr(slash + 1), &u2);
+    if (u1 != slash || u2 != shard.size() - slash - 1 || n < 1 || i < 0 || i >= n)
+      throw std::invalid_argument(shard);
+    return {i, n};
+  } catch (const std::exception&) {
+    throw InputError(option, "", "I/N with integers 0 <= I < N", shard);
+  }
 }
 
 void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o) {

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ferret/mission/mission_files.hpp"
@@ -54,6 +55,11 @@ void require_out(const std::string& out, std::string_view what);
 /// For an optional -o: InputError when -o/--out (or an alias) was given an empty value,
 /// which would otherwise mean "no output" (or the working directory).
 void refuse_empty_out(const CLI::App* cmd, const std::string& out);
+
+/// `--shard I/N` (0 <= I < N): InputError naming the option otherwise. Not `given` on
+/// the command line, a Slurm job array's task is the shard (SLURM_ARRAY_TASK_ID less
+/// SLURM_ARRAY_TASK_MIN, of SLURM_ARRAY_TASK_COUNT); outside one, `text` (0/1).
+[[nodiscard]] std::pair<int, int> parse_shard(const std::string& text, bool given);
 
 /// `--tether-budget M`: the taut tether length the miniUGV may use on the floor,
 /// L - l_0 (hidden aliases: --tether, --tether-max).

@@ -31,25 +31,10 @@ namespace fs = std::filesystem;
 struct Options {
   std::string config, out, shard = "0/1", plot_script;
   int jobs = 1;
-  bool no_plots = false, quiet = false;
+  bool no_plots = false, quiet = false, shard_given = false;
   std::string planner =
       "grid";  // FrontierPlanner: "ompl" runs cdos and rapid as cdos+ompl, rapid+ompl
 };
-
-std::pair<int, int> parse_shard(const std::string& text) {
-  const auto slash = text.find('/');
-  try {
-    if (slash == std::string::npos) throw std::invalid_argument(text);
-    std::size_t u1 = 0, u2 = 0;
-    const int i = std::stoi(text.substr(0, slash), &u1);
-    const int n = std::stoi(text.substr(slash + 1), &u2);
-    if (u1 != slash || u2 != text.size() - slash - 1 || n < 1 || i < 0 || i >= n)
-      throw std::invalid_argument(text);
-    return {i, n};
-  } catch (const std::exception&) {
-    throw InputError("--shard", "", "I/N with integers 0 <= I < N", text);
-  }
-}
 
 std::string format_duration(double s) {
   char buf[32];
@@ -109,7 +94,7 @@ constexpr int kMaxJobs = 256;
 
 void run(const Options& o) {
   const fs::path out = checked_out_dir(o.out, "an output directory");
-  const auto [shard_index, shard_count] = parse_shard(o.shard);
+  const auto [shard_index, shard_count] = parse_shard(o.shard, o.shard_given);
   // A bound, so that a typo (--jobs 100000) is an error and not a machine brought down.
   if (o.jobs < 1 || o.jobs > kMaxJobs)
     throw InputError("--jobs", "", fmt::format("a number of worker threads in [1, {}]", kMaxJobs),
@@ -176,13 +161,18 @@ const CommandRegistration kExperiment{
       sub->add_option("--planner", o->planner,
                       "grid, or ompl: cdos and rapid with the OMPL frontier sampler")
           ->capture_default_str();
-      sub->add_option("--shard", o->shard, "Run slice I of N (groups g with g % N == I)")
+      sub->add_option("--shard", o->shard,
+                      "Run slice I of N (groups g with g % N == I; default: the Slurm job "
+                      "array's task, else 0/1)")
           ->capture_default_str();
       sub->add_option("--plot-script", o->plot_script,
                       "Plot script (default: the installed plot_experiment.py, data_path())");
       sub->add_flag("--no-plots", o->no_plots, "Write the CSVs only");
       sub->add_flag("--quiet", o->quiet, "No progress line");
-      sub->callback([o] { run(*o); });
+      sub->callback([o, sub] {
+        o->shard_given = sub->count("--shard") > 0;
+        run(*o);
+      });
     }};
 
 }  // namespace
