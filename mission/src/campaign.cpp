@@ -32,9 +32,13 @@ FaultPlan draw_injectable(std::uint64_t seed, const FaultDrawOptions& options) {
 // CSV fields: quoted when they hold a comma or a quote.
 std::string field(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string q = "\"";
-  for (const char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
+  std::string q(1, '"');
+  for (const char c : text) {
+    q.push_back(c);
+    if (c == '"') q.push_back('"');
+  }
+  q.push_back('"');
+  return q;
 }
 
 std::vector<std::string> split_csv_line(const std::string& line) {
@@ -157,19 +161,26 @@ std::string campaign_replay_command(const CampaignRun& run, const std::string& f
 std::string campaign_csv_header() {
   std::string h =
       "run,world,seed,faults,outcome,uav_outcome,objects_in_world,objects_retrieved,time_s";
-  for (std::size_t k = 0; k < kInvariantKinds; ++k)
-    h += "," + std::string(to_string(static_cast<InvariantKind>(k)));
-  return h + ",note,fault_list,replay\n";
+  for (std::size_t k = 0; k < kInvariantKinds; ++k) {
+    h.push_back(',');
+    h.append(to_string(static_cast<InvariantKind>(k)));
+  }
+  h.append(",note,fault_list,replay\n");
+  return h;
 }
 
 std::string campaign_csv_row(const CampaignResult& r, const std::string& replay) {
   std::string faults;
-  for (const Fault& f : r.run.faults.faults) faults += (faults.empty() ? "" : "; ") + describe(f);
+  for (const Fault& f : r.run.faults.faults) {
+    if (!faults.empty()) faults.append("; ");
+    faults.append(describe(f));
+  }
   std::string row = fmt::format("{},{},{},{},{},{},{},{},{:.2f}", r.run.index, field(r.run.world),
                                 r.run.seed, r.run.faults.faults.size(), to_string(r.outcome),
                                 r.uav_outcome, r.objects_in_world, r.objects_retrieved, r.time_s);
-  for (const int v : r.violations) row += "," + std::to_string(v);
-  return row + "," + field(r.note) + "," + field(faults) + "," + field(replay) + "\n";
+  for (const int v : r.violations) row.append(fmt::format(",{}", v));
+  row.append(fmt::format(",{},{},{}\n", field(r.note), field(faults), field(replay)));
+  return row;
 }
 
 std::string merge_campaign_csv(const std::vector<std::string>& texts,

@@ -179,6 +179,10 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
   controllers.uav_state = [&] { return uav_state; };
   controllers.ugv_tick = [] {};
   controllers.ugv_stopped = [&] { return ugv_stopped; };
+  std::string ugv_state;
+  controllers.ugv_state = [&] { return ugv_state; };
+  // The fault plan's link faults on the network between the robots, as in one process.
+  const double delivery_s = 1.0 / settings.ugv.exploration.sensors.ir_rate_hz;
   controllers.link_receive = [&] {
     // Set down, the robot stands level; hanging or aboard, its IMU reads where it would
     // touch down (the UAV's check while it lowers).
@@ -191,11 +195,16 @@ SimWorldReport run_sim_world(const PlanningWorld& world, const RobotDescription&
         {"attitude_rad",
          set_down ? json::array({0.0, 0.0}) : json::array({hanging.roll_rad, hanging.pitch_rad})}};
     bool hold = false;
+    if (const FaultSchedule* faults = sim.faults()) {
+      up.set_impairment(faults->link_impairment(FaultTarget::kUavToUgv, delivery_s));
+      down.set_impairment(faults->link_impairment(FaultTarget::kUgvToUav, delivery_s));
+    }
     guarded([&] {
       const auto [r, blob] = exchange(ugv, "miniUGV", step, link::pack_datagrams(up.deliver()),
                                       reply_timeout_ms, serve_ugv);
       ugv_stopped = flag_at(r, "stopped");
       hold = flag_at(r, "hold");
+      ugv_state = r.value("state", std::string());
     });
     return hold;
   };
