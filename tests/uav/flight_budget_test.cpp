@@ -45,5 +45,34 @@ TEST(FlightBudget, AHoverRecallsTheMiniUgvOnceThenLiftsItOut) {
   EXPECT_EQ(b.while_hovering(at(0.0, 0.15), r, 5.0), FlightBudget::HoverCall::kRecall);
 }
 
+// A battery draining four times as fast as the endurance says keeps four times the way
+// home in hand; one draining as a healthy one does at full speed keeps the nominal budget.
+TEST(FlightBudget, ABatteryDrainingFasterThanItShouldKeepsMoreForTheWayHome) {
+  FlightBudget healthy = budget(), failing = budget();  // endurance 1000 s, factor 1.15
+  healthy.set_home({0.0, 0.0, 4.0});
+  failing.set_home({0.0, 0.0, 4.0});
+  for (int t = 0; t <= 60; ++t) {
+    healthy.observe(t, 1.0 - 1.15 * t / 1000.0);  // full speed, healthy
+    failing.observe(t, 1.0 - 4.6 * t / 1000.0);   // four times that
+  }
+  EXPECT_EQ(healthy.drain_factor(), 1.0);
+  EXPECT_NEAR(failing.drain_factor(), 4.0, 1e-9);
+  // 200 m from home: 50 s home, 5 % nominal; 20 % at four times the drain, + 10 % reserve.
+  EXPECT_FALSE(healthy.calls_home(at(200.0, 0.16)));
+  EXPECT_TRUE(failing.calls_home(at(200.0, 0.29)));
+  EXPECT_FALSE(failing.calls_home(at(200.0, 0.31)));
+}
+
+TEST(FlightBudget, TheDrainIsLearnedOverTheLastMinuteOnly) {
+  FlightBudget b = budget();
+  for (int t = 0; t <= 10; ++t) b.observe(t, 1.0 - 0.01 * t);  // fast, but 10 s: too short
+  EXPECT_EQ(b.drain_factor(), 1.0);
+  for (int t = 11; t <= 30; ++t) b.observe(t, 0.9 - 0.01 * (t - 10));
+  EXPECT_GT(b.drain_factor(), 5.0);
+  double level = 0.7;
+  for (int t = 31; t <= 200; ++t) b.observe(t, level -= 0.0005);  // healthy again
+  EXPECT_EQ(b.drain_factor(), 1.0);
+}
+
 }  // namespace
 }  // namespace ferret

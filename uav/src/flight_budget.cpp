@@ -5,7 +5,21 @@ namespace ferret {
 bool FlightBudget::calls_home(const FlightState& s, double before_s) const {
   const double home_s = before_s + (s.p_W - home_W_).norm() / options_.cruise_speed_mps + 30.0;
   return s.battery_fraction <
-         home_s / options_.flight_endurance_s + options_.battery_reserve_fraction;
+         drain_factor_ * home_s / options_.flight_endurance_s + options_.battery_reserve_fraction;
+}
+
+void FlightBudget::observe(double now_s, double battery_fraction) {
+  constexpr double kSpacing_s = 1.0, kWindow_s = 60.0, kShortest_s = 20.0;
+  if (!battery_.empty() && now_s - battery_.back().first < kSpacing_s) return;
+  battery_.emplace_back(now_s, battery_fraction);
+  while (now_s - battery_.front().first > kWindow_s) battery_.pop_front();
+  const double span_s = battery_.back().first - battery_.front().first;
+  if (span_s < kShortest_s) return;
+  const double rate_per_s = (battery_.front().second - battery_.back().second) / span_s;
+  const double factor =
+      rate_per_s * options_.flight_endurance_s / options_.max_healthy_drain_factor;
+  // A healthy battery (readings a little off included) keeps the endurance's budget.
+  drain_factor_ = factor > 1.05 ? factor : 1.0;
 }
 
 FlightBudget::HoverCall FlightBudget::while_hovering(const FlightState& s, const UgvReport& r,

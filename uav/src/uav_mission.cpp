@@ -291,6 +291,7 @@ void UavMission::tick() {
   last_tick_s_ = now;
   const Tick t{now, now - state_since_s_, hw_.flight.state(), hw_.winch.read_state()};
   modes_.update(now, t.winch.released_m);
+  budget_.observe(now, t.uav.battery_fraction);
   switch (state_) {
     case UavMissionState::kTakeoff:
       return on_takeoff(t);

@@ -5,6 +5,8 @@
 // lift it out at once.
 
 #include <Eigen/Core>
+#include <deque>
+#include <utility>
 
 #include "ferret/uav/flight_controller.hpp"
 
@@ -19,6 +21,9 @@ class FlightBudget {
     double battery_reserve_fraction = 0.10;
     double retract_speed_mps = 0.4;     ///< the reel-in
     double ugv_return_speed_mps = 0.2;  ///< the miniUGV coming back along its tether
+    /// A healthy battery drains at most this many times as fast as hovering does (at full
+    /// speed); a faster drain, measured over the last minute, scales every cost.
+    double max_healthy_drain_factor = 1.15;
   };
   explicit FlightBudget(Options options) : options_(options) {}
 
@@ -42,10 +47,19 @@ class FlightBudget {
   /// A new release: the miniUGV has not been called back yet.
   void miniugv_released() { recalled_ = false; }
 
+  /// The battery as measured at `now_s` (every tick): the budget learns how much faster
+  /// than the endurance says the battery drains over the last minute (a failing or cold
+  /// battery, a sag), and keeps that much more for the way home.
+  void observe(double now_s, double battery_fraction);
+  /// 1 for a healthy battery, else the measured drain over a healthy one's.
+  [[nodiscard]] double drain_factor() const { return drain_factor_; }
+
  private:
   Options options_;
   Eigen::Vector3d home_W_ = Eigen::Vector3d::Zero();
   bool recalled_ = false;  ///< the miniUGV in this hidden space was called back
+  std::deque<std::pair<double, double>> battery_;  ///< (t_s, fraction), a second apart
+  double drain_factor_ = 1.0;
 };
 
 }  // namespace ferret
