@@ -174,9 +174,12 @@ void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o) {
   sub->add_option("--no-landing-zone", o.no_landing_zone,
                   "No safe landing zone by an opening: hover (lower from a hover) or skip "
                   "(default: the mission YAML's uav.no_landing_zone, hover)");
+}
+
+void add_faults_option(CLI::App* sub, MissionSetupOptions& o) {
   sub->add_option("--faults", o.faults,
                   "A YAML file with a `faults:` list to inject, after the mission YAML's own "
-                  "(docs/safety.md)");
+                  "(docs/safety.md; default: none beyond the mission YAML's)");
 }
 
 std::string one_of(const std::vector<std::string>& choices) {

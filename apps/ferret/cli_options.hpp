@@ -99,6 +99,8 @@ CLI::Option* add_camera_option(CLI::App* cmd, std::string& camera_yaml, std::str
 /// --world, --robot-uav, --robot-ugv, --mission, --method, --planner, --no-landing-zone:
 /// the files and choices of one mission (`ferret mission`, `sim-world`, `uav`, `ugv`).
 void add_mission_setup_options(CLI::App* sub, MissionSetupOptions& o);
+/// `--faults FILE`: the faults a simulated world injects (ferret mission, sim-world).
+void add_faults_option(CLI::App* sub, MissionSetupOptions& o);
 
 /// "one of a, b, c": the expectation of an option with a fixed set of values.
 [[nodiscard]] std::string one_of(const std::vector<std::string>& choices);

@@ -118,6 +118,12 @@ CampaignResult collect(const Child& c, int status) {
   return r;
 }
 
+// The replay command's fault file, relative to the campaign's directory (the same in a
+// shard, the unsharded campaign and the merge, which gathers the shards' runs/).
+std::string run_faults_path(std::size_t index) {
+  return (fs::path("runs") / fmt::format("{:06}", index) / "faults.yaml").string();
+}
+
 std::vector<std::string> default_worlds() {
   return {data_path("worlds/default.yaml").string(), data_path("worlds/two_sites.yaml").string(),
           data_path("worlds/small.yaml").string()};
@@ -202,9 +208,7 @@ void run(const Options& o) {
             [](const auto& a, const auto& b) { return a.run.index < b.run.index; });
   std::string csv = campaign_csv_header();
   for (const CampaignResult& r : results)
-    csv += campaign_csv_row(
-        r, campaign_replay_command(
-               r.run, (out / "runs" / fmt::format("{:06}", r.run.index) / "faults.yaml").string()));
+    csv += campaign_csv_row(r, campaign_replay_command(r.run, run_faults_path(r.run.index)));
   const std::string verdict = campaign_verdict(csv);
   set.write_text("campaign.csv", csv);
   set.write_text("verdict.txt", verdict + "\n");
@@ -229,6 +233,10 @@ void merge(const Options& o) {
   const std::string merged = merge_campaign_csv(texts, sources);
   const std::string verdict = campaign_verdict(merged);
   OutputSet set(out, OutputKind::kDirectory);
+  for (const std::string& d : o.shard_dirs)  // each run's faults and report, for its replay
+    if (fs::is_directory(fs::path(d) / "runs"))
+      fs::copy(fs::path(d) / "runs", set.staging_dir() / "runs",
+               fs::copy_options::recursive | fs::copy_options::overwrite_existing);
   set.write_text("campaign.csv", merged);
   set.write_text("verdict.txt", verdict + "\n");
   set.commit();

@@ -121,6 +121,7 @@ const CommandRegistration kMission{
       auto* sub =
           app.add_subcommand("mission", "Simulate the whole mission: search, land, retrieve, drop");
       add_mission_setup_options(sub, o->setup);
+      add_faults_option(sub, o->setup);
       add_seed_option(sub, o->seed, "mission");
       sub->add_option("-o,--out", o->out,
                       "Directory for report.json, aerial.png, tether.png, battery.png, spaces/*/, "

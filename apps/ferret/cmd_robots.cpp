@@ -71,6 +71,7 @@ const CommandRegistration kSimWorld{
       auto* sub = app.add_subcommand(
           "sim-world", "Serve the simulated world to a ferret uav and a ferret ugv process");
       add_common(sub, *o);
+      add_faults_option(sub, o->setup);
       sub->add_option("--listen", o->address, "Address:port to listen on (port 0: any free one)")
           ->capture_default_str();
       sub->add_option("--link-loss", o->link_loss,

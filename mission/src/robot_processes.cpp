@@ -291,20 +291,9 @@ class SimWorldUgvLink final : public UgvLink {
   bool lonely_ = false;
 };
 
-// Faults are the simulated world's to inject (ferret sim-world --faults); a robot's
-// controller only meets them, and a robot on its hardware meets real ones.
-void refuse_faults_option(const RobotProcessOptions& o) {
-  if (!o.setup.faults.empty())
-    throw InputError("--faults", "",
-                     "no fault file for a robot process: give it to ferret sim-world, whose "
-                     "world injects them",
-                     o.setup.faults);
-}
-
 }  // namespace
 
 void run_uav_process(const RobotProcessOptions& o) {
-  refuse_faults_option(o);
   check_record_target(o.out);
   const MissionSetup setup = load_mission_setup(o.setup);
   const bool on_hardware = uav_on_hardware(setup, o.setup.mission);
@@ -418,7 +407,6 @@ void run_uav_process(const RobotProcessOptions& o) {
 // --- ugv -----------------------------------------------------------------------------
 
 void run_ugv_process(const RobotProcessOptions& o) {
-  refuse_faults_option(o);
   check_record_target(o.out);
   const MissionSetup setup = load_mission_setup(o.setup);
   const bool on_hardware = ugv_on_hardware(setup);
@@ -494,8 +482,9 @@ void run_ugv_process(const RobotProcessOptions& o) {
               recorder.after_tick(clock.now_s());
               // Its state, for the world's fault plan (faults started by a state) and
               // invariants (each state within its timeout).
-              const std::string state =
-                  !mission ? "" : hold ? "link_hold" : std::string(to_string(mission->state()));
+              const std::string state = !mission ? ""
+                                        : hold   ? "link_hold"
+                                                 : std::string(to_string(mission->state()));
               stream.send(dump(
                   {{"op", "step_done"}, {"hold", hold}, {"stopped", stopped}, {"state", state}}));
               break;

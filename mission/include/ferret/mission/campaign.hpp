@@ -74,7 +74,8 @@ struct CampaignResult {
 /// A run whose process crashed or hung: unsafe, with `note` saying how.
 [[nodiscard]] CampaignResult failed_campaign_run(const CampaignRun& run, std::string note);
 
-/// The command that replays a run, with its faults in `faults_path`.
+/// The command that replays a run, with its faults in `faults_path` (run in the
+/// campaign's directory when the path is relative).
 [[nodiscard]] std::string campaign_replay_command(const CampaignRun& run,
                                                   const std::string& faults_path);
 
