@@ -64,7 +64,7 @@ class InProcessUgvLink final : public UgvLink {
     const Pose2 p = s->base().odometry();
     r.p_WG = {p.x_m, p.y_m};
     r.v_WG = s->base().speed_mps() * Eigen::Vector2d(std::cos(p.yaw_rad), std::sin(p.yaw_rad));
-    if (const auto a = m.explore_controller().tether_anchor()) {
+    if (const auto a = m.started() ? m.explore_controller().tether_anchor() : std::nullopt) {
       r.tether_anchor_W = a->first;
       r.tether_to_anchor_m = a->second;
       r.tether_uncertainty_m = std::max(

@@ -107,7 +107,7 @@ void UgvRunRecorder::started(double t_s, const MiniUgvMission& mission) {
 
 void UgvRunRecorder::after_tick(double t_s) {
   for (Search& s : searches_) {
-    if (s.ended_s) continue;
+    if (s.ended_s || !s.mission->started()) continue;
     s.max_tether_m = std::max(s.max_tether_m, s.mission->explore_controller().tether_length_m());
     if (s.mission->done() || s.mission->wants_retraction()) s.ended_s = t_s;
   }
@@ -169,6 +169,7 @@ void report_ugv_controller(const MiniUgvMission& m, UgvMissionRunResult& result)
   result.final_state = m.state();
   result.found_W = m.found_W();
   result.grasp_attempts = m.grasp_attempts();
+  if (!m.started()) return;  // set down, never told to search: no maps, no decisions
   result.decisions = m.explore_controller().decisions();
   result.grid = m.explore_controller().grid_ptr();
   result.objects = m.explore_controller().objects_ptr();

@@ -24,7 +24,7 @@ UgvMissionTickHook UgvMissionRecorder::hook() {
       path_.emplace_back(pose.x_m, pose.y_m, 0.0);
     }
     if (ticks_ % kPathEvery == 0) log_.line(t_s, "/ugv/path", "map", "path", path_, kPathColor);
-    if (ticks_ % kMapsEvery == 0)
+    if (ticks_ % kMapsEvery == 0 && mission.started())
       maps(t_s, mission.explore_controller().grid(), mission.explore_controller().objects());
     ++ticks_;
   };

@@ -84,5 +84,22 @@ TEST(MissionAssembly, TheMiniUgvKeysOfTheMissionFileReachItsController) {
   EXPECT_EQ(result.outcome, UgvMissionOutcome::kSearchTimeout);
 }
 
+// A miniUGV set down but never told to search (its start request lost on the link, the
+// UAV's time for the space running out) is lifted out with a result, not a crash.
+TEST(MissionAssembly, AMiniUgvNeverStartedReportsNoSearch) {
+  const Loaded l;
+  const OccupancyMap2D truth = test::room_with_partition();
+  SimClock clock;
+  UgvMissionSim sim(truth, Pose2{0.5, 1.0, 0.0}, Eigen::Vector2d(3.2, 0.8), l.settings.ugv, 1,
+                    MissionAssembly::ugv_controllers(l.settings.ugv, clock, nullptr));
+  sim.step(sim.tick_s());  // ticks an idle controller: nothing happens
+  EXPECT_DOUBLE_EQ(sim.controller().tether_length_m(), 0.0);
+  const UgvMissionRunResult r = sim.result(TransitionLog{});
+  EXPECT_EQ(r.outcome, UgvMissionOutcome::kNone);
+  EXPECT_EQ(r.final_state, UgvMissionState::kIdle);
+  EXPECT_EQ(r.decisions, 0);
+  EXPECT_EQ(r.grid, nullptr);
+}
+
 }  // namespace
 }  // namespace ferret

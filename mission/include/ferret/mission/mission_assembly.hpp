@@ -52,7 +52,7 @@ class SimMiniUgvMission final : public SimUgvController {
   [[nodiscard]] bool done() const override { return mission_->done(); }
   [[nodiscard]] bool wants_retraction() const override { return mission_->wants_retraction(); }
   [[nodiscard]] double tether_length_m() const override {
-    return mission_->explore_controller().tether_length_m();
+    return mission_->started() ? mission_->explore_controller().tether_length_m() : 0.0;
   }
   void report(UgvMissionRunResult& result) const override;
 

@@ -64,6 +64,9 @@ class MiniUgvMission {
   [[nodiscard]] bool wants_retraction() const { return state_ == UgvMissionState::kAwaitRetract; }
   /// Where O confirmed the object, once it did.
   [[nodiscard]] std::optional<Eigen::Vector2d> found_W() const { return found_W_; }
+  /// The search, from start() on: a mission never started (its start request lost, say)
+  /// has none, and explore_controller() is only for one that has.
+  [[nodiscard]] bool started() const { return explore_ != nullptr; }
   [[nodiscard]] const ExploreController& explore_controller() const { return *explore_; }
   /// How often the base stood still when told to drive forwards (bumps into G).
   [[nodiscard]] int bumps() const { return bumps_; }
