@@ -148,8 +148,12 @@ void run(const Options& o) {
   co.runs = o.runs;
   co.seed = o.seed;
   co.worlds = o.worlds.empty() ? default_worlds() : o.worlds;
-  for (const std::string& w : co.worlds)
+  for (std::string& w : co.worlds) {
     if (!fs::is_regular_file(w)) throw InputError("--world", "", "a world YAML file", w);
+    // Absolute, so that each run's replay command works from the campaign's directory
+    // (and names the same file in every shard of a job array on a shared file system).
+    w = fs::weakly_canonical(w).string();
+  }
   co.draw.min_faults = o.min_faults;
   co.draw.max_faults = o.max_faults;
   co.draw.horizon_s = 600.0;  // within the shipped worlds' shortest mission
