@@ -105,9 +105,12 @@ CampaignResult collect(const Child& c, int status) {
   const fs::path report = c.dir / "out" / "report.json";
   CampaignResult r;
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(report)) {
-    const std::string text = read_text(report);
-    r = classify_campaign_run(c.run, nlohmann::json::parse(text), report.string());
-    fs::copy_file(report, c.dir / "report.json", fs::copy_options::overwrite_existing);
+    try {
+      r = classify_campaign_run(c.run, nlohmann::json::parse(read_text(report)), report.string());
+      fs::copy_file(report, c.dir / "report.json", fs::copy_options::overwrite_existing);
+    } catch (const std::exception& e) {  // a run that wrote no readable report failed
+      r = failed_campaign_run(c.run, std::string("crash: an unreadable report: ") + e.what());
+    }
   } else if (WIFSIGNALED(status)) {
     r = failed_campaign_run(c.run, fmt::format("crash: signal {}", WTERMSIG(status)));
   } else {
@@ -141,8 +144,8 @@ void run(const Options& o) {
     throw InputError("--run-timeout-s", "", "seconds in [10, 86400]",
                      fmt::format("{}", o.run_timeout_s));
   if (o.min_faults < 0 || o.max_faults < o.min_faults || o.max_faults > 16)
-    throw InputError("--faults-per-run", "", "MIN-MAX with 0 <= MIN <= MAX <= 16",
-                     fmt::format("{}-{}", o.min_faults, o.max_faults));
+    throw InputError("--min-faults, --max-faults", "", "0 <= --min-faults <= --max-faults <= 16",
+                     fmt::format("{} and {}", o.min_faults, o.max_faults));
   const auto [shard_index, shard_count] = parse_shard(o.shard, o.shard_given);
   CampaignOptions co;
   co.runs = o.runs;
