@@ -14,6 +14,7 @@
 
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
+#include "support/input_refusal.hpp"
 
 namespace ferret {
 namespace {
@@ -28,19 +29,8 @@ FaultPlan parse(const std::string& text) {
   return fault_plan_from_yaml(yaml::load_string(text, "m.yaml")["faults"], "m.yaml", kStates);
 }
 
-struct Refusal {
-  std::string field, what;
-};
-
-Refusal refusal(const std::string& text) {
-  try {
-    (void)parse(text);
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.source(), "m.yaml");
-    return {e.field(), e.what()};
-  }
-  ADD_FAILURE() << "accepted:\n" << text;
-  return {};
+test::Refusal refusal(const std::string& text) {
+  return test::refusal_of(text, "m.yaml", [](const std::string& t) { return parse(t); });
 }
 
 TEST(FaultPlan, ReadsEachFaultWithItsKindsDefaults) {
@@ -152,7 +142,7 @@ TEST(FaultPlan, RefusesBadFaultsNamingTheField) {
       {"faults: [[1, 2]]\n", "faults[0]", ""},
   };
   for (const Case& c : cases) {
-    const Refusal r = refusal(c.yaml);
+    const test::Refusal r = refusal(c.yaml);
     EXPECT_EQ(r.field, c.field) << c.yaml;
     EXPECT_THAT(r.what, HasSubstr(c.says)) << c.yaml;
   }
@@ -161,7 +151,7 @@ TEST(FaultPlan, RefusesBadFaultsNamingTheField) {
 TEST(FaultPlan, RefusesAbsurdlyManyFaults) {
   std::string text = "faults:\n";
   for (std::size_t i = 0; i <= kMaxFaults; ++i) text += "  - {kind: ir_stuck}\n";
-  const Refusal r = refusal(text);
+  const test::Refusal r = refusal(text);
   EXPECT_EQ(r.field, "faults");
   EXPECT_THAT(r.what, HasSubstr("at most 256"));
 }

@@ -11,6 +11,7 @@
 #include "ferret/core/error.hpp"
 #include "ferret/core/yaml_config.hpp"
 #include "ferret/planning/mission_config.hpp"
+#include "support/input_refusal.hpp"
 
 namespace ferret {
 namespace {
@@ -21,19 +22,8 @@ RobotBackends parse(const std::string& text) {
   return robot_backends_from_yaml(yaml::load_string(text, "m.yaml"), "m.yaml");
 }
 
-struct Refusal {
-  std::string field, what;
-};
-
-Refusal refusal(const std::string& text) {
-  try {
-    (void)parse(text);
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.source(), "m.yaml");
-    return {e.field(), e.what()};
-  }
-  ADD_FAILURE() << "accepted:\n" << text;
-  return {};
+test::Refusal refusal(const std::string& text) {
+  return test::refusal_of(text, "m.yaml", [](const std::string& t) { return parse(t); });
 }
 
 constexpr const char* kAllHw = R"(
@@ -165,7 +155,7 @@ TEST(RobotBackends, BadInputNamesTheFieldAndWhatItShouldBe) {
       {"uav: {camera: {}}\n", "uav.camera", "one of"},
   };
   for (const auto& c : cases) {
-    const Refusal r = refusal(c.yaml);
+    const test::Refusal r = refusal(c.yaml);
     EXPECT_EQ(r.field, c.field) << c.yaml << r.what;
     EXPECT_THAT(r.what, HasSubstr(c.expected)) << c.yaml;
     EXPECT_THAT(r.what, HasSubstr("m.yaml")) << c.yaml;
